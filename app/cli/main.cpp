@@ -1,0 +1,196 @@
+// activetouch-cli: the headless runner (DESIGN.md §4).
+//   activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--no-figures]
+//   activetouch-cli check <file.json>
+// Exit codes: 0 ok, 1 the run failed, 2 bad input.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <QApplication>
+
+#include "app/figures/FigureExport.h"
+#include "app/figures/ValidationFigures.h"
+#include "app/run/ExperimentRun.h"
+#include "core/experiment/Experiment.h"
+#include "core/rig/Rig.h"
+#include "devices/simulated/SimulatedWorld.h"
+#include "qcustomplot.h"
+
+using namespace activetouch;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kOk = 0, kRunFailed = 1, kBadInput = 2;
+
+void printHelp() {
+    std::printf(
+        "activetouch-cli - ActiveTouch Workbench headless runner\n\n"
+        "Usage:\n"
+        "  activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--no-figures]\n"
+        "      Runs the experiment on the simulated rig and writes <dir>/summary.json,\n"
+        "      <dir>/data/*.csv (every tap, appended as it is taken; every table behind a figure)\n"
+        "      and <dir>/figures/*.{png,pdf,svg}. --out defaults to results/<experiment name>.\n"
+        "      --seed overrides the experiment's seed (one seed = one whole run).\n"
+        "  activetouch-cli check <file.json>\n"
+        "      Validates an experiment or a scene file and says what is wrong, if anything.\n"
+        "  activetouch-cli --help\n\n"
+        "Exit codes: 0 ok, 1 the run failed, 2 bad input (the message names the file, the place and the problem).\n");
+}
+
+int usageError(const std::string& message) {
+    std::fprintf(stderr, "activetouch-cli: %s\nRun 'activetouch-cli --help' for usage.\n", message.c_str());
+    return kBadInput;
+}
+
+/// Loads an experiment or a scene and checks everything the run would check, effects included.
+ExperimentSpec loadChecked(const std::string& path, bool requireExperiment) {
+    const Json j = readJsonFile(path);
+    ExperimentSpec spec;
+    if (looksLikeExperiment(j)) {
+        spec = parseExperiment(j, path, fs::path(path).parent_path().string());
+    } else if (requireExperiment) {
+        throw InputError(path, "/", "this is not an experiment file (it has no 'scene'); 'run' takes an experiment such as experiments/paper.json");
+    } else {
+        spec.scene = parseScene(j, path, "", fs::path(path).parent_path().string());
+    }
+    FingertipContactModel model(spec.scene.fingertip);
+    validateEffects(spec.scene, model);
+    return spec;
+}
+
+void setUpHeadlessDisplay() {
+    const char* display = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    const char* platform = std::getenv("QT_QPA_PLATFORM");
+    if ((!display || !*display) && (!wayland || !*wayland) && (!platform || !*platform)) setenv("QT_QPA_PLATFORM", "offscreen", 1);
+}
+
+double writeFigures(const RunResult& result, const fs::path& out, int argc, char** argv) {
+    const auto start = std::chrono::steady_clock::now();
+    setUpHeadlessDisplay();
+    QApplication app(argc, argv);
+    fs::create_directories(out / "figures");
+    const QStringList formats{"png", "pdf", "svg"};
+    QCustomPlot plot;
+    buildTapFigure(plot, result);
+    exportFigure(plot, QString::fromStdString((out / "figures" / "figure5_taps").string()), formats, {1600, 1100, 150});
+    buildErrorFigure(plot, result);
+    exportFigure(plot, QString::fromStdString((out / "figures" / "figure6_errors").string()), formats, {1800, 1100, 150});
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
+    std::string experimentPath, outDir;
+    std::optional<std::uint64_t> seed;
+    bool figures = true;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--out") {
+            if (i + 1 >= args.size()) return usageError("--out needs a folder");
+            outDir = args[++i];
+        } else if (a == "--seed") {
+            if (i + 1 >= args.size()) return usageError("--seed needs a whole number");
+            const std::string& v = args[++i];
+            char* end = nullptr;
+            const long long n = std::strtoll(v.c_str(), &end, 10);
+            if (v.empty() || *end != '\0' || n < 0 || n > 2147483647LL)
+                return usageError("--seed '" + v + "' is not a whole number between 0 and 2147483647");
+            seed = static_cast<std::uint64_t>(n);
+        } else if (a == "--no-figures") {
+            figures = false;
+        } else if (!a.empty() && a[0] == '-') {
+            return usageError("unknown option '" + a + "'");
+        } else if (experimentPath.empty()) {
+            experimentPath = a;
+        } else {
+            return usageError("unexpected argument '" + a + "'");
+        }
+    }
+    if (experimentPath.empty()) return usageError("run needs an experiment file, e.g. experiments/paper.json");
+
+    const auto start = std::chrono::steady_clock::now();
+    ExperimentSpec spec;
+    try {
+        spec = loadChecked(experimentPath, true);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    }
+    if (outDir.empty()) outDir = (fs::path("results") / spec.name).string();
+    const fs::path out(outDir);
+    // A stale summary must never be mistaken for this run's.
+    std::error_code ec;
+    fs::remove(out / "summary.json", ec);
+
+    RunResult result;
+    try {
+        RunOptions options;
+        options.outDir = outDir;
+        options.seed = seed;
+        result = runExperiment(spec, options);
+        writeRunTables(result, outDir);
+        double figures_s = 0.0;
+        if (figures) figures_s = writeFigures(result, out, argc, argv);
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        writeSummary(result, outDir, wall, figures_s);
+        const auto& v = result.validation;
+        std::printf("%s (seed %llu): %zu taps simulated, %.0f s of robot time\n", spec.name.c_str(),
+                    static_cast<unsigned long long>(result.spec.scene.seed), static_cast<std::size_t>(result.tapsSimulated), result.robotTime_s);
+        std::printf("validation: angle error %.2f deg, position error %.3f mm, class accuracy %.1f %%, valid range %d-%d mm\n",
+                    v.angleError_deg, v.positionError_mm, 100.0 * v.correctFraction, v.validRange.first, v.validRange.last);
+        std::printf("wall time %.3f s (figures %.3f s); results in %s\n", wall, figures_s, outDir.c_str());
+        return kOk;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    } catch (const RigError& e) {
+        std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data/taps.csv.\n", e.what(), outDir.c_str());
+        return kRunFailed;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data/taps.csv.\n", e.what(), outDir.c_str());
+        return kRunFailed;
+    }
+}
+
+int commandCheck(const std::vector<std::string>& args) {
+    if (args.size() != 1) return usageError("check takes exactly one file");
+    try {
+        const ExperimentSpec spec = loadChecked(args[0], false);
+        const bool experiment = !spec.name.empty();
+        std::printf("%s: ok (%s; object %s, %zu effect%s listed)\n", args[0].c_str(),
+                    experiment ? ("experiment '" + spec.name + "'").c_str() : "scene", spec.scene.object.shape.c_str(),
+                    spec.scene.effects.size(), spec.scene.effects.size() == 1 ? "" : "s");
+        return kOk;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s: %s\n", args[0].c_str(), e.what());
+        return kBadInput;
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty()) {
+        printHelp();
+        return kBadInput;
+    }
+    const std::string command = args.front();
+    args.erase(args.begin());
+    if (command == "--help" || command == "-h" || command == "help") {
+        printHelp();
+        return kOk;
+    }
+    if (command == "run") return commandRun(args, argc, argv);
+    if (command == "check") return commandCheck(args);
+    return usageError("unknown command '" + command + "'; use run or check");
+}

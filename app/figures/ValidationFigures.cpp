@@ -1,0 +1,208 @@
+#include "app/figures/ValidationFigures.h"
+
+#include <algorithm>
+
+#include "app/run/ExperimentRun.h"
+#include "qcustomplot.h"
+
+namespace activetouch {
+namespace {
+
+QColor taxelColour(int k, int count) {
+    return QColor::fromHsvF(std::fmod(k / double(std::max(1, count)) * 0.9, 1.0), 0.85, 0.85);
+}
+
+// The figure's layout: one column of rows; row 0 is the title, the others hold sub-grids.
+QCPLayoutGrid* addRow(QCustomPlot& plot, double stretch) {
+    auto* grid = new QCPLayoutGrid;
+    const int row = plot.plotLayout()->rowCount();
+    plot.plotLayout()->addElement(row, 0, grid);
+    plot.plotLayout()->setRowStretchFactor(row, stretch);
+    return grid;
+}
+
+void addTitle(QCustomPlot& plot, const QString& text) {
+    auto* title = new QCPTextElement(&plot, text, QFont("Sans", 12, QFont::Bold));
+    plot.plotLayout()->addElement(0, 0, title);
+    plot.plotLayout()->setRowStretchFactor(0, 0.001);
+}
+
+void resetPlot(QCustomPlot& plot) {
+    plot.clearPlottables();
+    plot.clearItems();
+    plot.plotLayout()->clear();
+    plot.setBackground(Qt::white);
+}
+
+QCPAxisRect* addPanel(QCPLayoutGrid* grid, int row, int column, const QString& xLabel, const QString& yLabel) {
+    auto* rect = new QCPAxisRect(grid->parentPlot());
+    grid->addElement(row, column, rect);
+    rect->axis(QCPAxis::atBottom)->setLabel(xLabel);
+    rect->axis(QCPAxis::atLeft)->setLabel(yLabel);
+    return rect;
+}
+
+QSharedPointer<QCPAxisTickerText> orientationTicker(const ClassSet& cs) {
+    QSharedPointer<QCPAxisTickerText> t(new QCPAxisTickerText);
+    for (std::size_t o = 0; o < cs.orientationsDeg.size(); ++o)
+        t->addTick(double(o), QString::fromStdString(ClassSet::orientationName(cs.orientationsDeg[o])));
+    return t;
+}
+
+void shadeValidRange(QCPAxisRect* rect, const RunResult& r, double yMax) {
+    const auto& vr = r.validation.validRange;
+    auto* band = new QCPItemRect(rect->parentPlot());
+    band->setClipAxisRect(rect);
+    for (auto* pos : {band->topLeft, band->bottomRight}) {
+        pos->setAxes(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+        pos->setAxisRect(rect);
+    }
+    band->topLeft->setCoords(vr.first - 0.5, yMax);
+    band->bottomRight->setCoords(vr.last + 0.5, 0.0);
+    band->setPen(Qt::NoPen);
+    band->setBrush(QColor(46, 160, 67, 45));
+    auto* label = new QCPItemText(rect->parentPlot());
+    label->setClipAxisRect(rect);
+    label->position->setAxes(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+    label->position->setAxisRect(rect);
+    label->position->setCoords(0.5 * (vr.first + vr.last), yMax * 0.97);
+    label->setPositionAlignment(Qt::AlignTop | Qt::AlignHCenter);
+    label->setText(QString("valid range %1-%2 mm").arg(vr.first).arg(vr.last));
+    label->setColor(QColor(30, 110, 45));
+}
+
+}  // namespace
+
+void buildTapFigure(QCustomPlot& plot, const RunResult& r) {
+    resetPlot(plot);
+    const ClassSet& cs = r.classes;
+    const int O = static_cast<int>(cs.orientationsDeg.size());
+    const int K = r.classifier.trained() ? r.classifier.taxelCount() : kFingertipTaxels;
+    const int firstSet = r.spec.training.trainingSets.empty() ? 1 : r.spec.training.trainingSets.front();
+    const int columns = O >= 4 ? 2 : 1;
+    addTitle(plot, QString("Figure 5 - taps across each edge (data set %1)").arg(firstSet));
+    QCPLayoutGrid* panels = addRow(plot, 1.0);
+    for (int o = 0; o < O; ++o) {
+        auto* rect = addPanel(panels, o / columns, o % columns, "tap position across the edge (mm; plane to air)",
+                              "pressure (normalised)");
+        rect->axis(QCPAxis::atTop)->setLabel(QString::fromStdString(ClassSet::orientationName(cs.orientationsDeg[static_cast<std::size_t>(o)])) + " edge");
+        rect->axis(QCPAxis::atTop)->setVisible(true);
+        rect->axis(QCPAxis::atTop)->setTicks(false);
+        rect->axis(QCPAxis::atTop)->setTickLabels(false);
+        // Normalise each panel to a maximum of one, as the paper does.
+        double peak = 0.0;
+        for (const auto& t : r.taps)
+            if (t.dataSet == firstSet && cs.orientationIndexOf(t.cls) == o)
+                for (double v : t.record.tap.samples) peak = std::max(peak, v);
+        for (int k = 0; k < K; ++k) {
+            auto* g = plot.addGraph(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+            g->setPen(QPen(taxelColour(k, K), 1.2));
+            g->setName(QString("taxel %1").arg(k));
+            QVector<double> x, y;
+            for (const auto& t : r.taps) {
+                if (t.dataSet != firstSet || cs.orientationIndexOf(t.cls) != o) continue;
+                const int T = t.record.tap.sampleCount();
+                for (int s = 0; s < T; ++s) {
+                    x << cs.positionOf(t.cls) - 0.5 + double(s) / T;
+                    y << (peak > 0 ? t.record.tap.at(s, k) / peak : 0.0);
+                }
+                x << qQNaN();  // a gap between taps
+                y << qQNaN();
+            }
+            g->setData(x, y, true);
+        }
+        rect->axis(QCPAxis::atBottom)->setRange(0.5, cs.positions + 0.5);
+        rect->axis(QCPAxis::atLeft)->setRange(0.0, 1.05);
+    }
+    // Legend: taxel colours, in its own row at the bottom.
+    auto* legend = new QCPLegend;
+    QCPLayoutGrid* legendRow = addRow(plot, 0.001);
+    legendRow->addElement(0, 0, legend);
+    legend->setLayer("legend");
+    legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
+    legend->setWrap(6);
+    for (int k = 0; k < K && k < plot.graphCount(); ++k) legend->addItem(new QCPPlottableLegendItem(legend, plot.graph(k)));
+}
+
+void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
+    resetPlot(plot);
+    const ClassSet& cs = r.classes;
+    const int O = static_cast<int>(cs.orientationsDeg.size());
+    const int P = cs.positions;
+    const double maxAngle = 180.0;
+    const double maxPosition = (P - 1) * cs.positionStep_mm;
+
+    struct Heat { const char* title; double max; bool angle; const char* unit; };
+    const Heat heats[2] = {{"A  angle error", maxAngle, true, "angle error (deg)"},
+                           {"B  position error", maxPosition, false, "position error (mm)"}};
+    addTitle(plot, QString("Figure 6 - offline validation over %1 test taps: angle error %2 deg, position error %3 mm")
+                       .arg(r.validation.percepts.size())
+                       .arg(r.validation.angleError_deg, 0, 'f', 1)
+                       .arg(r.validation.positionError_mm, 0, 'f', 2));
+    QCPLayoutGrid* upper = addRow(plot, 1.0);
+    for (int h = 0; h < 2; ++h) {
+        auto* rect = addPanel(upper, 0, 2 * h, "position (mm; 1 = plane, 18 = air)", "edge orientation");
+        rect->axis(QCPAxis::atLeft)->setTicker(orientationTicker(cs));
+        rect->axis(QCPAxis::atTop)->setVisible(true);
+        rect->axis(QCPAxis::atTop)->setTicks(false);
+        rect->axis(QCPAxis::atTop)->setTickLabels(false);
+        rect->axis(QCPAxis::atTop)->setLabel(heats[h].title);
+        auto* map = new QCPColorMap(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+        map->data()->setSize(P, O);
+        map->data()->setRange(QCPRange(1, P), QCPRange(0, O - 1));
+        for (const auto& e : r.validation.byClass)
+            map->data()->setCell(e.position - 1, e.orientationIndex, heats[h].angle ? e.angleError_deg : e.positionError_mm);
+        map->setInterpolate(false);
+        map->setTightBoundary(false);
+        auto* scale = new QCPColorScale(&plot);
+        upper->addElement(0, 2 * h + 1, scale);
+        scale->setType(QCPAxis::atRight);
+        scale->axis()->setLabel(heats[h].unit);
+        map->setColorScale(scale);
+        map->setGradient(QCPColorGradient(QCPColorGradient::gpThermal));
+        map->setDataRange(QCPRange(0, heats[h].max));  // fixed scale: runs compare by eye
+        auto* margins = new QCPMarginGroup(&plot);
+        rect->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
+        scale->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
+        rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
+        rect->axis(QCPAxis::atLeft)->setRange(-0.5, O - 0.5);
+    }
+    // Heatmaps and their scales sit in row 0, columns 0..3; the line panels span below.
+    struct Line { const char* title; const std::vector<double>* mean; const std::vector<double>* sd; const char* unit; };
+    const Line lines[2] = {{"C  angle error, mean over orientations +- 1 std", &r.validation.angleMean, &r.validation.angleStd, "angle error (deg)"},
+                           {"D  position error, mean over orientations +- 1 std", &r.validation.positionMean, &r.validation.positionStd, "position error (mm)"}};
+    QCPLayoutGrid* lower = addRow(plot, 1.0);
+    for (int l = 0; l < 2; ++l) {
+        auto* rect = new QCPAxisRect(&plot);
+        lower->addElement(0, l, rect);
+        rect->axis(QCPAxis::atBottom)->setLabel("position (mm; 1 = plane, 18 = air)");
+        rect->axis(QCPAxis::atLeft)->setLabel(lines[l].unit);
+        rect->axis(QCPAxis::atTop)->setVisible(true);
+        rect->axis(QCPAxis::atTop)->setTicks(false);
+        rect->axis(QCPAxis::atTop)->setTickLabels(false);
+        rect->axis(QCPAxis::atTop)->setLabel(lines[l].title);
+        auto* g = plot.addGraph(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+        QVector<double> x, y, e;
+        double top = 0.0;
+        for (int p = 1; p <= P; ++p) {
+            x << p;
+            y << (*lines[l].mean)[static_cast<std::size_t>(p - 1)];
+            e << (*lines[l].sd)[static_cast<std::size_t>(p - 1)];
+            top = std::max(top, y.back() + e.back());
+        }
+        g->setData(x, y, true);
+        g->setPen(QPen(QColor(31, 119, 180), 2));
+        g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, 6));
+        auto* bars = new QCPErrorBars(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+        bars->setDataPlottable(g);
+        bars->setData(e);
+        bars->setPen(QPen(QColor(31, 119, 180)));
+        const double yMax = std::max(top * 1.15, l == 0 ? 10.0 : 1.0);
+        rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
+        rect->axis(QCPAxis::atLeft)->setRange(0.0, yMax);
+        shadeValidRange(rect, r, yMax);
+    }
+    upper->setColumnStretchFactors({1.0, 0.06, 1.0, 0.06});
+}
+
+}  // namespace activetouch

@@ -1,0 +1,199 @@
+#include "app/run/ExperimentRun.h"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "core/io/TapCsv.h"
+#include "core/validation/ClassRegions.h"
+#include "devices/simulated/SimulatedWorld.h"
+
+namespace activetouch {
+namespace fs = std::filesystem;
+
+namespace {
+
+void ensureDirectory(const fs::path& dir) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw InputError(dir.string(), "", "cannot create the output folder (" + ec.message() + "); choose a writable --out");
+}
+
+std::FILE* openTable(const fs::path& path) {
+    std::FILE* f = std::fopen(path.string().c_str(), "w");
+    if (!f) throw InputError(path.string(), "", "cannot write the file; check the output folder is writable");
+    return f;
+}
+
+}  // namespace
+
+RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options) {
+    const auto started = std::chrono::steady_clock::now();
+    RunResult result;
+    result.spec = specIn;
+    if (options.seed) result.spec.scene.seed = *options.seed;
+    const ExperimentSpec& spec = result.spec;
+
+    auto model = std::make_shared<const FingertipContactModel>(spec.scene.fingertip);
+    SimulatedRig simulated(spec.scene, model);
+    Rig rig = simulated.rig();
+    result.activeEffects = simulated.world().activeEffects();
+    result.classes = spec.classes;
+    result.classes.regions = computeClassRegions(*model, spec.classes, spec.scene.tap, spec.scene.strokeLimitDepth());
+
+    std::unique_ptr<TapCsvWriter> recording;
+    if (!options.outDir.empty()) {
+        ensureDirectory(fs::path(options.outDir) / "data");
+        recording = std::make_unique<TapCsvWriter>((fs::path(options.outDir) / "data" / "taps.csv").string(), model->taxelCount());
+    }
+
+    RunProgress progress;
+    progress.step = "training and test taps";
+    progress.tapsPlanned = spec.training.dataSets * spec.classes.classCount() * spec.training.tapsPerClass;
+    auto onTap = [&](const CollectedTap& tap) {
+        if (recording) recording->append(tap, result.classes);
+        ++progress.tapsDone;
+        if (options.progress) options.progress(progress);
+        return !(options.cancel && options.cancel->load());
+    };
+    result.taps = collectTrainingTaps(rig, simulated.world().object(), result.classes, spec.training,
+                                      RandomStream::derived(spec.scene.seed, "protocol:placement"), onTap);
+    result.robotTime_s = simulated.world().now_s();
+    result.tapsSimulated = simulated.world().tapsSimulated();
+    if (static_cast<int>(result.taps.size()) < progress.tapsPlanned) {
+        result.cancelled = true;
+        result.runWall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        return result;
+    }
+
+    std::vector<LabelledTap> training;
+    std::vector<const CollectedTap*> tests;
+    for (const auto& t : result.taps) {
+        if (spec.training.isTrainingSet(t.dataSet)) training.push_back({&t.record.tap, t.cls});
+        else tests.push_back(&t);
+    }
+    result.classifier = HistogramClassifier::train(training, result.classes.classCount(), spec.classifier);
+    result.validation = validateOffline(result.classifier, result.classes, tests, spec.validRangeWidth);
+    result.runWall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return result;
+}
+
+void writeRunTables(const RunResult& r, const std::string& outDir) {
+    const fs::path data = fs::path(outDir) / "data";
+    ensureDirectory(data);
+    const ClassSet& cs = r.classes;
+
+    std::FILE* f = openTable(data / "class_regions.csv");
+    std::fprintf(f, "class,orientation_deg,orientation,position,offset_mm,region\n");
+    for (int c = 0; c < cs.classCount(); ++c)
+        std::fprintf(f, "%d,%g,%s,%d,%g,%s\n", c, cs.orientationDegOf(c), ClassSet::orientationName(cs.orientationDegOf(c)).c_str(),
+                     cs.positionOf(c), cs.offsetOf(cs.positionOf(c)), regionName(cs.regionOf(c)));
+    std::fclose(f);
+    if (r.cancelled) return;
+
+    f = openTable(data / "validation_by_class.csv");
+    std::fprintf(f, "orientation_deg,orientation,position,region,test_taps,angle_error_deg,position_error_mm,correct_fraction\n");
+    for (const auto& e : r.validation.byClass) {
+        const double deg = cs.orientationsDeg[static_cast<std::size_t>(e.orientationIndex)];
+        std::fprintf(f, "%g,%s,%d,%s,%d,%.10g,%.10g,%.10g\n", deg, ClassSet::orientationName(deg).c_str(), e.position,
+                     regionName(e.region), e.taps, e.angleError_deg, e.positionError_mm, e.correctFraction);
+    }
+    std::fclose(f);
+
+    f = openTable(data / "validation_by_position.csv");
+    std::fprintf(f, "position,offset_mm,angle_error_deg_mean,angle_error_deg_std,position_error_mm_mean,position_error_mm_std,in_valid_range\n");
+    for (int p = 1; p <= cs.positions; ++p) {
+        const auto i = static_cast<std::size_t>(p - 1);
+        std::fprintf(f, "%d,%g,%.10g,%.10g,%.10g,%.10g,%d\n", p, cs.offsetOf(p), r.validation.angleMean[i], r.validation.angleStd[i],
+                     r.validation.positionMean[i], r.validation.positionStd[i],
+                     p >= r.validation.validRange.first && p <= r.validation.validRange.last ? 1 : 0);
+    }
+    std::fclose(f);
+
+    f = openTable(data / "test_percepts.csv");
+    std::fprintf(f, "set,true_class,true_orientation_deg,true_position,true_offset_mm,perceived_class,shape_class,perceived_orientation_deg,perceived_position,posterior\n");
+    std::size_t i = 0;
+    for (const auto& t : r.taps) {
+        if (r.spec.training.isTrainingSet(t.dataSet)) continue;
+        const Percept& p = r.validation.percepts[i++];
+        std::fprintf(f, "%d,%d,%g,%d,%.10g,%d,%s,%g,%d,%.10g\n", t.dataSet, t.cls, cs.orientationDegOf(t.cls), cs.positionOf(t.cls),
+                     t.trueOffset_mm, p.cls, p.shapeClass().c_str(), p.orientationDeg, p.position, p.posterior);
+    }
+    std::fclose(f);
+
+    f = openTable(data / "confusion.csv");
+    std::fprintf(f, "true_class");
+    for (int c = 0; c < cs.classCount(); ++c) std::fprintf(f, ",perceived_%d", c);
+    std::fputc('\n', f);
+    for (int a = 0; a < cs.classCount(); ++a) {
+        std::fprintf(f, "%d", a);
+        for (int b = 0; b < cs.classCount(); ++b) std::fprintf(f, ",%d", r.validation.confusion[static_cast<std::size_t>(a * cs.classCount() + b)]);
+        std::fputc('\n', f);
+    }
+    std::fclose(f);
+}
+
+Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
+    const ClassSet& cs = r.classes;
+    Json j;
+    j["experiment"] = r.spec.name;
+    j["source"] = r.spec.source;
+    j["seed"] = r.spec.scene.seed;
+    j["completed"] = !r.cancelled;
+    j["scene"] = sceneToJson(r.spec.scene);
+    j["effects_active"] = r.activeEffects;
+    Json regions = Json::array();
+    for (int c = 0; c < cs.classCount(); ++c) regions.push_back(regionName(cs.regionOf(c)));
+    j["classes"] = {{"orientations_deg", cs.orientationsDeg}, {"positions", cs.positions},
+                    {"position_step_mm", cs.positionStep_mm}, {"regions", regions}};
+    j["classifier"] = {{"bins", r.spec.classifier.bins}, {"smoothing", r.spec.classifier.smoothing}};
+    j["training"] = {{"data_sets", r.spec.training.dataSets}, {"training_sets", r.spec.training.trainingSets},
+                     {"taps_per_class", r.spec.training.tapsPerClass}, {"test_offset_mm", r.spec.training.testOffset_mm},
+                     {"placement_jitter_mm", r.spec.training.placementJitter_mm}};
+    if (!r.cancelled) {
+        const auto& v = r.validation;
+        Json byClass = Json::array();
+        for (const auto& e : v.byClass) {
+            const double deg = cs.orientationsDeg[static_cast<std::size_t>(e.orientationIndex)];
+            byClass.push_back({{"orientation_deg", deg}, {"orientation", ClassSet::orientationName(deg)}, {"position", e.position},
+                               {"region", regionName(e.region)}, {"test_taps", e.taps}, {"angle_error_deg", e.angleError_deg},
+                               {"position_error_mm", e.positionError_mm}, {"correct_fraction", e.correctFraction}});
+        }
+        Json byPosition = Json::array();
+        for (int p = 1; p <= cs.positions; ++p) {
+            const auto i = static_cast<std::size_t>(p - 1);
+            byPosition.push_back({{"position", p}, {"angle_error_deg_mean", v.angleMean[i]}, {"angle_error_deg_std", v.angleStd[i]},
+                                  {"position_error_mm_mean", v.positionMean[i]}, {"position_error_mm_std", v.positionStd[i]}});
+        }
+        j["validation"] = {
+            {"angle_error_deg_mean", v.angleError_deg},
+            {"position_error_mm_mean", v.positionError_mm},
+            {"class_accuracy", v.correctFraction},
+            {"valid_range_mm", {v.validRange.first * cs.positionStep_mm, v.validRange.last * cs.positionStep_mm}},
+            {"valid_range_positions", {v.validRange.first, v.validRange.last}},
+            {"valid_range_offset_mm", {cs.offsetOf(v.validRange.first), cs.offsetOf(v.validRange.last)}},
+            {"valid_range_rule", "the window of " + std::to_string(r.spec.validRangeWidth) +
+                                     " consecutive positions with the lowest sum of orientation-averaged angle and position errors, "
+                                     "each normalised by its maximum over positions; ties to the window nearest the edge"},
+            {"test_taps", v.percepts.size()},
+            {"by_class", byClass},
+            {"by_position", byPosition}};
+    }
+    j["timing"] = {{"wall_s", wall_s}, {"run_wall_s", r.runWall_s}, {"figures_wall_s", figures_s},
+                   {"taps_simulated", r.tapsSimulated}, {"robot_time_s", r.robotTime_s}};
+    return j;
+}
+
+void writeSummary(const RunResult& r, const std::string& outDir, double wall_s, double figures_s) {
+    const fs::path final = fs::path(outDir) / "summary.json";
+    const fs::path temp = fs::path(outDir) / "summary.json.partial";
+    {
+        std::ofstream out(temp);
+        if (!out) throw InputError(temp.string(), "", "cannot write the summary; check the output folder is writable");
+        out << summaryJson(r, wall_s, figures_s).dump(2) << '\n';
+    }
+    fs::rename(temp, final);
+}
+
+}  // namespace activetouch

@@ -1,0 +1,80 @@
+#pragma once
+// The paper's histogram maximum-likelihood classifier (eq. 1, 2; DESIGN.md §2).
+//
+// Per class c and taxel k, a histogram of all training samples over B uniform bins spanning that
+// taxel's min..max over the training set; P_k(s|c) = (h + alpha) / (sum h + B alpha). A tap's
+// class is argmax_c sum_k sum_t log P_k(s_tk | c), always in the log domain.
+//
+// The log table is laid out [taxel][bin][class]: a tap touches few distinct (taxel, bin) cells,
+// so the decision sums count x row over those cells instead of over all T x K samples.
+// Ties break to the lowest class index. Samples outside the trained range clamp to the end bins;
+// a taxel that never varied in training maps every sample to bin 0 (class-independent, so it
+// never sways a decision); NaN maps to bin 0, +inf to the last bin.
+#include <string>
+#include <vector>
+
+#include "core/tap/Tap.h"
+
+namespace activetouch {
+
+struct ClassifierSettings {
+    int bins = 100;          ///< B (paper: 100)
+    double smoothing = 0.01;  ///< alpha, additive pseudo-count per bin, > 0 (see README: chosen by validation)
+    /// Why the settings cannot train a classifier, or empty.
+    std::string problem() const;
+};
+
+struct LabelledTap {
+    const Tap* tap = nullptr;
+    int cls = 0;
+};
+
+class HistogramClassifier {
+public:
+    HistogramClassifier() = default;
+
+    /// Trains on `taps` (all with the same taxel count; every class in [0, classCount) needs at
+    /// least one tap). Throws std::invalid_argument with a sentence otherwise.
+    static HistogramClassifier train(const std::vector<LabelledTap>& taps, int classCount,
+                                     const ClassifierSettings& settings);
+
+    int classCount() const { return classes_; }
+    int taxelCount() const { return taxels_; }
+    int binCount() const { return bins_; }
+    bool trained() const { return classes_ > 0; }
+    double rangeMin(int taxel) const { return min_[static_cast<std::size_t>(taxel)]; }
+    double rangeMax(int taxel) const { return max_[static_cast<std::size_t>(taxel)]; }
+
+    /// Bin of `value` for `taxel`, with the clamping rules above.
+    int binOf(int taxel, double value) const;
+
+    /// log P_k(bin | class) for one cell.
+    double logProbability(int taxel, int bin, int cls) const {
+        return logTable_[(static_cast<std::size_t>(taxel) * static_cast<std::size_t>(bins_) + static_cast<std::size_t>(bin)) * static_cast<std::size_t>(classes_) + static_cast<std::size_t>(cls)];
+    }
+
+    /// Sum over the tap's samples of log P for every class into `out` (classCount values).
+    void logLikelihoods(const Tap& tap, double* out) const;
+
+    /// The maximum-likelihood class (lowest index on ties).
+    int classify(const Tap& tap) const;
+
+    struct Decision {
+        int cls = 0;
+        double posterior = 0.0;  ///< of the winner, flat prior, normalised with log-sum-exp
+    };
+    Decision decide(const Tap& tap) const;
+
+private:
+    int classes_ = 0, taxels_ = 0, bins_ = 0;
+    std::vector<double> min_, max_, scale_;  // per taxel; scale_ = bins / (max - min), 0 if degenerate
+    std::vector<double> logTable_;           // [taxel][bin][class]
+};
+
+/// Index of the largest value, lowest index on ties; NaN never wins.
+int argmaxLowestIndex(const double* values, int count);
+
+/// log(sum exp(values)), stable for any finite values.
+double logSumExp(const double* values, int count);
+
+}  // namespace activetouch

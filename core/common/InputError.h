@@ -1,0 +1,36 @@
+#pragma once
+// An error the user can cause and fix: a file, a setting, a value. It names the thing (`source`,
+// usually a file path), the place inside it (`place`, a JSON pointer, a CSV line, a parameter),
+// and the problem in a sentence that says what to do.
+#include <stdexcept>
+#include <string>
+
+namespace activetouch {
+
+class InputError : public std::runtime_error {
+public:
+    InputError(std::string source, std::string place, std::string problem)
+        : std::runtime_error(compose(source, place, problem)),
+          source_(std::move(source)),
+          place_(std::move(place)),
+          problem_(std::move(problem)) {}
+
+    const std::string& source() const { return source_; }
+    const std::string& place() const { return place_; }
+    const std::string& problem() const { return problem_; }
+
+    static std::string compose(const std::string& source, const std::string& place,
+                               const std::string& problem) {
+        std::string text = source.empty() ? std::string() : source;
+        if (!place.empty()) text += (text.empty() ? "" : ": ") + std::string("at ") + place;
+        text += (text.empty() ? "" : ": ") + problem;
+        return text;
+    }
+
+private:
+    std::string source_;
+    std::string place_;
+    std::string problem_;
+};
+
+}  // namespace activetouch

@@ -1,0 +1,92 @@
+#pragma once
+// Contact physics of the ideal fingertip (DESIGN.md §3): the tilted rounded tip pressed into a
+// compliant pad on a flat object's top face. Each taxel reads the mean indentation over its
+// receptive field, counted only where the object's top face lies under the tip, so edges,
+// corners and concavities come out of geometry alone.
+//
+// The model is pure geometry, shared by the simulated rig and by the class-region map that the
+// classifier uses with any rig. It is built once; a tap costs one coverage pass over the patch
+// and a few weighted sums.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/fingertip/FingertipSpec.h"
+#include "core/geometry/Polygon.h"
+
+namespace activetouch {
+
+class FingertipContactModel {
+public:
+    explicit FingertipContactModel(const FingertipSpec& spec);
+
+    int taxelCount() const { return taxelCount_; }
+    const FingertipSpec& spec() const { return spec_; }
+
+    /// Taxel centres projected onto the contact plane, relative to the fingertip centre (the
+    /// tip's first-contact point), mm.
+    const std::vector<Vec2>& projectedTaxels() const { return projectedTaxels_; }
+
+    /// Height of each taxel above the first-contact point, mm.
+    const std::vector<double>& taxelHeights() const { return taxelHeights_; }
+
+    /// Offset of the first-contact point from the mount (support axis), mm: (along heading, down).
+    double firstContactForward() const { return firstContactForward_; }
+    double firstContactDrop() const { return firstContactDrop_; }
+
+    /// Body surface height above the first-contact point at a planar offset (infinite where
+    /// the body never reaches within maxIndentation).
+    double surfaceHeightAt(Vec2 offset) const;
+
+    /// What lies under the tip for one stage pose: the object's coverage of each patch point,
+    /// computed lazily in order of surface height.
+    class Contact {
+    public:
+        /// Total pressure (sum over taxels, counts) at indentation `depth` mm.
+        double totalPressure(double depth);
+        /// Indentation at which the total pressure reaches `threshold` counts, or nothing if it
+        /// does not within `maxDepth`.
+        std::optional<double> depthReaching(double threshold, double maxDepth);
+        /// Per-taxel pressures (counts) at indentation `depth` mm into `out` (taxelCount values).
+        void taxelPressures(double depth, double* out);
+        /// Whether every point of the patch pressed at `depth` lies on the object.
+        bool patchFullyOnObject(double depth);
+
+    private:
+        friend class FingertipContactModel;
+        Contact(const FingertipContactModel& model, const Polygon& object, Vec2 centre);
+        void coverUpTo(double height);
+        float coverageOf(std::size_t point) const;
+
+        const FingertipContactModel* model_;
+        const Polygon* object_;
+        Vec2 centre_;
+        bool centreInside_ = false;
+        std::vector<std::size_t> nearEdges_;  // outline edges that can reach the patch
+        std::vector<float> coverage_;         // per patch point, filled in height order
+        std::size_t covered_ = 0;             // points [0, covered_) have coverage
+    };
+
+    /// The contact of the tip centred at `centre` over `object` (the object must outlive it).
+    Contact contactAt(const Polygon& object, Vec2 centre) const;
+
+private:
+    struct PatchPoint {
+        Vec2 offset;      // from the fingertip centre, mm
+        double height;    // body surface above the first-contact point, mm
+        float weightSum;  // sum over taxels of the receptive-field weights
+    };
+    double lowestBodyHeight(double worldX, double worldY) const;
+
+    FingertipSpec spec_;
+    int taxelCount_ = 0;
+    std::vector<Vec2> projectedTaxels_;
+    std::vector<double> taxelHeights_;
+    double firstContactForward_ = 0.0, firstContactDrop_ = 0.0;
+    double lowestY_ = 0.0, lowestZ_ = 0.0;  // first-contact point in the body's own world frame
+    std::vector<PatchPoint> points_;        // sorted by height
+    std::vector<float> weights_;            // points_.size() x taxelCount_, scaled by countsPerMm
+    double patchRadius_ = 0.0;
+};
+
+}  // namespace activetouch

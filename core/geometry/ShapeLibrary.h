@@ -1,0 +1,29 @@
+#pragma once
+// The paper's test objects as outlines centred on their bounding box. The paper gives only the
+// rectangle's size (48 x 58 mm); the cross, C and L default to 60 x 60 mm with 20 mm arms and a
+// 20 mm C opening (DESIGN.md §2). Any scene may give its own polygon instead.
+#include <string>
+#include <vector>
+
+#include "core/geometry/Polygon.h"
+
+namespace activetouch {
+
+struct ShapeSize {
+    double width = 60.0;    ///< bounding box along x, mm
+    double height = 60.0;   ///< bounding box along y, mm
+    double arm = 20.0;      ///< arm width for cross, C and L, mm
+    double opening = 20.0;  ///< gap of the C, mm
+};
+
+/// Names accepted by `libraryShape`: rectangle, cross, c, l.
+const std::vector<std::string>& libraryShapeNames();
+
+/// Outline of a library shape centred at the origin. Throws std::invalid_argument with a
+/// sentence for an unknown name or sizes that make no outline (arm wider than the shape...).
+Polygon libraryShape(const std::string& name, const ShapeSize& size);
+
+/// The defaults DESIGN.md gives for each library shape.
+ShapeSize defaultShapeSize(const std::string& name);
+
+}  // namespace activetouch

@@ -1,0 +1,36 @@
+#pragma once
+// A point or displacement in the stage plane, millimetres. World frame: x right, y up.
+#include <cmath>
+
+namespace activetouch {
+
+struct Vec2 {
+    double x = 0.0;
+    double y = 0.0;
+
+    friend Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+    friend Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+    friend Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
+    friend Vec2 operator*(Vec2 a, double s) { return {s * a.x, s * a.y}; }
+    friend bool operator==(Vec2 a, Vec2 b) = default;
+    Vec2& operator+=(Vec2 b) { x += b.x; y += b.y; return *this; }
+};
+
+inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+inline double distance(Vec2 a, Vec2 b) { return norm(a - b); }
+
+/// Unit vector at `degrees` counter-clockwise from +x.
+inline Vec2 directionFromDegrees(double degrees) {
+    const double r = degrees * M_PI / 180.0;
+    return {std::cos(r), std::sin(r)};
+}
+
+inline Vec2 rotated(Vec2 v, double degrees) {
+    const double r = degrees * M_PI / 180.0;
+    const double c = std::cos(r), s = std::sin(r);
+    return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+
+}  // namespace activetouch

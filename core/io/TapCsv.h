@@ -1,0 +1,37 @@
+#pragma once
+// Taps as CSV in long format: one row per (tap, sample) with one column per taxel, so pandas,
+// MATLAB or R read it directly. The writer appends and flushes tap by tap, so a run that dies
+// loses at most the tap in flight.
+//
+// Columns: set,class,orientation_deg,position,true_offset_mm,pose_x_mm,pose_y_mm,robot_time_s,
+//          ending,sample,taxel_0..taxel_{K-1}
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "core/tap/ClassSet.h"
+#include "core/validation/TrainingProtocol.h"
+
+namespace activetouch {
+
+class TapCsvWriter {
+public:
+    /// Opens (truncating) `path`; throws InputError if it cannot be written.
+    TapCsvWriter(const std::string& path, int taxels);
+    ~TapCsvWriter();
+    TapCsvWriter(const TapCsvWriter&) = delete;
+    TapCsvWriter& operator=(const TapCsvWriter&) = delete;
+
+    void append(const CollectedTap& tap, const ClassSet& classes);
+
+private:
+    std::FILE* file_ = nullptr;
+    std::string path_;
+    int taxels_;
+};
+
+/// Reads taps written by TapCsvWriter. Throws InputError naming the file, the line and the
+/// problem for wrong columns, non-numbers, NaN, values outside 0..255, or ragged taps.
+std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& classes);
+
+}  // namespace activetouch

@@ -1,0 +1,234 @@
+#include "core/scene/Scene.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#ifndef ACTIVETOUCH_RESOURCE_DIR
+#define ACTIVETOUCH_RESOURCE_DIR "resources"
+#endif
+
+namespace activetouch {
+namespace fs = std::filesystem;
+
+Polygon ObjectSpec::outline() const {
+    Polygon local = shape == "polygon" ? Polygon(polygon) : libraryShape(shape, size);
+    return local.transformed(rotationDeg, offset);
+}
+
+bool SceneSpec::lists(const std::string& effect) const {
+    for (const auto& e : effects)
+        if (e.name == effect) return true;
+    return false;
+}
+
+std::string resourceDirectory() {
+    if (const char* env = std::getenv("ACTIVETOUCH_RESOURCES"); env && *env) return env;
+    return ACTIVETOUCH_RESOURCE_DIR;
+}
+
+FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& relativeTo,
+                            const std::string& source, const std::string& place) {
+    fs::path path;
+    if (nameOrPath.size() > 5 && nameOrPath.substr(nameOrPath.size() - 5) == ".json") {
+        path = fs::path(nameOrPath);
+        if (path.is_relative()) path = fs::path(relativeTo) / path;
+    } else {
+        path = fs::path(resourceDirectory()) / "fingertip" / (nameOrPath + ".json");
+    }
+    if (!fs::exists(path))
+        throw InputError(source, place, "fingertip '" + nameOrPath + "' not found (looked for " + path.string() +
+                                            "); use a name from resources/fingertip/ or a path to a .json file");
+    const std::string file = path.string();
+    const Json j = readJsonFile(file);
+    JsonFields f(j, file, "");
+    f.rejectUnknownKeys({"name", "description", "taxels_mm", "body", "mount", "receptive_field_sigma_mm",
+                         "counts_per_mm", "grid_step_mm", "max_indentation_mm"});
+    FingertipSpec spec;
+    spec.name = f.text("name");
+    if (!f.has("taxels_mm") || !f.raw("taxels_mm").is_array() || f.raw("taxels_mm").empty())
+        f.fail("taxels_mm", "expected a non-empty list of [x, y, z] taxel positions in mm");
+    const Json& taxels = f.raw("taxels_mm");
+    for (std::size_t i = 0; i < taxels.size(); ++i) {
+        const Json& t = taxels[i];
+        if (!t.is_array() || t.size() != 3 || !t[0].is_number() || !t[1].is_number() || !t[2].is_number())
+            throw InputError(file, "/taxels_mm/" + std::to_string(i), "expected [x, y, z] in mm, found " + describeJson(t));
+        spec.taxels.push_back({t[0].get<double>(), t[1].get<double>(), t[2].get<double>()});
+    }
+    const JsonFields body = f.object("body");
+    body.rejectUnknownKeys({"radius_mm", "cap_start_mm", "tip_end_mm"});
+    spec.radius = body.number("radius_mm", 1.0, 30.0);
+    spec.capStart = body.number("cap_start_mm", -100.0, 100.0);
+    spec.tipEnd = body.number("tip_end_mm", spec.capStart + 0.5, 200.0);
+    const JsonFields mount = f.object("mount");
+    mount.rejectUnknownKeys({"tilt_deg", "heading_deg"});
+    spec.mountTiltDeg = mount.number("tilt_deg", 2.0, 88.0);
+    spec.mountHeadingDeg = mount.number("heading_deg", -360.0, 360.0);
+    spec.receptiveFieldSigma = f.number("receptive_field_sigma_mm", 0.1, 10.0);
+    spec.countsPerMm = f.number("counts_per_mm", 1.0, 10000.0);
+    spec.gridStep = f.number("grid_step_mm", 0.1, 2.0, 0.5);
+    spec.maxIndentation = f.number("max_indentation_mm", 0.5, 20.0, 6.0);
+    return spec;
+}
+
+namespace {
+
+ObjectSpec parseObject(const JsonFields& f) {
+    ObjectSpec o;
+    f.rejectUnknownKeys({"shape", "width_mm", "height_mm", "arm_mm", "opening_mm", "polygon_mm",
+                         "rotation_deg", "offset_mm", "top_height_mm"});
+    o.shape = f.text("shape");
+    if (o.shape == "polygon") {
+        if (!f.has("polygon_mm") || !f.raw("polygon_mm").is_array())
+            f.fail("polygon_mm", "a polygon object needs 'polygon_mm': a list of [x, y] vertices in mm");
+        const Json& v = f.raw("polygon_mm");
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            if (!v[i].is_array() || v[i].size() != 2 || !v[i][0].is_number() || !v[i][1].is_number())
+                throw InputError(f.source(), f.placeOf("polygon_mm") + "/" + std::to_string(i),
+                                 "expected a vertex [x, y] in mm, found " + describeJson(v[i]));
+            o.polygon.push_back({v[i][0].get<double>(), v[i][1].get<double>()});
+        }
+        if (auto problem = Polygon::problemWith(o.polygon))
+            f.fail("polygon_mm", "the polygon is not a usable outline: " + *problem);
+    } else {
+        bool known = false;
+        for (const auto& n : libraryShapeNames()) known = known || n == o.shape;
+        if (!known)
+            f.fail("shape", "unknown shape '" + o.shape + "'; use rectangle, cross, c, l, or polygon with polygon_mm");
+        o.size = defaultShapeSize(o.shape);
+        o.size.width = f.number("width_mm", 1.0, 1000.0, o.size.width);
+        o.size.height = f.number("height_mm", 1.0, 1000.0, o.size.height);
+        o.size.arm = f.number("arm_mm", 1.0, 1000.0, o.shape == "rectangle" ? 1.0 : o.size.arm);
+        o.size.opening = f.number("opening_mm", 1.0, 1000.0, o.shape == "c" ? o.size.opening : 1.0);
+        try {
+            libraryShape(o.shape, o.size);
+        } catch (const std::invalid_argument& e) {
+            throw InputError(f.source(), f.pointer(), std::string("the ") + o.shape + " sizes make no outline: " + e.what());
+        }
+    }
+    o.rotationDeg = f.number("rotation_deg", -360.0, 360.0, 0.0);
+    o.offset = f.point("offset_mm", o.offset);
+    o.height_mm = f.number("top_height_mm", 0.1, 500.0, o.height_mm);
+    return o;
+}
+
+TapSpec parseTap(const JsonFields& f) {
+    TapSpec t;
+    f.rejectUnknownKeys({"retract_height_mm", "descent_speed_mm_s", "stroke_mm", "contact_threshold_counts",
+                         "contact_time_s", "settle_s", "samples", "sample_rate_hz", "noise_floor_counts"});
+    t.retractHeight_mm = f.number("retract_height_mm", 0.1, 500.0, t.retractHeight_mm);
+    t.descentSpeed_mm_s = f.number("descent_speed_mm_s", 0.1, 1000.0, t.descentSpeed_mm_s);
+    t.stroke_mm = f.number("stroke_mm", 0.1, 100.0, t.stroke_mm);
+    t.contactThreshold = f.number("contact_threshold_counts", 0.01, 3000.0, t.contactThreshold);
+    t.contactTime_s = f.number("contact_time_s", 0.0, 10.0, t.contactTime_s);
+    t.settle_s = f.number("settle_s", 0.0, 60.0, t.settle_s);
+    t.samples = f.integer("samples", 1, 100000, t.samples);
+    t.sampleRate_hz = f.number("sample_rate_hz", 1.0, 10000.0, t.sampleRate_hz);
+    t.noiseFloor = f.number("noise_floor_counts", 0.0, 255.0, t.noiseFloor);
+    if (t.worstCaseStroke_s() > t.window_s() + 1e-9)
+        throw InputError(f.source(), f.pointer(),
+                         "a full stroke (down " + std::to_string(t.stroke_mm) + " mm, hold, back up) takes " +
+                             std::to_string(t.worstCaseStroke_s()) + " s but the tap window is " +
+                             std::to_string(t.window_s()) + " s; shorten the stroke, speed up the descent or record more samples");
+    return t;
+}
+
+}  // namespace
+
+SceneSpec parseScene(const Json& json, const std::string& source, const std::string& pointer,
+                     const std::string& baseDirectory) {
+    JsonFields f(json, source, pointer);
+    f.rejectUnknownKeys({"description", "object", "fingertip", "tap", "stage", "seed", "effects"});
+    SceneSpec s;
+    s.source = source;
+    s.description = f.text("description", "");
+    s.object = parseObject(f.object("object"));
+    s.fingertipName = f.text("fingertip", s.fingertipName);
+    s.fingertip = loadFingertip(s.fingertipName, baseDirectory, source, f.placeOf("fingertip"));
+    if (f.has("tap")) s.tap = parseTap(f.object("tap"));
+    else s.tap = parseTap(JsonFields(Json::object(), source, f.placeOf("tap")));
+    if (f.has("stage")) {
+        const JsonFields st = f.object("stage");
+        st.rejectUnknownKeys({"travel_mm", "speed_mm_s"});
+        s.stage.travel_mm = st.point("travel_mm", s.stage.travel_mm);
+        if (!(s.stage.travel_mm.x > 0 && s.stage.travel_mm.y > 0)) st.fail("travel_mm", "stage travel must be positive on both axes");
+        s.stage.speed_mm_s = st.number("speed_mm_s", 0.1, 2000.0, s.stage.speed_mm_s);
+    }
+    s.seed = static_cast<std::uint64_t>(f.integer("seed", 0, 2147483647L, 1));
+
+    if (s.object.height_mm >= s.tap.retractHeight_mm)
+        throw InputError(source, f.placeOf("object") + "/top_height_mm",
+                         "the object's top (" + std::to_string(s.object.height_mm) + " mm) is not below the tapper's retract height (" +
+                             std::to_string(s.tap.retractHeight_mm) + " mm); raise tap.retract_height_mm or use a lower object");
+    if (s.strokeLimitDepth() <= 0.0)
+        throw InputError(source, f.placeOf("tap") + "/stroke_mm",
+                         "the stroke ends above the object's top face, so no tap can touch it; lengthen the stroke or lower the retract height");
+
+    const Polygon outline = s.object.outline();
+    const Vec2 lo = outline.boundingBoxMin(), hi = outline.boundingBoxMax();
+    if (lo.x < 0 || lo.y < 0 || hi.x > s.stage.travel_mm.x || hi.y > s.stage.travel_mm.y)
+        throw InputError(source, f.placeOf("object"),
+                         "the object (x " + std::to_string(lo.x) + ".." + std::to_string(hi.x) + ", y " + std::to_string(lo.y) + ".." +
+                             std::to_string(hi.y) + " mm) does not fit inside the stage travel (0.." + std::to_string(s.stage.travel_mm.x) +
+                             ", 0.." + std::to_string(s.stage.travel_mm.y) + " mm); move it with offset_mm or make it smaller");
+
+    if (f.has("effects")) {
+        const Json& list = f.raw("effects");
+        if (!list.is_array()) f.fail("effects", "expected a list of effects, e.g. [{\"name\": \"taxel_noise\", \"sigma_counts\": 2}]");
+        for (std::size_t i = 0; i < list.size(); ++i) {
+            const std::string place = f.placeOf("effects") + "/" + std::to_string(i);
+            JsonFields e(list[i], source, place);
+            EffectSpec spec;
+            spec.name = e.text("name");
+            spec.parameters = list[i];
+            spec.parameters.erase("name");
+            spec.place = place;
+            if (s.lists(spec.name)) e.fail("name", "effect '" + spec.name + "' is listed twice; list each effect once");
+            s.effects.push_back(std::move(spec));
+        }
+    }
+    return s;
+}
+
+SceneSpec loadScene(const std::string& path) {
+    const Json j = readJsonFile(path);
+    return parseScene(j, path, "", fs::path(path).parent_path().string());
+}
+
+Json sceneToJson(const SceneSpec& s) {
+    Json j;
+    if (!s.description.empty()) j["description"] = s.description;
+    Json o;
+    o["shape"] = s.object.shape;
+    if (s.object.shape == "polygon") {
+        Json poly = Json::array();
+        for (Vec2 v : s.object.polygon) poly.push_back({v.x, v.y});
+        o["polygon_mm"] = poly;
+    } else {
+        o["width_mm"] = s.object.size.width;
+        o["height_mm"] = s.object.size.height;
+        if (s.object.shape != "rectangle") o["arm_mm"] = s.object.size.arm;
+        if (s.object.shape == "c") o["opening_mm"] = s.object.size.opening;
+    }
+    o["rotation_deg"] = s.object.rotationDeg;
+    o["offset_mm"] = {s.object.offset.x, s.object.offset.y};
+    o["top_height_mm"] = s.object.height_mm;
+    j["object"] = o;
+    j["fingertip"] = s.fingertipName;
+    j["tap"] = {{"retract_height_mm", s.tap.retractHeight_mm}, {"descent_speed_mm_s", s.tap.descentSpeed_mm_s},
+                {"stroke_mm", s.tap.stroke_mm}, {"contact_threshold_counts", s.tap.contactThreshold},
+                {"contact_time_s", s.tap.contactTime_s}, {"settle_s", s.tap.settle_s}, {"samples", s.tap.samples},
+                {"sample_rate_hz", s.tap.sampleRate_hz}, {"noise_floor_counts", s.tap.noiseFloor}};
+    j["stage"] = {{"travel_mm", {s.stage.travel_mm.x, s.stage.travel_mm.y}}, {"speed_mm_s", s.stage.speed_mm_s}};
+    j["seed"] = s.seed;
+    Json effects = Json::array();
+    for (const auto& e : s.effects) {
+        Json entry = e.parameters;
+        entry["name"] = e.name;
+        effects.push_back(entry);
+    }
+    j["effects"] = effects;
+    return j;
+}
+
+}  // namespace activetouch

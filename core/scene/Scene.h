@@ -1,0 +1,87 @@
+#pragma once
+// A scene (DESIGN.md §3): the object on the stage, the fingertip, how the tapper taps, the stage,
+// a seed, and the list of physical effects to simulate. Only listed effects run.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/fingertip/FingertipSpec.h"
+#include "core/geometry/Polygon.h"
+#include "core/geometry/ShapeLibrary.h"
+#include "core/io/JsonFields.h"
+
+namespace activetouch {
+
+struct ObjectSpec {
+    std::string shape = "rectangle";  ///< a library name, or "polygon"
+    ShapeSize size = defaultShapeSize("rectangle");
+    std::vector<Vec2> polygon;        ///< for shape == "polygon", object frame, mm
+    double rotationDeg = 0.0;         ///< about the object frame origin
+    Vec2 offset{150.0, 150.0};        ///< where the object frame origin sits on the stage, mm
+    double height_mm = 10.0;          ///< top face above the table
+
+    /// The outline on the stage (world frame).
+    Polygon outline() const;
+};
+
+/// The tapper's stroke (DESIGN.md §2): lower from the retract height at constant speed, stop when
+/// the fingertip's total pressure crosses the threshold (or at the stroke limit), hold, return.
+struct TapSpec {
+    double retractHeight_mm = 12.0;   ///< fingertip first-contact point above the table
+    double descentSpeed_mm_s = 25.0;
+    double stroke_mm = 5.0;           ///< deepest travel below the retract height
+    double contactThreshold = 40.0;   ///< total pressure over all taxels, counts
+    double contactTime_s = 0.5;
+    double settle_s = 1.5;            ///< pause after the tap window before the next move
+    int samples = 50;                 ///< T
+    double sampleRate_hz = 50.0;
+    double noiseFloor = 1.0;          ///< counts below which a taxel reads as no contact
+
+    double window_s() const { return samples / sampleRate_hz; }
+    /// Time the worst-case stroke (full stroke down, hold, back up) takes.
+    double worstCaseStroke_s() const { return 2.0 * stroke_mm / descentSpeed_mm_s + contactTime_s; }
+};
+
+struct StageSpec {
+    Vec2 travel_mm{650.0, 300.0};  ///< x 0..travel.x, y 0..travel.y (the paper rig's Yamaha XY-X)
+    double speed_mm_s = 50.0;
+};
+
+struct EffectSpec {
+    std::string name;
+    Json parameters;    ///< the effect's own keys (everything but "name")
+    std::string place;  ///< JSON pointer of the entry, for errors
+};
+
+struct SceneSpec {
+    std::string source;       ///< file it came from, for errors
+    std::string description;
+    ObjectSpec object;
+    std::string fingertipName = "icub_fingertip_2010";
+    FingertipSpec fingertip;
+    TapSpec tap;
+    StageSpec stage;
+    std::uint64_t seed = 1;
+    std::vector<EffectSpec> effects;
+
+    /// Depth below the object's top face at which the stroke limit stops the tip.
+    double strokeLimitDepth() const { return tap.stroke_mm - (tap.retractHeight_mm - object.height_mm); }
+    bool lists(const std::string& effect) const;
+};
+
+/// Where bundled data lives: $ACTIVETOUCH_RESOURCES, else the source tree's resources/.
+std::string resourceDirectory();
+
+/// Loads a fingertip description (resources/fingertip/NAME.json, or a path to a .json file).
+FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& relativeTo,
+                            const std::string& source, const std::string& place);
+
+/// Parses a scene from JSON; `baseDirectory` resolves relative paths. Throws InputError.
+SceneSpec parseScene(const Json& json, const std::string& source, const std::string& pointer,
+                     const std::string& baseDirectory);
+SceneSpec loadScene(const std::string& path);
+
+/// The scene as JSON, in the form parseScene reads.
+Json sceneToJson(const SceneSpec& scene);
+
+}  // namespace activetouch

@@ -1,0 +1,63 @@
+#pragma once
+// Offline validation (paper Figures 5, 6; DESIGN.md §2): classify every test tap and measure,
+// per (orientation, position), the mean angle error (deg) and position error (mm); average over
+// orientations with +-1 std; derive the valid range for repositioning from those errors.
+#include <vector>
+
+#include "core/classify/HistogramClassifier.h"
+#include "core/tap/ClassSet.h"
+#include "core/validation/TrainingProtocol.h"
+
+namespace activetouch {
+
+/// The percept of one tap: the winning class read as (shape class, orientation, position).
+struct Percept {
+    int cls = 0;
+    Region region = Region::Edge;  ///< plane / edge / air; an edge carries its orientation
+    double orientationDeg = 0.0;
+    int position = 1;              ///< class position, 1..positions
+    double offset_mm = 0.0;        ///< perceived signed distance of the tip centre from the edge
+    double posterior = 0.0;
+
+    /// "lower edge", "upper edge", "left edge", "right edge", "plane" or "air".
+    std::string shapeClass() const;
+};
+
+Percept perceive(const HistogramClassifier& classifier, const ClassSet& classes, const Tap& tap);
+
+struct ClassError {
+    int orientationIndex = 0;
+    int position = 1;
+    Region region = Region::Edge;
+    int taps = 0;
+    double angleError_deg = 0.0;     ///< mean over test taps
+    double positionError_mm = 0.0;   ///< mean |perceived - true| over test taps
+    double correctFraction = 0.0;    ///< exact class hits
+};
+
+/// The valid range rule: over every window of `width` consecutive positions, the sum of the
+/// orientation-averaged errors, each normalised by its largest value over positions
+/// (angle / max angle + position / max position); the lowest sum wins, ties go to the window
+/// whose centre is nearest the edge, then to the lower window.
+struct ValidRange {
+    int first = 1, last = 1;  ///< class positions, inclusive
+    double score = 0.0;
+};
+ValidRange deriveValidRange(const std::vector<double>& angleByPosition, const std::vector<double>& positionByPosition,
+                            int width);
+
+struct ValidationResult {
+    std::vector<ClassError> byClass;  ///< orientation-major, like class indices
+    std::vector<double> angleMean, angleStd, positionMean, positionStd;  ///< per position, over orientations
+    double angleError_deg = 0.0;      ///< mean over all test taps
+    double positionError_mm = 0.0;
+    double correctFraction = 0.0;
+    ValidRange validRange;
+    std::vector<int> confusion;       ///< classCount x classCount, true-major
+    std::vector<Percept> percepts;    ///< per test tap, in the order given
+};
+
+ValidationResult validateOffline(const HistogramClassifier& classifier, const ClassSet& classes,
+                                 const std::vector<const CollectedTap*>& testTaps, int validRangeWidth);
+
+}  // namespace activetouch

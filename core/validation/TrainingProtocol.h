@@ -1,0 +1,51 @@
+#pragma once
+// The training protocol (DESIGN.md §2, paper §3.1): at the middle of each edge of the training
+// object, tap at every position across the edge; one data set = one tap per class (or several).
+// Sets are numbered from 1; some train, the rest test. Test sets may be shifted off the training
+// grid so validation does not overstate accuracy. Between sets the object is re-placed with a
+// small random displacement (placement jitter).
+#include <functional>
+#include <vector>
+
+#include "core/common/Random.h"
+#include "core/geometry/Polygon.h"
+#include "core/rig/Rig.h"
+#include "core/tap/ClassSet.h"
+
+namespace activetouch {
+
+struct TrainingProtocolSettings {
+    int dataSets = 5;
+    std::vector<int> trainingSets{1};  ///< 1-based set numbers; the others test
+    int tapsPerClass = 1;
+    double testOffset_mm = 0.0;        ///< test taps shifted along the edge normal
+    double placementJitter_mm = 0.2;   ///< per-set object displacement, standard deviation per axis
+
+    bool isTrainingSet(int set) const;
+    /// Why the settings cannot run, or empty.
+    std::string problem() const;
+};
+
+struct CollectedTap {
+    TapRecord record;
+    int dataSet = 1;
+    int cls = 0;
+    double trueOffset_mm = 0.0;  ///< tip centre's signed distance from the edge, as commanded
+};
+
+/// Where each orientation's taps are taken: the middle of the longest edge of the training
+/// object whose outward normal points that way.
+struct EdgeSite {
+    Vec2 midpoint;
+    Vec2 normal;
+};
+/// Throws std::invalid_argument if the object has no edge for an orientation.
+std::vector<EdgeSite> edgeSites(const Polygon& object, const ClassSet& classes);
+
+/// Runs the protocol on `rig`. `onTap` sees every tap as it is taken (for the run's recording)
+/// and may return false to stop early; the taps collected so far are returned.
+std::vector<CollectedTap> collectTrainingTaps(Rig& rig, const Polygon& object, const ClassSet& classes,
+                                              const TrainingProtocolSettings& settings, RandomStream rng,
+                                              const std::function<bool(const CollectedTap&)>& onTap = {});
+
+}  // namespace activetouch

@@ -1,0 +1,136 @@
+#include "devices/simulated/SimulatedWorld.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace activetouch {
+namespace {
+
+std::unique_ptr<Effect> buildEffect(const SceneSpec& scene, const EffectSpec& spec, const FingertipContactModel& model) {
+    const EffectDescription* d = findEffect(spec.name);
+    if (!d) {
+        std::string known;
+        for (const auto& e : effectCatalogue()) known += (known.empty() ? "" : ", ") + e.name;
+        throw InputError(scene.source, spec.place + "/name",
+                         "unknown effect '" + spec.name + "'; the simulated rig knows: " + known);
+    }
+    JsonFields f(spec.parameters, scene.source, spec.place);
+    std::vector<std::string> keys;
+    for (const auto& p : d->parameters) keys.push_back(p.key);
+    if (d->takesTaxelList) keys.push_back("taxels");
+    keys.push_back("name");
+    f.rejectUnknownKeys(keys);
+    return d->make(f, model, RandomStream::derived(scene.seed, "effect:" + spec.name));
+}
+
+}  // namespace
+
+void validateEffects(const SceneSpec& scene, const FingertipContactModel& model) {
+    for (const auto& spec : scene.effects) {
+        const EffectDescription* d = findEffect(spec.name);
+        if (!d) buildEffect(scene, spec, model);  // throws with the list of known effects
+        JsonFields f(spec.parameters, scene.source, spec.place);
+        std::vector<std::string> keys{"name"};
+        for (const auto& p : d->parameters) {
+            keys.push_back(p.key);
+            f.number(p.key, p.lo, p.hi);
+        }
+        if (d->takesTaxelList) keys.push_back("taxels");
+        f.rejectUnknownKeys(keys);
+        if (d->takesTaxelList) buildEffect(scene, spec, model);
+    }
+}
+
+SimulatedWorld::SimulatedWorld(const SceneSpec& scene, std::shared_ptr<const FingertipContactModel> model)
+    : scene_(scene), object_(scene.object.outline()), model_(std::move(model)) {
+    for (const auto& spec : scene_.effects) {
+        auto effect = buildEffect(scene_, spec, *model_);
+        switch (effect->acts()) {
+            case Effect::Acts::Pose: poseEffects_.push_back(std::move(effect)); break;
+            case Effect::Acts::Mechanics: mechanicsEffects_.push_back(std::move(effect)); break;
+            case Effect::Acts::Signal: signalEffects_.push_back(std::move(effect)); break;
+        }
+    }
+    std::stable_sort(signalEffects_.begin(), signalEffects_.end(),
+                     [](const auto& a, const auto& b) { return a->signalOrder() < b->signalOrder(); });
+    lastFrame_.assign(static_cast<std::size_t>(model_->taxelCount()), 0.0);
+    scratch_.resize(static_cast<std::size_t>(model_->taxelCount()));
+}
+
+std::vector<std::string> SimulatedWorld::activeEffects() const {
+    std::vector<std::string> names;
+    for (const auto* list : {&poseEffects_, &mechanicsEffects_, &signalEffects_})
+        for (const auto& e : *list) names.push_back(e->name());
+    return names;
+}
+
+void SimulatedWorld::moveStage(Vec2 target) {
+    clock_s_ += distance(commanded_, target) / scene_.stage.speed_mm_s;
+    commanded_ = target;
+    actual_ = target;
+    for (auto& e : poseEffects_) actual_ = e->perturbPose(actual_);
+}
+
+void SimulatedWorld::latestFrame(double* out) const { std::copy(lastFrame_.begin(), lastFrame_.end(), out); }
+
+TapRecord SimulatedWorld::tap() {
+    const TapSpec& ts = scene_.tap;
+    const int K = model_->taxelCount();
+    const double v = ts.descentSpeed_mm_s;
+    const double clearance = ts.retractHeight_mm - scene_.object.height_mm;
+    const double strokeDepth = scene_.strokeLimitDepth();
+
+    double latency = 0.0;
+    for (const auto& e : mechanicsEffects_) latency += e->reflexLatency_s();
+
+    // The reflex: the stroke stops once the total pressure crosses the threshold (plus latency),
+    // or at the stroke limit, whichever comes first.
+    auto contact = model_->contactAt(object_, actual_);
+    TapRecord record;
+    record.pose = commanded_;
+    record.startTime_s = clock_s_;
+    double stopDepth = strokeDepth;
+    record.ending = TapEnding::StrokeLimit;
+    if (auto crossing = contact.depthReaching(ts.contactThreshold, strokeDepth)) {
+        stopDepth = std::min(*crossing + v * latency, strokeDepth);
+        record.ending = TapEnding::ContactReflex;
+    }
+    record.stopDepth_mm = stopDepth;
+    const double stopTime = (clearance + stopDepth) / v;
+    const double release = stopTime + ts.contactTime_s;
+
+    record.tap = Tap(ts.samples, K);
+    std::vector<double> hold(static_cast<std::size_t>(K), 0.0);
+    contact.taxelPressures(stopDepth, hold.data());
+    const double period = 1.0 / ts.sampleRate_hz;
+    for (int i = 0; i < ts.samples; ++i) {
+        const double t = i * period;
+        double depth;
+        if (t < stopTime) depth = v * t - clearance;
+        else if (t <= release) depth = stopDepth;
+        else depth = stopDepth - v * (t - release);
+        double* out = record.tap.samples.data() + static_cast<std::size_t>(i * K);
+        if (depth <= 0.0) continue;
+        if (depth == stopDepth) std::copy(hold.begin(), hold.end(), out);
+        else contact.taxelPressures(depth, out);
+    }
+
+    SignalContext context{clock_s_, period, release, hold.data()};
+    for (auto& e : signalEffects_) e->shapeSignal(record.tap, context);
+
+    record.cycleTime_s = ts.window_s() + ts.settle_s;
+    clock_s_ += record.cycleTime_s;
+    std::copy(record.tap.frame(ts.samples - 1), record.tap.frame(ts.samples - 1) + K, lastFrame_.begin());
+    ++taps_;
+    return record;
+}
+
+void SimulatedStage::moveTo(Vec2 target) {
+    const Vec2 travel = world_.scene().stage.travel_mm;
+    if (!(target.x >= 0 && target.y >= 0 && target.x <= travel.x && target.y <= travel.y))
+        throw RigError("simulated stage: target (" + std::to_string(target.x) + ", " + std::to_string(target.y) +
+                       ") mm is outside the travel 0.." + std::to_string(travel.x) + " x 0.." + std::to_string(travel.y) + " mm");
+    world_.moveStage(target);
+}
+
+}  // namespace activetouch
