@@ -1,6 +1,7 @@
 #include "app/figures/ValidationFigures.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "app/run/ExperimentRun.h"
 #include "qcustomplot.h"
@@ -8,8 +9,19 @@
 namespace activetouch {
 namespace {
 
-QColor taxelColour(int k, int count) {
-    return QColor::fromHsvF(std::fmod(k / double(std::max(1, count)) * 0.9, 1.0), 0.85, 0.85);
+// Twelve colours that stay distinct in print and for the common colour-vision deficiencies.
+QColor taxelColour(int k) {
+    static const QColor palette[] = {QColor(0, 114, 178), QColor(230, 159, 0), QColor(0, 158, 115), QColor(204, 121, 167),
+                                     QColor(86, 180, 233), QColor(213, 94, 0), QColor(0, 0, 0), QColor(240, 228, 66),
+                                     QColor(127, 127, 127), QColor(148, 103, 189), QColor(140, 86, 75), QColor(23, 190, 207)};
+    return palette[k % 12];
+}
+
+void integerTicks(QCPAxis* axis, double step) {
+    QSharedPointer<QCPAxisTickerFixed> t(new QCPAxisTickerFixed);
+    t->setTickStep(step);
+    t->setScaleStrategy(QCPAxisTickerFixed::ssMultiples);
+    axis->setTicker(t);
 }
 
 // The figure's layout: one column of rows; row 0 is the title, the others hold sub-grids.
@@ -96,7 +108,7 @@ void buildTapFigure(QCustomPlot& plot, const RunResult& r) {
                 for (double v : t.record.tap.samples) peak = std::max(peak, v);
         for (int k = 0; k < K; ++k) {
             auto* g = plot.addGraph(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
-            g->setPen(QPen(taxelColour(k, K), 1.2));
+            g->setPen(QPen(taxelColour(k), 1.2));
             g->setName(QString("taxel %1").arg(k));
             QVector<double> x, y;
             for (const auto& t : r.taps) {
@@ -112,6 +124,7 @@ void buildTapFigure(QCustomPlot& plot, const RunResult& r) {
             g->setData(x, y, true);
         }
         rect->axis(QCPAxis::atBottom)->setRange(0.5, cs.positions + 0.5);
+        integerTicks(rect->axis(QCPAxis::atBottom), 1.0);
         rect->axis(QCPAxis::atLeft)->setRange(0.0, 1.05);
     }
     // Legend: taxel colours, in its own row at the bottom.
@@ -130,11 +143,13 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
     const int O = static_cast<int>(cs.orientationsDeg.size());
     const int P = cs.positions;
     const double maxAngle = 180.0;
-    const double maxPosition = (P - 1) * cs.positionStep_mm;
+    // Fixed scales so that runs compare by eye; position errors above a third of the window are
+    // all "far off" and share the top colour.
+    const double maxPosition = std::ceil((P - 1) * cs.positionStep_mm / 3.0);
 
     struct Heat { const char* title; double max; bool angle; const char* unit; };
     const Heat heats[2] = {{"A  angle error", maxAngle, true, "angle error (deg)"},
-                           {"B  position error", maxPosition, false, "position error (mm)"}};
+                           {"B  position error", maxPosition, false, "position error (mm, top colour = at or above)"}};
     addTitle(plot, QString("Figure 6 - offline validation over %1 test taps: angle error %2 deg, position error %3 mm")
                        .arg(r.validation.percepts.size())
                        .arg(r.validation.angleError_deg, 0, 'f', 1)
@@ -165,6 +180,7 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         rect->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
         scale->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
         rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
+        integerTicks(rect->axis(QCPAxis::atBottom), 1.0);
         rect->axis(QCPAxis::atLeft)->setRange(-0.5, O - 0.5);
     }
     // Heatmaps and their scales sit in row 0, columns 0..3; the line panels span below.
@@ -199,6 +215,7 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         bars->setPen(QPen(QColor(31, 119, 180)));
         const double yMax = std::max(top * 1.15, l == 0 ? 10.0 : 1.0);
         rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
+        integerTicks(rect->axis(QCPAxis::atBottom), 1.0);
         rect->axis(QCPAxis::atLeft)->setRange(0.0, yMax);
         shadeValidRange(rect, r, yMax);
     }

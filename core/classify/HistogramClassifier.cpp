@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -63,6 +64,16 @@ HistogramClassifier HistogramClassifier::train(const std::vector<LabelledTap>& t
         c.scale_[k] = (width > 0.0 && std::isfinite(c.bins_ / width)) ? c.bins_ / width : 0.0;
     }
 
+    // The per-taxel range tiled over a block of frames, for the vectorised binning.
+    constexpr std::size_t kTileFrames = 64;
+    for (std::size_t f = 0; f < kTileFrames; ++f) {
+        for (std::size_t k = 0; k < static_cast<std::size_t>(K); ++k) {
+            c.minTiled_.push_back(c.min_[k]);
+            c.scaleTiled_.push_back(c.scale_[k]);
+            c.cellBaseTiled_.push_back(static_cast<std::uint32_t>(k * static_cast<std::size_t>(c.bins_)));
+        }
+    }
+
     // Counts per [taxel][bin][class], then smoothed log probabilities in place.
     const std::size_t B = static_cast<std::size_t>(c.bins_), C = static_cast<std::size_t>(classCount);
     c.logTable_.assign(static_cast<std::size_t>(K) * B * C, 0.0);
@@ -91,16 +102,52 @@ HistogramClassifier HistogramClassifier::train(const std::vector<LabelledTap>& t
 
 namespace {
 
-// The hot loop: scores += count * row over the tap's distinct cells. Cloned for AVX2 where the
-// CPU has it; the arithmetic is the same element-wise multiply-add, so decisions do not depend
-// on which clone runs.
+// The hot loop: scores += count * row over the tap's distinct cells. Classes are taken in
+// chunks whose partial sums stay in registers across all rows, so each score is stored once.
+// Cloned for AVX2 where the CPU has it; every score sees the same multiplications and additions
+// in the same order in either clone (no contraction into FMA), so decisions never depend on the
+// CPU.
+using Double4 = double __attribute__((vector_size(32)));
+
+template <std::size_t Vectors>
+inline void accumulateChunk(const double* const* rows, const double* weights, std::size_t rowCount, std::size_t c0, double* out) {
+    Double4 acc[Vectors] = {};
+    for (std::size_t i = 0; i < rowCount; ++i) {
+        const double* row = rows[i] + c0;
+        const Double4 n = {weights[i], weights[i], weights[i], weights[i]};
+        for (std::size_t j = 0; j < Vectors; ++j) {
+            Double4 r;
+            std::memcpy(&r, row + 4 * j, sizeof r);
+            acc[j] += n * r;
+        }
+    }
+    std::memcpy(out + c0, acc, sizeof acc);
+}
+
 __attribute__((target_clones("avx2", "default")))
-void accumulateRows(const double* table, std::size_t classes, const std::uint32_t* cells,
-                    const std::uint32_t* counts, std::size_t cellCount, double* out) {
-    for (std::size_t i = 0; i < cellCount; ++i) {
-        const double* row = table + static_cast<std::size_t>(cells[i]) * classes;
-        const double n = static_cast<double>(counts[i]);
-        for (std::size_t c = 0; c < classes; ++c) out[c] += n * row[c];
+void accumulateRows(const double* const* rows, const double* weights, std::size_t rowCount, std::size_t classes, double* out) {
+    std::size_t c0 = 0;
+    for (; c0 + 24 <= classes; c0 += 24) accumulateChunk<6>(rows, weights, rowCount, c0, out);
+    for (; c0 + 4 <= classes; c0 += 4) accumulateChunk<1>(rows, weights, rowCount, c0, out);
+    for (; c0 < classes; ++c0) {
+        double acc = 0.0;
+        for (std::size_t i = 0; i < rowCount; ++i) acc += weights[i] * rows[i][c0];
+        out[c0] = acc;
+    }
+}
+
+// Bins of a block of samples. Branch-free so it vectorises over the flat block, with the per-
+// taxel range tiled to the block's length: (v - min) * scale clamped to [0, B - 1]; NaN compares
+// false and lands in bin 0; a degenerate taxel has scale 0 (and inf * 0 = NaN), so it lands in
+// bin 0 too. Equal to binOf() for every value.
+__attribute__((target_clones("avx2", "default")))
+void binBlock(const double* __restrict samples, std::size_t count, const double* __restrict min, const double* __restrict scale,
+              const std::uint32_t* __restrict cellBase, double lastBin, std::uint32_t* __restrict cells) {
+    for (std::size_t i = 0; i < count; ++i) {
+        double x = (samples[i] - min[i]) * scale[i];
+        x = x > 0.0 ? x : 0.0;
+        x = x < lastBin ? x : lastBin;
+        cells[i] = cellBase[i] + static_cast<std::uint32_t>(x);
     }
 }
 
@@ -108,39 +155,63 @@ void accumulateRows(const double* table, std::size_t classes, const std::uint32_
 
 void HistogramClassifier::logLikelihoods(const Tap& tap, double* out) const {
     const std::size_t C = static_cast<std::size_t>(classes_);
-    std::fill(out, out + C, 0.0);
     if (tap.taxels != taxels_) throw std::invalid_argument("tap has " + std::to_string(tap.taxels) + " taxels, the classifier was trained on " + std::to_string(taxels_));
 
-    // Count the tap's samples per (taxel, bin) cell, remembering which cells it touched.
-    thread_local std::vector<std::uint32_t> counts;
-    thread_local std::vector<std::uint32_t> touched;
-    thread_local std::vector<std::uint32_t> touchedCounts;
+    // The tap's count vector over (taxel, bin) cells: count samples per cell and mark the cells
+    // touched in a bitmap, then visit the marked cells in ascending order (so the sum does not
+    // depend on sample order) and clear as we go.
+    thread_local std::vector<std::uint32_t> counts, cellOf;
+    thread_local std::vector<const double*> rows;
+    thread_local std::vector<double> weights;
+    thread_local std::vector<std::uint64_t> touched;
     const std::size_t cellsTotal = static_cast<std::size_t>(taxels_) * static_cast<std::size_t>(bins_);
-    if (counts.size() < cellsTotal) counts.assign(cellsTotal, 0);
-    touched.clear();
-    const int T = tap.sampleCount();
-    const double* s = tap.samples.data();
-    for (int t = 0; t < T; ++t) {
-        for (int k = 0; k < taxels_; ++k) {
-            const auto cell = static_cast<std::uint32_t>(k * bins_ + binOf(k, *s++));
-            if (counts[cell]++ == 0) touched.push_back(cell);
+    if (counts.size() < cellsTotal) {
+        counts.assign(cellsTotal, 0);
+        touched.assign((cellsTotal + 63) / 64, 0);
+    }
+    cellOf.resize(tap.samples.size());
+    const std::size_t block = minTiled_.size();
+    for (std::size_t start = 0; start < tap.samples.size(); start += block)
+        binBlock(tap.samples.data() + start, std::min(block, tap.samples.size() - start), minTiled_.data(), scaleTiled_.data(),
+                 cellBaseTiled_.data(), static_cast<double>(bins_ - 1), cellOf.data() + start);
+    std::uint32_t* const count = counts.data();
+    std::uint64_t* const marks = touched.data();
+    for (const std::uint32_t cell : cellOf) {
+        ++count[cell];
+        marks[cell >> 6] |= std::uint64_t{1} << (cell & 63);
+    }
+    rows.resize(std::min(cellOf.size(), cellsTotal));
+    weights.resize(rows.size());
+    std::size_t distinct = 0;
+    const double* const table = logTable_.data();
+    const double** const rowOut = rows.data();
+    double* const weightOut = weights.data();
+    const std::size_t words = (cellsTotal + 63) / 64;
+    for (std::size_t w = 0; w < words; ++w) {
+        std::uint64_t bits = marks[w];
+        marks[w] = 0;
+        while (bits) {
+            const std::size_t cell = w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits));
+            bits &= bits - 1;
+            rowOut[distinct] = table + cell * C;
+            weightOut[distinct++] = static_cast<double>(count[cell]);
+            count[cell] = 0;
         }
     }
-    // Cells in ascending order make the summation order independent of sample order.
-    std::sort(touched.begin(), touched.end());
-    touchedCounts.resize(touched.size());
-    for (std::size_t i = 0; i < touched.size(); ++i) {
-        touchedCounts[i] = counts[touched[i]];
-        counts[touched[i]] = 0;
-    }
-    accumulateRows(logTable_.data(), C, touched.data(), touchedCounts.data(), touched.size(), out);
+    accumulateRows(rows.data(), weights.data(), distinct, C, out);
 }
 
 int argmaxLowestIndex(const double* v, int n) {
     int best = -1;
     for (int i = 0; i < n; ++i)
         if (!std::isnan(v[i]) && (best < 0 || v[i] > v[best])) best = i;
-    return best < 0 ? 0 : best;
+    if (best < 0) return 0;
+    const double m = v[best];
+    if (!std::isfinite(m)) return best;
+    const double floor = m - kTieTolerance * std::max(1.0, std::abs(m));
+    for (int i = 0; i < best; ++i)
+        if (!std::isnan(v[i]) && v[i] >= floor) return i;
+    return best;
 }
 
 double logSumExp(const double* v, int n) {

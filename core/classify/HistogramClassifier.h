@@ -10,6 +10,7 @@
 // Ties break to the lowest class index. Samples outside the trained range clamp to the end bins;
 // a taxel that never varied in training maps every sample to bin 0 (class-independent, so it
 // never sways a decision); NaN maps to bin 0, +inf to the last bin.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -68,10 +69,18 @@ public:
 private:
     int classes_ = 0, taxels_ = 0, bins_ = 0;
     std::vector<double> min_, max_, scale_;  // per taxel; scale_ = bins / (max - min), 0 if degenerate
+    std::vector<double> minTiled_, scaleTiled_;  // the same, repeated over a block of frames
+    std::vector<std::uint32_t> cellBaseTiled_;   // taxel * bins, likewise
     std::vector<double> logTable_;           // [taxel][bin][class]
 };
 
-/// Index of the largest value, lowest index on ties; NaN never wins.
+/// Relative width of a tie: scores this close to the maximum are equal for the decision. Sums
+/// that are equal in exact arithmetic can differ in the last bits when their terms are added in
+/// another order; without this, such ties would break by rounding instead of by index.
+inline constexpr double kTieTolerance = 1e-10;
+
+/// Index of the largest value; among values within kTieTolerance (relative) of the largest, the
+/// lowest index. NaN never wins.
 int argmaxLowestIndex(const double* values, int count);
 
 /// log(sum exp(values)), stable for any finite values.

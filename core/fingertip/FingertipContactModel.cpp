@@ -1,6 +1,7 @@
 #include "core/fingertip/FingertipContactModel.h"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -58,6 +59,8 @@ double FingertipContactModel::lowestBodyHeight(double X, double Y) const {
 
 FingertipContactModel::FingertipContactModel(const FingertipSpec& spec) : spec_(spec) {
     if (spec.taxels.empty()) throw std::invalid_argument("the fingertip has no taxels");
+    if (spec.taxels.size() > static_cast<std::size_t>(kLanes))
+        throw std::invalid_argument("the contact model handles at most " + std::to_string(kLanes) + " taxels per fingertip");
     if (!(spec.mountTiltDeg > 1 && spec.mountTiltDeg < 89))
         throw std::invalid_argument("mount tilt must be between 1 and 89 degrees");
     if (!(spec.radius > 0) || !(spec.tipEnd > spec.capStart))
@@ -130,18 +133,19 @@ FingertipContactModel::FingertipContactModel(const FingertipSpec& spec) : spec_(
     std::stable_sort(kept.begin(), kept.end(),
                      [&](std::size_t a, std::size_t b) { return grid[a].height < grid[b].height; });
     points_.reserve(kept.size());
-    weights_.reserve(kept.size() * static_cast<std::size_t>(taxelCount_));
+    weights_.assign(kept.size() * kLanes, 0.0f);
     for (std::size_t q : kept) {
         float sum = 0.0f;
+        float* row = weights_.data() + points_.size() * kLanes;
         for (int k = 0; k < taxelCount_; ++k) {
             const auto kk = static_cast<std::size_t>(k);
             double w = gauss(grid[q].offset, projectedTaxels_[kk]) / norms[kk];
             if (w < 1e-6) w = 0.0;
-            const auto wf = static_cast<float>(w * spec.countsPerMm);
-            weights_.push_back(wf);
-            sum += wf;
+            row[k] = static_cast<float>(w * spec.countsPerMm);
+            sum += row[k];
         }
         points_.push_back({grid[q].offset, grid[q].height, sum});
+        heights_.push_back(static_cast<float>(grid[q].height));
         patchRadius_ = std::max(patchRadius_, norm(grid[q].offset));
     }
 }
@@ -156,42 +160,45 @@ FingertipContactModel::Contact FingertipContactModel::contactAt(const Polygon& o
 }
 
 FingertipContactModel::Contact::Contact(const FingertipContactModel& model, const Polygon& object, Vec2 centre)
-    : model_(&model), object_(&object), centre_(centre) {
+    : model_(&model), centre_(centre) {
     centreInside_ = object.contains(centre);
     // An edge matters only if it passes within the patch radius (plus half a cell for the
     // coverage ramp); every other point's side is the centre's.
     const double reach = model.patchRadius_ + model.spec_.gridStep;
     for (std::size_t e = 0; e < object.size(); ++e) {
         const Vec2 a = object.vertex(e), b = object.vertex(e + 1), ab = b - a;
-        const double t = std::clamp(dot(centre - a, ab) / dot(ab, ab), 0.0, 1.0);
-        if (distance(centre, a + t * ab) <= reach) nearEdges_.push_back(e);
+        const double inv = 1.0 / dot(ab, ab);
+        const double t = std::clamp(dot(centre - a, ab) * inv, 0.0, 1.0);
+        if (distance(centre, a + t * ab) <= reach) nearEdges_.push_back({a, ab, inv});
     }
     coverage_.resize(model.points_.size(), 0.0f);
 }
 
 float FingertipContactModel::Contact::coverageOf(std::size_t q) const {
-    const Vec2 p = centre_ + model_->points_[q].offset;
     if (nearEdges_.empty()) return centreInside_ ? 1.0f : 0.0f;
+    const Vec2 cp = model_->points_[q].offset;  // from the centre to the point
+    const Vec2 p = centre_ + cp;
     bool inside = centreInside_;
-    double nearest = kInf;
-    for (std::size_t e : nearEdges_) {
-        const Vec2 a = object_->vertex(e), b = object_->vertex(e + 1), ab = b - a;
-        // Crossing of the segment centre -> p with edge a -> b flips the side.
-        const Vec2 cp = p - centre_;
-        const double den = cross(cp, ab);
+    double nearest2 = kInf;
+    for (const NearEdge& e : nearEdges_) {
+        // Crossing of the segment centre -> p with the edge flips the side.
+        const double den = cross(cp, e.ab);
         if (den != 0.0) {
-            const double u = cross(a - centre_, ab) / den;   // along centre -> p
-            const double v = cross(a - centre_, cp) / den;   // along a -> b
+            const Vec2 ac = e.a - centre_;
+            const double u = cross(ac, e.ab) / den;  // along centre -> p
+            const double v = cross(ac, cp) / den;    // along the edge
             if (u > 0.0 && u <= 1.0 && v >= 0.0 && v < 1.0) inside = !inside;
         }
-        const double t = std::clamp(dot(p - a, ab) / dot(ab, ab), 0.0, 1.0);
-        nearest = std::min(nearest, distance(p, a + t * ab));
+        const Vec2 ap = p - e.a;
+        const double t = std::clamp(dot(ap, e.ab) * e.inverseLength2, 0.0, 1.0);
+        const Vec2 d = ap - t * e.ab;
+        nearest2 = std::min(nearest2, dot(d, d));
     }
     // Area-weighted coverage of the grid cell: a linear ramp across the outline, so that taps
     // vary continuously with pose instead of jumping by whole cells.
     const double halfCell = 0.5 * model_->spec_.gridStep;
-    if (nearest >= halfCell) return inside ? 1.0f : 0.0f;
-    const double frac = 0.5 + 0.5 * nearest / halfCell;
+    if (nearest2 >= halfCell * halfCell) return inside ? 1.0f : 0.0f;
+    const double frac = 0.5 + 0.5 * std::sqrt(nearest2) / halfCell;
     return static_cast<float>(inside ? frac : 1.0 - frac);
 }
 
@@ -233,18 +240,50 @@ std::optional<double> FingertipContactModel::Contact::depthReaching(double thres
     return std::nullopt;
 }
 
-void FingertipContactModel::Contact::taxelPressures(double depth, double* out) {
+namespace {
+
+using Float16 = float __attribute__((vector_size(64)));
+
+// Running sums over patch points in height order: A += c w and B += c w h, sixteen taxel lanes
+// (zero-padded) per point. Cloned for AVX2; each lane sees the same operations in either clone.
+__attribute__((target_clones("avx2", "default")))
+void sweepPatch(const float* weights, const float* coverage, const float* heights, std::size_t from, std::size_t to,
+                float* sumA, float* sumB) {
+    Float16 a, b;
+    std::memcpy(&a, sumA, sizeof a);
+    std::memcpy(&b, sumB, sizeof b);
+    for (std::size_t q = from; q < to; ++q) {
+        Float16 row;
+        std::memcpy(&row, weights + q * 16, sizeof row);
+        const Float16 cw = coverage[q] * row;
+        a += cw;
+        b += heights[q] * cw;
+    }
+    std::memcpy(sumA, &a, sizeof a);
+    std::memcpy(sumB, &b, sizeof b);
+}
+
+}  // namespace
+
+void FingertipContactModel::Contact::taxelPressuresAtDepths(const double* depths, std::size_t count, double* out) {
+    static_assert(kLanes == 16, "sweepPatch works on sixteen lanes");
     const int K = model_->taxelCount_;
-    std::fill(out, out + K, 0.0);
-    if (depth <= 0.0) return;
-    coverUpTo(depth);
     const auto& pts = model_->points_;
-    const float* w = model_->weights_.data();
-    for (std::size_t q = 0; q < pts.size() && pts[q].height < depth; ++q) {
-        const double s = coverage_[q] * (depth - pts[q].height);
-        if (s == 0.0) continue;
-        const float* wq = w + q * static_cast<std::size_t>(K);
-        for (int k = 0; k < K; ++k) out[k] += s * wq[k];
+    alignas(64) float sumA[kLanes] = {}, sumB[kLanes] = {};
+    std::size_t q = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        const double depth = depths[i];
+        double* o = out + i * static_cast<std::size_t>(K);
+        if (depth <= 0.0) {
+            std::fill(o, o + K, 0.0);
+            continue;
+        }
+        coverUpTo(depth);
+        std::size_t end = q;
+        while (end < pts.size() && pts[end].height < depth) ++end;
+        sweepPatch(model_->weights_.data(), coverage_.data(), model_->heights_.data(), q, end, sumA, sumB);
+        q = end;
+        for (int k = 0; k < K; ++k) o[k] = std::max(0.0, depth * sumA[k] - static_cast<double>(sumB[k]));
     }
 }
 

@@ -48,7 +48,11 @@ public:
         /// does not within `maxDepth`.
         std::optional<double> depthReaching(double threshold, double maxDepth);
         /// Per-taxel pressures (counts) at indentation `depth` mm into `out` (taxelCount values).
-        void taxelPressures(double depth, double* out);
+        void taxelPressures(double depth, double* out) { taxelPressuresAtDepths(&depth, 1, out); }
+        /// The same at several depths, given in ascending order, into `out` (count x taxelCount):
+        /// one sweep over the patch, since each taxel's pressure is d * sum(c w) - sum(c w h) over
+        /// the points already pressed.
+        void taxelPressuresAtDepths(const double* depths, std::size_t count, double* out);
         /// Whether every point of the patch pressed at `depth` lies on the object.
         bool patchFullyOnObject(double depth);
 
@@ -58,16 +62,19 @@ public:
         void coverUpTo(double height);
         float coverageOf(std::size_t point) const;
 
+        struct NearEdge {
+            Vec2 a, ab;
+            double inverseLength2;
+        };
         const FingertipContactModel* model_;
-        const Polygon* object_;
         Vec2 centre_;
         bool centreInside_ = false;
-        std::vector<std::size_t> nearEdges_;  // outline edges that can reach the patch
+        std::vector<NearEdge> nearEdges_;     // outline edges that can reach the patch
         std::vector<float> coverage_;         // per patch point, filled in height order
         std::size_t covered_ = 0;             // points [0, covered_) have coverage
     };
 
-    /// The contact of the tip centred at `centre` over `object` (the object must outlive it).
+    /// The contact of the tip centred at `centre` over `object`.
     Contact contactAt(const Polygon& object, Vec2 centre) const;
 
 private:
@@ -85,7 +92,10 @@ private:
     double firstContactForward_ = 0.0, firstContactDrop_ = 0.0;
     double lowestY_ = 0.0, lowestZ_ = 0.0;  // first-contact point in the body's own world frame
     std::vector<PatchPoint> points_;        // sorted by height
-    std::vector<float> weights_;            // points_.size() x taxelCount_, scaled by countsPerMm
+    // Receptive-field weights scaled by countsPerMm, one padded row of kLanes floats per point.
+    static constexpr int kLanes = 16;
+    std::vector<float> weights_;
+    std::vector<float> heights_;            // points_[q].height, as float for the sweep
     double patchRadius_ = 0.0;
 };
 

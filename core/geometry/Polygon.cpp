@@ -54,8 +54,9 @@ std::optional<std::string> Polygon::problemWith(const std::vector<Vec2>& v) {
         if (distance(v[i], v[(i + 1) % v.size()]) < 1e-9)
             return vertexText(i, v[i]) + " repeats the next vertex; remove the duplicate";
     }
-    const double a = std::abs(signedArea(v));
-    if (!(a > 1e-9)) return "the outline encloses no area (all vertices on one line)";
+    bool collinear = true;
+    for (std::size_t i = 2; i < v.size() && collinear; ++i) collinear = orientation(v[0], v[1], v[i]) == 0;
+    if (collinear) return "the outline encloses no area (all vertices on one line)";
     const std::size_t n = v.size();
     for (std::size_t i = 0; i < n; ++i) {
         for (std::size_t j = i + 1; j < n; ++j) {
@@ -75,6 +76,7 @@ std::optional<std::string> Polygon::problemWith(const std::vector<Vec2>& v) {
                        " crosses the edge from " + vertexText(j, v[j]);
         }
     }
+    if (!(std::abs(signedArea(v)) > 1e-9)) return "the outline encloses no area";
     return std::nullopt;
 }
 

@@ -54,7 +54,6 @@ SimulatedWorld::SimulatedWorld(const SceneSpec& scene, std::shared_ptr<const Fin
     std::stable_sort(signalEffects_.begin(), signalEffects_.end(),
                      [](const auto& a, const auto& b) { return a->signalOrder() < b->signalOrder(); });
     lastFrame_.assign(static_cast<std::size_t>(model_->taxelCount()), 0.0);
-    scratch_.resize(static_cast<std::size_t>(model_->taxelCount()));
 }
 
 std::vector<std::string> SimulatedWorld::activeEffects() const {
@@ -99,20 +98,37 @@ TapRecord SimulatedWorld::tap() {
     const double stopTime = (clearance + stopDepth) / v;
     const double release = stopTime + ts.contactTime_s;
 
+    // The depth of every sample; the pressures at the distinct depths come from one ascending
+    // sweep over the contact patch.
     record.tap = Tap(ts.samples, K);
-    std::vector<double> hold(static_cast<std::size_t>(K), 0.0);
-    contact.taxelPressures(stopDepth, hold.data());
     const double period = 1.0 / ts.sampleRate_hz;
+    sampleDepths_.resize(static_cast<std::size_t>(ts.samples));
+    distinctDepths_.clear();
     for (int i = 0; i < ts.samples; ++i) {
         const double t = i * period;
         double depth;
         if (t < stopTime) depth = v * t - clearance;
         else if (t <= release) depth = stopDepth;
         else depth = stopDepth - v * (t - release);
-        double* out = record.tap.samples.data() + static_cast<std::size_t>(i * K);
+        sampleDepths_[static_cast<std::size_t>(i)] = depth;
+        if (depth > 0.0) distinctDepths_.push_back(depth);
+    }
+    distinctDepths_.push_back(stopDepth);
+    std::sort(distinctDepths_.begin(), distinctDepths_.end());
+    distinctDepths_.erase(std::unique(distinctDepths_.begin(), distinctDepths_.end()), distinctDepths_.end());
+    depthPressures_.resize(distinctDepths_.size() * static_cast<std::size_t>(K));
+    contact.taxelPressuresAtDepths(distinctDepths_.data(), distinctDepths_.size(), depthPressures_.data());
+    auto pressuresAt = [&](double depth) {
+        const auto at = std::lower_bound(distinctDepths_.begin(), distinctDepths_.end(), depth) - distinctDepths_.begin();
+        return depthPressures_.data() + static_cast<std::size_t>(at) * static_cast<std::size_t>(K);
+    };
+    const double* holdPressures = pressuresAt(stopDepth);
+    std::vector<double> hold(holdPressures, holdPressures + K);
+    for (int i = 0; i < ts.samples; ++i) {
+        const double depth = sampleDepths_[static_cast<std::size_t>(i)];
         if (depth <= 0.0) continue;
-        if (depth == stopDepth) std::copy(hold.begin(), hold.end(), out);
-        else contact.taxelPressures(depth, out);
+        const double* p = pressuresAt(depth);
+        std::copy(p, p + K, record.tap.samples.data() + static_cast<std::size_t>(i * K));
     }
 
     SignalContext context{clock_s_, period, release, hold.data()};

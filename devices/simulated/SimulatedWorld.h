@@ -49,7 +49,7 @@ private:
     double clock_s_ = 0.0;
     Vec2 commanded_, actual_;
     std::vector<double> lastFrame_;
-    std::vector<double> scratch_;
+    std::vector<double> sampleDepths_, distinctDepths_, depthPressures_;  // reused tap to tap
     std::uint64_t taps_ = 0;
 };
 

@@ -69,26 +69,23 @@ public:
     Crosstalk(double coupling, double radius, const FingertipContactModel& model)
         : Effect("crosstalk", Acts::Signal, 20), K_(model.taxelCount()) {
         const auto& p = model.projectedTaxels();
-        matrix_.assign(static_cast<std::size_t>(K_ * K_), 0.0);
         for (int i = 0; i < K_; ++i)
             for (int j = 0; j < K_; ++j)
                 if (i != j && distance(p[static_cast<std::size_t>(i)], p[static_cast<std::size_t>(j)]) <= radius)
-                    matrix_[static_cast<std::size_t>(i * K_ + j)] = coupling;
+                    pairs_.push_back({i, j});
+        coupling_ = coupling;
     }
     void shapeSignal(Tap& tap, const SignalContext&) override {
         std::vector<double> frame(static_cast<std::size_t>(K_));
         for (int t = 0; t < tap.sampleCount(); ++t) {
-            for (int i = 0; i < K_; ++i) {
-                double v = tap.at(t, i);
-                for (int j = 0; j < K_; ++j) v += matrix_[static_cast<std::size_t>(i * K_ + j)] * tap.at(t, j);
-                frame[static_cast<std::size_t>(i)] = v;
-            }
-            for (int i = 0; i < K_; ++i) tap.at(t, i) = frame[static_cast<std::size_t>(i)];
+            std::copy(tap.frame(t), tap.frame(t) + K_, frame.begin());
+            for (const auto& [to, from] : pairs_) tap.at(t, to) += coupling_ * frame[static_cast<std::size_t>(from)];
         }
     }
 private:
     int K_;
-    std::vector<double> matrix_;
+    double coupling_ = 0.0;
+    std::vector<std::pair<int, int>> pairs_;  // (reader, neighbour)
 };
 
 /// Taxels that never respond (or are stuck at a reading).
@@ -115,10 +112,12 @@ public:
           touchGain_(touchGain), drift_(static_cast<std::size_t>(taxels), 0.0),
           estimate_(static_cast<std::size_t>(taxels), 0.0), rng_(rng) {}
     void shapeSignal(Tap& tap, const SignalContext& c) override {
-        // The time since the previous tap passes without touch.
+        // The time since the previous tap passes without touch, in steps of at most a quarter
+        // second: the drift is a random walk (its variance only depends on the total time) and
+        // the compensation a slow first-order filter, so coarse steps keep both statistics.
         if (std::isfinite(lastTime_)) {
             const double gap = c.startTime_s - lastTime_;
-            const int steps = std::clamp(static_cast<int>(gap / c.samplePeriod_s), 0, 500);
+            const int steps = std::clamp(static_cast<int>(std::ceil(gap / 0.25)), 0, 400);
             const double dt = steps > 0 ? gap / steps : 0.0;
             for (int s = 0; s < steps; ++s)
                 for (std::size_t k = 0; k < drift_.size(); ++k) step(k, 0.0, dt);
@@ -132,10 +131,23 @@ private:
         drift_[k] += rate_ * std::sqrt(dt) * rng_.normal();
         const double d = pressure + drift_[k] - estimate_[k];
         const double gain = d > threshold_ ? touchGain_ : freeGain_;
-        estimate_[k] += gain * 0.02 * d / threshold_ * (dt / 0.02);
+        // skinManager nudges by gain * 0.02 * d / threshold every 20 ms; over dt that compounds
+        // to a fraction 1 - (1 - rate)^(dt / 0.02) of the gap, never overshooting it.
+        estimate_[k] += nudge(gain, dt) * d;
         return std::max(0.0, d);
     }
+    /// The fraction of the gap closed over dt: skinManager's per-20-ms nudge compounded.
+    double nudge(double gain, double dt) {
+        double& cached = gain == touchGain_ ? touchNudge_ : freeNudge_;
+        double& cachedDt = gain == touchGain_ ? touchDt_ : freeDt_;
+        if (dt != cachedDt) {
+            cachedDt = dt;
+            cached = 1.0 - std::pow(1.0 - std::min(1.0, gain * 0.02 / threshold_), dt / 0.02);
+        }
+        return cached;
+    }
     double rate_, threshold_, freeGain_, touchGain_;
+    double freeNudge_ = 0, touchNudge_ = 0, freeDt_ = -1, touchDt_ = -1;
     std::vector<double> drift_, estimate_;
     RandomStream rng_;
     double lastTime_ = -INFINITY;

@@ -1,0 +1,30 @@
+#pragma once
+// A small benchmark harness: repeats a workload, reports the median per-iteration time beside
+// its budget. Figures, not verdicts: nothing here fails on time.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <vector>
+
+namespace activetouch::bench {
+
+/// Median microseconds per call of `work` over `rounds` rounds of `iterations` calls.
+inline double medianMicroseconds(const std::function<void()>& work, int iterations, int rounds = 7) {
+    std::vector<double> perCall;
+    for (int r = 0; r < rounds; ++r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        for (int i = 0; i < iterations; ++i) work();
+        const auto t1 = std::chrono::steady_clock::now();
+        perCall.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count() / iterations);
+    }
+    std::sort(perCall.begin(), perCall.end());
+    return perCall[perCall.size() / 2];
+}
+
+inline void report(const char* what, double value, const char* unit, double budget) {
+    std::printf("%-52s %10.3f %-3s  (budget <= %g %s)  %s\n", what, value, unit, budget, unit,
+                value <= budget ? "within budget" : "OVER BUDGET");
+}
+
+}  // namespace activetouch::bench

@@ -1,0 +1,40 @@
+// Microseconds to simulate one tap on the paper rectangle, across the lower edge: the ideal
+// scene and with every effect listed. Budgets (DESIGN.md §7): ideal <= 10 us, all effects <= 50 us.
+#include <cstdio>
+
+#include "bench/BenchHarness.h"
+#include "core/scene/Scene.h"
+#include "devices/simulated/SimulatedWorld.h"
+
+using namespace activetouch;
+
+namespace {
+double microsecondsPerTap(SceneSpec scene, std::shared_ptr<const FingertipContactModel> model) {
+    SimulatedRig rig(scene, model);
+    Rig r = rig.rig();
+    int i = 0;
+    double sink = 0;
+    const double us = bench::medianMicroseconds([&] {
+        const double off = -8.5 + (i++ % 18);
+        sink += r.tapAt({150, 121 - off}).tap.samples[600];
+    }, 4000);
+    return sink == -1 ? 0 : us;
+}
+}  // namespace
+
+int main() {
+    SceneSpec scene = loadScene(std::string(ACTIVETOUCH_SOURCE_DIR) + "/experiments/scenes/paper_rectangle.json");
+    auto model = std::make_shared<const FingertipContactModel>(scene.fingertip);
+    SceneSpec ideal = scene;
+    ideal.effects.clear();
+    bench::report("simulate one tap, ideal scene", microsecondsPerTap(ideal, model), "us", 10.0);
+    SceneSpec all = ideal;
+    for (const auto& d : effectCatalogue()) {
+        Json p = Json::object();
+        for (const auto& param : d.parameters) p[param.key] = param.typical;
+        if (d.takesTaxelList) p["taxels"] = {3};
+        all.effects.push_back({d.name, p, "/effects"});
+    }
+    bench::report("simulate one tap, every effect on", microsecondsPerTap(all, model), "us", 50.0);
+    return 0;
+}

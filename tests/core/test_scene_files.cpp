@@ -1,0 +1,134 @@
+// Scene and experiment files: every mistake a user can make is named with the file, the place
+// and what to do.
+#include <QtTest>
+#include <QTemporaryDir>
+
+#include <fstream>
+
+#include "core/experiment/Experiment.h"
+#include "support/Paths.h"
+
+using namespace activetouch;
+
+namespace {
+const char* kGoodScene = R"({
+  "object": {"shape": "rectangle", "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150], "top_height_mm": 10},
+  "fingertip": "icub_fingertip_2010",
+  "tap": {"retract_height_mm": 12, "descent_speed_mm_s": 25, "stroke_mm": 5, "contact_threshold_counts": 250},
+  "effects": [{"name": "taxel_noise", "sigma_counts": 1.5}]
+})";
+}  // namespace
+
+class TestSceneFiles : public QObject {
+    Q_OBJECT
+    QTemporaryDir dir_;
+
+    std::string write(const QString& name, const std::string& text) {
+        const std::string path = dir_.filePath(name).toStdString();
+        std::ofstream(path) << text;
+        return path;
+    }
+
+private slots:
+    void goodSceneLoads() {
+        const SceneSpec s = loadScene(write("good.json", kGoodScene));
+        QCOMPARE(s.object.outline().area(), 48.0 * 58.0);
+        QCOMPARE(int(s.effects.size()), 1);
+        QCOMPARE(s.fingertip.taxels.size(), std::size_t(12));
+        QCOMPARE(s.strokeLimitDepth(), 3.0);
+        // What is written back reads back the same.
+        const SceneSpec again = parseScene(sceneToJson(s), "round trip", "", dir_.path().toStdString());
+        QCOMPARE(sceneToJson(again).dump(), sceneToJson(s).dump());
+    }
+
+    void shippedExperimentsAndScenesLoad() {
+        const SceneSpec s = loadScene(test::sourcePath("experiments/scenes/paper_rectangle.json"));
+        QVERIFY(s.lists("taxel_noise"));
+        const ExperimentSpec e = loadExperiment(test::sourcePath("experiments/paper.json"));
+        QCOMPARE(e.name, std::string("paper"));
+        QCOMPARE(e.classes.classCount(), 72);
+        QCOMPARE(e.classifier.bins, 100);
+    }
+
+    void badSceneNamesFilePlaceAndProblem_data() {
+        QTest::addColumn<QString>("text");
+        QTest::addColumn<QString>("place");
+        QTest::addColumn<QString>("problem");
+        const QString good = kGoodScene;
+        auto swap = [&](const QString& from, const QString& to) { QString s = good; s.replace(from, to); return s; };
+        QTest::newRow("malformed JSON") << swap("\"width_mm\": 48,", "\"width_mm\": 48,,") << "line 2, column" << "not valid JSON";
+        QTest::newRow("unknown shape") << swap("\"rectangle\"", "\"hexagon\"") << "/object/shape" << "unknown shape 'hexagon'";
+        QTest::newRow("unknown key") << swap("\"width_mm\"", "\"widht_mm\"") << "/object/widht_mm" << "unknown key 'widht_mm'";
+        QTest::newRow("out of range") << swap("\"stroke_mm\": 5", "\"stroke_mm\": -5") << "/tap/stroke_mm" << "outside the allowed range";
+        QTest::newRow("wrong type") << swap("\"width_mm\": 48", "\"width_mm\": \"wide\"") << "/object/width_mm" << "expected a number";
+        QTest::newRow("missing shape") << swap("\"shape\": \"rectangle\",", "") << "/object/shape" << "missing required text 'shape'";
+        QTest::newRow("self-intersecting polygon")
+            << swap("\"shape\": \"rectangle\", \"width_mm\": 48, \"height_mm\": 58,",
+                    "\"shape\": \"polygon\", \"polygon_mm\": [[0,0],[40,40],[40,0],[0,40]],")
+            << "/object/polygon_mm" << "intersects itself";
+        QTest::newRow("degenerate polygon")
+            << swap("\"shape\": \"rectangle\", \"width_mm\": 48, \"height_mm\": 58,",
+                    "\"shape\": \"polygon\", \"polygon_mm\": [[0,0],[10,0],[20,0]],")
+            << "/object/polygon_mm" << "no area";
+        QTest::newRow("object off the stage") << swap("[150, 150]", "[640, 150]") << "/object" << "does not fit inside the stage travel";
+        QTest::newRow("object above retract height") << swap("\"top_height_mm\": 10", "\"top_height_mm\": 20") << "/object/top_height_mm" << "retract height";
+        QTest::newRow("tap does not fit the window") << swap("\"descent_speed_mm_s\": 25", "\"descent_speed_mm_s\": 5") << "/tap" << "tap window";
+        QTest::newRow("unknown fingertip") << swap("icub_fingertip_2010", "robot_thumb") << "/fingertip" << "fingertip 'robot_thumb' not found";
+        QTest::newRow("effects not a list") << swap("[{\"name\": \"taxel_noise\", \"sigma_counts\": 1.5}]", "{}") << "/effects" << "expected a list";
+        QTest::newRow("effect listed twice")
+            << swap("{\"name\": \"taxel_noise\", \"sigma_counts\": 1.5}", "{\"name\": \"taxel_noise\", \"sigma_counts\": 1.5}, {\"name\": \"taxel_noise\", \"sigma_counts\": 1}")
+            << "/effects/1/name" << "listed twice";
+    }
+    void badSceneNamesFilePlaceAndProblem() {
+        QFETCH(QString, text);
+        QFETCH(QString, place);
+        QFETCH(QString, problem);
+        const std::string path = write("bad.json", text.toStdString());
+        try {
+            loadScene(path);
+            QFAIL("the scene was accepted");
+        } catch (const InputError& e) {
+            const QString message = e.what();
+            QVERIFY2(message.startsWith(QString::fromStdString(path)), qPrintable(message));
+            QVERIFY2(message.contains(place), qPrintable(message));
+            QVERIFY2(message.contains(problem), qPrintable(message));
+        }
+    }
+
+    void missingFileIsNamed() {
+        try {
+            loadScene(dir_.filePath("nowhere.json").toStdString());
+            QFAIL("a missing file was accepted");
+        } catch (const InputError& e) {
+            QVERIFY(QString(e.what()).contains("nowhere.json"));
+            QVERIFY(QString(e.what()).contains("cannot open"));
+        }
+    }
+
+    void badExperimentSettings_data() {
+        QTest::addColumn<QString>("experiment");
+        QTest::addColumn<QString>("problem");
+        const QString head = R"({"name": "x", "scene": "good.json", )";
+        QTest::newRow("training set beyond the data sets") << head + R"("training": {"data_sets": 3, "training_sets": [4]}})" << "does not exist";
+        QTest::newRow("every set trains") << head + R"("training": {"data_sets": 2, "training_sets": [1, 2]}})" << "leave at least one set to test";
+        QTest::newRow("no smoothing") << head + R"("classifier": {"smoothing": 0}})" << "outside the allowed range";
+        QTest::newRow("scene file missing") << R"({"name": "x", "scene": "nope.json"})" << "does not exist";
+        QTest::newRow("orientation with no edge") << head + R"("classes": {"orientations_deg": [45]}})" << "no edge facing";
+        QTest::newRow("no name") << R"({"scene": "good.json"})" << "missing required text 'name'";
+    }
+    void badExperimentSettings() {
+        QFETCH(QString, experiment);
+        QFETCH(QString, problem);
+        write("good.json", kGoodScene);
+        const std::string path = write("experiment.json", experiment.toStdString());
+        try {
+            loadExperiment(path);
+            QFAIL("the experiment was accepted");
+        } catch (const InputError& e) {
+            QVERIFY2(QString(e.what()).contains(problem), e.what());
+        }
+    }
+};
+
+QTEST_APPLESS_MAIN(TestSceneFiles)
+#include "test_scene_files.moc"
