@@ -144,7 +144,19 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
                     static_cast<unsigned long long>(result.spec.scene.seed), static_cast<std::size_t>(result.tapsSimulated), result.robotTime_s);
         std::printf("validation: angle error %.2f deg, position error %.3f mm, class accuracy %.1f %%, valid range %d-%d mm\n",
                     v.angleError_deg, v.positionError_mm, 100.0 * v.correctFraction, v.validRange.first, v.validRange.last);
+        for (const auto& t : result.trials)
+            std::printf("%-7s %-9s trial %d: %-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, contour distance mean %.2f max %.2f mm%s%s\n",
+                        modeName(t.result.mode), t.label.c_str(), t.trial, trialEndName(t.result.end), t.result.taps.size(), t.result.robotTime_s,
+                        100.0 * t.result.coverage, t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
+                        t.recognised ? ", recognised as " : "", t.recognised ? t.recognition.predicted.c_str() : "");
+        if (!result.templates.empty())
+            std::printf("recognition: %.0f %% of %s paths (smoothed histograms: %.0f %%)\n", 100.0 * result.recognitionAccuracy,
+                        modeName(spec.recognition.ofMode), 100.0 * result.recognitionAccuracySmoothed);
         std::printf("wall time %.3f s (figures %.3f s); results in %s\n", wall, figures_s, outDir.c_str());
+        if (!result.failure.empty()) {
+            std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data.\n", result.failure.c_str(), outDir.c_str());
+            return kRunFailed;
+        }
         return kOk;
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

@@ -3,8 +3,10 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 
+#include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
 #include "core/validation/ClassRegions.h"
 #include "devices/simulated/SimulatedWorld.h"
@@ -24,6 +26,88 @@ std::FILE* openTable(const fs::path& path) {
     std::FILE* f = std::fopen(path.string().c_str(), "w");
     if (!f) throw InputError(path.string(), "", "cannot write the file; check the output folder is writable");
     return f;
+}
+
+}  // namespace
+
+namespace {
+
+void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> model, const RunOptions& options, RunProgress& progress) {
+    const ExperimentSpec& spec = result.spec;
+    if (spec.trials.empty()) return;
+    std::unique_ptr<FollowingRecording> recording;
+    if (!options.outDir.empty())
+        recording = std::make_unique<FollowingRecording>((fs::path(options.outDir) / "data" / "following_taps.csv").string(), model->taxelCount());
+    std::map<std::string, int> counters;  // trials so far per (label, mode)
+    int trialIndex = 0;
+    for (const TrialSpec& ts : spec.trials) {
+        for (int repeat = 0; repeat < ts.repeats; ++repeat, ++trialIndex) {
+            // Each trial gets its own world on the trial's object, with its own noise.
+            SceneSpec scene = spec.scene;
+            scene.object = ts.object;
+            scene.seed = RandomStream::derived(spec.scene.seed, "trial:" + std::to_string(trialIndex)).next() >> 1;
+            SimulatedRig simulated(scene, model);
+            Rig rig = simulated.rig();
+            TrialRun run;
+            run.label = ts.label;
+            run.trial = ++counters[ts.label + "/" + modeName(ts.mode)];
+            run.outline = simulated.world().object();
+            run.start = ts.start ? *ts.start : lowerEdgeStart(run.outline, result.validOffsets);
+            TrialSetup setup;
+            setup.mode = ts.mode;
+            setup.start = run.start;
+            setup.settings = spec.following;
+            setup.valid = result.validOffsets;
+            setup.noiseFloor = spec.scene.tap.noiseFloor;
+            progress.step = std::string(modeName(ts.mode)) + " following, " + ts.label + " trial " + std::to_string(run.trial);
+            int tapIndex = 0;
+            run.result = runTrial(rig, result.classifier, result.classes, run.outline, setup, [&](const FollowedTap& tap) {
+                if (recording) recording->append(run.label, ts.mode, run.trial, tapIndex, tap);
+                ++tapIndex;
+                ++progress.tapsDone;
+                if (options.progress) options.progress(progress);
+                return !(options.cancel && options.cancel->load());
+            });
+            result.robotTime_s += run.result.robotTime_s;
+            result.tapsSimulated += simulated.world().tapsSimulated();
+            result.trials.push_back(std::move(run));
+            if (result.trials.back().result.end == TrialEnd::DeviceError) {
+                result.failure = result.trials.back().result.detail;
+                return;
+            }
+            if (result.trials.back().result.end == TrialEnd::Cancelled) {
+                result.cancelled = true;
+                return;
+            }
+        }
+    }
+    if (!spec.recognition.enabled) return;
+    // Templates: where a perfect follower would tap on each distinct object, at the centre of the
+    // valid range, every follow step.
+    const double centre = 0.5 * (result.validOffsets.low + result.validOffsets.high);
+    for (const TrialRun& run : result.trials) {
+        bool seen = false;
+        for (const auto& t : result.templates) seen = seen || t.shape == run.label;
+        if (seen) continue;
+        ShapeTemplate t;
+        t.shape = run.label;
+        t.raw = pathHistogram(idealFollowingPath(run.outline, centre, spec.following.followStep_mm), spec.recognition.bins);
+        t.smooth = smoothed(t.raw, spec.recognition.smoothingSigmaBins);
+        result.templates.push_back(t);
+    }
+    int recognised = 0, correct = 0, correctSmoothed = 0;
+    for (TrialRun& run : result.trials) {
+        if (run.result.mode != spec.recognition.ofMode) continue;
+        run.recognised = true;
+        run.recognition = recognise(run.result.path(), result.templates, spec.recognition.smoothingSigmaBins);
+        ++recognised;
+        correct += run.recognition.predicted == run.label;
+        correctSmoothed += run.recognition.predictedSmoothed == run.label;
+    }
+    if (recognised > 0) {
+        result.recognitionAccuracy = double(correct) / recognised;
+        result.recognitionAccuracySmoothed = double(correctSmoothed) / recognised;
+    }
 }
 
 }  // namespace
@@ -75,6 +159,12 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     }
     result.classifier = HistogramClassifier::train(training, result.classes.classCount(), spec.classifier);
     result.validation = validateOffline(result.classifier, result.classes, tests, spec.validRangeWidth);
+    // The controller's valid range: the class positions' span, half a step wide on each side.
+    const double half = 0.5 * result.classes.positionStep_mm;
+    result.validOffsets = {result.classes.offsetOf(result.validation.validRange.first) - half,
+                           result.classes.offsetOf(result.validation.validRange.last) + half};
+
+    runTrials(result, model, options, progress);
     result.runWall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return result;
 }
@@ -122,6 +212,70 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
     }
     std::fclose(f);
 
+    if (!r.trials.empty()) {
+        f = openTable(data / "following_trials.csv");
+        std::fprintf(f, "shape,mode,trial,completed,end,taps,robot_time_s,coverage,mean_contour_distance_mm,max_contour_distance_mm,progress_mm,start_x_mm,start_y_mm\n");
+        for (const auto& t : r.trials)
+            std::fprintf(f, "%s,%s,%d,%d,%s,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", t.label.c_str(), modeName(t.result.mode), t.trial,
+                         t.result.completed() ? 1 : 0, trialEndName(t.result.end), t.result.taps.size(), t.result.robotTime_s, t.result.coverage,
+                         t.result.meanContourDistance_mm, t.result.maxContourDistance_mm, t.result.progress_mm, t.start.x, t.start.y);
+        std::fclose(f);
+        f = openTable(data / "following_paths.csv");
+        std::fprintf(f, "shape,mode,trial,tap,x_mm,y_mm,shape_class,orientation_deg,position,rule,move_x_mm,move_y_mm,progress_mm,contour_distance_mm\n");
+        for (const auto& t : r.trials) {
+            int i = 0;
+            for (const auto& tap : t.result.taps) {
+                const Vec2 m = tap.decision.move();
+                std::fprintf(f, "%s,%s,%d,%d,%.10g,%.10g,%s,%g,%d,%s,%.10g,%.10g,%.10g,%.10g\n", t.label.c_str(), modeName(t.result.mode), t.trial,
+                             i++, tap.record.pose.x, tap.record.pose.y, tap.percept.shapeClass().c_str(), tap.percept.orientationDeg,
+                             tap.percept.position, ruleFor(tap.decision.rule).name, m.x, m.y, tap.progress_mm, tap.contourDistance_mm);
+            }
+        }
+        std::fclose(f);
+        f = openTable(data / "outlines.csv");
+        std::fprintf(f, "shape,vertex,x_mm,y_mm\n");
+        std::map<std::string, bool> written;
+        for (const auto& t : r.trials) {
+            if (written[t.label]) continue;
+            written[t.label] = true;
+            for (std::size_t v = 0; v < t.outline.size(); ++v)
+                std::fprintf(f, "%s,%zu,%.10g,%.10g\n", t.label.c_str(), v, t.outline.vertex(v).x, t.outline.vertex(v).y);
+        }
+        std::fclose(f);
+    }
+    if (!r.templates.empty()) {
+        f = openTable(data / "recognition.csv");
+        std::fprintf(f, "shape,trial,predicted,predicted_smoothed");
+        for (const auto& t : r.templates) std::fprintf(f, ",distance_%s", t.shape.c_str());
+        for (const auto& t : r.templates) std::fprintf(f, ",smoothed_distance_%s", t.shape.c_str());
+        std::fputc('\n', f);
+        for (const auto& t : r.trials) {
+            if (!t.recognised) continue;
+            std::fprintf(f, "%s,%d,%s,%s", t.label.c_str(), t.trial, t.recognition.predicted.c_str(), t.recognition.predictedSmoothed.c_str());
+            for (const auto& tp : r.templates) std::fprintf(f, ",%.10g", t.recognition.distances.at(tp.shape));
+            for (const auto& tp : r.templates) std::fprintf(f, ",%.10g", t.recognition.smoothedDistances.at(tp.shape));
+            std::fputc('\n', f);
+        }
+        std::fclose(f);
+        f = openTable(data / "path_histograms.csv");
+        std::fprintf(f, "kind,shape,trial,smoothed,ix,iy,value\n");
+        auto dump = [&](const char* kind, const std::string& shape, int trial, bool smooth, const PathHistogram& h) {
+            for (int iy = 0; iy < h.bins; ++iy)
+                for (int ix = 0; ix < h.bins; ++ix)
+                    std::fprintf(f, "%s,%s,%d,%d,%d,%d,%.10g\n", kind, shape.c_str(), trial, smooth ? 1 : 0, ix, iy, h.at(ix, iy));
+        };
+        for (const auto& t : r.templates) {
+            dump("template", t.shape, 0, false, t.raw);
+            dump("template", t.shape, 0, true, t.smooth);
+        }
+        for (const auto& t : r.trials)
+            if (t.recognised) {
+                dump("path", t.label, t.trial, false, t.recognition.raw);
+                dump("path", t.label, t.trial, true, t.recognition.smooth);
+            }
+        std::fclose(f);
+    }
+
     f = openTable(data / "confusion.csv");
     std::fprintf(f, "true_class");
     for (int c = 0; c < cs.classCount(); ++c) std::fprintf(f, ",perceived_%d", c);
@@ -140,7 +294,7 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
     j["experiment"] = r.spec.name;
     j["source"] = r.spec.source;
     j["seed"] = r.spec.scene.seed;
-    j["completed"] = !r.cancelled;
+    j["run_finished"] = !r.cancelled && r.failure.empty();
     j["scene"] = sceneToJson(r.spec.scene);
     j["effects_active"] = r.activeEffects;
     Json regions = Json::array();
@@ -179,6 +333,31 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
             {"test_taps", v.percepts.size()},
             {"by_class", byClass},
             {"by_position", byPosition}};
+    }
+    if (!r.failure.empty()) j["failure"] = r.failure;
+    j["valid_offsets_mm"] = {r.validOffsets.low, r.validOffsets.high};
+    Json following = Json::array();
+    for (const auto& t : r.trials)
+        following.push_back({{"shape", t.label}, {"mode", modeName(t.result.mode)}, {"trial", t.trial}, {"completed", t.result.completed()},
+                             {"reason", trialEndName(t.result.end)}, {"detail", t.result.detail}, {"taps", t.result.taps.size()},
+                             {"robot_time_s", t.result.robotTime_s}, {"coverage", t.result.coverage},
+                             {"mean_contour_distance_mm", t.result.meanContourDistance_mm},
+                             {"max_contour_distance_mm", t.result.maxContourDistance_mm}, {"progress_mm", t.result.progress_mm},
+                             {"start_mm", {t.start.x, t.start.y}}});
+    j["following"] = following;
+    if (!r.templates.empty()) {
+        Json trials = Json::array();
+        std::map<std::string, std::map<std::string, int>> confusion;
+        for (const auto& t : r.trials) {
+            if (!t.recognised) continue;
+            trials.push_back({{"shape", t.label}, {"trial", t.trial}, {"predicted", t.recognition.predicted},
+                              {"predicted_smoothed", t.recognition.predictedSmoothed}, {"distances", t.recognition.distances},
+                              {"smoothed_distances", t.recognition.smoothedDistances}});
+            ++confusion[t.label][t.recognition.predicted];
+        }
+        j["recognition"] = {{"accuracy", r.recognitionAccuracy}, {"accuracy_smoothed", r.recognitionAccuracySmoothed},
+                            {"of_mode", modeName(r.spec.recognition.ofMode)}, {"bins", r.spec.recognition.bins},
+                            {"smoothing_sigma_bins", r.spec.recognition.smoothingSigmaBins}, {"trials", trials}, {"confusion", confusion}};
     }
     j["timing"] = {{"wall_s", wall_s}, {"run_wall_s", r.runWall_s}, {"figures_wall_s", figures_s},
                    {"taps_simulated", r.tapsSimulated}, {"robot_time_s", r.robotTime_s}};

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "core/classify/HistogramClassifier.h"
+#include "core/control/ContourFollower.h"
+#include "core/recognition/PathHistogram.h"
 #include "core/experiment/Experiment.h"
 #include "core/validation/OfflineValidation.h"
 #include "core/validation/TrainingProtocol.h"
@@ -22,6 +24,16 @@ struct RunProgress {
     std::string step;
 };
 
+struct TrialRun {
+    std::string label;
+    int trial = 1;          ///< 1-based within its label and mode
+    Polygon outline;
+    Vec2 start;
+    TrialResult result;
+    bool recognised = false;
+    Recognition recognition;
+};
+
 struct RunResult {
     ExperimentSpec spec;            ///< with the seed actually used
     ClassSet classes;               ///< with the region map
@@ -29,6 +41,11 @@ struct RunResult {
     std::vector<CollectedTap> taps; ///< every tap, in order
     HistogramClassifier classifier;
     ValidationResult validation;
+    ValidOffsets validOffsets;      ///< the valid range as offsets from the edge, used by the controller
+    std::vector<TrialRun> trials;
+    std::vector<ShapeTemplate> templates;
+    double recognitionAccuracy = 0.0, recognitionAccuracySmoothed = 0.0;
+    std::string failure;            ///< a device error that stopped the run, if any
     bool cancelled = false;
     double robotTime_s = 0.0;
     std::uint64_t tapsSimulated = 0;
@@ -42,8 +59,12 @@ struct RunOptions {
     const std::atomic<bool>* cancel = nullptr;
 };
 
-/// Runs the experiment's steps. Taps are appended to <outDir>/data/taps.csv as they are taken.
-/// Throws RigError if a device fails and InputError if the output cannot be written.
+/// Runs the experiment's steps: training and validation taps (appended to <outDir>/data/taps.csv
+/// as they are taken), then the contour-following trials (appended to
+/// <outDir>/data/following_taps.csv), then recognition of the traced paths. A device error
+/// during the training taps throws RigError; during a trial it ends that trial, is noted in
+/// `failure`, and stops the run with everything recorded so far. InputError if the output cannot
+/// be written.
 RunResult runExperiment(const ExperimentSpec& spec, const RunOptions& options);
 
 /// Writes the tables (data/*.csv) of a finished run.

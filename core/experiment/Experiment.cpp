@@ -1,15 +1,78 @@
 #include "core/experiment/Experiment.h"
 
 #include <filesystem>
+#include <stdexcept>
+
+#include "core/control/ContourFollower.h"
 
 namespace activetouch {
 namespace fs = std::filesystem;
 
 bool looksLikeExperiment(const Json& json) { return json.is_object() && json.contains("scene"); }
 
+int ExperimentSpec::plannedTaps() const { return training.dataSets * classes.classCount() * training.tapsPerClass; }
+
+namespace {
+
+FollowingMode parseMode(const JsonFields& f, const std::string& key, const std::string& fallback) {
+    const std::string m = f.text(key, fallback);
+    if (m == "active") return FollowingMode::Active;
+    if (m == "passive") return FollowingMode::Passive;
+    f.fail(key, "mode '" + m + "' is neither active nor passive");
+}
+
+void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
+    f.rejectUnknownKeys({"follow_step_mm", "reposition_step_mm", "plane_step_mm", "air_inward_step_mm", "air_retreat_step_mm",
+                         "completion_radius_mm", "lost_outside_mm", "lost_inside_mm", "lost_plane_or_air_taps", "tap_cap_perimeters",
+                         "coverage_radius_mm", "trials"});
+    FollowingSettings& s = e.following;
+    s.followStep_mm = f.number("follow_step_mm", 0.05, 50.0, s.followStep_mm);
+    s.repositionStep_mm = f.number("reposition_step_mm", 0.0, 50.0, s.repositionStep_mm);
+    s.planeStep_mm = f.number("plane_step_mm", 0.0, 50.0, s.planeStep_mm);
+    s.airInwardStep_mm = f.number("air_inward_step_mm", 0.0, 50.0, s.airInwardStep_mm);
+    s.airRetreatStep_mm = f.number("air_retreat_step_mm", 0.0, 50.0, s.airRetreatStep_mm);
+    s.completionRadius_mm = f.number("completion_radius_mm", 0.1, 100.0, s.completionRadius_mm);
+    s.lostOutside_mm = f.number("lost_outside_mm", 0.1, 1000.0, s.lostOutside_mm);
+    s.lostInside_mm = f.number("lost_inside_mm", 0.1, 1000.0, s.lostInside_mm);
+    s.lostPlaneOrAirTaps = f.integer("lost_plane_or_air_taps", 1, 100000, s.lostPlaneOrAirTaps);
+    s.tapCapPerimeters = f.number("tap_cap_perimeters", 0.1, 100.0, s.tapCapPerimeters);
+    s.coverageRadius_mm = f.number("coverage_radius_mm", 0.1, 100.0, s.coverageRadius_mm);
+    if (!f.has("trials")) return;
+    const Json& list = f.raw("trials");
+    if (!list.is_array()) f.fail("trials", "expected a list of trials, e.g. [{\"mode\": \"active\", \"object\": {\"shape\": \"cross\"}, \"repeats\": 2}]");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        const std::string place = f.placeOf("trials") + "/" + std::to_string(i);
+        JsonFields t(list[i], f.source(), place);
+        t.rejectUnknownKeys({"label", "mode", "object", "repeats", "start_mm"});
+        TrialSpec spec;
+        spec.place = place;
+        spec.mode = parseMode(t, "mode", "active");
+        spec.object = parseObject(t.object("object"));
+        spec.label = t.text("label", spec.object.shape);
+        spec.repeats = t.integer("repeats", 1, 1000, 1);
+        if (const std::string problem = objectPlacementProblem(spec.object, e.scene); !problem.empty())
+            throw InputError(f.source(), place + "/object", problem);
+        if (t.has("start_mm")) {
+            spec.start = t.point("start_mm");
+            if (const std::string problem = startProblem(spec.object.outline(), *spec.start, s); !problem.empty())
+                t.fail("start_mm", problem);
+        } else {
+            try {
+                lowerEdgeStart(spec.object.outline(), ValidOffsets{});
+            } catch (const std::invalid_argument& err) {
+                t.fail("object", std::string(err.what()) + "; give start_mm");
+            }
+        }
+        e.trials.push_back(spec);
+    }
+}
+
+}  // namespace
+
 ExperimentSpec parseExperiment(const Json& json, const std::string& source, const std::string& baseDirectory) {
     JsonFields f(json, source, "");
-    f.rejectUnknownKeys({"name", "description", "scene", "seed", "classes", "classifier", "training", "validation"});
+    f.rejectUnknownKeys({"name", "description", "scene", "seed", "classes", "classifier", "training", "validation", "following",
+                         "recognition"});
     ExperimentSpec e;
     e.source = source;
     e.name = f.text("name");
@@ -59,6 +122,18 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source, cons
         const JsonFields v = f.object("validation");
         v.rejectUnknownKeys({"valid_range_positions"});
         e.validRangeWidth = v.integer("valid_range_positions", 1, e.classes.positions, e.validRangeWidth);
+    }
+    if (f.has("following")) parseFollowing(f.object("following"), e);
+    if (f.has("recognition")) {
+        const JsonFields r = f.object("recognition");
+        r.rejectUnknownKeys({"bins", "smoothing_sigma_bins", "of_mode"});
+        e.recognition.enabled = true;
+        e.recognition.bins = r.integer("bins", 2, 200, e.recognition.bins);
+        e.recognition.smoothingSigmaBins = r.number("smoothing_sigma_bins", 0.0, 20.0, e.recognition.smoothingSigmaBins);
+        e.recognition.ofMode = parseMode(r, "of_mode", "active");
+        bool any = false;
+        for (const auto& t : e.trials) any = any || t.mode == e.recognition.ofMode;
+        if (!any) r.fail("of_mode", std::string("no ") + modeName(e.recognition.ofMode) + " trials to recognise; add trials or change of_mode");
     }
     // The training object must offer an edge for every orientation.
     try {

@@ -5,11 +5,29 @@
 #include <string>
 
 #include "core/classify/HistogramClassifier.h"
+#include "core/control/FollowingSettings.h"
 #include "core/scene/Scene.h"
 #include "core/tap/ClassSet.h"
 #include "core/validation/TrainingProtocol.h"
 
 namespace activetouch {
+
+/// A set of contour-following trials on one object.
+struct TrialSpec {
+    std::string label;            ///< the shape's name for recognition (default: the library shape)
+    FollowingMode mode = FollowingMode::Active;
+    ObjectSpec object;
+    int repeats = 1;
+    std::optional<Vec2> start;    ///< default: the lower edge's middle, centred in the valid range
+    std::string place;            ///< JSON pointer, for errors
+};
+
+struct RecognitionSpec {
+    bool enabled = false;
+    int bins = 20;
+    double smoothingSigmaBins = 1.0;  ///< for the smoothed histogram reported beside the paper's
+    FollowingMode ofMode = FollowingMode::Active;
+};
 
 struct ExperimentSpec {
     std::string source;
@@ -20,6 +38,11 @@ struct ExperimentSpec {
     ClassifierSettings classifier;
     TrainingProtocolSettings training;
     int validRangeWidth = 4;  ///< positions in the valid range window
+    FollowingSettings following;
+    std::vector<TrialSpec> trials;
+    RecognitionSpec recognition;
+
+    int plannedTaps() const;  ///< training taps; trials add theirs as they go
 };
 
 /// Parses an experiment; the scene may be inline or a path relative to the experiment file.

@@ -71,8 +71,6 @@ FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& re
     return spec;
 }
 
-namespace {
-
 ObjectSpec parseObject(const JsonFields& f) {
     ObjectSpec o;
     f.rejectUnknownKeys({"shape", "width_mm", "height_mm", "arm_mm", "opening_mm", "polygon_mm",
@@ -111,6 +109,23 @@ ObjectSpec parseObject(const JsonFields& f) {
     o.height_mm = f.number("top_height_mm", 0.1, 500.0, o.height_mm);
     return o;
 }
+
+std::string objectPlacementProblem(const ObjectSpec& object, const SceneSpec& scene) {
+    if (object.height_mm >= scene.tap.retractHeight_mm)
+        return "the object's top (" + std::to_string(object.height_mm) + " mm) is not below the tapper's retract height (" +
+               std::to_string(scene.tap.retractHeight_mm) + " mm); raise tap.retract_height_mm or use a lower object";
+    if (scene.tap.stroke_mm - (scene.tap.retractHeight_mm - object.height_mm) <= 0.0)
+        return "the stroke ends above the object's top face, so no tap can touch it; lengthen the stroke or lower the retract height";
+    const Polygon outline = object.outline();
+    const Vec2 lo = outline.boundingBoxMin(), hi = outline.boundingBoxMax();
+    if (lo.x < 0 || lo.y < 0 || hi.x > scene.stage.travel_mm.x || hi.y > scene.stage.travel_mm.y)
+        return "the object (x " + std::to_string(lo.x) + ".." + std::to_string(hi.x) + ", y " + std::to_string(lo.y) + ".." +
+               std::to_string(hi.y) + " mm) does not fit inside the stage travel (0.." + std::to_string(scene.stage.travel_mm.x) +
+               ", 0.." + std::to_string(scene.stage.travel_mm.y) + " mm); move it with offset_mm or make it smaller";
+    return {};
+}
+
+namespace {
 
 TapSpec parseTap(const JsonFields& f) {
     TapSpec t;
@@ -156,21 +171,13 @@ SceneSpec parseScene(const Json& json, const std::string& source, const std::str
     }
     s.seed = static_cast<std::uint64_t>(f.integer("seed", 0, 2147483647L, 1));
 
-    if (s.object.height_mm >= s.tap.retractHeight_mm)
-        throw InputError(source, f.placeOf("object") + "/top_height_mm",
-                         "the object's top (" + std::to_string(s.object.height_mm) + " mm) is not below the tapper's retract height (" +
-                             std::to_string(s.tap.retractHeight_mm) + " mm); raise tap.retract_height_mm or use a lower object");
-    if (s.strokeLimitDepth() <= 0.0)
-        throw InputError(source, f.placeOf("tap") + "/stroke_mm",
-                         "the stroke ends above the object's top face, so no tap can touch it; lengthen the stroke or lower the retract height");
-
-    const Polygon outline = s.object.outline();
-    const Vec2 lo = outline.boundingBoxMin(), hi = outline.boundingBoxMax();
-    if (lo.x < 0 || lo.y < 0 || hi.x > s.stage.travel_mm.x || hi.y > s.stage.travel_mm.y)
-        throw InputError(source, f.placeOf("object"),
-                         "the object (x " + std::to_string(lo.x) + ".." + std::to_string(hi.x) + ", y " + std::to_string(lo.y) + ".." +
-                             std::to_string(hi.y) + " mm) does not fit inside the stage travel (0.." + std::to_string(s.stage.travel_mm.x) +
-                             ", 0.." + std::to_string(s.stage.travel_mm.y) + " mm); move it with offset_mm or make it smaller");
+    if (const std::string problem = objectPlacementProblem(s.object, s); !problem.empty()) {
+        // Name the setting most likely at fault.
+        std::string place = f.placeOf("object");
+        if (problem.find("retract height") != std::string::npos) place += "/top_height_mm";
+        else if (problem.find("stroke ends") != std::string::npos) place = f.placeOf("tap") + "/stroke_mm";
+        throw InputError(source, place, problem);
+    }
 
     if (f.has("effects")) {
         const Json& list = f.raw("effects");
@@ -195,25 +202,29 @@ SceneSpec loadScene(const std::string& path) {
     return parseScene(j, path, "", fs::path(path).parent_path().string());
 }
 
+Json objectToJson(const ObjectSpec& object) {
+    Json o;
+    o["shape"] = object.shape;
+    if (object.shape == "polygon") {
+        Json poly = Json::array();
+        for (Vec2 v : object.polygon) poly.push_back({v.x, v.y});
+        o["polygon_mm"] = poly;
+    } else {
+        o["width_mm"] = object.size.width;
+        o["height_mm"] = object.size.height;
+        if (object.shape != "rectangle") o["arm_mm"] = object.size.arm;
+        if (object.shape == "c") o["opening_mm"] = object.size.opening;
+    }
+    o["rotation_deg"] = object.rotationDeg;
+    o["offset_mm"] = {object.offset.x, object.offset.y};
+    o["top_height_mm"] = object.height_mm;
+    return o;
+}
+
 Json sceneToJson(const SceneSpec& s) {
     Json j;
     if (!s.description.empty()) j["description"] = s.description;
-    Json o;
-    o["shape"] = s.object.shape;
-    if (s.object.shape == "polygon") {
-        Json poly = Json::array();
-        for (Vec2 v : s.object.polygon) poly.push_back({v.x, v.y});
-        o["polygon_mm"] = poly;
-    } else {
-        o["width_mm"] = s.object.size.width;
-        o["height_mm"] = s.object.size.height;
-        if (s.object.shape != "rectangle") o["arm_mm"] = s.object.size.arm;
-        if (s.object.shape == "c") o["opening_mm"] = s.object.size.opening;
-    }
-    o["rotation_deg"] = s.object.rotationDeg;
-    o["offset_mm"] = {s.object.offset.x, s.object.offset.y};
-    o["top_height_mm"] = s.object.height_mm;
-    j["object"] = o;
+    j["object"] = objectToJson(s.object);
     j["fingertip"] = s.fingertipName;
     j["tap"] = {{"retract_height_mm", s.tap.retractHeight_mm}, {"descent_speed_mm_s", s.tap.descentSpeed_mm_s},
                 {"stroke_mm", s.tap.stroke_mm}, {"contact_threshold_counts", s.tap.contactThreshold},

@@ -76,10 +76,20 @@ std::string resourceDirectory();
 FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& relativeTo,
                             const std::string& source, const std::string& place);
 
+/// Parses an object description (shape or polygon, pose, top height). Throws InputError.
+ObjectSpec parseObject(const JsonFields& fields);
+
+/// Why `object` cannot be placed in `scene`'s rig (off the stage, taller than the retract
+/// height), or empty.
+std::string objectPlacementProblem(const ObjectSpec& object, const SceneSpec& scene);
+
 /// Parses a scene from JSON; `baseDirectory` resolves relative paths. Throws InputError.
 SceneSpec parseScene(const Json& json, const std::string& source, const std::string& pointer,
                      const std::string& baseDirectory);
 SceneSpec loadScene(const std::string& path);
+
+/// An object as JSON, in the form parseObject reads.
+Json objectToJson(const ObjectSpec& object);
 
 /// The scene as JSON, in the form parseScene reads.
 Json sceneToJson(const SceneSpec& scene);

@@ -1,0 +1,156 @@
+#include "core/control/ContourFollower.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "core/control/ContactDetection.h"
+#include "core/control/MotorCommand.h"
+
+namespace activetouch {
+
+const char* trialEndName(TrialEnd e) {
+    switch (e) {
+        case TrialEnd::Completed: return "completed";
+        case TrialEnd::LostOutside: return "lost: too far outside the contour";
+        case TrialEnd::LostInside: return "lost: too far inside the object";
+        case TrialEnd::LostPlaneOrAir: return "lost: plane or air percepts in a row";
+        case TrialEnd::TapCap: return "tap cap reached";
+        case TrialEnd::DeviceError: return "device error";
+        case TrialEnd::Cancelled: return "cancelled";
+    }
+    return "";
+}
+
+std::vector<Vec2> TrialResult::path() const {
+    std::vector<Vec2> p;
+    p.reserve(taps.size());
+    for (const auto& t : taps) p.push_back(t.record.pose);
+    return p;
+}
+
+Vec2 lowerEdgeStart(const Polygon& outline, const ValidOffsets& valid) {
+    const Vec2 down{0.0, -1.0};
+    double lowest = std::numeric_limits<double>::infinity();
+    Vec2 start;
+    for (std::size_t e = 0; e < outline.size(); ++e) {
+        if (dot(outline.outwardNormal(e), down) < 1.0 - 1e-6) continue;
+        const Vec2 mid = 0.5 * (outline.vertex(e) + outline.vertex(e + 1));
+        if (mid.y < lowest) {
+            lowest = mid.y;
+            start = mid + 0.5 * (valid.low + valid.high) * down;
+        }
+    }
+    if (!std::isfinite(lowest)) throw std::invalid_argument("the object has no downward-facing (lower) edge to start on");
+    return start;
+}
+
+std::string startProblem(const Polygon& outline, Vec2 start, const FollowingSettings& s) {
+    const double sd = outline.signedDistance(start);
+    char buf[200];
+    if (-sd > s.lostOutside_mm) {
+        std::snprintf(buf, sizeof buf, "the start pose (%.2f, %.2f) mm is %.1f mm outside the object, beyond the %.1f mm at which a trial counts as lost; start on an edge",
+                      start.x, start.y, -sd, s.lostOutside_mm);
+        return buf;
+    }
+    if (sd > s.lostInside_mm) {
+        std::snprintf(buf, sizeof buf, "the start pose (%.2f, %.2f) mm is %.1f mm inside the object, beyond the %.1f mm at which a trial counts as lost; start on an edge",
+                      start.x, start.y, sd, s.lostInside_mm);
+        return buf;
+    }
+    return {};
+}
+
+void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double coverageRadius, TrialResult& r) {
+    r.coverage = 0.0;
+    r.meanContourDistance_mm = r.maxContourDistance_mm = 0.0;
+    if (path.empty()) return;
+    double sum = 0.0;
+    for (Vec2 p : path) {
+        const double d = outline.nearestOutlinePoint(p).distance;
+        sum += d;
+        r.maxContourDistance_mm = std::max(r.maxContourDistance_mm, d);
+    }
+    r.meanContourDistance_mm = sum / static_cast<double>(path.size());
+    // Coverage: perimeter points every 0.5 mm with a tap within the radius.
+    const double step = 0.5;
+    const int samples = std::max(1, static_cast<int>(std::ceil(outline.perimeter() / step)));
+    int covered = 0;
+    for (int i = 0; i < samples; ++i) {
+        const Vec2 q = outline.pointAtArcLength(i * outline.perimeter() / samples);
+        for (Vec2 p : path)
+            if (distance(p, q) <= coverageRadius) {
+                ++covered;
+                break;
+            }
+    }
+    r.coverage = static_cast<double>(covered) / samples;
+}
+
+TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const ClassSet& classes, const Polygon& outline,
+                     const TrialSetup& setup, const std::function<bool(const FollowedTap&)>& onTap) {
+    const FollowingSettings& s = setup.settings;
+    TrialResult result;
+    result.mode = setup.mode;
+    const double perimeter = outline.perimeter();
+    const int tapCap = std::max(1, static_cast<int>(std::ceil(s.tapCapPerimeters * perimeter / s.followStep_mm)));
+    const double startTime = rig.clock.now_s();
+
+    ShortTermMemory memory;
+    memory.lastEdgeDeg = setup.startEdgeDeg;
+    memory.heading = followDirection(setup.startEdgeDeg);
+    Vec2 pose = setup.start;
+    double progress = 0.0;
+    double lastArc = outline.nearestOutlinePoint(pose).arcLength;
+    result.end = TrialEnd::TapCap;
+
+    try {
+        rig.stage.moveTo(pose);
+        for (int n = 0; n < tapCap; ++n) {
+            FollowedTap t;
+            t.record = rig.tapper.tap();
+            t.record.pose = pose;
+            t.contact = contactMade(t.record, setup.noiseFloor);
+            t.percept = perceive(classifier, classes, t.record.tap);
+            t.decision = decide(t.percept, memory, setup.mode, s, setup.valid);
+
+            // Judge the trial at this tap (evaluation only: the loop never sees the outline).
+            const auto nearest = outline.nearestOutlinePoint(pose);
+            double delta = nearest.arcLength - lastArc;
+            if (delta > perimeter / 2) delta -= perimeter;
+            if (delta < -perimeter / 2) delta += perimeter;
+            progress += delta;
+            lastArc = nearest.arcLength;
+            t.progress_mm = progress;
+            t.contourDistance_mm = outline.contains(pose) ? nearest.distance : -nearest.distance;
+
+            const Vec2 traversal = t.percept.region == Region::Edge || setup.mode == FollowingMode::Passive ? t.decision.follow : Vec2{};
+            memory.update(t.percept, traversal);
+            result.taps.push_back(t);
+            const bool keepGoing = !onTap || onTap(result.taps.back());
+
+            if (-t.contourDistance_mm > s.lostOutside_mm) { result.end = TrialEnd::LostOutside; break; }
+            if (t.contourDistance_mm > s.lostInside_mm) { result.end = TrialEnd::LostInside; break; }
+            if (memory.planeOrAirRun >= s.lostPlaneOrAirTaps) { result.end = TrialEnd::LostPlaneOrAir; break; }
+            if (progress >= perimeter && distance(pose, setup.start) <= s.completionRadius_mm) { result.end = TrialEnd::Completed; break; }
+            if (!keepGoing) { result.end = TrialEnd::Cancelled; break; }
+            if (n + 1 < tapCap) pose = sendMotorCommand(rig.stage, pose, t.decision);
+        }
+    } catch (const RigError& e) {
+        result.end = TrialEnd::DeviceError;
+        result.detail = e.what();
+    }
+    if (result.detail.empty()) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "%s after %zu taps, %.0f of %.0f mm of contour", trialEndName(result.end), result.taps.size(),
+                      progress, perimeter);
+        result.detail = buf;
+    }
+    result.progress_mm = progress;
+    result.robotTime_s = rig.clock.now_s() - startTime;
+    measurePath(outline, result.path(), s.coverageRadius_mm, result);
+    return result;
+}
+
+}  // namespace activetouch

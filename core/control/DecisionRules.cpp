@@ -1,0 +1,49 @@
+#include "core/control/DecisionRules.h"
+
+#include <stdexcept>
+
+namespace activetouch {
+
+const std::vector<Rule>& decisionRules() {
+    static const std::vector<Rule> rules{
+        {RuleId::FollowInRange, "follow", FollowingMode::Active, "edge, position within the valid range",
+         "follow_step along the perceived edge"},
+        {RuleId::FollowRepositionOut, "follow+out", FollowingMode::Active, "edge, position on the plane side of the valid range",
+         "follow_step along the perceived edge + reposition_step outward along its normal"},
+        {RuleId::FollowRepositionIn, "follow+in", FollowingMode::Active, "edge, position on the air side of the valid range",
+         "follow_step along the perceived edge + reposition_step inward along its normal"},
+        {RuleId::PlaneStepOut, "plane:out", FollowingMode::Active, "plane",
+         "plane_step outward along the last edge's normal"},
+        {RuleId::AirStepBack, "air:back", FollowingMode::Active, "air",
+         "air_inward_step inward along the last edge's normal + air_retreat_step against the heading"},
+        {RuleId::PassiveFollow, "passive:follow", FollowingMode::Passive, "edge", "follow_step along the perceived edge"},
+        {RuleId::PassiveKeepHeading, "passive:heading", FollowingMode::Passive, "plane or air", "follow_step along the last heading"},
+    };
+    return rules;
+}
+
+const Rule& ruleFor(RuleId id) {
+    for (const auto& r : decisionRules())
+        if (r.id == id) return r;
+    throw std::logic_error("rule missing from the table");
+}
+
+Decision decide(const Percept& p, const ShortTermMemory& memory, FollowingMode mode, const FollowingSettings& s,
+                const ValidOffsets& valid) {
+    if (mode == FollowingMode::Passive) {
+        if (p.region == Region::Edge) return {RuleId::PassiveFollow, s.followStep_mm * followDirection(p.orientationDeg), {}};
+        return {RuleId::PassiveKeepHeading, s.followStep_mm * memory.heading, {}};
+    }
+    if (p.region == Region::Edge) {
+        const Vec2 follow = s.followStep_mm * followDirection(p.orientationDeg);
+        const Vec2 n = outwardNormal(p.orientationDeg);
+        if (p.offset_mm < valid.low) return {RuleId::FollowRepositionOut, follow, s.repositionStep_mm * n};
+        if (p.offset_mm > valid.high) return {RuleId::FollowRepositionIn, follow, -s.repositionStep_mm * n};
+        return {RuleId::FollowInRange, follow, {}};
+    }
+    const Vec2 n = outwardNormal(memory.lastEdgeDeg);
+    if (p.region == Region::Plane) return {RuleId::PlaneStepOut, {}, s.planeStep_mm * n};
+    return {RuleId::AirStepBack, -s.airRetreatStep_mm * memory.heading, -s.airInwardStep_mm * n};
+}
+
+}  // namespace activetouch

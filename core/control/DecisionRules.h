@@ -1,0 +1,58 @@
+#pragma once
+// Decision making and repositioning (paper §2.3-2.4, Figures 3-4): an explicit if-then rules
+// table. Each rule names the percept it applies to and the move it commands, with every step
+// length taken from FollowingSettings. Nothing here knows about corners: turning at a corner must
+// come from perception and repositioning.
+//
+// Active mode
+//   edge, position in the valid range  -> follow the perceived edge
+//   edge, position on the plane side   -> follow, and reposition outward along its normal
+//   edge, position on the air side     -> follow, and reposition inward along its normal
+//   plane                              -> move outward along the last edge's normal
+//   air                                -> move inward along the last edge's normal and back
+//                                         against the heading (moving only inward after
+//                                         overshooting a convex corner would run parallel to
+//                                         the next edge, just outside it, reading air)
+// Passive mode (repositioning disabled; the perceived position is never used)
+//   edge                               -> follow the perceived edge
+//   plane or air                       -> keep the last heading
+#include <string>
+#include <vector>
+
+#include "core/control/FollowingSettings.h"
+#include "core/control/ShortTermMemory.h"
+#include "core/validation/OfflineValidation.h"
+
+namespace activetouch {
+
+enum class RuleId { FollowInRange, FollowRepositionOut, FollowRepositionIn, PlaneStepOut, AirStepBack, PassiveFollow, PassiveKeepHeading };
+
+struct Rule {
+    RuleId id;
+    const char* name;
+    FollowingMode mode;
+    const char* when;
+    const char* then;
+};
+
+/// The table, in the order rules are tried.
+const std::vector<Rule>& decisionRules();
+const Rule& ruleFor(RuleId id);
+
+struct Decision {
+    RuleId rule;
+    Vec2 follow;      ///< following component of the move, mm
+    Vec2 reposition;  ///< repositioning component, mm
+    Vec2 move() const { return follow + reposition; }
+};
+
+/// The valid range as offsets of the tip centre from the edge along its outward normal, mm.
+struct ValidOffsets {
+    double low = -1.5, high = 1.5;
+};
+
+/// Decides the next move from the percept and memory.
+Decision decide(const Percept& percept, const ShortTermMemory& memory, FollowingMode mode,
+                const FollowingSettings& settings, const ValidOffsets& valid);
+
+}  // namespace activetouch

@@ -1,0 +1,28 @@
+#pragma once
+// The settings of the perception-action loop and of a trial's termination (DESIGN.md §2). Every
+// step length of the rules table is one of these numbers.
+#include <string>
+
+namespace activetouch {
+
+enum class FollowingMode { Active, Passive };
+const char* modeName(FollowingMode m);
+
+struct FollowingSettings {
+    double followStep_mm = 2.0;        ///< along the perceived edge, every tap (paper: 2 mm)
+    double repositionStep_mm = 1.0;    ///< along the edge normal toward the valid range (paper: 1 mm)
+    double planeStep_mm = 2.0;         ///< active, plane percept: outward along the last edge's normal
+    double airInwardStep_mm = 2.0;     ///< active, air percept: inward along the last edge's normal
+    double airRetreatStep_mm = 2.0;    ///< active, air percept: back against the last heading
+    // Termination.
+    double completionRadius_mm = 4.0;  ///< back within this of the start after a full perimeter
+    double lostOutside_mm = 10.0;      ///< lost when this far outside the contour
+    double lostInside_mm = 6.0;        ///< lost when this far inside the object
+    int lostPlaneOrAirTaps = 6;        ///< lost after this many plane/air percepts in a row
+    double tapCapPerimeters = 3.0;     ///< tap cap = this x perimeter / follow step
+    double coverageRadius_mm = 3.0;    ///< a perimeter point is covered by a tap this close
+
+    std::string problem() const;
+};
+
+}  // namespace activetouch
