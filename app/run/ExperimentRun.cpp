@@ -163,6 +163,21 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     const double half = 0.5 * result.classes.positionStep_mm;
     result.validOffsets = {result.classes.offsetOf(result.validation.validRange.first) - half,
                            result.classes.offsetOf(result.validation.validRange.last) + half};
+    // Where the perceived orientation can be used: the run of positions around the valid range
+    // whose mean angle error is within the trust limit.
+    const auto& angle = result.validation.angleMean;
+    const double limit = spec.following.orientationTrustMaxError_deg;
+    int lo = result.validation.validRange.first, hi = result.validation.validRange.last;
+    if (limit >= 180.0) {
+        lo = 1;
+        hi = result.classes.positions;
+    } else {
+        while (lo > 1 && angle[static_cast<std::size_t>(lo - 2)] <= limit) --lo;
+        while (hi < result.classes.positions && angle[static_cast<std::size_t>(hi)] <= limit) ++hi;
+    }
+    result.trustedPositions = {lo, hi};
+    result.validOffsets.trustedLow = result.classes.offsetOf(lo) - half;
+    result.validOffsets.trustedHigh = result.classes.offsetOf(hi) + half;
 
     runTrials(result, model, options, progress);
     result.runWall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -335,7 +350,10 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
             {"by_position", byPosition}};
     }
     if (!r.failure.empty()) j["failure"] = r.failure;
-    j["valid_offsets_mm"] = {r.validOffsets.low, r.validOffsets.high};
+    j["controller"] = {{"valid_offsets_mm", {r.validOffsets.low, r.validOffsets.high}},
+                       {"orientation_trusted_positions", {r.trustedPositions.first, r.trustedPositions.second}},
+                       {"orientation_trusted_offsets_mm", {r.validOffsets.trustedLow, r.validOffsets.trustedHigh}},
+                       {"orientation_trust_max_error_deg", r.spec.following.orientationTrustMaxError_deg}};
     Json following = Json::array();
     for (const auto& t : r.trials)
         following.push_back({{"shape", t.label}, {"mode", modeName(t.result.mode)}, {"trial", t.trial}, {"completed", t.result.completed()},

@@ -42,6 +42,7 @@ struct RunResult {
     HistogramClassifier classifier;
     ValidationResult validation;
     ValidOffsets validOffsets;      ///< the valid range as offsets from the edge, used by the controller
+    std::pair<int, int> trustedPositions{1, 1};  ///< positions whose orientation the controller uses
     std::vector<TrialRun> trials;
     std::vector<ShapeTemplate> templates;
     double recognitionAccuracy = 0.0, recognitionAccuracySmoothed = 0.0;

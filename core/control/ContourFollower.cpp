@@ -98,6 +98,7 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
     const double startTime = rig.clock.now_s();
 
     ShortTermMemory memory;
+    memory.confirmationsNeeded = setup.mode == FollowingMode::Active ? s.edgeConfirmationTaps : 1;
     memory.lastEdgeDeg = setup.startEdgeDeg;
     memory.heading = followDirection(setup.startEdgeDeg);
     Vec2 pose = setup.start;
@@ -125,8 +126,8 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
             t.progress_mm = progress;
             t.contourDistance_mm = outline.contains(pose) ? nearest.distance : -nearest.distance;
 
-            const Vec2 traversal = t.percept.region == Region::Edge || setup.mode == FollowingMode::Passive ? t.decision.follow : Vec2{};
-            memory.update(t.percept, traversal);
+            const bool passive = setup.mode == FollowingMode::Passive;
+            memory.update(t.percept, passive ? t.percept.region == Region::Edge : orientationTrusted(t.percept, setup.valid));
             result.taps.push_back(t);
             const bool keepGoing = !onTap || onTap(result.taps.back());
 

@@ -12,10 +12,14 @@ const std::vector<Rule>& decisionRules() {
          "follow_step along the perceived edge + reposition_step outward along its normal"},
         {RuleId::FollowRepositionIn, "follow+in", FollowingMode::Active, "edge, position on the air side of the valid range",
          "follow_step along the perceived edge + reposition_step inward along its normal"},
-        {RuleId::PlaneStepOut, "plane:out", FollowingMode::Active, "plane",
-         "plane_step outward along the last edge's normal"},
+        {RuleId::PlaneStepBack, "plane:back", FollowingMode::Active, "plane",
+         "plane_step outward along the last edge's normal + plane_retreat_step against the heading"},
         {RuleId::AirStepBack, "air:back", FollowingMode::Active, "air",
          "air_inward_step inward along the last edge's normal + air_retreat_step against the heading"},
+        {RuleId::UntrustedPlaneSide, "untrusted:plane", FollowingMode::Active,
+         "edge whose orientation is unreliable at its position, plane side of the valid range", "as plane"},
+        {RuleId::UntrustedAirSide, "untrusted:air", FollowingMode::Active,
+         "edge whose orientation is unreliable at its position, air side of the valid range", "as air"},
         {RuleId::PassiveFollow, "passive:follow", FollowingMode::Passive, "edge", "follow_step along the perceived edge"},
         {RuleId::PassiveKeepHeading, "passive:heading", FollowingMode::Passive, "plane or air", "follow_step along the last heading"},
     };
@@ -34,7 +38,7 @@ Decision decide(const Percept& p, const ShortTermMemory& memory, FollowingMode m
         if (p.region == Region::Edge) return {RuleId::PassiveFollow, s.followStep_mm * followDirection(p.orientationDeg), {}};
         return {RuleId::PassiveKeepHeading, s.followStep_mm * memory.heading, {}};
     }
-    if (p.region == Region::Edge) {
+    if (p.region == Region::Edge && orientationTrusted(p, valid)) {
         const Vec2 follow = s.followStep_mm * followDirection(p.orientationDeg);
         const Vec2 n = outwardNormal(p.orientationDeg);
         if (p.offset_mm < valid.low) return {RuleId::FollowRepositionOut, follow, s.repositionStep_mm * n};
@@ -42,8 +46,16 @@ Decision decide(const Percept& p, const ShortTermMemory& memory, FollowingMode m
         return {RuleId::FollowInRange, follow, {}};
     }
     const Vec2 n = outwardNormal(memory.lastEdgeDeg);
-    if (p.region == Region::Plane) return {RuleId::PlaneStepOut, {}, s.planeStep_mm * n};
-    return {RuleId::AirStepBack, -s.airRetreatStep_mm * memory.heading, -s.airInwardStep_mm * n};
+    const Vec2 planeBack = -s.planeRetreatStep_mm * memory.heading, planeOut = s.planeStep_mm * n;
+    const Vec2 airBack = -s.airRetreatStep_mm * memory.heading, airIn = -s.airInwardStep_mm * n;
+    if (p.region == Region::Plane) return {RuleId::PlaneStepBack, planeBack, planeOut};
+    if (p.region == Region::Air) return {RuleId::AirStepBack, airBack, airIn};
+    if (p.offset_mm < valid.low) return {RuleId::UntrustedPlaneSide, planeBack, planeOut};
+    return {RuleId::UntrustedAirSide, airBack, airIn};
+}
+
+bool orientationTrusted(const Percept& p, const ValidOffsets& valid) {
+    return p.region == Region::Edge && p.offset_mm >= valid.trustedLow && p.offset_mm <= valid.trustedHigh;
 }
 
 }  // namespace activetouch

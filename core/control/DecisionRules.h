@@ -8,11 +8,16 @@
 //   edge, position in the valid range  -> follow the perceived edge
 //   edge, position on the plane side   -> follow, and reposition outward along its normal
 //   edge, position on the air side     -> follow, and reposition inward along its normal
-//   plane                              -> move outward along the last edge's normal
+//   plane                              -> move outward along the last edge's normal and back
+//                                         against the heading (at a concave corner the next
+//                                         edge lies ahead: stepping back lets the tip find it)
 //   air                                -> move inward along the last edge's normal and back
 //                                         against the heading (moving only inward after
 //                                         overshooting a convex corner would run parallel to
 //                                         the next edge, just outside it, reading air)
+//   edge at a position where the validation found its orientation unreliable (mean angle error
+//   above the trust limit), plane side   -> as plane (the orientation is not used)
+//   the same, air side                   -> as air
 // Passive mode (repositioning disabled; the perceived position is never used)
 //   edge                               -> follow the perceived edge
 //   plane or air                       -> keep the last heading
@@ -25,7 +30,17 @@
 
 namespace activetouch {
 
-enum class RuleId { FollowInRange, FollowRepositionOut, FollowRepositionIn, PlaneStepOut, AirStepBack, PassiveFollow, PassiveKeepHeading };
+enum class RuleId {
+    FollowInRange,
+    FollowRepositionOut,
+    FollowRepositionIn,
+    PlaneStepBack,
+    AirStepBack,
+    UntrustedPlaneSide,
+    UntrustedAirSide,
+    PassiveFollow,
+    PassiveKeepHeading
+};
 
 struct Rule {
     RuleId id;
@@ -46,10 +61,15 @@ struct Decision {
     Vec2 move() const { return follow + reposition; }
 };
 
-/// The valid range as offsets of the tip centre from the edge along its outward normal, mm.
+/// The valid range as offsets of the tip centre from the edge along its outward normal, mm, and
+/// the wider span of offsets where the validation found the perceived orientation reliable.
 struct ValidOffsets {
     double low = -1.5, high = 1.5;
+    double trustedLow = -1e9, trustedHigh = 1e9;
 };
+
+/// Whether the loop may use a percept's orientation (active mode): an edge inside the trusted span.
+bool orientationTrusted(const Percept& percept, const ValidOffsets& valid);
 
 /// Decides the next move from the percept and memory.
 Decision decide(const Percept& percept, const ShortTermMemory& memory, FollowingMode mode,

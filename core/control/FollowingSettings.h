@@ -12,8 +12,15 @@ struct FollowingSettings {
     double followStep_mm = 2.0;        ///< along the perceived edge, every tap (paper: 2 mm)
     double repositionStep_mm = 1.0;    ///< along the edge normal toward the valid range (paper: 1 mm)
     double planeStep_mm = 2.0;         ///< active, plane percept: outward along the last edge's normal
+    double planeRetreatStep_mm = 2.0;  ///< active, plane percept: back against the last heading
     double airInwardStep_mm = 2.0;     ///< active, air percept: inward along the last edge's normal
     double airRetreatStep_mm = 2.0;    ///< active, air percept: back against the last heading
+    /// Active mode uses a percept's orientation only at positions whose mean angle error in the
+    /// validation is at most this (degrees); 180 trusts every edge percept, as the paper does.
+    double orientationTrustMaxError_deg = 30.0;
+    /// Active mode: same-orientation edge percepts in a row before memory takes the edge as the
+    /// last edge (1 = at once; passive mode always uses 1, as the paper's heading rule does).
+    int edgeConfirmationTaps = 2;
     // Termination.
     double completionRadius_mm = 4.0;  ///< back within this of the start after a full perimeter
     double lostOutside_mm = 10.0;      ///< lost when this far outside the contour

@@ -10,21 +10,36 @@
 namespace activetouch {
 
 struct ShortTermMemory {
-    double lastEdgeDeg = 270.0;          ///< outward normal of the last edge perceived (trials start on the lower edge)
+    double lastEdgeDeg = 270.0;          ///< outward normal of the last confirmed edge (trials start on the lower edge)
     std::optional<Percept> lastEdgePercept;
-    Vec2 heading{1.0, 0.0};              ///< direction of the last following move
-    int planeOrAirRun = 0;               ///< consecutive plane/air percepts
+    Vec2 heading{1.0, 0.0};              ///< direction of travel along the last confirmed edge
+    int planeOrAirRun = 0;               ///< consecutive percepts without a usable edge
+    int confirmationsNeeded = 1;         ///< same-orientation edge percepts in a row that confirm an edge
+    double candidateEdgeDeg = 270.0;
+    int candidateRun = 0;
 
-    /// Remembers `percept` and, if the move followed an edge, the direction it went.
-    void update(const Percept& percept, Vec2 traversal) {
-        if (percept.region == Region::Edge) {
+    /// Remembers `percept` (an edge only if its orientation was usable). An edge becomes the
+    /// last edge, and its direction the heading, once it has been perceived
+    /// `confirmationsNeeded` times in a row: one misperceived tap then cannot redirect the
+    /// plane and air rules, which act on memory alone.
+    void update(const Percept& percept, bool usableEdge) {
+        if (!usableEdge) {
+            ++planeOrAirRun;
+            candidateRun = 0;
+            return;
+        }
+        planeOrAirRun = 0;
+        if (candidateRun > 0 && percept.orientationDeg == candidateEdgeDeg) {
+            ++candidateRun;
+        } else {
+            candidateEdgeDeg = percept.orientationDeg;
+            candidateRun = 1;
+        }
+        if (candidateRun >= confirmationsNeeded) {
             lastEdgeDeg = percept.orientationDeg;
             lastEdgePercept = percept;
-            planeOrAirRun = 0;
-        } else {
-            ++planeOrAirRun;
+            heading = directionFromDegrees(percept.orientationDeg + 90.0);
         }
-        if (norm(traversal) > 0) heading = (1.0 / norm(traversal)) * traversal;
     }
 };
 

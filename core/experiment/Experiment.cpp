@@ -22,15 +22,18 @@ FollowingMode parseMode(const JsonFields& f, const std::string& key, const std::
 }
 
 void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
-    f.rejectUnknownKeys({"follow_step_mm", "reposition_step_mm", "plane_step_mm", "air_inward_step_mm", "air_retreat_step_mm",
+    f.rejectUnknownKeys({"follow_step_mm", "reposition_step_mm", "plane_step_mm", "plane_retreat_step_mm", "air_inward_step_mm", "air_retreat_step_mm", "orientation_trust_max_error_deg", "edge_confirmation_taps",
                          "completion_radius_mm", "lost_outside_mm", "lost_inside_mm", "lost_plane_or_air_taps", "tap_cap_perimeters",
                          "coverage_radius_mm", "trials"});
     FollowingSettings& s = e.following;
     s.followStep_mm = f.number("follow_step_mm", 0.05, 50.0, s.followStep_mm);
     s.repositionStep_mm = f.number("reposition_step_mm", 0.0, 50.0, s.repositionStep_mm);
     s.planeStep_mm = f.number("plane_step_mm", 0.0, 50.0, s.planeStep_mm);
+    s.planeRetreatStep_mm = f.number("plane_retreat_step_mm", 0.0, 50.0, s.planeRetreatStep_mm);
     s.airInwardStep_mm = f.number("air_inward_step_mm", 0.0, 50.0, s.airInwardStep_mm);
     s.airRetreatStep_mm = f.number("air_retreat_step_mm", 0.0, 50.0, s.airRetreatStep_mm);
+    s.orientationTrustMaxError_deg = f.number("orientation_trust_max_error_deg", 0.0, 180.0, s.orientationTrustMaxError_deg);
+    s.edgeConfirmationTaps = f.integer("edge_confirmation_taps", 1, 100, s.edgeConfirmationTaps);
     s.completionRadius_mm = f.number("completion_radius_mm", 0.1, 100.0, s.completionRadius_mm);
     s.lostOutside_mm = f.number("lost_outside_mm", 0.1, 1000.0, s.lostOutside_mm);
     s.lostInside_mm = f.number("lost_inside_mm", 0.1, 1000.0, s.lostInside_mm);
