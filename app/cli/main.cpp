@@ -14,6 +14,7 @@
 #include <QApplication>
 
 #include "app/figures/FigureExport.h"
+#include "app/figures/FollowingFigures.h"
 #include "app/figures/ValidationFigures.h"
 #include "app/run/ExperimentRun.h"
 #include "core/experiment/Experiment.h"
@@ -82,6 +83,12 @@ double writeFigures(const RunResult& result, const fs::path& out, int argc, char
     exportFigure(plot, QString::fromStdString((out / "figures" / "figure5_taps").string()), formats, {1600, 1100, 150});
     buildErrorFigure(plot, result);
     exportFigure(plot, QString::fromStdString((out / "figures" / "figure6_errors").string()), formats, {1800, 1100, 150});
+    const auto figure = [&](const char* name) { return QString::fromStdString((out / "figures" / name).string()); };
+    if (buildPathFigure(plot, result, FollowingMode::Passive, "Figure 7 - passive contour following (PCF)"))
+        exportFigure(plot, figure("figure7_passive_paths"), formats, {1100, 1000, 150});
+    if (buildPathFigure(plot, result, FollowingMode::Active, "Figure 8 - active contour following (ACF)"))
+        exportFigure(plot, figure("figure8_active_paths"), formats, {1600, 1500, 150});
+    if (buildRecognitionFigure(plot, result)) exportFigure(plot, figure("figure9_recognition"), formats, {1900, 1700, 150});
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -8,11 +8,29 @@
 
 namespace activetouch {
 
+void applyEqualAspect(QCustomPlot& plot) {
+    bool changed = false;
+    for (QCPAxisRect* rect : plot.axisRects()) {
+        if (!rect->property("equalAspect").toBool()) continue;
+        QCPAxis* x = rect->axis(QCPAxis::atBottom);
+        QCPAxis* y = rect->axis(QCPAxis::atLeft);
+        if (rect->width() <= 0 || rect->height() <= 0) continue;
+        // Keep both data ranges visible: scale the axis that would otherwise be stretched.
+        const double xPerPixel = x->range().size() / rect->width();
+        const double yPerPixel = y->range().size() / rect->height();
+        if (xPerPixel >= yPerPixel) y->setScaleRatio(x, 1.0);
+        else x->setScaleRatio(y, 1.0);
+        changed = true;
+    }
+    if (changed) plot.replot(QCustomPlot::rpImmediateRefresh);
+}
+
 QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats, const FigureSize& size) {
     QStringList written;
     // Lay out once at the target size so that every format sees the same geometry.
     plot.resize(size.width_px, size.height_px);
     plot.replot(QCustomPlot::rpImmediateRefresh);
+    applyEqualAspect(plot);
     for (const QString& format : formats) {
         const QString file = basePath + "." + format.toLower();
         bool ok = false;

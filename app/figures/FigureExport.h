@@ -14,6 +14,10 @@ struct FigureSize {
     int dpi = 150;
 };
 
+/// Gives every axis rect marked with the property "equalAspect" one millimetre per pixel on both
+/// axes (widening the range of the axis with room to spare). Call after the plot has its size.
+void applyEqualAspect(QCustomPlot& plot);
+
 /// Saves `plot` as `<basePath>.<format>` for each format in `formats` (png, pdf, svg).
 /// Returns the files written; throws std::runtime_error naming the file that could not be written.
 QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats, const FigureSize& size);

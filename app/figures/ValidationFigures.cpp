@@ -44,6 +44,7 @@ void resetPlot(QCustomPlot& plot) {
     plot.clearItems();
     plot.plotLayout()->clear();
     plot.setBackground(Qt::white);
+    plot.setAutoAddPlottableToLegend(false);  // each panel fills its own legend
 }
 
 QCPAxisRect* addPanel(QCPLayoutGrid* grid, int row, int column, const QString& xLabel, const QString& yLabel) {

@@ -22,8 +22,15 @@ inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 inline double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 inline double distance(Vec2 a, Vec2 b) { return norm(a - b); }
 
-/// Unit vector at `degrees` counter-clockwise from +x.
+/// Unit vector at `degrees` counter-clockwise from +x; exact for multiples of 90 degrees, so that
+/// moves along axis-aligned edges stay on the millimetre grid.
 inline Vec2 directionFromDegrees(double degrees) {
+    double d = std::fmod(degrees, 360.0);
+    if (d < 0) d += 360.0;
+    if (d == 0.0) return {1.0, 0.0};
+    if (d == 90.0) return {0.0, 1.0};
+    if (d == 180.0) return {-1.0, 0.0};
+    if (d == 270.0) return {0.0, -1.0};
     const double r = degrees * M_PI / 180.0;
     return {std::cos(r), std::sin(r)};
 }

@@ -51,16 +51,43 @@ private slots:
         QCOMPARE(v["by_class"].toArray().size(), 72);
         QCOMPARE(v["valid_range_mm"].toArray().size(), 2);
         QVERIFY(v["valid_range_mm"].toArray()[0].toDouble() < v["valid_range_mm"].toArray()[1].toDouble());
+        // Following: passive on the rectangle x 2, active on four shapes x 2, every trial reported.
+        const QJsonArray following = s["following"].toArray();
+        QCOMPARE(following.size(), 10);
+        int followingTaps = 0, passive = 0;
+        for (const auto& v : following) {
+            const QJsonObject f = v.toObject();
+            for (const char* key : {"shape", "mode", "trial", "completed", "reason", "taps", "robot_time_s", "coverage",
+                                    "mean_contour_distance_mm", "max_contour_distance_mm"})
+                QVERIFY2(f.contains(key), key);
+            followingTaps += f["taps"].toInt();
+            passive += f["mode"].toString() == "passive";
+        }
+        QCOMPARE(passive, 2);
+        const QJsonObject recognition = s["recognition"].toObject();
+        QVERIFY(recognition.contains("accuracy") && recognition.contains("accuracy_smoothed"));
+        const QJsonArray recognised = recognition["trials"].toArray();
+        QCOMPARE(recognised.size(), 8);
+        for (const auto& v : recognised) {
+            const QJsonObject r = v.toObject();
+            QCOMPARE(r["distances"].toObject().size(), 4);  // the full table of distances
+            QVERIFY(r.contains("predicted") && r.contains("predicted_smoothed"));
+        }
         const QJsonObject t = s["timing"].toObject();
         QVERIFY(t["wall_s"].toDouble() > 0);
-        QCOMPARE(t["taps_simulated"].toInt(), 360);
-        for (const char* table : {"taps.csv", "class_regions.csv", "validation_by_class.csv", "validation_by_position.csv", "confusion.csv", "test_percepts.csv"})
+        QCOMPARE(t["taps_simulated"].toInt(), 360 + followingTaps);
+        for (const char* table : {"taps.csv", "class_regions.csv", "validation_by_class.csv", "validation_by_position.csv", "confusion.csv",
+                                  "test_percepts.csv", "following_taps.csv", "following_paths.csv", "following_trials.csv", "outlines.csv",
+                                  "recognition.csv", "path_histograms.csv"})
             QVERIFY2(QFile::exists(out + "/data/" + table), table);
         // taps.csv: a header plus 50 rows per tap.
         QFile taps(out + "/data/taps.csv");
         QVERIFY(taps.open(QIODevice::ReadOnly));
         QCOMPARE(taps.readAll().count('\n'), 1 + 360 * 50);
-        for (const char* figure : {"figure5_taps", "figure6_errors"}) {
+        QFile followingRecording(out + "/data/following_taps.csv");
+        QVERIFY(followingRecording.open(QIODevice::ReadOnly));
+        QCOMPARE(followingRecording.readAll().count('\n'), 1 + followingTaps * 50);
+        for (const char* figure : {"figure5_taps", "figure6_errors", "figure7_passive_paths", "figure8_active_paths", "figure9_recognition"}) {
             QFile png(out + "/figures/" + figure + ".png"), pdf(out + "/figures/" + figure + ".pdf"), svg(out + "/figures/" + figure + ".svg");
             QVERIFY(png.open(QIODevice::ReadOnly) && pdf.open(QIODevice::ReadOnly) && svg.open(QIODevice::ReadOnly));
             QVERIFY(png.read(8) == QByteArray("\x89PNG\r\n\x1a\n", 8));
@@ -109,6 +136,15 @@ private slots:
         QTest::newRow("out-of-range parameter") << "range.json" << experiment(R"({"name": "stage_error", "sigma_mm": 9})") << "/scene/effects/0/sigma_mm";
         QTest::newRow("unknown shape") << "shape.json" << R"({"name": "x", "scene": {"object": {"shape": "blob"}}})" << "unknown shape 'blob'";
         QTest::newRow("a scene is not an experiment") << "scene.json" << R"({"object": {"shape": "rectangle"}})" << "not an experiment file";
+        const QString paperScene = "\"" + source("experiments/scenes/paper_rectangle.json") + "\"";
+        QTest::newRow("start pose off the object")
+            << "start.json"
+            << QString(R"({"name": "x", "scene": %1, "following": {"trials": [{"object": {"shape": "l", "offset_mm": [150, 150]}, "start_mm": [150, 100]}]}})").arg(paperScene)
+            << "/following/trials/0/start_mm: the start pose (150.00, 100.00) mm is 20.0 mm outside the object";
+        QTest::newRow("object larger than the stage travel")
+            << "big.json"
+            << QString(R"({"name": "x", "scene": %1, "following": {"trials": [{"object": {"shape": "rectangle", "width_mm": 700, "height_mm": 50, "offset_mm": [350, 150]}}]}})").arg(paperScene)
+            << "/following/trials/0/object: the object (x 0.000000..700.000000";
     }
     void badInputExitsTwoAndWritesNothing() {
         QFETCH(QString, file);
@@ -127,6 +163,48 @@ private slots:
             QCOMPARE(c.exitCode, 2);
             QVERIFY2(c.err.contains(message), qPrintable(c.err));
         }
+    }
+
+    void killedRunKeepsEveryFinishedTap() {
+        // A long run (many trials) killed part-way: the recording holds whole taps, in order,
+        // except at most the one in flight.
+        const QString paperScene = "\"" + source("experiments/scenes/paper_rectangle.json") + "\"";
+        const QString path = write("long.json", QString(R"({"name": "long", "scene": %1, "following": {"trials": [
+            {"mode": "active", "object": {"shape": "rectangle", "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150]}, "repeats": 400}]}})").arg(paperScene));
+        const QString out = dir_.filePath("killed");
+        QProcess p;
+        p.start(qEnvironmentVariable("ACTIVETOUCH_CLI"), {"run", path, "--out", out, "--no-figures"});
+        QVERIFY(p.waitForStarted());
+        QFile recording(out + "/data/following_taps.csv");
+        QTRY_VERIFY_WITH_TIMEOUT(recording.exists() && recording.size() > 2000000, 60000);
+        p.kill();
+        p.waitForFinished();
+        QVERIFY(!QFile::exists(out + "/summary.json"));
+        QVERIFY(recording.open(QIODevice::ReadOnly));
+        const QList<QByteArray> lines = recording.readAll().split('\n');
+        const int columns = lines.front().count(',') + 1;
+        QCOMPARE(columns, 32);
+        int complete = 0, rows = 0;
+        QByteArray currentTap;
+        for (int i = 1; i < lines.size(); ++i) {
+            const QByteArray& line = lines[i];
+            if (line.isEmpty()) continue;
+            if (line.count(',') + 1 != columns) {
+                QCOMPARE(i, lines.size() - 1);  // only the very last line may be cut off
+                break;
+            }
+            const QList<QByteArray> f = line.split(',');
+            const QByteArray tap = f[2] + "/" + f[3];
+            if (tap != currentTap) {
+                if (!currentTap.isEmpty()) QCOMPARE(rows, 50);
+                currentTap = tap;
+                rows = 0;
+                ++complete;
+            }
+            QCOMPARE(f[19].toInt(), rows);  // samples 0..49 in order
+            ++rows;
+        }
+        QVERIFY(complete > 100);
     }
 
     void usageErrors() {

@@ -1,0 +1,199 @@
+#include "app/figures/FollowingFigures.h"
+
+#include <algorithm>
+#include <map>
+
+#include "app/figures/FigureExport.h"
+#include "app/run/ExperimentRun.h"
+#include "qcustomplot.h"
+
+namespace activetouch {
+namespace {
+
+QColor trialColour(int trial) {
+    static const QColor palette[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44), QColor(148, 103, 189),
+                                     QColor(255, 127, 14), QColor(23, 190, 207)};
+    return palette[(trial - 1) % 6];
+}
+
+void resetPlot(QCustomPlot& plot, const QString& title) {
+    plot.clearPlottables();
+    plot.clearItems();
+    plot.plotLayout()->clear();
+    plot.setBackground(Qt::white);
+    plot.setAutoAddPlottableToLegend(false);  // each panel fills its own legend
+    auto* text = new QCPTextElement(&plot, title, QFont("Sans", 12, QFont::Bold));
+    plot.plotLayout()->addElement(0, 0, text);
+    plot.plotLayout()->setRowStretchFactor(0, 0.001);
+}
+
+QCPLayoutGrid* addRow(QCustomPlot& plot, double stretch) {
+    auto* grid = new QCPLayoutGrid;
+    const int row = plot.plotLayout()->rowCount();
+    plot.plotLayout()->addElement(row, 0, grid);
+    plot.plotLayout()->setRowStretchFactor(row, stretch);
+    return grid;
+}
+
+void panelTitle(QCPAxisRect* rect, const QString& text) {
+    QCPAxis* top = rect->axis(QCPAxis::atTop);
+    top->setVisible(true);
+    top->setTicks(false);
+    top->setTickLabels(false);
+    top->setLabel(text);
+}
+
+QCPCurve* polyline(QCPAxisRect* rect, const std::vector<Vec2>& points, bool closed) {
+    auto* c = new QCPCurve(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+    QVector<double> t, x, y;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        t << double(i);
+        x << points[i].x;
+        y << points[i].y;
+    }
+    if (closed && !points.empty()) {
+        t << double(points.size());
+        x << points.front().x;
+        y << points.front().y;
+    }
+    c->setData(t, x, y);
+    return c;
+}
+
+}  // namespace
+
+bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode, const QString& title) {
+    std::vector<std::string> labels;
+    for (const auto& t : r.trials)
+        if (t.result.mode == mode && std::find(labels.begin(), labels.end(), t.label) == labels.end()) labels.push_back(t.label);
+    resetPlot(plot, title);
+    if (labels.empty()) return false;
+    QCPLayoutGrid* panels = addRow(plot, 1.0);
+    const int columns = labels.size() > 2 ? 2 : static_cast<int>(labels.size());
+    const QString prefix = mode == FollowingMode::Active ? "ACF" : "PCF";
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        auto* rect = new QCPAxisRect(&plot);
+        panels->addElement(static_cast<int>(i) / columns, static_cast<int>(i) % columns, rect);
+        rect->setProperty("equalAspect", true);
+        rect->axis(QCPAxis::atBottom)->setLabel("x (mm)");
+        rect->axis(QCPAxis::atLeft)->setLabel("y (mm)");
+        panelTitle(rect, QString::fromStdString(labels[i]));
+        auto* legend = new QCPLegend;
+        rect->insetLayout()->addElement(legend, Qt::AlignTop | Qt::AlignRight);
+        legend->setLayer("legend");
+        legend->setFont(QFont("Sans", 8));
+        legend->setBrush(QColor(255, 255, 255, 220));
+        Vec2 lo{1e9, 1e9}, hi{-1e9, -1e9};
+        bool outlineDrawn = false;
+        for (const auto& t : r.trials) {
+            if (t.result.mode != mode || t.label != labels[i]) continue;
+            if (!outlineDrawn) {
+                auto* outline = polyline(rect, t.outline.vertices(), true);
+                outline->setPen(QPen(Qt::black, 2));
+                outline->setName("object");
+                legend->addItem(new QCPPlottableLegendItem(legend, outline));
+                outlineDrawn = true;
+                for (Vec2 v : t.outline.vertices()) {
+                    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
+                    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
+                }
+            }
+            auto* path = polyline(rect, t.result.path(), false);
+            path->setPen(QPen(trialColour(t.trial), 1.0));
+            // Later trials draw smaller dots so that overlapping paths stay visible.
+            path->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDisc, trialColour(t.trial), std::max(3.0, 7.0 - 1.5 * (t.trial - 1))));
+            path->setName(QString("%1%2: %3, %4 taps").arg(prefix).arg(t.trial).arg(trialEndName(t.result.end)).arg(t.result.taps.size()));
+            legend->addItem(new QCPPlottableLegendItem(legend, path));
+            for (Vec2 v : t.result.path()) {
+                lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
+                hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
+            }
+        }
+        const double margin = 8.0;
+        rect->axis(QCPAxis::atBottom)->setRange(lo.x - margin, hi.x + margin);
+        rect->axis(QCPAxis::atLeft)->setRange(lo.y - margin, hi.y + margin);
+    }
+    return true;
+}
+
+bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
+    resetPlot(plot, QString("Figure 9 - recognition from 20 x 20 path histograms: %1 % (paper's rule), %2 % (smoothed, sigma %3 bins)")
+                        .arg(100.0 * r.recognitionAccuracy, 0, 'f', 0)
+                        .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0)
+                        .arg(r.spec.recognition.smoothingSigmaBins));
+    if (r.templates.empty()) return false;
+    QCPLayoutGrid* grid = addRow(plot, 1.0);
+    std::map<std::string, std::vector<const TrialRun*>> byShape;
+    int maxTrials = 0;
+    for (const auto& t : r.trials)
+        if (t.recognised) byShape[t.label].push_back(&t);
+    for (const auto& [shape, trials] : byShape) maxTrials = std::max(maxTrials, static_cast<int>(trials.size()));
+    auto* scale = new QCPColorScale(&plot);
+    scale->setType(QCPAxis::atRight);
+    scale->axis()->setLabel("fraction of taps per bin");
+    scale->setDataRange(QCPRange(0, 0.05));
+    scale->setGradient(QCPColorGradient(QCPColorGradient::gpThermal));
+    auto heat = [&](QCPAxisRect* rect, const PathHistogram& h, const QString& title) {
+        panelTitle(rect, title);
+        rect->setProperty("equalAspect", true);
+        rect->axis(QCPAxis::atBottom)->setLabel("x bin");
+        rect->axis(QCPAxis::atLeft)->setLabel("y bin");
+        auto* map = new QCPColorMap(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+        map->data()->setSize(h.bins, h.bins);
+        map->data()->setRange(QCPRange(0.5, h.bins - 0.5), QCPRange(0.5, h.bins - 0.5));
+        for (int iy = 0; iy < h.bins; ++iy)
+            for (int ix = 0; ix < h.bins; ++ix) map->data()->setCell(ix, iy, h.at(ix, iy));
+        map->setInterpolate(false);
+        map->setColorScale(scale);
+        rect->axis(QCPAxis::atBottom)->setRange(0, h.bins);
+        rect->axis(QCPAxis::atLeft)->setRange(0, h.bins);
+    };
+    int row = 0;
+    for (const auto& [shape, trials] : byShape) {
+        const ShapeTemplate* tmpl = nullptr;
+        for (const auto& t : r.templates)
+            if (t.shape == shape) tmpl = &t;
+        auto* tr = new QCPAxisRect(&plot);
+        grid->addElement(row, 0, tr);
+        if (tmpl) heat(tr, tmpl->raw, QString("template: %1").arg(QString::fromStdString(shape)));
+        for (std::size_t k = 0; k < trials.size(); ++k) {
+            auto* pr = new QCPAxisRect(&plot);
+            grid->addElement(row, 1 + static_cast<int>(k), pr);
+            const auto& rec = trials[k]->recognition;
+            heat(pr, rec.raw, QString("ACF%1 -> %2 (smoothed: %3)").arg(trials[k]->trial).arg(QString::fromStdString(rec.predicted),
+                                                                                        QString::fromStdString(rec.predictedSmoothed)));
+        }
+        // Distances to every template, one bar group per trial.
+        auto* dr = new QCPAxisRect(&plot);
+        grid->addElement(row, 1 + maxTrials, dr);
+        panelTitle(dr, "Euclidean distance to each template");
+        dr->axis(QCPAxis::atLeft)->setLabel("distance");
+        QSharedPointer<QCPAxisTickerText> ticker(new QCPAxisTickerText);
+        auto* group = new QCPBarsGroup(&plot);
+        double top = 0.0;
+        for (std::size_t k = 0; k < trials.size(); ++k) {
+            auto* bars = new QCPBars(dr->axis(QCPAxis::atBottom), dr->axis(QCPAxis::atLeft));
+            bars->setBrush(trialColour(trials[k]->trial));
+            bars->setPen(Qt::NoPen);
+            bars->setWidth(0.35);
+            bars->setBarsGroup(group);
+            QVector<double> keys, values;
+            int i = 0;
+            for (const auto& t : r.templates) {
+                keys << ++i;
+                values << trials[k]->recognition.distances.at(t.shape);
+                top = std::max(top, values.back());
+                if (k == 0) ticker->addTick(i, QString::fromStdString(t.shape));
+            }
+            bars->setData(keys, values);
+        }
+        dr->axis(QCPAxis::atBottom)->setTicker(ticker);
+        dr->axis(QCPAxis::atBottom)->setRange(0.4, r.templates.size() + 0.6);
+        dr->axis(QCPAxis::atLeft)->setRange(0, top * 1.15);
+        ++row;
+    }
+    grid->addElement(0, 2 + maxTrials, scale);
+    return true;
+}
+
+}  // namespace activetouch

@@ -1,0 +1,23 @@
+#pragma once
+// The paper's Figures 7 and 8 (traced paths: the object's outline, taps as dots, moves as lines,
+// equal aspect, one colour per trial) and Figure 9 (path histograms beside the templates, with
+// every match distance).
+#include <QString>
+
+#include "core/control/FollowingSettings.h"
+
+class QCustomPlot;
+
+namespace activetouch {
+
+struct RunResult;
+
+/// Paths of the trials in `mode`, one panel per shape. Returns false if there are none.
+bool buildPathFigure(QCustomPlot& plot, const RunResult& result, FollowingMode mode, const QString& title);
+
+/// Figure 9: per recognised shape, its template and each trial's path histogram (paper's raw
+/// rule), and the distances from each trial to every template. Returns false if nothing was
+/// recognised.
+bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& result);
+
+}  // namespace activetouch
