@@ -15,12 +15,10 @@
 
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
-#include "app/figures/ValidationFigures.h"
 #include "app/run/ExperimentRun.h"
 #include "core/experiment/Experiment.h"
 #include "core/rig/Rig.h"
 #include "devices/simulated/SimulatedWorld.h"
-#include "qcustomplot.h"
 
 using namespace activetouch;
 namespace fs = std::filesystem;
@@ -76,19 +74,7 @@ double writeFigures(const RunResult& result, const fs::path& out, int argc, char
     const auto start = std::chrono::steady_clock::now();
     setUpHeadlessDisplay();
     QApplication app(argc, argv);
-    fs::create_directories(out / "figures");
-    const QStringList formats{"png", "pdf", "svg"};
-    QCustomPlot plot;
-    buildTapFigure(plot, result);
-    exportFigure(plot, QString::fromStdString((out / "figures" / "figure5_taps").string()), formats, {1600, 1100, 150});
-    buildErrorFigure(plot, result);
-    exportFigure(plot, QString::fromStdString((out / "figures" / "figure6_errors").string()), formats, {1800, 1100, 150});
-    const auto figure = [&](const char* name) { return QString::fromStdString((out / "figures" / name).string()); };
-    if (buildPathFigure(plot, result, FollowingMode::Passive, "Figure 7 - passive contour following (PCF)"))
-        exportFigure(plot, figure("figure7_passive_paths"), formats, {1100, 1000, 150});
-    if (buildPathFigure(plot, result, FollowingMode::Active, "Figure 8 - active contour following (ACF)"))
-        exportFigure(plot, figure("figure8_active_paths"), formats, {1600, 1500, 150});
-    if (buildRecognitionFigure(plot, result)) exportFigure(plot, figure("figure9_recognition"), formats, {1900, 1700, 150});
+    writeRunFigures(result, QString::fromStdString(out.string()));
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
+
+#include <QDir>
 
 #include "app/figures/FigureExport.h"
+#include "app/figures/ValidationFigures.h"
 #include "app/run/ExperimentRun.h"
 #include "qcustomplot.h"
 
@@ -194,6 +198,25 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
     }
     grid->addElement(0, 2 + maxTrials, scale);
     return true;
+}
+
+QStringList writeRunFigures(const RunResult& result, const QString& outDir) {
+    const QString dir = outDir + "/figures";
+    if (!QDir().mkpath(dir)) throw std::runtime_error("cannot create " + dir.toStdString() + "; check the output folder is writable");
+    const QStringList formats{"png", "pdf", "svg"};
+    QStringList written;
+    QCustomPlot plot;
+    buildTapFigure(plot, result);
+    written << exportFigure(plot, dir + "/figure5_taps", formats, {1600, 1100, 150});
+    if (result.cancelled || result.validation.percepts.empty()) return written;
+    buildErrorFigure(plot, result);
+    written << exportFigure(plot, dir + "/figure6_errors", formats, {1800, 1100, 150});
+    if (buildPathFigure(plot, result, FollowingMode::Passive, "Figure 7 - passive contour following (PCF)"))
+        written << exportFigure(plot, dir + "/figure7_passive_paths", formats, {1100, 1000, 150});
+    if (buildPathFigure(plot, result, FollowingMode::Active, "Figure 8 - active contour following (ACF)"))
+        written << exportFigure(plot, dir + "/figure8_active_paths", formats, {1600, 1500, 150});
+    if (buildRecognitionFigure(plot, result)) written << exportFigure(plot, dir + "/figure9_recognition", formats, {1900, 1700, 150});
+    return written;
 }
 
 }  // namespace activetouch

@@ -3,6 +3,7 @@
 // equal aspect, one colour per trial) and Figure 9 (path histograms beside the templates, with
 // every match distance).
 #include <QString>
+#include <QStringList>
 
 #include "core/control/FollowingSettings.h"
 
@@ -14,6 +15,10 @@ struct RunResult;
 
 /// Paths of the trials in `mode`, one panel per shape. Returns false if there are none.
 bool buildPathFigure(QCustomPlot& plot, const RunResult& result, FollowingMode mode, const QString& title);
+
+/// Writes every figure of a run (5, 6, and 7-9 where the run has them) as PNG, PDF and SVG into
+/// <outDir>/figures. Needs a QApplication. Returns the files written.
+QStringList writeRunFigures(const RunResult& result, const QString& outDir);
 
 /// Figure 9: per recognised shape, its template and each trial's path histogram (paper's raw
 /// rule), and the distances from each trial to every template. Returns false if nothing was

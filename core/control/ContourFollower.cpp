@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "core/control/ContactDetection.h"
@@ -31,19 +32,24 @@ std::vector<Vec2> TrialResult::path() const {
 }
 
 Vec2 lowerEdgeStart(const Polygon& outline, const ValidOffsets& valid) {
+    // The edge facing most nearly down (within 45 degrees); among equally facing edges the
+    // lowest, then the longest.
     const Vec2 down{0.0, -1.0};
-    double lowest = std::numeric_limits<double>::infinity();
-    Vec2 start;
+    double bestFacing = std::cos(M_PI / 4), bestY = std::numeric_limits<double>::infinity();
+    std::optional<Vec2> start;
     for (std::size_t e = 0; e < outline.size(); ++e) {
-        if (dot(outline.outwardNormal(e), down) < 1.0 - 1e-6) continue;
+        const Vec2 n = outline.outwardNormal(e);
+        const double facing = dot(n, down);
+        if (facing < bestFacing - 1e-9) continue;
         const Vec2 mid = 0.5 * (outline.vertex(e) + outline.vertex(e + 1));
-        if (mid.y < lowest) {
-            lowest = mid.y;
-            start = mid + 0.5 * (valid.low + valid.high) * down;
+        if (facing > bestFacing + 1e-9 || mid.y < bestY) {
+            bestFacing = facing;
+            bestY = mid.y;
+            start = mid + 0.5 * (valid.low + valid.high) * n;
         }
     }
-    if (!std::isfinite(lowest)) throw std::invalid_argument("the object has no downward-facing (lower) edge to start on");
-    return start;
+    if (!start) throw std::invalid_argument("the object has no edge facing down (within 45 degrees) to start on");
+    return *start;
 }
 
 std::string startProblem(const Polygon& outline, Vec2 start, const FollowingSettings& s) {

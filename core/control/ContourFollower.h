@@ -51,8 +51,9 @@ struct TrialSetup {
     double noiseFloor = 1.0;
 };
 
-/// The start pose the paper uses: on the lowest downward-facing edge, at its middle, centred in
-/// the valid range. Throws std::invalid_argument if the outline has no downward-facing edge.
+/// The start pose the paper uses: on the lower edge (the one facing most nearly down, the lowest
+/// of equals), at its middle, centred in the valid range. Throws std::invalid_argument if no
+/// edge faces within 45 degrees of down.
 Vec2 lowerEdgeStart(const Polygon& outline, const ValidOffsets& valid);
 
 /// Why `start` cannot begin a trial on `outline` (too far from the contour), or empty.
