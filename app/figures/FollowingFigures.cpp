@@ -7,6 +7,7 @@
 #include <QDir>
 
 #include "app/figures/FigureExport.h"
+#include "app/figures/FigureLayout.h"
 #include "app/figures/ValidationFigures.h"
 #include "app/run/ExperimentRun.h"
 #include "qcustomplot.h"
@@ -18,33 +19,6 @@ QColor trialColour(int trial) {
     static const QColor palette[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44), QColor(148, 103, 189),
                                      QColor(255, 127, 14), QColor(23, 190, 207)};
     return palette[(trial - 1) % 6];
-}
-
-void resetPlot(QCustomPlot& plot, const QString& title) {
-    plot.clearPlottables();
-    plot.clearItems();
-    plot.plotLayout()->clear();
-    plot.setBackground(Qt::white);
-    plot.setAutoAddPlottableToLegend(false);  // each panel fills its own legend
-    auto* text = new QCPTextElement(&plot, title, QFont("Sans", 12, QFont::Bold));
-    plot.plotLayout()->addElement(0, 0, text);
-    plot.plotLayout()->setRowStretchFactor(0, 0.001);
-}
-
-QCPLayoutGrid* addRow(QCustomPlot& plot, double stretch) {
-    auto* grid = new QCPLayoutGrid;
-    const int row = plot.plotLayout()->rowCount();
-    plot.plotLayout()->addElement(row, 0, grid);
-    plot.plotLayout()->setRowStretchFactor(row, stretch);
-    return grid;
-}
-
-void panelTitle(QCPAxisRect* rect, const QString& text) {
-    QCPAxis* top = rect->axis(QCPAxis::atTop);
-    top->setVisible(true);
-    top->setTicks(false);
-    top->setTickLabels(false);
-    top->setLabel(text);
 }
 
 QCPCurve* polyline(QCPAxisRect* rect, const std::vector<Vec2>& points, bool closed) {
@@ -70,9 +44,9 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode, 
     std::vector<std::string> labels;
     for (const auto& t : r.trials)
         if (t.result.mode == mode && std::find(labels.begin(), labels.end(), t.label) == labels.end()) labels.push_back(t.label);
-    resetPlot(plot, title);
+    startFigure(plot, title);
     if (labels.empty()) return false;
-    QCPLayoutGrid* panels = addRow(plot, 1.0);
+    QCPLayoutGrid* panels = addFigureRow(plot, 1.0);
     const int columns = labels.size() > 2 ? 2 : static_cast<int>(labels.size());
     const QString prefix = mode == FollowingMode::Active ? "ACF" : "PCF";
     for (std::size_t i = 0; i < labels.size(); ++i) {
@@ -81,7 +55,7 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode, 
         rect->setProperty("equalAspect", true);
         rect->axis(QCPAxis::atBottom)->setLabel("x (mm)");
         rect->axis(QCPAxis::atLeft)->setLabel("y (mm)");
-        panelTitle(rect, QString::fromStdString(labels[i]));
+        setPanelTitle(rect, QString::fromStdString(labels[i]));
         auto* legend = new QCPLegend;
         rect->insetLayout()->addElement(legend, Qt::AlignTop | Qt::AlignRight);
         legend->setLayer("legend");
@@ -121,12 +95,12 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode, 
 }
 
 bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
-    resetPlot(plot, QString("Figure 9 - recognition from 20 x 20 path histograms: %1 % (paper's rule), %2 % (smoothed, sigma %3 bins)")
+    startFigure(plot, QString("Figure 9 - recognition from 20 x 20 path histograms: %1 % (paper's rule), %2 % (smoothed, sigma %3 bins)")
                         .arg(100.0 * r.recognitionAccuracy, 0, 'f', 0)
                         .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0)
                         .arg(r.spec.recognition.smoothingSigmaBins));
     if (r.templates.empty()) return false;
-    QCPLayoutGrid* grid = addRow(plot, 1.0);
+    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
     std::map<std::string, std::vector<const TrialRun*>> byShape;
     int maxTrials = 0;
     for (const auto& t : r.trials)
@@ -138,7 +112,7 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
     scale->setDataRange(QCPRange(0, 0.05));
     scale->setGradient(QCPColorGradient(QCPColorGradient::gpThermal));
     auto heat = [&](QCPAxisRect* rect, const PathHistogram& h, const QString& title) {
-        panelTitle(rect, title);
+        setPanelTitle(rect, title);
         rect->setProperty("equalAspect", true);
         rect->axis(QCPAxis::atBottom)->setLabel("x bin");
         rect->axis(QCPAxis::atLeft)->setLabel("y bin");
@@ -170,7 +144,7 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
         // Distances to every template, one bar group per trial.
         auto* dr = new QCPAxisRect(&plot);
         grid->addElement(row, 1 + maxTrials, dr);
-        panelTitle(dr, "Euclidean distance to each template");
+        setPanelTitle(dr, "Euclidean distance to each template");
         dr->axis(QCPAxis::atLeft)->setLabel("distance");
         QSharedPointer<QCPAxisTickerText> ticker(new QCPAxisTickerText);
         auto* group = new QCPBarsGroup(&plot);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/figures/FigureLayout.h"
 #include "app/run/ExperimentRun.h"
 #include "qcustomplot.h"
 
@@ -20,31 +21,8 @@ QColor taxelColour(int k) {
 void integerTicks(QCPAxis* axis, double step) {
     QSharedPointer<QCPAxisTickerFixed> t(new QCPAxisTickerFixed);
     t->setTickStep(step);
-    t->setScaleStrategy(QCPAxisTickerFixed::ssMultiples);
+    t->setScaleStrategy(QCPAxisTickerFixed::ssNone);
     axis->setTicker(t);
-}
-
-// The figure's layout: one column of rows; row 0 is the title, the others hold sub-grids.
-QCPLayoutGrid* addRow(QCustomPlot& plot, double stretch) {
-    auto* grid = new QCPLayoutGrid;
-    const int row = plot.plotLayout()->rowCount();
-    plot.plotLayout()->addElement(row, 0, grid);
-    plot.plotLayout()->setRowStretchFactor(row, stretch);
-    return grid;
-}
-
-void addTitle(QCustomPlot& plot, const QString& text) {
-    auto* title = new QCPTextElement(&plot, text, QFont("Sans", 12, QFont::Bold));
-    plot.plotLayout()->addElement(0, 0, title);
-    plot.plotLayout()->setRowStretchFactor(0, 0.001);
-}
-
-void resetPlot(QCustomPlot& plot) {
-    plot.clearPlottables();
-    plot.clearItems();
-    plot.plotLayout()->clear();
-    plot.setBackground(Qt::white);
-    plot.setAutoAddPlottableToLegend(false);  // each panel fills its own legend
 }
 
 QCPAxisRect* addPanel(QCPLayoutGrid* grid, int row, int column, const QString& xLabel, const QString& yLabel) {
@@ -87,21 +65,17 @@ void shadeValidRange(QCPAxisRect* rect, const RunResult& r, double yMax) {
 }  // namespace
 
 void buildTapFigure(QCustomPlot& plot, const RunResult& r) {
-    resetPlot(plot);
     const ClassSet& cs = r.classes;
     const int O = static_cast<int>(cs.orientationsDeg.size());
     const int K = r.classifier.trained() ? r.classifier.taxelCount() : kFingertipTaxels;
     const int firstSet = r.spec.training.trainingSets.empty() ? 1 : r.spec.training.trainingSets.front();
     const int columns = O >= 4 ? 2 : 1;
-    addTitle(plot, QString("Figure 5 - taps across each edge (data set %1)").arg(firstSet));
-    QCPLayoutGrid* panels = addRow(plot, 1.0);
+    startFigure(plot, QString("Figure 5 - taps across each edge (data set %1)").arg(firstSet));
+    QCPLayoutGrid* panels = addFigureRow(plot, 1.0);
     for (int o = 0; o < O; ++o) {
         auto* rect = addPanel(panels, o / columns, o % columns, "tap position across the edge (mm; plane to air)",
                               "pressure (normalised)");
-        rect->axis(QCPAxis::atTop)->setLabel(QString::fromStdString(ClassSet::orientationName(cs.orientationsDeg[static_cast<std::size_t>(o)])) + " edge");
-        rect->axis(QCPAxis::atTop)->setVisible(true);
-        rect->axis(QCPAxis::atTop)->setTicks(false);
-        rect->axis(QCPAxis::atTop)->setTickLabels(false);
+        setPanelTitle(rect, QString::fromStdString(ClassSet::orientationName(cs.orientationsDeg[static_cast<std::size_t>(o)])) + " edge");
         // Normalise each panel to a maximum of one, as the paper does.
         double peak = 0.0;
         for (const auto& t : r.taps)
@@ -130,7 +104,7 @@ void buildTapFigure(QCustomPlot& plot, const RunResult& r) {
     }
     // Legend: taxel colours, in its own row at the bottom.
     auto* legend = new QCPLegend;
-    QCPLayoutGrid* legendRow = addRow(plot, 0.001);
+    QCPLayoutGrid* legendRow = addFigureRow(plot, 0.001);
     legendRow->addElement(0, 0, legend);
     legend->setLayer("legend");
     legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
@@ -139,7 +113,6 @@ void buildTapFigure(QCustomPlot& plot, const RunResult& r) {
 }
 
 void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
-    resetPlot(plot);
     const ClassSet& cs = r.classes;
     const int O = static_cast<int>(cs.orientationsDeg.size());
     const int P = cs.positions;
@@ -151,18 +124,15 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
     struct Heat { const char* title; double max; bool angle; const char* unit; };
     const Heat heats[2] = {{"A  angle error", maxAngle, true, "angle error (deg)"},
                            {"B  position error", maxPosition, false, "position error (mm, top colour = at or above)"}};
-    addTitle(plot, QString("Figure 6 - offline validation over %1 test taps: angle error %2 deg, position error %3 mm")
+    startFigure(plot, QString("Figure 6 - offline validation over %1 test taps: angle error %2 deg, position error %3 mm")
                        .arg(r.validation.percepts.size())
                        .arg(r.validation.angleError_deg, 0, 'f', 1)
                        .arg(r.validation.positionError_mm, 0, 'f', 2));
-    QCPLayoutGrid* upper = addRow(plot, 1.0);
+    QCPLayoutGrid* upper = addFigureRow(plot, 1.0);
     for (int h = 0; h < 2; ++h) {
         auto* rect = addPanel(upper, 0, 2 * h, "position (mm; 1 = plane, 18 = air)", "edge orientation");
         rect->axis(QCPAxis::atLeft)->setTicker(orientationTicker(cs));
-        rect->axis(QCPAxis::atTop)->setVisible(true);
-        rect->axis(QCPAxis::atTop)->setTicks(false);
-        rect->axis(QCPAxis::atTop)->setTickLabels(false);
-        rect->axis(QCPAxis::atTop)->setLabel(heats[h].title);
+        setPanelTitle(rect, heats[h].title);
         auto* map = new QCPColorMap(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
         map->data()->setSize(P, O);
         map->data()->setRange(QCPRange(1, P), QCPRange(0, O - 1));
@@ -188,16 +158,13 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
     struct Line { const char* title; const std::vector<double>* mean; const std::vector<double>* sd; const char* unit; };
     const Line lines[2] = {{"C  angle error, mean over orientations +- 1 std", &r.validation.angleMean, &r.validation.angleStd, "angle error (deg)"},
                            {"D  position error, mean over orientations +- 1 std", &r.validation.positionMean, &r.validation.positionStd, "position error (mm)"}};
-    QCPLayoutGrid* lower = addRow(plot, 1.0);
+    QCPLayoutGrid* lower = addFigureRow(plot, 1.0);
     for (int l = 0; l < 2; ++l) {
         auto* rect = new QCPAxisRect(&plot);
         lower->addElement(0, l, rect);
         rect->axis(QCPAxis::atBottom)->setLabel("position (mm; 1 = plane, 18 = air)");
         rect->axis(QCPAxis::atLeft)->setLabel(lines[l].unit);
-        rect->axis(QCPAxis::atTop)->setVisible(true);
-        rect->axis(QCPAxis::atTop)->setTicks(false);
-        rect->axis(QCPAxis::atTop)->setTickLabels(false);
-        rect->axis(QCPAxis::atTop)->setLabel(lines[l].title);
+        setPanelTitle(rect, lines[l].title);
         auto* g = plot.addGraph(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
         QVector<double> x, y, e;
         double top = 0.0;

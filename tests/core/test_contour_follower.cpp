@@ -146,7 +146,7 @@ private slots:
         QVERIFY(QString::fromStdString(startProblem(cross, {150, 100}, s)).contains("outside the object"));
         QVERIFY(QString::fromStdString(startProblem(cross, {150, 150}, s)).contains("inside the object"));
         const Polygon diamond({{0, -10}, {10, 0}, {0, 10}, {-10, 0}});
-        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, lowerEdgeStart(Polygon({{0, 0}, {10, 5}, {0, 10}}), {}));  // faces left and right only
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, lowerEdgeStart(Polygon({{0, -30}, {5, 0}, {-5, 0}}), {}));  // a spike: its sides face left and right
         QVERIFY(lowerEdgeStart(diamond, {}).y < 0);  // 45 degrees still counts as the lower edge
     }
 
