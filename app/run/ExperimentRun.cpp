@@ -30,6 +30,15 @@ std::FILE* openTable(const fs::path& path) {
 
 }  // namespace
 
+int plannedTapEstimate(const ExperimentSpec& spec) {
+    // Training taps are known; a trial takes about a perimeter's worth of follow steps plus the
+    // repositioning around corners, which a fifth more covers.
+    double taps = spec.plannedTaps();
+    for (const TrialSpec& t : spec.trials)
+        taps += t.repeats * 1.2 * t.object.outline().perimeter() / spec.following.followStep_mm;
+    return static_cast<int>(taps);
+}
+
 namespace {
 
 void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> model, const RunOptions& options, RunProgress& progress) {
@@ -63,6 +72,10 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
             int tapIndex = 0;
             run.result = runTrial(rig, result.classifier, result.classes, run.outline, setup, [&](const FollowedTap& tap) {
                 if (recording) recording->append(run.label, ts.mode, run.trial, tapIndex, tap);
+                if (options.tapTaken)
+                    options.tapTaken(tap.record, std::string(modeName(ts.mode)) + " " + run.label + " trial " + std::to_string(run.trial) +
+                                                     ": " + tap.percept.shapeClass() + ", position " + std::to_string(tap.percept.position) +
+                                                     " -> " + ruleFor(tap.decision.rule).name);
                 ++tapIndex;
                 ++progress.tapsDone;
                 if (options.progress) options.progress(progress);
@@ -134,9 +147,13 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
 
     RunProgress progress;
     progress.step = "training and test taps";
-    progress.tapsPlanned = spec.training.dataSets * spec.classes.classCount() * spec.training.tapsPerClass;
+    progress.tapsPlanned = plannedTapEstimate(spec);
     auto onTap = [&](const CollectedTap& tap) {
         if (recording) recording->append(tap, result.classes);
+        if (options.tapTaken)
+            options.tapTaken(tap.record, "training set " + std::to_string(tap.dataSet) + ": " +
+                                             ClassSet::orientationName(result.classes.orientationDegOf(tap.cls)) + " edge, position " +
+                                             std::to_string(result.classes.positionOf(tap.cls)));
         ++progress.tapsDone;
         if (options.progress) options.progress(progress);
         return !(options.cancel && options.cancel->load());
@@ -145,7 +162,7 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
                                       RandomStream::derived(spec.scene.seed, "protocol:placement"), onTap);
     result.robotTime_s = simulated.world().now_s();
     result.tapsSimulated = simulated.world().tapsSimulated();
-    if (static_cast<int>(result.taps.size()) < progress.tapsPlanned) {
+    if (static_cast<int>(result.taps.size()) < spec.plannedTaps()) {
         result.cancelled = true;
         result.runWall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         return result;
@@ -184,6 +201,30 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     return result;
 }
 
+RunResult runFollowing(const RunResult& trained, const ExperimentSpec& specIn, const RunOptions& options) {
+    const auto started = std::chrono::steady_clock::now();
+    RunResult result = trained;
+    result.spec = specIn;
+    if (options.seed) result.spec.scene.seed = *options.seed;
+    result.spec.training = trained.spec.training;
+    result.spec.classifier = trained.spec.classifier;
+    result.spec.classes = trained.spec.classes;
+    result.taps.clear();
+    result.trials.clear();
+    result.templates.clear();
+    result.cancelled = false;
+    result.failure.clear();
+    result.robotTime_s = 0.0;
+    result.tapsSimulated = 0;
+    if (!options.outDir.empty()) ensureDirectory(fs::path(options.outDir) / "data");
+    auto model = std::make_shared<const FingertipContactModel>(result.spec.scene.fingertip);
+    RunProgress progress;
+    progress.tapsPlanned = plannedTapEstimate(result.spec) - result.spec.plannedTaps();
+    runTrials(result, model, options, progress);
+    result.runWall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return result;
+}
+
 void writeRunTables(const RunResult& r, const std::string& outDir) {
     const fs::path data = fs::path(outDir) / "data";
     ensureDirectory(data);
@@ -195,8 +236,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
         std::fprintf(f, "%d,%g,%s,%d,%g,%s\n", c, cs.orientationDegOf(c), ClassSet::orientationName(cs.orientationDegOf(c)).c_str(),
                      cs.positionOf(c), cs.offsetOf(cs.positionOf(c)), regionName(cs.regionOf(c)));
     std::fclose(f);
-    if (r.cancelled) return;
-
+    if (!r.validation.byClass.empty()) {
     f = openTable(data / "validation_by_class.csv");
     std::fprintf(f, "orientation_deg,orientation,position,region,test_taps,angle_error_deg,position_error_mm,correct_fraction\n");
     for (const auto& e : r.validation.byClass) {
@@ -227,6 +267,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
     }
     std::fclose(f);
 
+    }
     if (!r.trials.empty()) {
         f = openTable(data / "following_trials.csv");
         std::fprintf(f, "shape,mode,trial,completed,end,taps,robot_time_s,coverage,mean_contour_distance_mm,max_contour_distance_mm,progress_mm,start_x_mm,start_y_mm\n");
@@ -291,6 +332,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
         std::fclose(f);
     }
 
+    if (r.validation.confusion.empty()) return;
     f = openTable(data / "confusion.csv");
     std::fprintf(f, "true_class");
     for (int c = 0; c < cs.classCount(); ++c) std::fprintf(f, ",perceived_%d", c);
@@ -320,7 +362,7 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
     j["training"] = {{"data_sets", r.spec.training.dataSets}, {"training_sets", r.spec.training.trainingSets},
                      {"taps_per_class", r.spec.training.tapsPerClass}, {"test_offset_mm", r.spec.training.testOffset_mm},
                      {"placement_jitter_mm", r.spec.training.placementJitter_mm}};
-    if (!r.cancelled) {
+    if (!r.validation.byClass.empty()) {
         const auto& v = r.validation;
         Json byClass = Json::array();
         for (const auto& e : v.byClass) {

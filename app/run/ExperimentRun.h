@@ -57,6 +57,9 @@ struct RunOptions {
     std::string outDir;               ///< empty: write nothing
     std::optional<std::uint64_t> seed;
     std::function<void(const RunProgress&)> progress;
+    /// Sees every tap as it is taken, with a sentence saying what it was (for live views). Runs on
+    /// the thread that runs the experiment.
+    std::function<void(const TapRecord&, const std::string& what)> tapTaken;
     const std::atomic<bool>* cancel = nullptr;
 };
 
@@ -67,6 +70,13 @@ struct RunOptions {
 /// `failure`, and stops the run with everything recorded so far. InputError if the output cannot
 /// be written.
 RunResult runExperiment(const ExperimentSpec& spec, const RunOptions& options);
+
+/// Runs only the following trials (and recognition) of `spec` with the classifier, class regions
+/// and valid range of an earlier run.
+RunResult runFollowing(const RunResult& trained, const ExperimentSpec& spec, const RunOptions& options);
+
+/// How many taps a run will take: exact for training, estimated for following trials.
+int plannedTapEstimate(const ExperimentSpec& spec);
 
 /// Writes the tables (data/*.csv) of a finished run.
 void writeRunTables(const RunResult& result, const std::string& outDir);

@@ -1,0 +1,152 @@
+#include "app/gui/FollowingTab.h"
+
+#include <QComboBox>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QSlider>
+#include <QSplitter>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+#include "app/figures/FigureExport.h"
+#include "app/figures/FollowingFigures.h"
+#include "app/gui/PlotPanel.h"
+#include "app/run/ExperimentRun.h"
+#include "qcustomplot.h"
+
+namespace activetouch {
+
+FollowingTab::FollowingTab(QWidget* parent)
+    : QWidget(parent),
+      active_(new PlotPanel("figure8_active_paths")),
+      passive_(new PlotPanel("figure7_passive_paths")),
+      replay_(new PlotPanel("trial_replay")) {
+    auto* layout = new QVBoxLayout(this);
+    auto* split = new QSplitter(Qt::Vertical);
+    auto* paths = new QSplitter(Qt::Horizontal);
+    paths->addWidget(active_);
+    paths->addWidget(passive_);
+    paths->setStretchFactor(0, 2);
+    split->addWidget(paths);
+    auto* lower = new QSplitter(Qt::Horizontal);
+    table_ = new QTableWidget(0, 9);
+    table_->setHorizontalHeaderLabels({tr("shape"), tr("mode"), tr("trial"), tr("result"), tr("taps"), tr("robot time (s)"),
+                                       tr("coverage (%)"), tr("mean dist. (mm)"), tr("max dist. (mm)")});
+    table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    table_->setSelectionBehavior(QAbstractItemView::SelectRows);
+    lower->addWidget(table_);
+    auto* replayBox = new QWidget;
+    auto* rl = new QVBoxLayout(replayBox);
+    auto* controls = new QHBoxLayout;
+    trial_ = new QComboBox;
+    slider_ = new QSlider(Qt::Horizontal);
+    controls->addWidget(new QLabel(tr("Replay")));
+    controls->addWidget(trial_);
+    controls->addWidget(slider_, 1);
+    rl->addLayout(controls);
+    step_ = new QLabel(tr("Run an experiment to replay its trials."));
+    step_->setWordWrap(true);
+    rl->addWidget(step_);
+    rl->addWidget(replay_, 1);
+    lower->addWidget(replayBox);
+    split->addWidget(lower);
+    split->setStretchFactor(0, 3);
+    split->setStretchFactor(1, 2);
+    lower->setStretchFactor(0, 1);
+    lower->setStretchFactor(1, 1);
+    layout->addWidget(split);
+    connect(trial_, &QComboBox::currentIndexChanged, this, [this](int i) { replay(i, 0); });
+    connect(slider_, &QSlider::valueChanged, this, [this](int tap) { replay(trial_->currentIndex(), tap); });
+    connect(table_, &QTableWidget::cellClicked, this, [this](int row, int) { trial_->setCurrentIndex(row); });
+}
+
+void FollowingTab::showRun(std::shared_ptr<const RunResult> result) {
+    result_ = std::move(result);
+    const RunResult& r = *result_;
+    buildPathFigure(active_->plot(), r, FollowingMode::Active, tr("Active contour following (ACF)"));
+    buildPathFigure(passive_->plot(), r, FollowingMode::Passive, tr("Passive contour following (PCF)"));
+    for (auto* p : {active_, passive_}) {
+        p->plot().replot();
+        applyEqualAspect(p->plot());
+    }
+    table_->setRowCount(static_cast<int>(r.trials.size()));
+    const QSignalBlocker block(trial_);
+    trial_->clear();
+    for (std::size_t i = 0; i < r.trials.size(); ++i) {
+        const TrialRun& t = r.trials[i];
+        const QStringList cells{QString::fromStdString(t.label), modeName(t.result.mode), QString::number(t.trial), trialEndName(t.result.end),
+                                QString::number(t.result.taps.size()), QString::number(t.result.robotTime_s, 'f', 0),
+                                QString::number(100 * t.result.coverage, 'f', 0), QString::number(t.result.meanContourDistance_mm, 'f', 2),
+                                QString::number(t.result.maxContourDistance_mm, 'f', 2)};
+        for (int c = 0; c < cells.size(); ++c) table_->setItem(static_cast<int>(i), c, new QTableWidgetItem(cells[c]));
+        trial_->addItem(QString("%1 %2 %3").arg(modeName(t.result.mode), QString::fromStdString(t.label)).arg(t.trial));
+    }
+    if (!r.trials.empty()) replay(0, 0);
+}
+
+void FollowingTab::replay(int index, int tap) {
+    if (!result_ || index < 0 || index >= static_cast<int>(result_->trials.size())) return;
+    const TrialRun& t = result_->trials[static_cast<std::size_t>(index)];
+    if (t.result.taps.empty()) return;
+    tap = std::clamp(tap, 0, static_cast<int>(t.result.taps.size()) - 1);
+    {
+        const QSignalBlocker block(slider_);
+        slider_->setRange(0, static_cast<int>(t.result.taps.size()) - 1);
+        slider_->setValue(tap);
+    }
+    QCustomPlot& p = replay_->plot();
+    p.clearPlottables();
+    p.clearItems();
+    auto curve = [&](const std::vector<Vec2>& pts, bool closed, QPen pen, int dots) {
+        auto* c = new QCPCurve(p.xAxis, p.yAxis);
+        QVector<double> k, x, y;
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            k << double(i);
+            x << pts[i].x;
+            y << pts[i].y;
+        }
+        if (closed && !pts.empty()) {
+            k << double(pts.size());
+            x << pts.front().x;
+            y << pts.front().y;
+        }
+        c->setData(k, x, y);
+        c->setPen(pen);
+        if (dots) c->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDisc, pen.color(), dots));
+        return c;
+    };
+    curve(t.outline.vertices(), true, QPen(Qt::black, 2), 0);
+    std::vector<Vec2> done;
+    for (int i = 0; i <= tap; ++i) done.push_back(t.result.taps[static_cast<std::size_t>(i)].record.pose);
+    curve(done, false, QPen(QColor(31, 119, 180), 1), 4);
+    const FollowedTap& f = t.result.taps[static_cast<std::size_t>(tap)];
+    curve({f.record.pose}, false, QPen(QColor(214, 39, 40), 2), 10);
+    curve({f.record.pose, f.record.pose + f.decision.move()}, false, QPen(QColor(214, 39, 40), 2, Qt::DashLine), 0);
+    p.xAxis->setLabel(tr("x (mm)"));
+    p.yAxis->setLabel(tr("y (mm)"));
+    const Vec2 lo = t.outline.boundingBoxMin(), hi = t.outline.boundingBoxMax();
+    p.xAxis->setRange(lo.x - 12, hi.x + 12);
+    p.yAxis->setRange(lo.y - 12, hi.y + 12);
+    p.axisRect()->setProperty("equalAspect", true);
+    p.replot();
+    applyEqualAspect(p);
+    const Rule& rule = ruleFor(f.decision.rule);
+    step_->setText(tr("Tap %1 of %2 at (%3, %4) mm: perceived %5, position %6 (posterior %7). Rule '%8': when %9, then %10. "
+                      "Progress %11 mm, %12 mm from the contour.")
+                       .arg(tap + 1)
+                       .arg(t.result.taps.size())
+                       .arg(f.record.pose.x, 0, 'f', 1)
+                       .arg(f.record.pose.y, 0, 'f', 1)
+                       .arg(QString::fromStdString(f.percept.shapeClass()))
+                       .arg(f.percept.position)
+                       .arg(f.percept.posterior, 0, 'f', 3)
+                       .arg(rule.name, rule.when, rule.then)
+                       .arg(f.progress_mm, 0, 'f', 0)
+                       .arg(std::abs(f.contourDistance_mm), 0, 'f', 1));
+}
+
+QString FollowingTab::replayText() const { return step_->text(); }
+
+}  // namespace activetouch

@@ -1,0 +1,43 @@
+#pragma once
+// The contour following tab (DESIGN.md §5): active and passive paths side by side over the
+// outline, per-trial statistics, and a step-by-step replay of one trial with the percept and the
+// rule that fired at each tap.
+#include <QWidget>
+#include <memory>
+
+class QComboBox;
+class QLabel;
+class QSlider;
+class QTableWidget;
+class QCPCurve;
+class QCPItemTracer;
+
+namespace activetouch {
+
+struct RunResult;
+class PlotPanel;
+
+class FollowingTab : public QWidget {
+    Q_OBJECT
+public:
+    explicit FollowingTab(QWidget* parent = nullptr);
+    void showRun(std::shared_ptr<const RunResult> result);
+
+    PlotPanel* activePanel() const { return active_; }
+    PlotPanel* passivePanel() const { return passive_; }
+    PlotPanel* replayPanel() const { return replay_; }
+    QTableWidget* table() const { return table_; }
+    /// Replays trial `index` (in the table's order) at tap `tap`.
+    void replay(int index, int tap);
+    QString replayText() const;
+
+private:
+    std::shared_ptr<const RunResult> result_;
+    PlotPanel *active_, *passive_, *replay_;
+    QTableWidget* table_;
+    QComboBox* trial_;
+    QSlider* slider_;
+    QLabel* step_;
+};
+
+}  // namespace activetouch

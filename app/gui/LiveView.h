@@ -1,0 +1,42 @@
+#pragma once
+// The live tab (DESIGN.md §5): 12 taxel bars on a fixed 0-255 scale with numeric readouts,
+// updated at 50 Hz; the last tap's 50-sample traces; the stage position and the current percept.
+// A GUI timer draws the newest state from the LiveFeed; data never drives a replot.
+#include <QLabel>
+#include <QTimer>
+#include <QWidget>
+
+#include "app/gui/LiveFeed.h"
+
+class QCPBars;
+class QCPItemText;
+
+namespace activetouch {
+
+class PlotPanel;
+
+class LiveView : public QWidget {
+    Q_OBJECT
+public:
+    LiveView(LiveFeed& feed, QWidget* parent = nullptr);
+
+    PlotPanel* barsPanel() const { return bars_; }
+    PlotPanel* tracesPanel() const { return traces_; }
+    /// Frames drawn so far (for tests and the CPU benchmark).
+    std::uint64_t framesDrawn() const { return framesDrawn_; }
+
+private:
+    void tick();
+    LiveFeed& feed_;
+    PlotPanel* bars_;
+    PlotPanel* traces_;
+    QCPBars* barPlottable_ = nullptr;
+    std::vector<QCPItemText*> readouts_;
+    QLabel* pose_;
+    QLabel* percept_;
+    QTimer timer_;
+    std::uint64_t shownTap_ = 0, shownFrame_ = 0, framesDrawn_ = 0;
+    int playback_ = 0;  // frame of the newest tap being replayed when frames are not streamed
+};
+
+}  // namespace activetouch

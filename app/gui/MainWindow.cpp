@@ -1,0 +1,330 @@
+#include "app/gui/MainWindow.h"
+
+#include <QAction>
+#include <QCloseEvent>
+#include <QComboBox>
+#include <QDateTime>
+#include <QDir>
+#include <QDockWidget>
+#include <QFile>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QHeaderView>
+#include <QLabel>
+#include <QMessageBox>
+#include <QPlainTextEdit>
+#include <QProgressBar>
+#include <QSettings>
+#include <QSplitter>
+#include <QStatusBar>
+#include <QTabWidget>
+#include <QTableWidget>
+#include <QToolBar>
+#include <QVBoxLayout>
+
+#include "app/figures/FollowingFigures.h"
+#include "app/figures/ValidationFigures.h"
+#include "app/gui/DevicesPanel.h"
+#include "app/gui/FollowingTab.h"
+#include "app/gui/LiveView.h"
+#include "app/gui/PlotPanel.h"
+#include "app/gui/ScenePanel.h"
+#include "devices/simulated/SimulatedWorld.h"
+#include "qcustomplot.h"
+
+namespace activetouch {
+
+MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), devices_(feed_) {
+    setWindowTitle(tr("ActiveTouch Workbench"));
+    setObjectName("mainWindow");
+    QSettings settings;
+    outputBase_ = settings.value("outputBase", QDir::current().filePath("results")).toString();
+
+    tabs_ = new QTabWidget;
+    live_ = new LiveView(feed_);
+    tabs_->addTab(live_, tr("Live"));
+    auto* validation = new QSplitter(Qt::Vertical);
+    taps_ = new PlotPanel("figure5_taps");
+    errors_ = new PlotPanel("figure6_errors");
+    validation->addWidget(taps_);
+    validation->addWidget(errors_);
+    tabs_->addTab(validation, tr("Training && validation"));
+    following_ = new FollowingTab;
+    tabs_->addTab(following_, tr("Contour following"));
+    auto* recognition = new QSplitter(Qt::Vertical);
+    recognition_ = new PlotPanel("figure9_recognition");
+    confusion_ = new QTableWidget;
+    confusion_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    recognition->addWidget(recognition_);
+    recognition->addWidget(confusion_);
+    recognition->setStretchFactor(0, 4);
+    validation->setStretchFactor(0, 1);
+    validation->setStretchFactor(1, 1);
+    tabs_->addTab(recognition, tr("Recognition"));
+    setCentralWidget(tabs_);
+    for (PlotPanel* p : plotPanels()) {
+        connect(p, &PlotPanel::exported, this, &MainWindow::log);
+        connect(p, &PlotPanel::failed, this, &MainWindow::showError);
+    }
+
+    scene_ = new ScenePanel;
+    auto* sceneDock = new QDockWidget(tr("Scene"));
+    sceneDock->setObjectName("sceneDock");
+    sceneDock->setWidget(scene_);
+    addDockWidget(Qt::LeftDockWidgetArea, sceneDock);
+    connect(scene_, &ScenePanel::failed, this, &MainWindow::showError);
+    devicesPanel_ = new DevicesPanel(devices_.session());
+    auto* devicesDock = new QDockWidget(tr("Devices"));
+    devicesDock->setObjectName("devicesDock");
+    devicesDock->setWidget(devicesPanel_);
+    addDockWidget(Qt::RightDockWidgetArea, devicesDock);
+    connect(devicesPanel_, &DevicesPanel::log, this, &MainWindow::log);
+    log_ = new QPlainTextEdit;
+    log_->setReadOnly(true);
+    log_->setObjectName("log");
+    auto* logDock = new QDockWidget(tr("Log"));
+    logDock->setObjectName("logDock");
+    logDock->setWidget(log_);
+    addDockWidget(Qt::BottomDockWidgetArea, logDock);
+
+    auto* bar = addToolBar(tr("Run"));
+    bar->setObjectName("runToolBar");
+    bar->addAction(tr("Open..."), this, [this] {
+        const QString path = QFileDialog::getOpenFileName(this, tr("Open an experiment"), QFileInfo(experimentPath_).path(), tr("Experiments (*.json)"));
+        if (!path.isEmpty()) openExperiment(path);
+    });
+    bar->addAction(tr("Save as..."), this, [this] {
+        const QString path = QFileDialog::getSaveFileName(this, tr("Save the experiment"), experimentPath_, tr("Experiments (*.json)"));
+        if (!path.isEmpty()) saveExperiment(path);
+    });
+    bar->addSeparator();
+    runAll_ = bar->addAction(tr("Run whole protocol"), this, [this] { startRun(RunController::What::Everything); });
+    runAll_->setObjectName("runAll");
+    runTraining_ = bar->addAction(tr("Run training && validation"), this, [this] { startRun(RunController::What::TrainingOnly); });
+    runFollowing_ = bar->addAction(tr("Run following"), this, [this] { startRun(RunController::What::FollowingOnly); });
+    cancel_ = bar->addAction(tr("Cancel"), this, &MainWindow::cancelRun);
+    cancel_->setObjectName("cancel");
+    pace_ = new QComboBox;
+    pace_->addItems({tr("as fast as possible"), tr("live frames (1 s per tap)"), tr("robot time (2.5 s per tap)")});
+    pace_->setCurrentIndex(settings.value("pace", 0).toInt());
+    bar->addWidget(pace_);
+    bar->addSeparator();
+    exportAll_ = bar->addAction(tr("Export all figures..."), this, [this] {
+        const QString dir = QFileDialog::getExistingDirectory(this, tr("Export all figures into"), lastOutDir_);
+        if (!dir.isEmpty()) exportAllFigures(dir);
+    });
+
+    progress_ = new QProgressBar;
+    progress_->setRange(0, 1);
+    progress_->setValue(0);
+    progress_->setFormat(tr("idle"));
+    progress_->setMinimumWidth(320);
+    status_ = new QLabel;
+    statusBar()->addPermanentWidget(status_, 1);
+    statusBar()->addPermanentWidget(progress_);
+
+    connect(&runs_, &RunController::progress, this, [this](int done, int planned, const QString& step, double left) {
+        progress_->setRange(0, std::max(planned, done));
+        progress_->setValue(done);
+        progress_->setFormat(tr("%1 taps, about %2 s left").arg(done).arg(left, 0, 'f', 0));
+        status_->setText(step);
+    });
+    connect(&runs_, &RunController::finished, this, &MainWindow::showRun);
+    connect(&runs_, &RunController::failed, this, [this](const QString& m) {
+        showError(m);
+        emit runEnded(false);
+    });
+    connect(&runs_, &RunController::idle, this, &MainWindow::updateActions);
+
+    restoreGeometry(settings.value("geometry").toByteArray());
+    restoreState(settings.value("windowState").toByteArray());
+    const QString last = settings.value("lastExperiment").toString();
+    const QString fallback = QDir(ACTIVETOUCH_SOURCE_DIR).filePath("experiments/paper.json");
+    if (!(QFileInfo::exists(last) && openExperiment(last)) && QFileInfo::exists(fallback)) openExperiment(fallback);
+    updateActions();
+}
+
+MainWindow::~MainWindow() { runs_.stopAndWait(2000); }
+
+QList<PlotPanel*> MainWindow::plotPanels() const {
+    return {live_->barsPanel(), live_->tracesPanel(), taps_, errors_, following_->activePanel(), following_->passivePanel(),
+            following_->replayPanel(), recognition_};
+}
+
+void MainWindow::setPace(Pace pace) { pace_->setCurrentIndex(static_cast<int>(pace)); }
+
+void MainWindow::log(const QString& text) {
+    log_->appendPlainText(QDateTime::currentDateTime().toString("hh:mm:ss  ") + text);
+}
+
+void MainWindow::showError(const QString& message) {
+    log(tr("error: %1").arg(message));
+    auto* box = new QMessageBox(QMessageBox::Warning, tr("ActiveTouch Workbench"), message, QMessageBox::Ok, this);
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->setObjectName("errorDialog");
+    box->open();  // not modal to the event loop: runs and the live view go on
+    emit errorShown(message);
+}
+
+bool MainWindow::openExperiment(const QString& path) {
+    try {
+        const Json j = readJsonFile(path.toStdString());
+        if (!looksLikeExperiment(j))
+            throw InputError(path.toStdString(), "/", "this is not an experiment file (it has no 'scene'); open an experiment such as experiments/paper.json");
+        ExperimentSpec spec = parseExperiment(j, path.toStdString(), QFileInfo(path).path().toStdString());
+        validateEffects(spec.scene, FingertipContactModel(spec.scene.fingertip));
+        // Only a fully valid file replaces the session.
+        spec_ = spec;
+        experimentJson_ = j;
+        experimentPath_ = path;
+        scene_->showScene(spec_.scene);
+        devicesPanel_->setScene(spec_.scene);
+        setWindowTitle(tr("ActiveTouch Workbench - %1").arg(QFileInfo(path).fileName()));
+        QSettings().setValue("lastExperiment", path);
+        log(tr("opened %1 (%2)").arg(path, QString::fromStdString(spec_.name)));
+        updateActions();
+        return true;
+    } catch (const InputError& e) {
+        showError(tr("Could not open %1:\n%2").arg(path, QString::fromStdString(e.what())));
+    } catch (const std::exception& e) {
+        showError(tr("Could not open %1: %2").arg(path, e.what()));
+    }
+    return false;
+}
+
+ExperimentSpec MainWindow::experimentAsShown() const {
+    ExperimentSpec spec = spec_;
+    spec.scene = scene_->sceneFromPanel(spec_.scene);
+    validateEffects(spec.scene, FingertipContactModel(spec.scene.fingertip));
+    return spec;
+}
+
+bool MainWindow::saveExperiment(const QString& path) {
+    try {
+        const ExperimentSpec spec = experimentAsShown();
+        Json j = experimentJson_;
+        j["scene"] = sceneToJson(spec.scene);
+        QFile f(path);
+        if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) throw InputError(path.toStdString(), "", "cannot write the file; choose a writable place");
+        f.write(QByteArray::fromStdString(j.dump(2) + "\n"));
+        log(tr("saved %1").arg(path));
+        return true;
+    } catch (const std::exception& e) {
+        showError(tr("Could not save: %1").arg(e.what()));
+        return false;
+    }
+}
+
+bool MainWindow::startRun(RunController::What what) {
+    if (experimentPath_.isEmpty()) {
+        showError(tr("Open an experiment first."));
+        return false;
+    }
+    ExperimentSpec spec;
+    try {
+        spec = experimentAsShown();
+    } catch (const std::exception& e) {
+        showError(tr("The scene as shown cannot run: %1").arg(e.what()));
+        return false;
+    }
+    const QString dir = QDir(outputBase_).filePath(QString::fromStdString(spec.name) + "-" +
+                                                   QDateTime::currentDateTime().toString("yyyyMMdd-hhmmss-zzz"));
+    if (!runs_.start(spec, dir, what, static_cast<Pace>(pace_->currentIndex()), last_)) return false;
+    lastOutDir_ = dir;
+    progress_->setRange(0, plannedTapEstimate(spec));
+    progress_->setValue(0);
+    log(tr("run started: %1, writing %2").arg(QString::fromStdString(spec.name), dir));
+    updateActions();
+    return true;
+}
+
+void MainWindow::cancelRun() {
+    if (!runs_.running()) return;
+    runs_.cancel();
+    log(tr("cancelling: the run stops after the tap in flight; every tap taken is kept"));
+}
+
+void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString& dir) {
+    const RunResult& r = *result;
+    const bool trainingRun = !r.taps.empty();  // a following-only run keeps the training figures shown
+    last_ = result;
+    lastOutDir_ = dir;
+    if (trainingRun) buildTapFigure(taps_->plot(), r);
+    if (!r.validation.byClass.empty()) buildErrorFigure(errors_->plot(), r);
+    for (auto* p : {taps_, errors_}) p->plot().replot();
+    following_->showRun(result);
+    if (buildRecognitionFigure(recognition_->plot(), r)) {
+        recognition_->plot().replot();
+        applyEqualAspect(recognition_->plot());
+    }
+    // Confusion over recognised trials: true shape x predicted (paper's rule).
+    std::vector<std::string> shapes;
+    for (const auto& t : r.templates) shapes.push_back(t.shape);
+    confusion_->clear();
+    confusion_->setRowCount(static_cast<int>(shapes.size()));
+    confusion_->setColumnCount(static_cast<int>(shapes.size()));
+    QStringList names;
+    for (const auto& s : shapes) names << QString::fromStdString(s);
+    confusion_->setHorizontalHeaderLabels(names);
+    confusion_->setVerticalHeaderLabels(names);
+    for (std::size_t a = 0; a < shapes.size(); ++a)
+        for (std::size_t b = 0; b < shapes.size(); ++b) {
+            int n = 0;
+            for (const auto& t : r.trials) n += t.recognised && t.label == shapes[a] && t.recognition.predicted == shapes[b];
+            confusion_->setItem(static_cast<int>(a), static_cast<int>(b), new QTableWidgetItem(QString::number(n)));
+        }
+    progress_->setRange(0, std::max(1, progress_->value()));
+    progress_->setValue(progress_->maximum());
+    const QString state = r.cancelled ? tr("cancelled") : (r.failure.empty() ? tr("finished") : tr("failed"));
+    progress_->setFormat(tr("%1: %2 taps").arg(state).arg(r.tapsSimulated));
+    status_->setText(tr("%1, results in %2").arg(state, dir));
+    if (!r.validation.byClass.empty())
+        log(tr("validation: angle error %1 deg, position error %2 mm, valid range %3-%4 mm")
+                .arg(r.validation.angleError_deg, 0, 'f', 2)
+                .arg(r.validation.positionError_mm, 0, 'f', 3)
+                .arg(r.validation.validRange.first)
+                .arg(r.validation.validRange.last));
+    for (const auto& t : r.trials)
+        log(tr("%1 %2 trial %3: %4").arg(modeName(t.result.mode), QString::fromStdString(t.label)).arg(t.trial).arg(QString::fromStdString(t.result.detail)));
+    log(tr("run %1: %2 taps, results in %3").arg(state).arg(r.tapsSimulated).arg(dir));
+    if (!r.failure.empty()) showError(tr("The run stopped: %1. Every tap taken so far is in %2/data.").arg(QString::fromStdString(r.failure), dir));
+    emit runEnded(!r.cancelled && r.failure.empty());
+}
+
+QStringList MainWindow::exportAllFigures(const QString& dir) {
+    if (!last_) {
+        showError(tr("There is no run to export yet."));
+        return {};
+    }
+    try {
+        const QStringList files = writeRunFigures(*last_, dir);
+        log(tr("%1 figure files written to %2/figures").arg(files.size()).arg(dir));
+        return files;
+    } catch (const std::exception& e) {
+        showError(tr("Could not export the figures: %1").arg(e.what()));
+        return {};
+    }
+}
+
+void MainWindow::updateActions() {
+    const bool busy = runs_.running();
+    const bool ready = !experimentPath_.isEmpty();
+    runAll_->setEnabled(!busy && ready);
+    runTraining_->setEnabled(!busy && ready);
+    runFollowing_->setEnabled(!busy && ready && last_ && last_->classifier.trained());
+    cancel_->setEnabled(busy);
+    exportAll_->setEnabled(!busy && last_ != nullptr);
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+    // A run in flight stops within a tap; never wait long on it.
+    runs_.stopAndWait(2000);
+    QSettings settings;
+    settings.setValue("geometry", saveGeometry());
+    settings.setValue("windowState", saveState());
+    settings.setValue("pace", pace_->currentIndex());
+    settings.setValue("outputBase", outputBase_);
+    event->accept();
+}
+
+}  // namespace activetouch

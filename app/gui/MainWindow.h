@@ -1,0 +1,98 @@
+#pragma once
+// The workbench window (DESIGN.md §5): tabs for the live view, training and validation, contour
+// following and recognition; docks for the scene, the devices and the log; runs with progress,
+// cancel and a clear final state; every plot exportable. Layout and settings persist.
+#include <QMainWindow>
+#include <memory>
+
+#include "app/gui/DeviceSession.h"
+#include "app/gui/LiveFeed.h"
+#include "app/gui/RunController.h"
+#include "core/experiment/Experiment.h"
+
+class QAction;
+class QComboBox;
+class QLabel;
+class QPlainTextEdit;
+class QProgressBar;
+class QTableWidget;
+class QTabWidget;
+
+namespace activetouch {
+
+class DevicesPanel;
+class FollowingTab;
+class LiveView;
+class PlotPanel;
+class ScenePanel;
+
+class MainWindow : public QMainWindow {
+    Q_OBJECT
+public:
+    explicit MainWindow(QWidget* parent = nullptr);
+    ~MainWindow() override;
+
+    /// Loads an experiment file; on a bad file shows the problem and keeps the current session.
+    bool openExperiment(const QString& path);
+    /// Writes the experiment as shown (the scene panel's scene inline) to `path`.
+    bool saveExperiment(const QString& path);
+    /// The experiment a run would use now: the loaded one with the scene panel applied.
+    /// Throws InputError if the panel does not describe a valid scene.
+    ExperimentSpec experimentAsShown() const;
+    bool startRun(RunController::What what);
+    void cancelRun();
+    /// Writes every figure of the last run into `dir`/figures; returns the files.
+    QStringList exportAllFigures(const QString& dir);
+    void setOutputBase(const QString& dir) { outputBase_ = dir; }
+    void setPace(Pace pace);
+
+    const QString& experimentPath() const { return experimentPath_; }
+    std::shared_ptr<const RunResult> lastRun() const { return last_; }
+    QString lastRunDirectory() const { return lastOutDir_; }
+    bool running() const { return runs_.running(); }
+    QProgressBar* progressBar() const { return progress_; }
+    ScenePanel* scenePanel() const { return scene_; }
+    LiveView* liveView() const { return live_; }
+    FollowingTab* followingTab() const { return following_; }
+    QTabWidget* tabs() const { return tabs_; }
+    /// Every plot in the window, for export.
+    QList<PlotPanel*> plotPanels() const;
+
+signals:
+    void errorShown(const QString& message);
+    void runEnded(bool completed);
+
+protected:
+    void closeEvent(QCloseEvent* event) override;
+
+private:
+    void showError(const QString& message);
+    void log(const QString& text);
+    void showRun(std::shared_ptr<const RunResult> result, const QString& dir);
+    void updateActions();
+
+    LiveFeed feed_;
+    RunController runs_;
+    DeviceThread devices_;
+    ExperimentSpec spec_;
+    Json experimentJson_;
+    QString experimentPath_;
+    QString outputBase_;
+    std::shared_ptr<const RunResult> last_;
+    QString lastOutDir_;
+
+    QTabWidget* tabs_;
+    LiveView* live_;
+    PlotPanel *taps_, *errors_, *recognition_;
+    FollowingTab* following_;
+    QTableWidget* confusion_;
+    ScenePanel* scene_;
+    DevicesPanel* devicesPanel_;
+    QPlainTextEdit* log_;
+    QProgressBar* progress_;
+    QLabel* status_;
+    QComboBox* pace_;
+    QAction *runAll_, *runTraining_, *runFollowing_, *cancel_, *exportAll_;
+};
+
+}  // namespace activetouch

@@ -1,0 +1,83 @@
+#include "app/gui/RunController.h"
+
+#include <QDir>
+#include <chrono>
+#include <thread>
+
+#include "app/figures/FollowingFigures.h"
+
+namespace activetouch {
+
+RunController::RunController(LiveFeed& live, QObject* parent) : QObject(parent), live_(live) {
+    qRegisterMetaType<std::shared_ptr<const RunResult>>();
+}
+
+RunController::~RunController() { stopAndWait(2000); }
+
+void RunController::cancel() { cancel_ = true; }
+
+bool RunController::stopAndWait(int ms) {
+    if (!thread_) return true;
+    cancel_ = true;
+    return thread_->wait(QDeadlineTimer(ms));
+}
+
+bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, What what, Pace pace,
+                          std::shared_ptr<const RunResult> trained) {
+    if (thread_) {
+        emit failed(tr("A run is already going; cancel it or wait for it to finish."));
+        return false;
+    }
+    if (what == What::FollowingOnly && (!trained || !trained->classifier.trained())) {
+        emit failed(tr("Following needs a trained classifier: run training and validation first."));
+        return false;
+    }
+    ExperimentSpec spec = specIn;
+    if (what == What::TrainingOnly) spec.trials.clear();
+    cancel_ = false;
+    thread_ = QThread::create([this, spec, outDir, what, pace, trained] {
+        const auto started = std::chrono::steady_clock::now();
+        RunOptions options;
+        options.outDir = outDir.toStdString();
+        options.cancel = &cancel_;
+        options.progress = [this, started](const RunProgress& p) {
+            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            const double left = p.tapsDone > 0 ? elapsed / p.tapsDone * std::max(0, p.tapsPlanned - p.tapsDone) : 0.0;
+            emit progress(p.tapsDone, p.tapsPlanned, QString::fromStdString(p.step), left);
+        };
+        options.tapTaken = [this, pace](const TapRecord& r, const std::string& what) {
+            live_.publishTap(r, QString::fromStdString(what));
+            if (pace == Pace::Fastest) return;  // the live view replays the newest tap
+            // Pace the frames as the fingertip streams them; stop within a frame on cancel.
+            for (int s = 0; s < r.tap.sampleCount() && !cancel_; ++s) {
+                live_.publishFrame(r.tap.frame(s), r.tap.taxels);
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            }
+            if (pace == Pace::RobotTime) {
+                const auto settle = std::chrono::duration<double>(std::max(0.0, r.cycleTime_s - r.tap.sampleCount() * 0.02));
+                const auto until = std::chrono::steady_clock::now() + settle;
+                while (!cancel_ && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            }
+        };
+        try {
+            auto result = std::make_shared<RunResult>(what == What::FollowingOnly ? runFollowing(*trained, spec, options)
+                                                                                  : runExperiment(spec, options));
+            writeRunTables(*result, options.outDir);
+            const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            writeSummary(*result, options.outDir, wall, 0.0);
+            emit finished(result, outDir);
+        } catch (const std::exception& e) {
+            emit failed(tr("The run stopped: %1. Every tap taken so far is in %2/data.").arg(QString::fromStdString(e.what()), outDir));
+        }
+    });
+    connect(thread_, &QThread::finished, this, [this] {
+        thread_->deleteLater();
+        thread_ = nullptr;
+        emit idle();
+    });
+    QDir().mkpath(outDir);
+    thread_->start();
+    return true;
+}
+
+}  // namespace activetouch

@@ -1,0 +1,53 @@
+#pragma once
+// Runs experiments off the GUI thread: progress with taps done and time left, cancel that stops
+// within one tap and keeps every tap taken, and a clear final state. The GUI thread never waits
+// on the rig.
+#include <QObject>
+#include <QThread>
+#include <atomic>
+#include <memory>
+
+#include "app/gui/LiveFeed.h"
+#include "app/run/ExperimentRun.h"
+
+namespace activetouch {
+
+enum class Pace {
+    Fastest,      ///< as fast as the simulation goes; the live view shows the latest tap
+    LiveFrames,   ///< each tap's frames at 50 Hz (1 s per tap), no settle pauses
+    RobotTime,    ///< the robot's own timing: frames at 50 Hz and the settle pause
+};
+
+class RunController : public QObject {
+    Q_OBJECT
+public:
+    explicit RunController(LiveFeed& live, QObject* parent = nullptr);
+    ~RunController() override;
+
+    enum class What { Everything, TrainingOnly, FollowingOnly };
+
+    /// Starts a run writing into `outDir`; false (and failed()) if one is already running or
+    /// FollowingOnly has no trained classifier to use.
+    bool start(const ExperimentSpec& spec, const QString& outDir, What what, Pace pace,
+               std::shared_ptr<const RunResult> trained = {});
+    void cancel();
+    bool running() const { return thread_ != nullptr; }
+    /// Asks a running run to stop and waits at most `ms` for it; true if it stopped.
+    bool stopAndWait(int ms);
+
+signals:
+    void progress(int tapsDone, int tapsPlanned, const QString& step, double secondsLeft);
+    void finished(std::shared_ptr<const activetouch::RunResult> result, const QString& outDir);
+    void failed(const QString& message);
+    /// The worker has ended (after finished or failed): a new run may start.
+    void idle();
+
+private:
+    LiveFeed& live_;
+    QThread* thread_ = nullptr;
+    std::atomic<bool> cancel_{false};
+};
+
+}  // namespace activetouch
+
+Q_DECLARE_METATYPE(std::shared_ptr<const activetouch::RunResult>)

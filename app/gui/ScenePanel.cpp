@@ -1,0 +1,196 @@
+#include "app/gui/ScenePanel.h"
+
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QVBoxLayout>
+
+#include "devices/simulated/effects/Effect.h"
+
+namespace activetouch {
+namespace {
+QDoubleSpinBox* spin(double lo, double hi, double value, const QString& suffix, int decimals = 2) {
+    auto* s = new QDoubleSpinBox;
+    s->setRange(lo, hi);
+    s->setDecimals(decimals);
+    s->setValue(value);
+    s->setSuffix(suffix);
+    return s;
+}
+}  // namespace
+
+ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
+    auto* outer = new QVBoxLayout(this);
+    auto* scroll = new QScrollArea;
+    scroll->setWidgetResizable(true);
+    outer->addWidget(scroll);
+    auto* content = new QWidget;
+    scroll->setWidget(content);
+    auto* layout = new QVBoxLayout(content);
+
+    auto* object = new QGroupBox(tr("Object"));
+    auto* form = new QFormLayout(object);
+    shape_ = new QComboBox;
+    shape_->addItems({"rectangle", "cross", "c", "l", "polygon"});
+    width_ = spin(1, 1000, 48, " mm");
+    height_ = spin(1, 1000, 58, " mm");
+    arm_ = spin(1, 1000, 20, " mm");
+    opening_ = spin(1, 1000, 20, " mm");
+    x_ = spin(0, 5000, 150, " mm");
+    y_ = spin(0, 5000, 150, " mm");
+    rotation_ = spin(-360, 360, 0, " deg");
+    top_ = spin(0.1, 500, 10, " mm");
+    polygonLabel_ = new QLabel(tr("no polygon loaded"));
+    auto* loadButton = new QPushButton(tr("Load polygon..."));
+    connect(loadButton, &QPushButton::clicked, this, &ScenePanel::loadPolygon);
+    form->addRow(tr("Shape"), shape_);
+    form->addRow(tr("Width"), width_);
+    form->addRow(tr("Height"), height_);
+    form->addRow(tr("Arm width"), arm_);
+    form->addRow(tr("C opening"), opening_);
+    form->addRow(tr("Centre x"), x_);
+    form->addRow(tr("Centre y"), y_);
+    form->addRow(tr("Rotation"), rotation_);
+    form->addRow(tr("Top height"), top_);
+    form->addRow(polygonLabel_, loadButton);
+    layout->addWidget(object);
+
+    auto* effectsBox = new QGroupBox(tr("Effects (each runs only when ticked)"));
+    auto* effectsLayout = new QVBoxLayout(effectsBox);
+    for (const EffectDescription& d : effectCatalogue()) {
+        EffectWidgets w;
+        w.box = new QGroupBox(QString::fromStdString(d.name));
+        w.box->setObjectName(QString::fromStdString("effect_" + d.name));
+        w.box->setCheckable(true);
+        w.box->setChecked(false);
+        w.box->setToolTip(QString::fromStdString(d.models));
+        auto* f = new QFormLayout(w.box);
+        for (const EffectParameter& p : d.parameters) {
+            auto* s = spin(p.lo, p.hi, p.typical, "", 3);
+            s->setToolTip(QString::fromStdString(p.meaning));
+            f->addRow(QString::fromStdString(p.key), s);
+            w.parameters[p.key] = s;
+            connect(s, &QDoubleSpinBox::valueChanged, this, &ScenePanel::changed);
+        }
+        if (d.takesTaxelList) {
+            w.taxels = new QLineEdit("3");
+            w.taxels->setToolTip(tr("taxel indices, separated by commas"));
+            f->addRow("taxels", w.taxels);
+        }
+        connect(w.box, &QGroupBox::toggled, this, &ScenePanel::changed);
+        effectsLayout->addWidget(w.box);
+        effects_[d.name] = w;
+    }
+    layout->addWidget(effectsBox);
+    layout->addStretch();
+    for (auto* s : {width_, height_, arm_, opening_, x_, y_, rotation_, top_}) connect(s, &QDoubleSpinBox::valueChanged, this, &ScenePanel::changed);
+    connect(shape_, &QComboBox::currentTextChanged, this, &ScenePanel::changed);
+    // Only the sizes the chosen shape has are editable.
+    auto enableSizes = [this](const QString& shape) {
+        const bool library = shape != "polygon";
+        width_->setEnabled(library);
+        height_->setEnabled(library);
+        arm_->setEnabled(shape == "cross" || shape == "c" || shape == "l");
+        opening_->setEnabled(shape == "c");
+    };
+    connect(shape_, &QComboBox::currentTextChanged, this, enableSizes);
+    enableSizes(shape_->currentText());
+}
+
+void ScenePanel::showScene(const SceneSpec& scene) {
+    const QSignalBlocker block(this);
+    const ObjectSpec& o = scene.object;
+    shape_->setCurrentText(QString::fromStdString(o.shape));
+    width_->setValue(o.size.width);
+    height_->setValue(o.size.height);
+    arm_->setValue(o.size.arm);
+    opening_->setValue(o.size.opening);
+    x_->setValue(o.offset.x);
+    y_->setValue(o.offset.y);
+    rotation_->setValue(o.rotationDeg);
+    top_->setValue(o.height_mm);
+    polygon_ = o.polygon;
+    polygonLabel_->setText(polygon_.empty() ? tr("no polygon loaded") : tr("polygon of %1 vertices").arg(polygon_.size()));
+    for (auto& [name, w] : effects_) w.box->setChecked(false);
+    for (const EffectSpec& e : scene.effects) {
+        auto it = effects_.find(e.name);
+        if (it == effects_.end()) continue;
+        it->second.box->setChecked(true);
+        for (auto& [key, s] : it->second.parameters)
+            if (e.parameters.contains(key) && e.parameters[key].is_number()) s->setValue(e.parameters[key].get<double>());
+        if (it->second.taxels && e.parameters.contains("taxels")) {
+            QStringList list;
+            for (const auto& v : e.parameters["taxels"]) list << QString::number(v.get<int>());
+            it->second.taxels->setText(list.join(", "));
+        }
+    }
+}
+
+SceneSpec ScenePanel::sceneFromPanel(const SceneSpec& base) const {
+    Json j = sceneToJson(base);
+    Json o;
+    o["shape"] = shape_->currentText().toStdString();
+    if (o["shape"] == "polygon") {
+        Json poly = Json::array();
+        for (Vec2 v : polygon_) poly.push_back({v.x, v.y});
+        o["polygon_mm"] = poly;
+    } else {
+        o["width_mm"] = width_->value();
+        o["height_mm"] = height_->value();
+        if (o["shape"] != "rectangle") o["arm_mm"] = arm_->value();
+        if (o["shape"] == "c") o["opening_mm"] = opening_->value();
+    }
+    o["rotation_deg"] = rotation_->value();
+    o["offset_mm"] = {x_->value(), y_->value()};
+    o["top_height_mm"] = top_->value();
+    j["object"] = o;
+    Json effects = Json::array();
+    for (const EffectDescription& d : effectCatalogue()) {
+        const EffectWidgets& w = effects_.at(d.name);
+        if (!w.box->isChecked()) continue;
+        Json e{{"name", d.name}};
+        for (const auto& [key, s] : w.parameters) e[key] = s->value();
+        if (w.taxels) {
+            Json list = Json::array();
+            for (const QString& part : w.taxels->text().split(',', Qt::SkipEmptyParts)) {
+                bool ok = false;
+                const int k = part.trimmed().toInt(&ok);
+                if (!ok) throw InputError("scene panel", d.name + " taxels", "'" + part.trimmed().toStdString() + "' is not a taxel index");
+                list.push_back(k);
+            }
+            e["taxels"] = list;
+        }
+        effects.push_back(e);
+    }
+    j["effects"] = effects;
+    return parseScene(j, "scene panel", "", ".");
+}
+
+void ScenePanel::setEffectEnabled(const std::string& name, bool on) { effects_.at(name).box->setChecked(on); }
+
+bool ScenePanel::effectEnabled(const std::string& name) const { return effects_.at(name).box->isChecked(); }
+
+void ScenePanel::loadPolygon() {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Load a polygon"), QString(), tr("JSON (*.json)"));
+    if (path.isEmpty()) return;
+    try {
+        const Json j = readJsonFile(path.toStdString());
+        Json object = j.contains("object") ? j["object"] : j;
+        object["shape"] = "polygon";
+        const ObjectSpec o = parseObject(JsonFields(object, path.toStdString(), j.contains("object") ? "/object" : ""));
+        polygon_ = o.polygon;
+        shape_->setCurrentText("polygon");
+        polygonLabel_->setText(tr("polygon of %1 vertices").arg(polygon_.size()));
+        emit changed();
+    } catch (const InputError& e) {
+        emit failed(QString::fromStdString(e.what()));
+    }
+}
+
+}  // namespace activetouch

@@ -1,0 +1,51 @@
+#pragma once
+// The scene panel (DESIGN.md §5): the training object (library shape or polygon file), its pose,
+// and every effect of the simulated rig as a toggle with its parameters. A run uses exactly what
+// the panel shows.
+#include <QWidget>
+#include <map>
+
+#include "core/scene/Scene.h"
+
+class QComboBox;
+class QDoubleSpinBox;
+class QGroupBox;
+class QLineEdit;
+class QLabel;
+
+namespace activetouch {
+
+class ScenePanel : public QWidget {
+    Q_OBJECT
+public:
+    explicit ScenePanel(QWidget* parent = nullptr);
+
+    /// Shows `scene` (object and effects).
+    void showScene(const SceneSpec& scene);
+    /// The scene as shown: `base` with the panel's object and effects. Throws InputError naming
+    /// the panel's field if what is shown is not a valid scene.
+    SceneSpec sceneFromPanel(const SceneSpec& base) const;
+
+    /// Turns an effect on or off as a click on its toggle would.
+    void setEffectEnabled(const std::string& name, bool on);
+    bool effectEnabled(const std::string& name) const;
+
+signals:
+    void changed();
+    void failed(const QString& message);
+
+private:
+    void loadPolygon();
+    QComboBox* shape_;
+    QDoubleSpinBox *width_, *height_, *arm_, *opening_, *x_, *y_, *rotation_, *top_;
+    QLabel* polygonLabel_;
+    std::vector<Vec2> polygon_;
+    struct EffectWidgets {
+        QGroupBox* box;
+        std::map<std::string, QDoubleSpinBox*> parameters;
+        QLineEdit* taxels = nullptr;
+    };
+    std::map<std::string, EffectWidgets> effects_;
+};
+
+}  // namespace activetouch

@@ -1,0 +1,203 @@
+// The workbench window driven as a person drives it, offscreen: run the paper experiment and
+// watch the progress reach the end; cancel half-way and find every finished tap kept; toggle an
+// effect and see the next run use it; export every figure in every format; open bad files and
+// keep the session; drive the simulated devices from their panel.
+#include <QtTest>
+#include <QGroupBox>
+#include <QLabel>
+#include <QMessageBox>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QStandardPaths>
+#include <QTemporaryDir>
+#include <QToolButton>
+
+#include "app/gui/FollowingTab.h"
+#include "app/gui/LiveView.h"
+#include "app/gui/MainWindow.h"
+#include "app/gui/PlotPanel.h"
+#include "app/gui/ScenePanel.h"
+#include "qcustomplot.h"
+#include "support/Paths.h"
+
+using namespace activetouch;
+
+namespace {
+QString source(const QString& relative) { return QString::fromStdString(test::sourcePath(relative.toStdString())); }
+
+void click(QMainWindow& w, const char* actionName) {
+    QAction* action = w.findChild<QAction*>(actionName);
+    QVERIFY2(action, actionName);
+    for (QToolButton* b : w.findChildren<QToolButton*>())
+        if (b->defaultAction() == action) {
+            QTest::mouseClick(b, Qt::LeftButton);
+            return;
+        }
+    QFAIL("no button for the action");
+}
+
+int linesIn(const QString& path) {
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly)) return -1;
+    return f.readAll().count('\n');
+}
+
+void closeErrorDialogs(QWidget& w) {
+    for (QMessageBox* box : w.findChildren<QMessageBox*>("errorDialog")) box->close();
+}
+}  // namespace
+
+class TestMainWindow : public QObject {
+    Q_OBJECT
+    QTemporaryDir dir_;
+    std::unique_ptr<MainWindow> window_;
+
+private slots:
+    void initTestCase() {
+        QStandardPaths::setTestModeEnabled(true);  // settings go to a test location
+        QCoreApplication::setOrganizationName("ActiveTouchTest");
+        window_ = std::make_unique<MainWindow>();
+        window_->setOutputBase(dir_.filePath("runs"));
+        window_->resize(1600, 1000);
+        window_->show();
+        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+    }
+
+    void runThePaperExperimentByClicking() {
+        window_->setPace(Pace::Fastest);
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        click(*window_, "runAll");
+        QVERIFY(window_->running());
+        QVERIFY(ended.wait(120000));
+        QCOMPARE(ended.takeFirst().at(0).toBool(), true);
+        QTRY_VERIFY(!window_->running());
+        QProgressBar* bar = window_->progressBar();
+        QCOMPARE(bar->value(), bar->maximum());
+        QVERIFY(bar->format().startsWith("finished"));
+        const auto run = window_->lastRun();
+        QVERIFY(run);
+        QCOMPARE(int(run->trials.size()), 10);
+        QVERIFY(QFile::exists(window_->lastRunDirectory() + "/summary.json"));
+        // The tabs show the run: traces, error maps, paths, histograms, a replay.
+        for (PlotPanel* p : window_->plotPanels()) QVERIFY2(p->plot().plottableCount() > 0, qPrintable(p->name()));
+        window_->followingTab()->replay(3, 10);
+        QVERIFY(window_->followingTab()->replayText().contains("Rule '"));
+        QVERIFY(window_->liveView()->framesDrawn() > 0);
+    }
+
+    void everyFigureExportsInEveryFormat() {
+        for (PlotPanel* p : window_->plotPanels()) {
+            const QString base = dir_.filePath("export/" + p->name());
+            QDir().mkpath(dir_.filePath("export"));
+            const QStringList files = p->exportTo(base, {"png", "pdf", "svg"}, {1200, 800, 120});
+            QCOMPARE(files.size(), 3);
+            QFile png(base + ".png"), pdf(base + ".pdf"), svg(base + ".svg");
+            QVERIFY(png.open(QIODevice::ReadOnly) && pdf.open(QIODevice::ReadOnly) && svg.open(QIODevice::ReadOnly));
+            QVERIFY(png.read(8) == QByteArray("\x89PNG\r\n\x1a\n", 8));
+            QVERIFY(pdf.read(5) == "%PDF-");
+            QVERIFY(svg.readAll().contains("<svg"));
+            QImage image(base + ".png");
+            QCOMPARE(image.width(), 1200);
+            p->exportCsv(base + ".csv");
+            QVERIFY2(linesIn(base + ".csv") > 1, qPrintable(p->name()));
+        }
+        const QStringList all = window_->exportAllFigures(dir_.filePath("all"));
+        QVERIFY(all.size() >= 6);
+        for (const QString& f : all) QVERIFY(QFileInfo(f).size() > 0);
+    }
+
+    void cancelHalfWayKeepsTheFinishedTaps() {
+        window_->setPace(Pace::LiveFrames);  // one tap a second
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QVERIFY(window_->startRun(RunController::What::Everything));
+        const QString taps = window_->lastRunDirectory() + "/data/taps.csv";
+        QTRY_VERIFY_WITH_TIMEOUT(linesIn(taps) >= 1 + 3 * 50, 30000);
+        click(*window_, "cancel");
+        QVERIFY(ended.wait(10000));
+        QCOMPARE(ended.takeFirst().at(0).toBool(), false);
+        const auto run = window_->lastRun();
+        QVERIFY(run->cancelled);
+        QVERIFY(run->taps.size() >= 3);
+        QVERIFY(run->taps.size() < 360);
+        QCOMPARE(linesIn(taps), 1 + int(run->taps.size()) * 50);  // every finished tap, whole
+        QVERIFY(window_->progressBar()->format().startsWith("cancelled"));
+        QTRY_VERIFY(!window_->running());
+    }
+
+    void toggledEffectIsUsedByTheNextRun() {
+        window_->setPace(Pace::Fastest);
+        QGroupBox* crosstalk = window_->findChild<QGroupBox*>("effect_crosstalk");
+        QVERIFY(crosstalk);
+        QVERIFY(!crosstalk->isChecked());
+        crosstalk->setChecked(true);
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QVERIFY(window_->startRun(RunController::What::TrainingOnly));
+        QVERIFY(ended.wait(60000));
+        const auto& active = window_->lastRun()->activeEffects;
+        QVERIFY(std::find(active.begin(), active.end(), "crosstalk") != active.end());
+        QFile summary(window_->lastRunDirectory() + "/summary.json");
+        QVERIFY(summary.open(QIODevice::ReadOnly));
+        QVERIFY(summary.readAll().contains("\"crosstalk\""));
+        crosstalk->setChecked(false);
+        QTRY_VERIFY(!window_->running());
+        QVERIFY(window_->startRun(RunController::What::TrainingOnly));
+        QVERIFY(ended.wait(60000));
+        const auto& again = window_->lastRun()->activeEffects;
+        QVERIFY(std::find(again.begin(), again.end(), "crosstalk") == again.end());
+        QTRY_VERIFY(!window_->running());
+    }
+
+    void badFilesShowTheProblemAndKeepTheSession_data() {
+        QTest::addColumn<QString>("text");
+        QTest::addColumn<QString>("problem");
+        QTest::newRow("malformed experiment") << R"({"name": "x", "scene": )" << "not valid JSON";
+        QTest::newRow("unknown effect") << QString(R"({"name": "x", "scene": {"object": {"shape": "rectangle"}, "effects": [{"name": "wobble"}]}})")
+                                        << "unknown effect 'wobble'";
+        QTest::newRow("not an experiment") << R"({"object": {"shape": "rectangle"}})" << "not an experiment file";
+    }
+    void badFilesShowTheProblemAndKeepTheSession() {
+        QFETCH(QString, text);
+        QFETCH(QString, problem);
+        const QString path = dir_.filePath("bad.json");
+        QFile f(path);
+        QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        f.write(text.toUtf8());
+        f.close();
+        const QString before = window_->experimentPath();
+        const auto run = window_->lastRun();
+        QSignalSpy errors(window_.get(), &MainWindow::errorShown);
+        QVERIFY(!window_->openExperiment(path));
+        QCOMPARE(errors.count(), 1);
+        const QString message = errors.takeFirst().at(0).toString();
+        QVERIFY2(message.contains(path), qPrintable(message));
+        QVERIFY2(message.contains(problem), qPrintable(message));
+        QVERIFY(window_->findChild<QMessageBox*>("errorDialog"));
+        QCOMPARE(window_->experimentPath(), before);
+        QCOMPARE(window_->lastRun(), run);
+        closeErrorDialogs(*window_);
+    }
+
+    void devicePanelsDriveTheSimulatedRig() {
+        QPushButton* connectButton = window_->findChild<QPushButton*>("connectDevices");
+        QTest::mouseClick(connectButton, Qt::LeftButton);
+        QLabel* position = window_->findChild<QLabel*>("stagePosition");
+        QTRY_VERIFY(position->text().startsWith("x "));
+        QTest::mouseClick(window_->findChild<QPushButton*>("goTo"), Qt::LeftButton);
+        QTRY_COMPARE(position->text(), QString("x 150.000 mm, y 121.000 mm"));
+        QTest::mouseClick(window_->findChild<QPushButton*>("jog+x"), Qt::LeftButton);
+        QTRY_COMPARE(position->text(), QString("x 151.000 mm, y 121.000 mm"));
+        QLabel* tapper = window_->findChild<QLabel*>("tapperState");
+        QTest::mouseClick(window_->findChild<QPushButton*>("testTap"), Qt::LeftButton);
+        QTRY_VERIFY(tapper->text().contains("last tap"));
+        QTest::mouseClick(connectButton, Qt::LeftButton);
+        QTRY_COMPARE(tapper->text(), QString("disconnected"));
+    }
+
+    void cleanupTestCase() {
+        window_->close();
+        window_.reset();
+    }
+};
+
+QTEST_MAIN(TestMainWindow)
+#include "test_main_window.moc"
