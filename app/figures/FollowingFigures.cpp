@@ -87,9 +87,10 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode, 
                 hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
             }
         }
+        // Room above the paths for the legend.
         const double margin = 8.0;
         rect->axis(QCPAxis::atBottom)->setRange(lo.x - margin, hi.x + margin);
-        rect->axis(QCPAxis::atLeft)->setRange(lo.y - margin, hi.y + margin);
+        rect->axis(QCPAxis::atLeft)->setRange(lo.y - margin, hi.y + margin + 0.35 * (hi.y - lo.y));
     }
     return true;
 }
@@ -148,6 +149,10 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
         dr->axis(QCPAxis::atLeft)->setLabel("distance");
         QSharedPointer<QCPAxisTickerText> ticker(new QCPAxisTickerText);
         auto* group = new QCPBarsGroup(&plot);
+        auto* barLegend = new QCPLegend;
+        dr->insetLayout()->addElement(barLegend, Qt::AlignTop | Qt::AlignRight);
+        barLegend->setLayer("legend");
+        barLegend->setFont(QFont("Sans", 7));
         double top = 0.0;
         for (std::size_t k = 0; k < trials.size(); ++k) {
             auto* bars = new QCPBars(dr->axis(QCPAxis::atBottom), dr->axis(QCPAxis::atLeft));
@@ -155,6 +160,8 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
             bars->setPen(Qt::NoPen);
             bars->setWidth(0.35);
             bars->setBarsGroup(group);
+            bars->setName(QString("ACF%1").arg(trials[k]->trial));
+            barLegend->addItem(new QCPPlottableLegendItem(barLegend, bars));
             QVector<double> keys, values;
             int i = 0;
             for (const auto& t : r.templates) {
@@ -167,7 +174,7 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
         }
         dr->axis(QCPAxis::atBottom)->setTicker(ticker);
         dr->axis(QCPAxis::atBottom)->setRange(0.4, r.templates.size() + 0.6);
-        dr->axis(QCPAxis::atLeft)->setRange(0, top * 1.15);
+        dr->axis(QCPAxis::atLeft)->setRange(0, top * 1.4);
         ++row;
     }
     grid->addElement(0, 2 + maxTrials, scale);

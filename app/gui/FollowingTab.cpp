@@ -6,6 +6,7 @@
 #include <QLabel>
 #include <QSlider>
 #include <QSplitter>
+#include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
 
@@ -22,13 +23,17 @@ FollowingTab::FollowingTab(QWidget* parent)
       active_(new PlotPanel("figure8_active_paths")),
       passive_(new PlotPanel("figure7_passive_paths")),
       replay_(new PlotPanel("trial_replay")) {
+    // Two views: the paths, active beside passive, at full height; and the trials' statistics
+    // beside the step-by-step replay.
     auto* layout = new QVBoxLayout(this);
-    auto* split = new QSplitter(Qt::Vertical);
+    layout->setContentsMargins(0, 0, 0, 0);
+    auto* views = new QTabWidget;
     auto* paths = new QSplitter(Qt::Horizontal);
     paths->addWidget(active_);
     paths->addWidget(passive_);
-    paths->setStretchFactor(0, 2);
-    split->addWidget(paths);
+    paths->setStretchFactor(0, 3);
+    paths->setStretchFactor(1, 2);
+    views->addTab(paths, tr("Paths: active and passive"));
     auto* lower = new QSplitter(Qt::Horizontal);
     table_ = new QTableWidget(0, 9);
     table_->setHorizontalHeaderLabels({tr("shape"), tr("mode"), tr("trial"), tr("result"), tr("taps"), tr("robot time (s)"),
@@ -51,12 +56,10 @@ FollowingTab::FollowingTab(QWidget* parent)
     rl->addWidget(step_);
     rl->addWidget(replay_, 1);
     lower->addWidget(replayBox);
-    split->addWidget(lower);
-    split->setStretchFactor(0, 3);
-    split->setStretchFactor(1, 2);
     lower->setStretchFactor(0, 1);
     lower->setStretchFactor(1, 1);
-    layout->addWidget(split);
+    views->addTab(lower, tr("Trials and replay"));
+    layout->addWidget(views);
     connect(trial_, &QComboBox::currentIndexChanged, this, [this](int i) { replay(i, 0); });
     connect(slider_, &QSlider::valueChanged, this, [this](int tap) { replay(trial_->currentIndex(), tap); });
     connect(table_, &QTableWidget::cellClicked, this, [this](int row, int) { trial_->setCurrentIndex(row); });

@@ -9,6 +9,7 @@
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QGroupBox>
 #include <QHeaderView>
 #include <QLabel>
 #include <QMessageBox>
@@ -43,11 +44,11 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     tabs_ = new QTabWidget;
     live_ = new LiveView(feed_);
     tabs_->addTab(live_, tr("Live"));
-    auto* validation = new QSplitter(Qt::Vertical);
+    auto* validation = new QTabWidget;
     taps_ = new PlotPanel("figure5_taps");
     errors_ = new PlotPanel("figure6_errors");
-    validation->addWidget(taps_);
-    validation->addWidget(errors_);
+    validation->addTab(errors_, tr("Errors by orientation and position (Figure 6)"));
+    validation->addTab(taps_, tr("Taps across each edge (Figure 5)"));
     tabs_->addTab(validation, tr("Training && validation"));
     following_ = new FollowingTab;
     tabs_->addTab(following_, tr("Contour following"));
@@ -56,10 +57,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     confusion_ = new QTableWidget;
     confusion_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     recognition->addWidget(recognition_);
-    recognition->addWidget(confusion_);
+    auto* confusionBox = new QGroupBox(tr("Confusion over the recognised trials (rows: true shape; columns: predicted by the paper's rule)"));
+    (new QVBoxLayout(confusionBox))->addWidget(confusion_);
+    recognition->addWidget(confusionBox);
     recognition->setStretchFactor(0, 4);
-    validation->setStretchFactor(0, 1);
-    validation->setStretchFactor(1, 1);
     tabs_->addTab(recognition, tr("Recognition"));
     setCentralWidget(tabs_);
     for (PlotPanel* p : plotPanels()) {
@@ -77,7 +78,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     auto* devicesDock = new QDockWidget(tr("Devices"));
     devicesDock->setObjectName("devicesDock");
     devicesDock->setWidget(devicesPanel_);
-    addDockWidget(Qt::RightDockWidgetArea, devicesDock);
+    addDockWidget(Qt::LeftDockWidgetArea, devicesDock);
+    tabifyDockWidget(sceneDock, devicesDock);
+    sceneDock->raise();
     connect(devicesPanel_, &DevicesPanel::log, this, &MainWindow::log);
     log_ = new QPlainTextEdit;
     log_->setReadOnly(true);
