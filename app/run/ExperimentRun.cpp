@@ -1,6 +1,7 @@
 #include "app/run/ExperimentRun.h"
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -197,6 +198,11 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     result.validOffsets.trustedHigh = result.classes.offsetOf(hi) + half;
 
     runTrials(result, model, options, progress);
+    if (spec.sweeps.any() && !result.cancelled && result.failure.empty()) {
+        progress.step = "accuracy-versus-time sweeps";
+        if (options.progress) options.progress(progress);
+        result.sweeps = runSweeps(result, options);
+    }
     result.runWall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return result;
 }
@@ -332,6 +338,33 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
         std::fclose(f);
     }
 
+    const SweepResults& sw = r.sweeps;
+    if (!sw.perception.empty()) {
+        f = openTable(data / "sweep_perception.csv");
+        std::fprintf(f, "belief_threshold,mean_taps_per_decision,angle_error_deg,position_error_mm,correct_fraction\n");
+        for (const auto& row : sw.perception)
+            std::fprintf(f, "%.15g,%.6g,%.6g,%.6g,%.6g\n", row.threshold, row.meanTaps, row.angleError_deg, row.positionError_mm, row.correctFraction);
+        std::fclose(f);
+    }
+    if (!sw.following.empty()) {
+        f = openTable(data / "sweep_following.csv");
+        std::fprintf(f, "mode,follow_step_mm,reposition_step_mm,belief_threshold,trials,completed,completion_rate,mean_contour_distance_mm,"
+                        "mean_taps,mean_robot_time_s,robot_time_per_completion_s,paper_setting\n");
+        for (const auto& row : sw.following)
+            std::fprintf(f, "%s,%g,%g,%.15g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%d\n", modeName(row.mode), row.followStep_mm, row.repositionStep_mm,
+                         row.beliefThreshold, row.trials, row.completed, double(row.completed) / row.trials, row.meanContourDistance_mm,
+                         row.meanTaps, row.meanRobotTime_s, row.robotTimePerCompletion_s, row.paperSetting ? 1 : 0);
+        std::fclose(f);
+    }
+    if (!sw.compute.empty()) {
+        f = openTable(data / "sweep_compute.csv");
+        std::fprintf(f, "bins,samples_per_tap,angle_error_deg,position_error_mm,microseconds_per_decision,paper_setting\n");
+        for (const auto& row : sw.compute)
+            std::fprintf(f, "%d,%d,%.6g,%.6g,%.6g,%d\n", row.bins, row.samples, row.angleError_deg, row.positionError_mm,
+                         row.microsecondsPerDecision, row.paperSetting ? 1 : 0);
+        std::fclose(f);
+    }
+
     if (r.validation.confusion.empty()) return;
     f = openTable(data / "confusion.csv");
     std::fprintf(f, "true_class");
@@ -418,6 +451,25 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
         j["recognition"] = {{"accuracy", r.recognitionAccuracy}, {"accuracy_smoothed", r.recognitionAccuracySmoothed},
                             {"of_mode", modeName(r.spec.recognition.ofMode)}, {"bins", r.spec.recognition.bins},
                             {"smoothing_sigma_bins", r.spec.recognition.smoothingSigmaBins}, {"trials", trials}, {"confusion", confusion}};
+    }
+    if (!r.sweeps.empty()) {
+        Json perception = Json::array(), following = Json::array(), compute = Json::array();
+        for (const auto& row : r.sweeps.perception)
+            perception.push_back({{"belief_threshold", row.threshold}, {"mean_taps_per_decision", row.meanTaps},
+                                  {"angle_error_deg", row.angleError_deg}, {"position_error_mm", row.positionError_mm},
+                                  {"correct_fraction", row.correctFraction}});
+        for (const auto& row : r.sweeps.following)
+            following.push_back({{"mode", modeName(row.mode)}, {"follow_step_mm", row.followStep_mm}, {"reposition_step_mm", row.repositionStep_mm},
+                                 {"belief_threshold", row.beliefThreshold}, {"trials", row.trials}, {"completed", row.completed},
+                                 {"mean_contour_distance_mm", row.meanContourDistance_mm}, {"mean_taps", row.meanTaps},
+                                 {"mean_robot_time_s", row.meanRobotTime_s},
+                                 {"robot_time_per_completion_s", std::isfinite(row.robotTimePerCompletion_s) ? Json(row.robotTimePerCompletion_s) : Json()},
+                                 {"paper_setting", row.paperSetting}});
+        for (const auto& row : r.sweeps.compute)
+            compute.push_back({{"bins", row.bins}, {"samples_per_tap", row.samples}, {"angle_error_deg", row.angleError_deg},
+                               {"position_error_mm", row.positionError_mm}, {"microseconds_per_decision", row.microsecondsPerDecision},
+                               {"paper_setting", row.paperSetting}});
+        j["sweeps"] = {{"perception", perception}, {"following", following}, {"compute", compute}};
     }
     j["timing"] = {{"wall_s", wall_s}, {"run_wall_s", r.runWall_s}, {"figures_wall_s", figures_s},
                    {"taps_simulated", r.tapsSimulated}, {"robot_time_s", r.robotTime_s}};

@@ -11,6 +11,7 @@
 
 #include "core/classify/HistogramClassifier.h"
 #include "core/control/ContourFollower.h"
+#include "app/run/Sweeps.h"
 #include "core/recognition/PathHistogram.h"
 #include "core/experiment/Experiment.h"
 #include "core/validation/OfflineValidation.h"
@@ -46,6 +47,7 @@ struct RunResult {
     std::vector<TrialRun> trials;
     std::vector<ShapeTemplate> templates;
     double recognitionAccuracy = 0.0, recognitionAccuracySmoothed = 0.0;
+    SweepResults sweeps;
     std::string failure;            ///< a device error that stopped the run, if any
     bool cancelled = false;
     double robotTime_s = 0.0;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/control/ContactDetection.h"
+#include "core/classify/SequentialPerception.h"
 #include "core/control/MotorCommand.h"
 
 namespace activetouch {
@@ -100,7 +101,10 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
     TrialResult result;
     result.mode = setup.mode;
     const double perimeter = outline.perimeter();
-    const int tapCap = std::max(1, static_cast<int>(std::ceil(s.tapCapPerimeters * perimeter / s.followStep_mm)));
+    const bool sequential = s.beliefThreshold > 0.0;
+    const int tapsPerDecision = sequential ? s.maxTapsPerDecision : 1;
+    const int tapCap = std::max(1, static_cast<int>(std::ceil(s.tapCapPerimeters * perimeter / s.followStep_mm)) * tapsPerDecision);
+    SequentialBelief belief(classes);
     const double startTime = rig.clock.now_s();
 
     ShortTermMemory memory;
@@ -119,8 +123,21 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
             t.record = rig.tapper.tap();
             t.record.pose = pose;
             t.contact = contactMade(t.record, setup.noiseFloor);
-            t.percept = perceive(classifier, classes, t.record.tap);
-            t.decision = decide(t.percept, memory, setup.mode, s, setup.valid);
+            bool decisionMade = true;
+            if (sequential) {
+                belief.update(classifier, t.record.tap);
+                t.percept = perceptOf(belief.best(), belief.bestPosterior(), classes);
+                if (!belief.decided(s.beliefThreshold) && belief.taps() < s.maxTapsPerDecision) {
+                    // Gather more evidence here; optionally reposition toward the valid range.
+                    decisionMade = false;
+                    t.decision = {RuleId::Sensing, {}, {}};
+                    if (s.repositionWhileSensing && setup.mode == FollowingMode::Active && orientationTrusted(t.percept, setup.valid))
+                        t.decision.reposition = decide(t.percept, memory, setup.mode, s, setup.valid).reposition;
+                }
+            } else {
+                t.percept = perceive(classifier, classes, t.record.tap);
+            }
+            if (decisionMade) t.decision = decide(t.percept, memory, setup.mode, s, setup.valid);
 
             // Judge the trial at this tap (evaluation only: the loop never sees the outline).
             const auto nearest = outline.nearestOutlinePoint(pose);
@@ -133,7 +150,7 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
             t.contourDistance_mm = outline.contains(pose) ? nearest.distance : -nearest.distance;
 
             const bool passive = setup.mode == FollowingMode::Passive;
-            memory.update(t.percept, passive ? t.percept.region == Region::Edge : orientationTrusted(t.percept, setup.valid));
+            if (decisionMade) memory.update(t.percept, passive ? t.percept.region == Region::Edge : orientationTrusted(t.percept, setup.valid));
             result.taps.push_back(t);
             const bool keepGoing = !onTap || onTap(result.taps.back());
 
@@ -142,7 +159,11 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
             if (memory.planeOrAirRun >= s.lostPlaneOrAirTaps) { result.end = TrialEnd::LostPlaneOrAir; break; }
             if (progress >= perimeter && distance(pose, setup.start) <= s.completionRadius_mm) { result.end = TrialEnd::Completed; break; }
             if (!keepGoing) { result.end = TrialEnd::Cancelled; break; }
-            if (n + 1 < tapCap) pose = sendMotorCommand(rig.stage, pose, t.decision);
+            if (sequential) {
+                if (decisionMade) belief = SequentialBelief(classes);
+                else belief.shift(t.decision.move());
+            }
+            if (n + 1 < tapCap && t.decision.move() != Vec2{}) pose = sendMotorCommand(rig.stage, pose, t.decision);
         }
     } catch (const RigError& e) {
         result.end = TrialEnd::DeviceError;

@@ -22,6 +22,8 @@ const std::vector<Rule>& decisionRules() {
          "edge whose orientation is unreliable at its position, air side of the valid range", "as air"},
         {RuleId::PassiveFollow, "passive:follow", FollowingMode::Passive, "edge", "follow_step along the perceived edge"},
         {RuleId::PassiveKeepHeading, "passive:heading", FollowingMode::Passive, "plane or air", "follow_step along the last heading"},
+        {RuleId::Sensing, "sensing", FollowingMode::Active, "belief below the threshold and taps left for this decision",
+         "tap again; reposition_step toward the valid range first if repositioning while sensing"},
     };
     return rules;
 }

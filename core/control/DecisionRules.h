@@ -18,6 +18,8 @@
 //   edge at a position where the validation found its orientation unreliable (mean angle error
 //   above the trust limit), plane side   -> as plane (the orientation is not used)
 //   the same, air side                   -> as air
+// Sequential perception (belief threshold set): below the threshold -> tap again, moving only to
+//   reposition (if enabled) toward the valid range
 // Passive mode (repositioning disabled; the perceived position is never used)
 //   edge                               -> follow the perceived edge
 //   plane or air                       -> keep the last heading
@@ -39,7 +41,8 @@ enum class RuleId {
     UntrustedPlaneSide,
     UntrustedAirSide,
     PassiveFollow,
-    PassiveKeepHeading
+    PassiveKeepHeading,
+    Sensing
 };
 
 struct Rule {

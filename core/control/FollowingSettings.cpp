@@ -15,6 +15,9 @@ std::string FollowingSettings::problem() const {
         return "termination distances must be positive";
     if (lostPlaneOrAirTaps < 1) return "lost_plane_or_air_taps must be at least 1";
     if (edgeConfirmationTaps < 1) return "edge_confirmation_taps must be at least 1";
+    if (!(beliefThreshold == 0.0 || (beliefThreshold > 0.0 && beliefThreshold < 1.0)))
+        return "belief_threshold must be 0 (single-tap decisions) or between 0 and 1";
+    if (maxTapsPerDecision < 1) return "max_taps_per_decision must be at least 1";
     if (!positive(tapCapPerimeters)) return "tap_cap_perimeters must be positive";
     return {};
 }

@@ -21,11 +21,18 @@ struct FollowingSettings {
     /// Active mode: same-orientation edge percepts in a row before memory takes the edge as the
     /// last edge (1 = at once; passive mode always uses 1, as the paper's heading rule does).
     int edgeConfirmationTaps = 2;
+    /// Sequential perception: 0 decides from each tap alone (the paper); a value in (0, 1) taps
+    /// again at the same place, accumulating evidence, until the belief's largest posterior
+    /// reaches it or maxTapsPerDecision taps were taken.
+    double beliefThreshold = 0.0;
+    int maxTapsPerDecision = 5;
+    /// While gathering evidence, reposition toward the valid range between taps (active mode).
+    bool repositionWhileSensing = false;
     // Termination.
     double completionRadius_mm = 4.0;  ///< back within this of the start after a full perimeter
     double lostOutside_mm = 10.0;      ///< lost when this far outside the contour
     double lostInside_mm = 6.0;        ///< lost when this far inside the object
-    int lostPlaneOrAirTaps = 6;        ///< lost after this many plane/air percepts in a row
+    int lostPlaneOrAirTaps = 6;        ///< lost after this many plane/air decisions in a row
     double tapCapPerimeters = 3.0;     ///< tap cap = this x perimeter / follow step
     double coverageRadius_mm = 3.0;    ///< a perimeter point is covered by a tap this close
 

@@ -1,6 +1,7 @@
 #include "core/experiment/Experiment.h"
 
 #include <filesystem>
+#include <cmath>
 #include <stdexcept>
 
 #include "core/control/ContourFollower.h"
@@ -22,7 +23,8 @@ FollowingMode parseMode(const JsonFields& f, const std::string& key, const std::
 }
 
 void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
-    f.rejectUnknownKeys({"follow_step_mm", "reposition_step_mm", "plane_step_mm", "plane_retreat_step_mm", "air_inward_step_mm", "air_retreat_step_mm", "orientation_trust_max_error_deg", "edge_confirmation_taps",
+    f.rejectUnknownKeys({"follow_step_mm", "reposition_step_mm", "plane_step_mm", "plane_retreat_step_mm", "air_inward_step_mm", "air_retreat_step_mm", "orientation_trust_max_error_deg", "edge_confirmation_taps", "belief_threshold", "max_taps_per_decision",
+                         "reposition_while_sensing",
                          "completion_radius_mm", "lost_outside_mm", "lost_inside_mm", "lost_plane_or_air_taps", "tap_cap_perimeters",
                          "coverage_radius_mm", "trials"});
     FollowingSettings& s = e.following;
@@ -34,6 +36,9 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
     s.airRetreatStep_mm = f.number("air_retreat_step_mm", 0.0, 50.0, s.airRetreatStep_mm);
     s.orientationTrustMaxError_deg = f.number("orientation_trust_max_error_deg", 0.0, 180.0, s.orientationTrustMaxError_deg);
     s.edgeConfirmationTaps = f.integer("edge_confirmation_taps", 1, 100, s.edgeConfirmationTaps);
+    s.beliefThreshold = f.number("belief_threshold", 0.0, 0.99999999, s.beliefThreshold);
+    s.maxTapsPerDecision = f.integer("max_taps_per_decision", 1, 1000, s.maxTapsPerDecision);
+    s.repositionWhileSensing = f.flag("reposition_while_sensing", s.repositionWhileSensing);
     s.completionRadius_mm = f.number("completion_radius_mm", 0.1, 100.0, s.completionRadius_mm);
     s.lostOutside_mm = f.number("lost_outside_mm", 0.1, 1000.0, s.lostOutside_mm);
     s.lostInside_mm = f.number("lost_inside_mm", 0.1, 1000.0, s.lostInside_mm);
@@ -70,12 +75,83 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
     }
 }
 
+/// A non-empty list of numbers in (lo, hi) (or [lo, hi] when `closed`), refused otherwise.
+std::vector<double> sweepRange(const JsonFields& f, const std::string& key, double lo, double hi, bool closed, const std::string& what) {
+    if (!f.raw(key).is_array() || f.raw(key).empty())
+        f.fail(key, "'" + key + "' must be a non-empty list of " + what + "; an empty sweep measures nothing");
+    std::vector<double> v;
+    for (std::size_t i = 0; i < f.raw(key).size(); ++i) {
+        const Json& x = f.raw(key)[i];
+        const bool number = x.is_number() && std::isfinite(x.get<double>());
+        const double d = number ? x.get<double>() : 0.0;
+        const bool inside = closed ? (d >= lo && d <= hi) : (d > lo && d < hi);
+        if (!number || !inside)
+            throw InputError(f.source(), f.placeOf(key) + "/" + std::to_string(i),
+                             describeJson(x) + " is not " + what + " (" + (closed ? "from " : "strictly between ") + std::to_string(lo) +
+                                 (closed ? " to " : " and ") + std::to_string(hi) + ")");
+        v.push_back(d);
+    }
+    return v;
+}
+
+void parseSweeps(const JsonFields& f, ExperimentSpec& e) {
+    f.rejectUnknownKeys({"perception", "following", "compute"});
+    SweepSpec& s = e.sweeps;
+    if (f.has("perception")) {
+        const JsonFields p = f.object("perception");
+        p.rejectUnknownKeys({"belief_thresholds", "taps_per_class", "max_taps_per_decision"});
+        if (!p.has("belief_thresholds")) p.fail("belief_thresholds", "missing 'belief_thresholds': the thresholds to sweep, each in (0, 1)");
+        s.beliefThresholds = sweepRange(p, "belief_thresholds", 0.0, 1.0, false, "a belief threshold");
+        s.tapsPerClass = p.integer("taps_per_class", 1, 100, s.tapsPerClass);
+        s.maxTapsPerDecision = p.integer("max_taps_per_decision", 1, 100, s.maxTapsPerDecision);
+    }
+    if (f.has("following")) {
+        const JsonFields p = f.object("following");
+        p.rejectUnknownKeys({"follow_steps_mm", "reposition_steps_mm", "belief_thresholds", "modes", "repeats"});
+        for (const char* key : {"follow_steps_mm", "reposition_steps_mm"})
+            if (!p.has(key)) p.fail(key, std::string("missing '") + key + "': the step lengths to sweep, in mm");
+        s.followSteps_mm = sweepRange(p, "follow_steps_mm", 0.0, 50.0, false, "a positive step length");
+        s.repositionSteps_mm = sweepRange(p, "reposition_steps_mm", 0.0, 50.0, true, "a step length, 0 or more");
+        s.followingBeliefThresholds = p.has("belief_thresholds") ? sweepRange(p, "belief_thresholds", 0.0, 1.0, true, "0 (single tap) or a threshold below 1")
+                                                                 : std::vector<double>{0.0};
+        for (double t : s.followingBeliefThresholds)
+            if (t >= 1.0) p.fail("belief_thresholds", "a belief threshold must be below 1");
+        s.modes.clear();
+        if (p.has("modes")) {
+            if (!p.raw("modes").is_array() || p.raw("modes").empty()) p.fail("modes", "'modes' must list active and/or passive");
+            for (const auto& m : p.raw("modes")) {
+                if (m == "active") s.modes.push_back(FollowingMode::Active);
+                else if (m == "passive") s.modes.push_back(FollowingMode::Passive);
+                else p.fail("modes", "mode " + describeJson(m) + " is neither active nor passive");
+            }
+        } else {
+            s.modes = {FollowingMode::Active, FollowingMode::Passive};
+        }
+        s.followingRepeats = p.integer("repeats", 1, 100, s.followingRepeats);
+        if (e.trials.empty()) p.fail("follow_steps_mm", "a following sweep needs trials (following.trials) to know which objects to follow");
+    }
+    if (f.has("compute")) {
+        const JsonFields p = f.object("compute");
+        p.rejectUnknownKeys({"bins", "samples_per_tap"});
+        for (const char* key : {"bins", "samples_per_tap"})
+            if (!p.has(key)) p.fail(key, std::string("missing '") + key + "'");
+        for (double b : sweepRange(p, "bins", 1.0, 100000.0, true, "a whole number of bins")) {
+            if (b != std::floor(b)) p.fail("bins", "bins must be whole numbers");
+            s.bins.push_back(static_cast<int>(b));
+        }
+        for (double t : sweepRange(p, "samples_per_tap", 1.0, 100000.0, true, "a whole number of samples")) {
+            if (t != std::floor(t) || t > e.scene.tap.samples) p.fail("samples_per_tap", "samples per tap must be whole numbers up to the tap's " + std::to_string(e.scene.tap.samples));
+            s.samplesPerTap.push_back(static_cast<int>(t));
+        }
+    }
+}
+
 }  // namespace
 
 ExperimentSpec parseExperiment(const Json& json, const std::string& source, const std::string& baseDirectory) {
     JsonFields f(json, source, "");
     f.rejectUnknownKeys({"name", "description", "scene", "seed", "classes", "classifier", "training", "validation", "following",
-                         "recognition"});
+                         "recognition", "sweeps"});
     ExperimentSpec e;
     e.source = source;
     e.name = f.text("name");
@@ -138,6 +214,7 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source, cons
         for (const auto& t : e.trials) any = any || t.mode == e.recognition.ofMode;
         if (!any) r.fail("of_mode", std::string("no ") + modeName(e.recognition.ofMode) + " trials to recognise; add trials or change of_mode");
     }
+    if (f.has("sweeps")) parseSweeps(f.object("sweeps"), e);
     // The training object must offer an edge for every orientation.
     try {
         edgeSites(e.scene.object.outline(), e.classes);

@@ -29,6 +29,22 @@ struct RecognitionSpec {
     FollowingMode ofMode = FollowingMode::Active;
 };
 
+/// Accuracy-versus-time sweeps (DESIGN.md §6); each part runs only if given.
+struct SweepSpec {
+    // (a) sequential perception: error vs mean taps per decision over belief thresholds
+    std::vector<double> beliefThresholds;
+    int tapsPerClass = 8;        ///< repeated taps per class collected for the sweep
+    int maxTapsPerDecision = 8;
+    // (b) contour following vs follow step, repositioning step and belief threshold
+    std::vector<double> followSteps_mm, repositionSteps_mm, followingBeliefThresholds;
+    std::vector<FollowingMode> modes;
+    int followingRepeats = 1;    ///< trials per object per setting
+    // (c) compute: classifier error vs bins and samples per tap, against microseconds per decision
+    std::vector<int> bins, samplesPerTap;
+
+    bool any() const { return !beliefThresholds.empty() || !followSteps_mm.empty() || !bins.empty(); }
+};
+
 struct ExperimentSpec {
     std::string source;
     std::string name;
@@ -41,6 +57,7 @@ struct ExperimentSpec {
     FollowingSettings following;
     std::vector<TrialSpec> trials;
     RecognitionSpec recognition;
+    SweepSpec sweeps;
 
     int plannedTaps() const;  ///< training taps; trials add theirs as they go
 };

@@ -12,16 +12,20 @@ std::string Percept::shapeClass() const {
     return ClassSet::orientationName(orientationDeg) + " edge";
 }
 
-Percept perceive(const HistogramClassifier& classifier, const ClassSet& classes, const Tap& tap) {
-    const auto d = classifier.decide(tap);
+Percept perceptOf(int cls, double posterior, const ClassSet& classes) {
     Percept p;
-    p.cls = d.cls;
-    p.posterior = d.posterior;
-    p.region = classes.regionOf(d.cls);
-    p.orientationDeg = classes.orientationDegOf(d.cls);
-    p.position = classes.positionOf(d.cls);
+    p.cls = cls;
+    p.posterior = posterior;
+    p.region = classes.regionOf(cls);
+    p.orientationDeg = classes.orientationDegOf(cls);
+    p.position = classes.positionOf(cls);
     p.offset_mm = classes.offsetOf(p.position);
     return p;
+}
+
+Percept perceive(const HistogramClassifier& classifier, const ClassSet& classes, const Tap& tap) {
+    const auto d = classifier.decide(tap);
+    return perceptOf(d.cls, d.posterior, classes);
 }
 
 ValidRange deriveValidRange(const std::vector<double>& angle, const std::vector<double>& position, int width) {

@@ -24,6 +24,8 @@ struct Percept {
 };
 
 Percept perceive(const HistogramClassifier& classifier, const ClassSet& classes, const Tap& tap);
+/// The percept that class `cls` stands for, with its posterior.
+Percept perceptOf(int cls, double posterior, const ClassSet& classes);
 
 struct ClassError {
     int orientationIndex = 0;

@@ -115,6 +115,18 @@ private slots:
         QTest::newRow("scene file missing") << R"({"name": "x", "scene": "nope.json"})" << "does not exist";
         QTest::newRow("orientation with no edge") << head + R"("classes": {"orientations_deg": [45]}})" << "no edge facing";
         QTest::newRow("no name") << R"({"scene": "good.json"})" << "missing required text 'name'";
+        const QString trials = R"("following": {"trials": [{"object": {"shape": "rectangle", "offset_mm": [150, 150]}}]}, )";
+        QTest::newRow("sweep: empty thresholds") << head + R"("sweeps": {"perception": {"belief_thresholds": []}}})" << "non-empty list";
+        QTest::newRow("sweep: threshold of 1") << head + R"("sweeps": {"perception": {"belief_thresholds": [0.9, 1.0]}}})" << "/sweeps/perception/belief_thresholds/1";
+        QTest::newRow("sweep: threshold of 0") << head + R"("sweeps": {"perception": {"belief_thresholds": [0]}}})" << "is not a belief threshold";
+        QTest::newRow("sweep: negative step") << head + trials + R"("sweeps": {"following": {"follow_steps_mm": [2, -1], "reposition_steps_mm": [1]}}})"
+                                              << "/sweeps/following/follow_steps_mm/1";
+        QTest::newRow("sweep: negative reposition") << head + trials + R"("sweeps": {"following": {"follow_steps_mm": [2], "reposition_steps_mm": [-0.5]}}})"
+                                                    << "/sweeps/following/reposition_steps_mm/0";
+        QTest::newRow("sweep: following without trials") << head + R"("sweeps": {"following": {"follow_steps_mm": [2], "reposition_steps_mm": [1]}}})"
+                                                         << "needs trials";
+        QTest::newRow("sweep: empty bins") << head + R"("sweeps": {"compute": {"bins": [], "samples_per_tap": [50]}}})" << "non-empty list";
+        QTest::newRow("sweep: more samples than a tap has") << head + R"("sweeps": {"compute": {"bins": [100], "samples_per_tap": [60]}}})" << "up to the tap's 50";
     }
     void badExperimentSettings() {
         QFETCH(QString, experiment);
