@@ -8,6 +8,7 @@
 
 #include "app/figures/FigureExport.h"
 #include "app/figures/FigureLayout.h"
+#include "app/figures/SweepFigures.h"
 #include "app/figures/ValidationFigures.h"
 #include "app/run/ExperimentRun.h"
 #include "qcustomplot.h"
@@ -197,6 +198,9 @@ QStringList writeRunFigures(const RunResult& result, const QString& outDir) {
     if (buildPathFigure(plot, result, FollowingMode::Active, "Figure 8 - active contour following (ACF)"))
         written << exportFigure(plot, dir + "/figure8_active_paths", formats, {1600, 1500, 150});
     if (buildRecognitionFigure(plot, result)) written << exportFigure(plot, dir + "/figure9_recognition", formats, {1900, 1700, 150});
+    if (buildPerceptionSweepFigure(plot, result)) written << exportFigure(plot, dir + "/sweep_a_sequential_perception", formats, {1600, 800, 150});
+    if (buildFollowingSweepFigure(plot, result)) written << exportFigure(plot, dir + "/sweep_b_following", formats, {2100, 800, 150});
+    if (buildComputeSweepFigure(plot, result)) written << exportFigure(plot, dir + "/sweep_c_compute", formats, {1600, 800, 150});
     return written;
 }
 

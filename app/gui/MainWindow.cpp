@@ -24,6 +24,7 @@
 #include <QVBoxLayout>
 
 #include "app/figures/FollowingFigures.h"
+#include "app/figures/SweepFigures.h"
 #include "app/figures/ValidationFigures.h"
 #include "app/gui/DevicesPanel.h"
 #include "app/gui/FollowingTab.h"
@@ -62,6 +63,15 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     recognition->addWidget(confusionBox);
     recognition->setStretchFactor(0, 4);
     tabs_->addTab(recognition, tr("Recognition"));
+    auto* sweeps = new QTabWidget;
+    sweepPerception_ = new PlotPanel("sweep_a_sequential_perception");
+    sweepFollowing_ = new PlotPanel("sweep_b_following");
+    sweepCompute_ = new PlotPanel("sweep_c_compute");
+    sweeps->addTab(sweepPerception_, tr("(a) taps per decision"));
+    sweeps->addTab(sweepFollowing_, tr("(b) following steps"));
+    sweeps->addTab(sweepCompute_, tr("(c) compute"));
+    sweeps->setToolTip(tr("Run an experiment with sweeps, such as experiments/accuracy_vs_time.json"));
+    tabs_->addTab(sweeps, tr("Accuracy vs time"));
     setCentralWidget(tabs_);
     for (PlotPanel* p : plotPanels()) {
         connect(p, &PlotPanel::exported, this, &MainWindow::log);
@@ -151,7 +161,7 @@ MainWindow::~MainWindow() { runs_.stopAndWait(2000); }
 
 QList<PlotPanel*> MainWindow::plotPanels() const {
     return {live_->barsPanel(), live_->tracesPanel(), taps_, errors_, following_->activePanel(), following_->passivePanel(),
-            following_->replayPanel(), recognition_};
+            following_->replayPanel(), recognition_, sweepPerception_, sweepFollowing_, sweepCompute_};
 }
 
 void MainWindow::setPace(Pace pace) { pace_->setCurrentIndex(static_cast<int>(pace)); }
@@ -259,6 +269,12 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
     if (buildRecognitionFigure(recognition_->plot(), r)) {
         recognition_->plot().replot();
         applyEqualAspect(recognition_->plot());
+    }
+    if (!r.sweeps.empty()) {
+        buildPerceptionSweepFigure(sweepPerception_->plot(), r);
+        buildFollowingSweepFigure(sweepFollowing_->plot(), r);
+        buildComputeSweepFigure(sweepCompute_->plot(), r);
+        for (auto* p : {sweepPerception_, sweepFollowing_, sweepCompute_}) p->plot().replot();
     }
     // Confusion over recognised trials: true shape x predicted (paper's rule).
     std::vector<std::string> shapes;

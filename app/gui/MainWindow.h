@@ -83,7 +83,7 @@ private:
 
     QTabWidget* tabs_;
     LiveView* live_;
-    PlotPanel *taps_, *errors_, *recognition_;
+    PlotPanel *taps_, *errors_, *recognition_, *sweepPerception_, *sweepFollowing_, *sweepCompute_;
     FollowingTab* following_;
     QTableWidget* confusion_;
     ScenePanel* scene_;

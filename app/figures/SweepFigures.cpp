@@ -1,0 +1,203 @@
+#include "app/figures/SweepFigures.h"
+
+#include <cmath>
+#include <map>
+
+#include "app/figures/FigureLayout.h"
+#include "app/run/ExperimentRun.h"
+#include "qcustomplot.h"
+
+namespace activetouch {
+namespace {
+
+QColor seriesColour(int i) {
+    static const QColor palette[] = {QColor(31, 119, 180), QColor(255, 127, 14), QColor(44, 160, 44), QColor(214, 39, 40),
+                                     QColor(148, 103, 189), QColor(140, 86, 75), QColor(227, 119, 194), QColor(127, 127, 127)};
+    return palette[i % 8];
+}
+
+QCPAxisRect* panel(QCPLayoutGrid* grid, int column, const QString& title, const QString& x, const QString& y) {
+    auto* rect = new QCPAxisRect(grid->parentPlot());
+    grid->addElement(0, column, rect);
+    setPanelTitle(rect, title);
+    rect->axis(QCPAxis::atBottom)->setLabel(x);
+    rect->axis(QCPAxis::atLeft)->setLabel(y);
+    return rect;
+}
+
+QCPLegend* legendIn(QCPAxisRect* rect) {
+    auto* legend = new QCPLegend;
+    rect->insetLayout()->addElement(legend, Qt::AlignTop | Qt::AlignRight);
+    legend->setLayer("legend");
+    legend->setFont(QFont("Sans", 8));
+    legend->setBrush(QColor(255, 255, 255, 220));
+    return legend;
+}
+
+QCPGraph* series(QCPAxisRect* rect, QCPLegend* legend, const QString& name, const QVector<double>& x, const QVector<double>& y, QColor colour,
+                 bool lines = true) {
+    auto* g = rect->parentPlot()->addGraph(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+    g->setData(x, y);
+    g->setName(name);
+    g->setPen(lines ? QPen(colour, 1.8) : QPen(Qt::NoPen));
+    g->setLineStyle(lines ? QCPGraph::lsLine : QCPGraph::lsNone);
+    g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, colour, colour, 6));
+    if (legend) legend->addItem(new QCPPlottableLegendItem(legend, g));
+    return g;
+}
+
+void markPaper(QCPAxisRect* rect, QCPLegend* legend, double x, double y, const QString& what) {
+    auto* g = series(rect, legend, what, {x}, {y}, Qt::black, false);
+    g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssStar, QPen(Qt::black, 2), Qt::NoBrush, 14));
+}
+
+void fit(QCPAxisRect* rect) {
+    bool found = false;
+    QCPRange x, y;
+    for (QCPGraph* g : rect->graphs()) {
+        bool ok = false;
+        const QCPRange gx = g->getKeyRange(ok);
+        if (!ok) continue;
+        const QCPRange gy = g->getValueRange(ok);
+        x = found ? QCPRange(std::min(x.lower, gx.lower), std::max(x.upper, gx.upper)) : gx;
+        y = found ? QCPRange(std::min(y.lower, gy.lower), std::max(y.upper, gy.upper)) : gy;
+        found = true;
+    }
+    if (!found) return;
+    const double dx = std::max(1e-6, x.size()) * 0.08, dy = std::max(1e-6, y.size()) * 0.1;
+    rect->axis(QCPAxis::atBottom)->setRange(x.lower - dx, x.upper + dx);
+    rect->axis(QCPAxis::atLeft)->setRange(std::max(0.0, y.lower - dy), y.upper + 3 * dy);
+}
+
+}  // namespace
+
+bool buildPerceptionSweepFigure(QCustomPlot& plot, const RunResult& r) {
+    const auto& rows = r.sweeps.perception;
+    startFigure(plot, "Accuracy costs time (a): sequential perception, error against taps per decision");
+    if (rows.empty()) return false;
+    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
+    QVector<double> taps, angle, position;
+    for (const auto& row : rows) {
+        taps << row.meanTaps;
+        angle << row.angleError_deg;
+        position << row.positionError_mm;
+    }
+    auto* a = panel(grid, 0, "angle error", "mean taps per decision", "angle error (deg)");
+    auto* p = panel(grid, 1, "position error", "mean taps per decision", "position error (mm)");
+    auto* la = legendIn(a);
+    auto* lp = legendIn(p);
+    series(a, la, "belief thresholds", taps, angle, seriesColour(0));
+    series(p, lp, "belief thresholds", taps, position, seriesColour(0));
+    markPaper(a, la, 1.0, r.validation.angleError_deg, "paper: single tap (validation)");
+    markPaper(p, lp, 1.0, r.validation.positionError_mm, "paper: single tap (validation)");
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        for (auto* rect : {a, p}) {
+            auto* label = new QCPItemText(&plot);
+            label->setClipAxisRect(rect);
+            label->position->setAxes(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+            label->position->setCoords(taps[int(i)], rect == a ? angle[int(i)] : position[int(i)]);
+            label->setPositionAlignment(Qt::AlignBottom | Qt::AlignLeft);
+            label->setFont(QFont("Sans", 7));
+            label->setText(QString::number(rows[i].threshold, 'g', 12));
+        }
+    }
+    fit(a);
+    fit(p);
+    return true;
+}
+
+bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& r) {
+    const auto& rows = r.sweeps.following;
+    startFigure(plot, "Accuracy costs time (b): contour following against step lengths and belief threshold");
+    if (rows.empty()) return false;
+    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
+    auto* completion = panel(grid, 0, "completion (single-tap decisions)", "follow step (mm)", "trials completed (%)");
+    auto* time = panel(grid, 1, "robot time per completed trial (single tap)", "follow step (mm)", "robot time per completion (s)");
+    auto* trade = panel(grid, 2, "every active setting: time against path error", "mean distance of taps to the contour (mm)",
+                        "robot time per completion (s)");
+    auto* lc = legendIn(completion);
+    auto* lt = legendIn(time);
+    auto* lx = legendIn(trade);
+    std::map<std::pair<int, double>, std::pair<QVector<double>, std::pair<QVector<double>, QVector<double>>>> lines;
+    for (const auto& row : rows) {
+        if (row.beliefThreshold != 0.0) continue;
+        auto& l = lines[{int(row.mode), row.repositionStep_mm}];
+        l.first << row.followStep_mm;
+        l.second.first << 100.0 * row.completed / row.trials;
+        l.second.second << (std::isfinite(row.robotTimePerCompletion_s) ? row.robotTimePerCompletion_s : qQNaN());
+    }
+    int i = 0;
+    for (const auto& [key, l] : lines) {
+        const QString name = key.first == int(FollowingMode::Active) ? QString("active, reposition %1 mm").arg(key.second) : QString("passive");
+        series(completion, lc, name, l.first, l.second.first, seriesColour(i));
+        series(time, lt, name, l.first, l.second.second, seriesColour(i));
+        ++i;
+    }
+    std::map<double, std::pair<QVector<double>, QVector<double>>> byThreshold;
+    for (const auto& row : rows) {
+        if (row.mode != FollowingMode::Active || !std::isfinite(row.robotTimePerCompletion_s)) continue;
+        byThreshold[row.beliefThreshold].first << row.meanContourDistance_mm;
+        byThreshold[row.beliefThreshold].second << row.robotTimePerCompletion_s;
+    }
+    i = 0;
+    for (const auto& [threshold, pts] : byThreshold)
+        series(trade, lx, threshold == 0.0 ? QString("single tap") : QString("belief threshold %1").arg(threshold, 0, 'g', 12), pts.first,
+               pts.second, seriesColour(i++), false);
+    for (const auto& row : rows)
+        if (row.paperSetting && row.mode == FollowingMode::Active) {
+            markPaper(completion, lc, row.followStep_mm, 100.0 * row.completed / row.trials, "paper: 2 mm, 1 mm, single tap");
+            if (std::isfinite(row.robotTimePerCompletion_s)) {
+                markPaper(time, lt, row.followStep_mm, row.robotTimePerCompletion_s, "paper: 2 mm, 1 mm, single tap");
+                markPaper(trade, lx, row.meanContourDistance_mm, row.robotTimePerCompletion_s, "paper: 2 mm, 1 mm, single tap");
+            }
+        }
+    fit(completion);
+    completion->axis(QCPAxis::atLeft)->setRange(0, 130);
+    fit(time);
+    fit(trade);
+    return true;
+}
+
+bool buildComputeSweepFigure(QCustomPlot& plot, const RunResult& r) {
+    const auto& rows = r.sweeps.compute;
+    startFigure(plot, "Accuracy costs time (c): classifier error against microseconds per decision (labels: histogram bins)");
+    if (rows.empty()) return false;
+    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
+    auto* a = panel(grid, 0, "angle error", "microseconds per decision", "angle error (deg)");
+    auto* p = panel(grid, 1, "position error", "microseconds per decision", "position error (mm)");
+    auto* la = legendIn(a);
+    auto* lp = legendIn(p);
+    std::map<int, std::vector<const ComputeSweepRow*>> bySamples;
+    for (const auto& row : rows) bySamples[row.samples].push_back(&row);
+    int i = 0;
+    for (const auto& [samples, list] : bySamples) {
+        QVector<double> us, angle, position;
+        for (const auto* row : list) {
+            us << row->microsecondsPerDecision;
+            angle << row->angleError_deg;
+            position << row->positionError_mm;
+            for (auto* rect : {a, p}) {
+                auto* label = new QCPItemText(&plot);
+                label->setClipAxisRect(rect);
+                label->position->setAxes(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+                label->position->setCoords(row->microsecondsPerDecision, rect == a ? row->angleError_deg : row->positionError_mm);
+                label->setPositionAlignment(Qt::AlignBottom | Qt::AlignLeft);
+                label->setFont(QFont("Sans", 7));
+                label->setText(QString::number(row->bins));
+            }
+        }
+        series(a, la, QString("%1 samples per tap").arg(samples), us, angle, seriesColour(i));
+        series(p, lp, QString("%1 samples per tap").arg(samples), us, position, seriesColour(i));
+        ++i;
+    }
+    for (const auto& row : rows)
+        if (row.paperSetting) {
+            markPaper(a, la, row.microsecondsPerDecision, row.angleError_deg, "paper: 100 bins, 50 samples");
+            markPaper(p, lp, row.microsecondsPerDecision, row.positionError_mm, "paper: 100 bins, 50 samples");
+        }
+    fit(a);
+    fit(p);
+    return true;
+}
+
+}  // namespace activetouch

@@ -1,0 +1,17 @@
+#pragma once
+// The accuracy-versus-time plots (DESIGN.md §6), each with the paper's operating point marked.
+class QCustomPlot;
+
+namespace activetouch {
+
+struct RunResult;
+
+/// (a) angle and position error against mean taps per decision, one point per belief threshold.
+bool buildPerceptionSweepFigure(QCustomPlot& plot, const RunResult& result);
+/// (b) completion and robot time per completed trial against follow step; time against path
+/// error for every setting.
+bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& result);
+/// (c) classifier error against microseconds per decision, one series per samples per tap.
+bool buildComputeSweepFigure(QCustomPlot& plot, const RunResult& result);
+
+}  // namespace activetouch
