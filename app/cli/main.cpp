@@ -17,6 +17,7 @@
 #include "app/figures/FollowingFigures.h"
 #include "app/run/ExperimentRun.h"
 #include "core/experiment/Experiment.h"
+#include "core/io/TapCsv.h"
 #include "core/rig/Rig.h"
 #include "devices/simulated/SimulatedWorld.h"
 
@@ -36,8 +37,8 @@ void printHelp() {
         "      <dir>/data/*.csv (every tap, appended as it is taken; every table behind a figure)\n"
         "      and <dir>/figures/*.{png,pdf,svg}. --out defaults to results/<experiment name>.\n"
         "      --seed overrides the experiment's seed (one seed = one whole run).\n"
-        "  activetouch-cli check <file.json>\n"
-        "      Validates an experiment or a scene file and says what is wrong, if anything.\n"
+        "  activetouch-cli check <file.json | taps.csv>\n"
+        "      Validates an experiment, a scene or a tap recording and says what is wrong, if anything.\n"
         "  activetouch-cli --help\n\n"
         "Exit codes: 0 ok, 1 the run failed, 2 bad input (the message names the file, the place and the problem).\n");
 }
@@ -165,6 +166,17 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
 
 int commandCheck(const std::vector<std::string>& args) {
     if (args.size() != 1) return usageError("check takes exactly one file");
+    if (args[0].size() > 4 && args[0].substr(args[0].size() - 4) == ".csv") {
+        // A tap recording (data/taps.csv): every row, column and value checked.
+        try {
+            const auto taps = readTapCsv(args[0], ClassSet{});
+            std::printf("%s: ok (%zu taps)\n", args[0].c_str(), taps.size());
+            return kOk;
+        } catch (const InputError& e) {
+            std::fprintf(stderr, "error: %s\n", e.what());
+            return kBadInput;
+        }
+    }
     try {
         const ExperimentSpec spec = loadChecked(args[0], false);
         const bool experiment = !spec.name.empty();

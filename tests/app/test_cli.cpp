@@ -207,6 +207,24 @@ private slots:
         QVERIFY(complete > 100);
     }
 
+    void checkReadsTapRecordings() {
+        const QString out = dir_.filePath("csvrun");
+        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", out, "--no-figures"}).exitCode, 0);
+        const Outcome good = runCli({"check", out + "/data/taps.csv"});
+        QCOMPARE(good.exitCode, 0);
+        QVERIFY(good.out.contains("360 taps"));
+        const QString bad = write("bad_taps.csv", "set,class,orientation_deg\n1,2,3\n");
+        const Outcome o = runCli({"check", bad});
+        QCOMPARE(o.exitCode, 2);
+        QVERIFY2(o.err.contains(bad) && o.err.contains("line 1") && o.err.contains("unexpected columns"), qPrintable(o.err));
+        const QString nan = write("nan_taps.csv", "set,class,orientation_deg,position,true_offset_mm,pose_x_mm,pose_y_mm,robot_time_s,ending,sample,"
+                                                  "taxel_0,taxel_1,taxel_2,taxel_3,taxel_4,taxel_5,taxel_6,taxel_7,taxel_8,taxel_9,taxel_10,taxel_11\n"
+                                                  "1,0,270,1,-8.5,150,129,0,reflex,0,nan,0,0,0,0,0,0,0,0,0,0,0\n");
+        const Outcome n = runCli({"check", nan});
+        QCOMPARE(n.exitCode, 2);
+        QVERIFY2(n.err.contains("line 2, column taxel_0"), qPrintable(n.err));
+    }
+
     void usageErrors() {
         QCOMPARE(runCli({}).exitCode, 2);
         QCOMPARE(runCli({"fly"}).exitCode, 2);
