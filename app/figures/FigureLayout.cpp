@@ -22,6 +22,23 @@ QCPLayoutGrid* addFigureRow(QCustomPlot& plot, double stretch) {
     return grid;
 }
 
+QCPCurve* addPolyline(QCPAxis* xAxis, QCPAxis* yAxis, const std::vector<Vec2>& points, bool closed) {
+    auto* c = new QCPCurve(xAxis, yAxis);
+    QVector<double> t, x, y;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        t << double(i);
+        x << points[i].x;
+        y << points[i].y;
+    }
+    if (closed && !points.empty()) {
+        t << double(points.size());
+        x << points.front().x;
+        y << points.front().y;
+    }
+    c->setData(t, x, y);
+    return c;
+}
+
 void setPanelTitle(QCPAxisRect* rect, const QString& text) {
     QCPAxis* top = rect->axis(QCPAxis::atTop);
     top->setVisible(true);

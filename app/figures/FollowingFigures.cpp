@@ -23,20 +23,7 @@ QColor trialColour(int trial) {
 }
 
 QCPCurve* polyline(QCPAxisRect* rect, const std::vector<Vec2>& points, bool closed) {
-    auto* c = new QCPCurve(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
-    QVector<double> t, x, y;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        t << double(i);
-        x << points[i].x;
-        y << points[i].y;
-    }
-    if (closed && !points.empty()) {
-        t << double(points.size());
-        x << points.front().x;
-        y << points.front().y;
-    }
-    c->setData(t, x, y);
-    return c;
+    return addPolyline(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft), points, closed);
 }
 
 }  // namespace

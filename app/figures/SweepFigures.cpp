@@ -51,6 +51,16 @@ void markPaper(QCPAxisRect* rect, QCPLegend* legend, double x, double y, const Q
     g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssStar, QPen(Qt::black, 2), Qt::NoBrush, 14));
 }
 
+void pointLabel(QCPAxisRect* rect, double x, double y, const QString& text) {
+    auto* label = new QCPItemText(rect->parentPlot());
+    label->setClipAxisRect(rect);
+    label->position->setAxes(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+    label->position->setCoords(x, y);
+    label->setPositionAlignment(Qt::AlignBottom | Qt::AlignLeft);
+    label->setFont(QFont("Sans", 7));
+    label->setText(text);
+}
+
 void fit(QCPAxisRect* rect) {
     bool found = false;
     QCPRange x, y;
@@ -91,15 +101,8 @@ bool buildPerceptionSweepFigure(QCustomPlot& plot, const RunResult& r) {
     markPaper(a, la, 1.0, r.validation.angleError_deg, "paper: single tap (validation)");
     markPaper(p, lp, 1.0, r.validation.positionError_mm, "paper: single tap (validation)");
     for (std::size_t i = 0; i < rows.size(); ++i) {
-        for (auto* rect : {a, p}) {
-            auto* label = new QCPItemText(&plot);
-            label->setClipAxisRect(rect);
-            label->position->setAxes(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
-            label->position->setCoords(taps[int(i)], rect == a ? angle[int(i)] : position[int(i)]);
-            label->setPositionAlignment(Qt::AlignBottom | Qt::AlignLeft);
-            label->setFont(QFont("Sans", 7));
-            label->setText(QString::number(rows[i].threshold, 'g', 12));
-        }
+        pointLabel(a, taps[int(i)], angle[int(i)], QString::number(rows[i].threshold, 'g', 12));
+        pointLabel(p, taps[int(i)], position[int(i)], QString::number(rows[i].threshold, 'g', 12));
     }
     fit(a);
     fit(p);
@@ -176,15 +179,8 @@ bool buildComputeSweepFigure(QCustomPlot& plot, const RunResult& r) {
             us << row->microsecondsPerDecision;
             angle << row->angleError_deg;
             position << row->positionError_mm;
-            for (auto* rect : {a, p}) {
-                auto* label = new QCPItemText(&plot);
-                label->setClipAxisRect(rect);
-                label->position->setAxes(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
-                label->position->setCoords(row->microsecondsPerDecision, rect == a ? row->angleError_deg : row->positionError_mm);
-                label->setPositionAlignment(Qt::AlignBottom | Qt::AlignLeft);
-                label->setFont(QFont("Sans", 7));
-                label->setText(QString::number(row->bins));
-            }
+            pointLabel(a, row->microsecondsPerDecision, row->angleError_deg, QString::number(row->bins));
+            pointLabel(p, row->microsecondsPerDecision, row->positionError_mm, QString::number(row->bins));
         }
         series(a, la, QString("%1 samples per tap").arg(samples), us, angle, seriesColour(i));
         series(p, lp, QString("%1 samples per tap").arg(samples), us, position, seriesColour(i));

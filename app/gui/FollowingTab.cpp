@@ -11,6 +11,7 @@
 #include <QVBoxLayout>
 
 #include "app/figures/FigureExport.h"
+#include "app/figures/FigureLayout.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/gui/PlotPanel.h"
 #include "app/run/ExperimentRun.h"
@@ -103,19 +104,7 @@ void FollowingTab::replay(int index, int tap) {
     p.clearPlottables();
     p.clearItems();
     auto curve = [&](const std::vector<Vec2>& pts, bool closed, QPen pen, int dots) {
-        auto* c = new QCPCurve(p.xAxis, p.yAxis);
-        QVector<double> k, x, y;
-        for (std::size_t i = 0; i < pts.size(); ++i) {
-            k << double(i);
-            x << pts[i].x;
-            y << pts[i].y;
-        }
-        if (closed && !pts.empty()) {
-            k << double(pts.size());
-            x << pts.front().x;
-            y << pts.front().y;
-        }
-        c->setData(k, x, y);
+        QCPCurve* c = addPolyline(p.xAxis, p.yAxis, pts, closed);
         c->setPen(pen);
         if (dots) c->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDisc, pen.color(), dots));
         return c;
