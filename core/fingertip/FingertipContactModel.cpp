@@ -171,11 +171,30 @@ FingertipContactModel::Contact::Contact(const FingertipContactModel& model, cons
         const double t = std::clamp(dot(centre - a, ab) * inv, 0.0, 1.0);
         if (distance(centre, a + t * ab) <= reach) nearEdges_.push_back({a, ab, inv});
     }
+    if (nearEdges_.size() == 1) {
+        const NearEdge& e = nearEdges_.front();
+        const double length = std::sqrt(1.0 / e.inverseLength2);
+        const double along = dot(centre - e.a, e.ab) / length;
+        if (along - reach > 0.0 && along + reach < length) {
+            singleLine_ = true;
+            lineNormal_ = (1.0 / length) * Vec2{e.ab.y, -e.ab.x};
+            centreSide_ = dot(centre - e.a, lineNormal_);
+        }
+    }
     coverage_.resize(model.points_.size(), 0.0f);
 }
 
 float FingertipContactModel::Contact::coverageOf(std::size_t q) const {
     if (nearEdges_.empty()) return centreInside_ ? 1.0f : 0.0f;
+    const double halfCell = 0.5 * model_->spec_.gridStep;
+    if (singleLine_) {
+        const double side = centreSide_ + dot(model_->points_[q].offset, lineNormal_);
+        const bool inside = (side > 0.0) == (centreSide_ > 0.0) ? centreInside_ : !centreInside_;
+        const double d = std::abs(side);
+        if (d >= halfCell) return inside ? 1.0f : 0.0f;
+        const double frac = 0.5 + 0.5 * d / halfCell;
+        return static_cast<float>(inside ? frac : 1.0 - frac);
+    }
     const Vec2 cp = model_->points_[q].offset;  // from the centre to the point
     const Vec2 p = centre_ + cp;
     bool inside = centreInside_;
@@ -196,7 +215,6 @@ float FingertipContactModel::Contact::coverageOf(std::size_t q) const {
     }
     // Area-weighted coverage of the grid cell: a linear ramp across the outline, so that taps
     // vary continuously with pose instead of jumping by whole cells.
-    const double halfCell = 0.5 * model_->spec_.gridStep;
     if (nearest2 >= halfCell * halfCell) return inside ? 1.0f : 0.0f;
     const double frac = 0.5 + 0.5 * std::sqrt(nearest2) / halfCell;
     return static_cast<float>(inside ? frac : 1.0 - frac);

@@ -70,6 +70,11 @@ public:
         Vec2 centre_;
         bool centreInside_ = false;
         std::vector<NearEdge> nearEdges_;     // outline edges that can reach the patch
+        // The common case: one edge crossing the whole patch. A point's side and distance then
+        // come from one dot product with the edge's unit normal.
+        bool singleLine_ = false;
+        Vec2 lineNormal_;
+        double centreSide_ = 0.0;
         std::vector<float> coverage_;         // per patch point, filled in height order
         std::size_t covered_ = 0;             // points [0, covered_) have coverage
     };
