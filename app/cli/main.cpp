@@ -2,6 +2,7 @@
 //   activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--no-figures]
 //   activetouch-cli check <file.json>
 // Exit codes: 0 ok, 1 the run failed, 2 bad input.
+#include <QApplication>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -10,8 +11,6 @@
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <QApplication>
 
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
@@ -38,13 +37,16 @@ void printHelp() {
         "      and <dir>/figures/*.{png,pdf,svg}. --out defaults to results/<experiment name>.\n"
         "      --seed overrides the experiment's seed (one seed = one whole run).\n"
         "  activetouch-cli check <file.json | taps.csv>\n"
-        "      Validates an experiment, a scene or a tap recording and says what is wrong, if anything.\n"
+        "      Validates an experiment, a scene or a tap recording and says what is wrong, if "
+        "anything.\n"
         "  activetouch-cli --help\n\n"
-        "Exit codes: 0 ok, 1 the run failed, 2 bad input (the message names the file, the place and the problem).\n");
+        "Exit codes: 0 ok, 1 the run failed, 2 bad input (the message names the file, the place "
+        "and the problem).\n");
 }
 
 int usageError(const std::string& message) {
-    std::fprintf(stderr, "activetouch-cli: %s\nRun 'activetouch-cli --help' for usage.\n", message.c_str());
+    std::fprintf(stderr, "activetouch-cli: %s\nRun 'activetouch-cli --help' for usage.\n",
+                 message.c_str());
     return kBadInput;
 }
 
@@ -55,7 +57,9 @@ ExperimentSpec loadChecked(const std::string& path, bool requireExperiment) {
     if (looksLikeExperiment(j)) {
         spec = parseExperiment(j, path, fs::path(path).parent_path().string());
     } else if (requireExperiment) {
-        throw InputError(path, "/", "this is not an experiment file (it has no 'scene'); 'run' takes an experiment such as experiments/paper.json");
+        throw InputError(path, "/",
+                         "this is not an experiment file (it has no 'scene'); 'run' takes an "
+                         "experiment such as experiments/paper.json");
     } else {
         spec.scene = parseScene(j, path, "", fs::path(path).parent_path().string());
     }
@@ -68,7 +72,8 @@ void setUpHeadlessDisplay() {
     const char* display = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
     const char* platform = std::getenv("QT_QPA_PLATFORM");
-    if ((!display || !*display) && (!wayland || !*wayland) && (!platform || !*platform)) setenv("QT_QPA_PLATFORM", "offscreen", 1);
+    if ((!display || !*display) && (!wayland || !*wayland) && (!platform || !*platform))
+        setenv("QT_QPA_PLATFORM", "offscreen", 1);
 }
 
 double writeFigures(const RunResult& result, const fs::path& out, int argc, char** argv) {
@@ -94,7 +99,8 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
             char* end = nullptr;
             const long long n = std::strtoll(v.c_str(), &end, 10);
             if (v.empty() || *end != '\0' || n < 0 || n > 2147483647LL)
-                return usageError("--seed '" + v + "' is not a whole number between 0 and 2147483647");
+                return usageError("--seed '" + v +
+                                  "' is not a whole number between 0 and 2147483647");
             seed = static_cast<std::uint64_t>(n);
         } else if (a == "--no-figures") {
             figures = false;
@@ -106,7 +112,8 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
             return usageError("unexpected argument '" + a + "'");
         }
     }
-    if (experimentPath.empty()) return usageError("run needs an experiment file, e.g. experiments/paper.json");
+    if (experimentPath.empty())
+        return usageError("run needs an experiment file, e.g. experiments/paper.json");
 
     const auto start = std::chrono::steady_clock::now();
     ExperimentSpec spec;
@@ -131,24 +138,36 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
         writeRunTables(result, outDir);
         double figures_s = 0.0;
         if (figures) figures_s = writeFigures(result, out, argc, argv);
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double wall =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         writeSummary(result, outDir, wall, figures_s);
         const auto& v = result.validation;
         std::printf("%s (seed %llu): %zu taps simulated, %.0f s of robot time\n", spec.name.c_str(),
-                    static_cast<unsigned long long>(result.spec.scene.seed), static_cast<std::size_t>(result.tapsSimulated), result.robotTime_s);
-        std::printf("validation: angle error %.2f deg, position error %.3f mm, class accuracy %.1f %%, valid range %d-%d mm\n",
-                    v.angleError_deg, v.positionError_mm, 100.0 * v.correctFraction, v.validRange.first, v.validRange.last);
+                    static_cast<unsigned long long>(result.spec.scene.seed),
+                    static_cast<std::size_t>(result.tapsSimulated), result.robotTime_s);
+        std::printf(
+            "validation: angle error %.2f deg, position error %.3f mm, class accuracy %.1f %%, "
+            "valid range %d-%d mm\n",
+            v.angleError_deg, v.positionError_mm, 100.0 * v.correctFraction, v.validRange.first,
+            v.validRange.last);
         for (const auto& t : result.trials)
-            std::printf("%-7s %-9s trial %d: %-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, contour distance mean %.2f max %.2f mm%s%s\n",
-                        modeName(t.result.mode), t.label.c_str(), t.trial, trialEndName(t.result.end), t.result.taps.size(), t.result.robotTime_s,
-                        100.0 * t.result.coverage, t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
-                        t.recognised ? ", recognised as " : "", t.recognised ? t.recognition.predicted.c_str() : "");
+            std::printf(
+                "%-7s %-9s trial %d: %-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, "
+                "contour distance mean %.2f max %.2f mm%s%s\n",
+                modeName(t.result.mode), t.label.c_str(), t.trial, trialEndName(t.result.end),
+                t.result.taps.size(), t.result.robotTime_s, 100.0 * t.result.coverage,
+                t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
+                t.recognised ? ", recognised as " : "",
+                t.recognised ? t.recognition.predicted.c_str() : "");
         if (!result.templates.empty())
-            std::printf("recognition: %.0f %% of %s paths (smoothed histograms: %.0f %%)\n", 100.0 * result.recognitionAccuracy,
-                        modeName(spec.recognition.ofMode), 100.0 * result.recognitionAccuracySmoothed);
-        std::printf("wall time %.3f s (figures %.3f s); results in %s\n", wall, figures_s, outDir.c_str());
+            std::printf("recognition: %.0f %% of %s paths (smoothed histograms: %.0f %%)\n",
+                        100.0 * result.recognitionAccuracy, modeName(spec.recognition.ofMode),
+                        100.0 * result.recognitionAccuracySmoothed);
+        std::printf("wall time %.3f s (figures %.3f s); results in %s\n", wall, figures_s,
+                    outDir.c_str());
         if (!result.failure.empty()) {
-            std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data.\n", result.failure.c_str(), outDir.c_str());
+            std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data.\n",
+                         result.failure.c_str(), outDir.c_str());
             return kRunFailed;
         }
         return kOk;
@@ -156,10 +175,12 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return kBadInput;
     } catch (const RigError& e) {
-        std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data/taps.csv.\n", e.what(), outDir.c_str());
+        std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data/taps.csv.\n",
+                     e.what(), outDir.c_str());
         return kRunFailed;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data/taps.csv.\n", e.what(), outDir.c_str());
+        std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data/taps.csv.\n",
+                     e.what(), outDir.c_str());
         return kRunFailed;
     }
 }
@@ -181,8 +202,9 @@ int commandCheck(const std::vector<std::string>& args) {
         const ExperimentSpec spec = loadChecked(args[0], false);
         const bool experiment = !spec.name.empty();
         std::printf("%s: ok (%s; object %s, %zu effect%s listed)\n", args[0].c_str(),
-                    experiment ? ("experiment '" + spec.name + "'").c_str() : "scene", spec.scene.object.shape.c_str(),
-                    spec.scene.effects.size(), spec.scene.effects.size() == 1 ? "" : "s");
+                    experiment ? ("experiment '" + spec.name + "'").c_str() : "scene",
+                    spec.scene.object.shape.c_str(), spec.scene.effects.size(),
+                    spec.scene.effects.size() == 1 ? "" : "s");
         return kOk;
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

@@ -18,14 +18,17 @@ void applyEqualAspect(QCustomPlot& plot) {
         // Keep both data ranges visible: scale the axis that would otherwise be stretched.
         const double xPerPixel = x->range().size() / rect->width();
         const double yPerPixel = y->range().size() / rect->height();
-        if (xPerPixel >= yPerPixel) y->setScaleRatio(x, 1.0);
-        else x->setScaleRatio(y, 1.0);
+        if (xPerPixel >= yPerPixel)
+            y->setScaleRatio(x, 1.0);
+        else
+            x->setScaleRatio(y, 1.0);
         changed = true;
     }
     if (changed) plot.replot(QCustomPlot::rpImmediateRefresh);
 }
 
-QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats, const FigureSize& size) {
+QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats,
+                         const FigureSize& size) {
     QStringList written;
     // Lay out once at the target size so that every format sees the same geometry.
     plot.resize(size.width_px, size.height_px);
@@ -35,9 +38,11 @@ QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStri
         const QString file = basePath + "." + format.toLower();
         bool ok = false;
         if (format.compare("png", Qt::CaseInsensitive) == 0) {
-            ok = plot.savePng(file, size.width_px, size.height_px, 1.0, -1, size.dpi, QCP::ruDotsPerInch);
+            ok = plot.savePng(file, size.width_px, size.height_px, 1.0, -1, size.dpi,
+                              QCP::ruDotsPerInch);
         } else if (format.compare("pdf", Qt::CaseInsensitive) == 0) {
-            ok = plot.savePdf(file, size.width_px, size.height_px, QCP::epNoCosmetic, "ActiveTouch Workbench", QFileInfo(basePath).baseName());
+            ok = plot.savePdf(file, size.width_px, size.height_px, QCP::epNoCosmetic,
+                              "ActiveTouch Workbench", QFileInfo(basePath).baseName());
         } else if (format.compare("svg", Qt::CaseInsensitive) == 0) {
             QSvgGenerator svg;
             svg.setFileName(file);
@@ -52,10 +57,12 @@ QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStri
                 ok = painter.end();
             }
         } else {
-            throw std::runtime_error("unknown figure format '" + format.toStdString() + "'; use png, pdf or svg");
+            throw std::runtime_error("unknown figure format '" + format.toStdString() +
+                                     "'; use png, pdf or svg");
         }
         if (!ok || !QFileInfo(file).exists() || QFileInfo(file).size() == 0)
-            throw std::runtime_error("could not write " + file.toStdString() + "; check the folder is writable");
+            throw std::runtime_error("could not write " + file.toStdString() +
+                                     "; check the folder is writable");
         written << file;
     }
     return written;

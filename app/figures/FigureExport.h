@@ -20,6 +20,7 @@ void applyEqualAspect(QCustomPlot& plot);
 
 /// Saves `plot` as `<basePath>.<format>` for each format in `formats` (png, pdf, svg).
 /// Returns the files written; throws std::runtime_error naming the file that could not be written.
-QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats, const FigureSize& size);
+QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats,
+                         const FigureSize& size);
 
 }  // namespace activetouch

@@ -10,7 +10,8 @@ void startFigure(QCustomPlot& plot, const QString& title) {
     plot.plotLayout()->clear();
     plot.setBackground(Qt::white);
     plot.setAutoAddPlottableToLegend(false);
-    plot.plotLayout()->addElement(0, 0, new QCPTextElement(&plot, title, QFont("Sans", 12, QFont::Bold)));
+    plot.plotLayout()->addElement(0, 0,
+                                  new QCPTextElement(&plot, title, QFont("Sans", 12, QFont::Bold)));
     plot.plotLayout()->setRowStretchFactor(0, 0.001);
 }
 
@@ -22,7 +23,8 @@ QCPLayoutGrid* addFigureRow(QCustomPlot& plot, double stretch) {
     return grid;
 }
 
-QCPCurve* addPolyline(QCPAxis* xAxis, QCPAxis* yAxis, const std::vector<Vec2>& points, bool closed) {
+QCPCurve* addPolyline(QCPAxis* xAxis, QCPAxis* yAxis, const std::vector<Vec2>& points,
+                      bool closed) {
     auto* c = new QCPCurve(xAxis, yAxis);
     QVector<double> t, x, y;
     for (std::size_t i = 0; i < points.size(); ++i) {

@@ -1,10 +1,9 @@
 #include "app/figures/FollowingFigures.h"
 
+#include <QDir>
 #include <algorithm>
 #include <map>
 #include <stdexcept>
-
-#include <QDir>
 
 #include "app/figures/FigureExport.h"
 #include "app/figures/FigureLayout.h"
@@ -17,7 +16,8 @@ namespace activetouch {
 namespace {
 
 QColor trialColour(int trial) {
-    static const QColor palette[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44), QColor(148, 103, 189),
+    static const QColor palette[] = {QColor(31, 119, 180), QColor(214, 39, 40),
+                                     QColor(44, 160, 44),  QColor(148, 103, 189),
                                      QColor(255, 127, 14), QColor(23, 190, 207)};
     return palette[(trial - 1) % 6];
 }
@@ -28,10 +28,13 @@ QCPCurve* polyline(QCPAxisRect* rect, const std::vector<Vec2>& points, bool clos
 
 }  // namespace
 
-bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode, const QString& title) {
+bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
+                     const QString& title) {
     std::vector<std::string> labels;
     for (const auto& t : r.trials)
-        if (t.result.mode == mode && std::find(labels.begin(), labels.end(), t.label) == labels.end()) labels.push_back(t.label);
+        if (t.result.mode == mode &&
+            std::find(labels.begin(), labels.end(), t.label) == labels.end())
+            labels.push_back(t.label);
     startFigure(plot, title);
     if (labels.empty()) return false;
     QCPLayoutGrid* panels = addFigureRow(plot, 1.0);
@@ -67,8 +70,13 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode, 
             auto* path = polyline(rect, t.result.path(), false);
             path->setPen(QPen(trialColour(t.trial), 1.0));
             // Later trials draw smaller dots so that overlapping paths stay visible.
-            path->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDisc, trialColour(t.trial), std::max(3.0, 7.0 - 1.5 * (t.trial - 1))));
-            path->setName(QString("%1%2: %3, %4 taps").arg(prefix).arg(t.trial).arg(trialEndName(t.result.end)).arg(t.result.taps.size()));
+            path->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDisc, trialColour(t.trial),
+                                                  std::max(3.0, 7.0 - 1.5 * (t.trial - 1))));
+            path->setName(QString("%1%2: %3, %4 taps")
+                              .arg(prefix)
+                              .arg(t.trial)
+                              .arg(trialEndName(t.result.end))
+                              .arg(t.result.taps.size()));
             legend->addItem(new QCPPlottableLegendItem(legend, path));
             for (Vec2 v : t.result.path()) {
                 lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
@@ -84,17 +92,19 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode, 
 }
 
 bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
-    startFigure(plot, QString("Figure 9 - recognition from 20 x 20 path histograms: %1 % (paper's rule), %2 % (smoothed, sigma %3 bins)")
-                        .arg(100.0 * r.recognitionAccuracy, 0, 'f', 0)
-                        .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0)
-                        .arg(r.spec.recognition.smoothingSigmaBins));
+    startFigure(plot, QString("Figure 9 - recognition from 20 x 20 path histograms: %1 % (paper's "
+                              "rule), %2 % (smoothed, sigma %3 bins)")
+                          .arg(100.0 * r.recognitionAccuracy, 0, 'f', 0)
+                          .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0)
+                          .arg(r.spec.recognition.smoothingSigmaBins));
     if (r.templates.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
     std::map<std::string, std::vector<const TrialRun*>> byShape;
     int maxTrials = 0;
     for (const auto& t : r.trials)
         if (t.recognised) byShape[t.label].push_back(&t);
-    for (const auto& [shape, trials] : byShape) maxTrials = std::max(maxTrials, static_cast<int>(trials.size()));
+    for (const auto& [shape, trials] : byShape)
+        maxTrials = std::max(maxTrials, static_cast<int>(trials.size()));
     auto* scale = new QCPColorScale(&plot);
     scale->setType(QCPAxis::atRight);
     scale->axis()->setLabel("fraction of taps per bin");
@@ -127,8 +137,11 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
             auto* pr = new QCPAxisRect(&plot);
             grid->addElement(row, 1 + static_cast<int>(k), pr);
             const auto& rec = trials[k]->recognition;
-            heat(pr, rec.raw, QString("ACF%1 -> %2 (smoothed: %3)").arg(trials[k]->trial).arg(QString::fromStdString(rec.predicted),
-                                                                                        QString::fromStdString(rec.predictedSmoothed)));
+            heat(pr, rec.raw,
+                 QString("ACF%1 -> %2 (smoothed: %3)")
+                     .arg(trials[k]->trial)
+                     .arg(QString::fromStdString(rec.predicted),
+                          QString::fromStdString(rec.predictedSmoothed)));
         }
         // Distances to every template, one bar group per trial.
         auto* dr = new QCPAxisRect(&plot);
@@ -171,7 +184,9 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
 
 QStringList writeRunFigures(const RunResult& result, const QString& outDir) {
     const QString dir = outDir + "/figures";
-    if (!QDir().mkpath(dir)) throw std::runtime_error("cannot create " + dir.toStdString() + "; check the output folder is writable");
+    if (!QDir().mkpath(dir))
+        throw std::runtime_error("cannot create " + dir.toStdString() +
+                                 "; check the output folder is writable");
     const QStringList formats{"png", "pdf", "svg"};
     QStringList written;
     QCustomPlot plot;
@@ -180,14 +195,21 @@ QStringList writeRunFigures(const RunResult& result, const QString& outDir) {
     if (result.cancelled || result.validation.percepts.empty()) return written;
     buildErrorFigure(plot, result);
     written << exportFigure(plot, dir + "/figure6_errors", formats, {1800, 1100, 150});
-    if (buildPathFigure(plot, result, FollowingMode::Passive, "Figure 7 - passive contour following (PCF)"))
+    if (buildPathFigure(plot, result, FollowingMode::Passive,
+                        "Figure 7 - passive contour following (PCF)"))
         written << exportFigure(plot, dir + "/figure7_passive_paths", formats, {1100, 1000, 150});
-    if (buildPathFigure(plot, result, FollowingMode::Active, "Figure 8 - active contour following (ACF)"))
+    if (buildPathFigure(plot, result, FollowingMode::Active,
+                        "Figure 8 - active contour following (ACF)"))
         written << exportFigure(plot, dir + "/figure8_active_paths", formats, {1600, 1500, 150});
-    if (buildRecognitionFigure(plot, result)) written << exportFigure(plot, dir + "/figure9_recognition", formats, {1900, 1700, 150});
-    if (buildPerceptionSweepFigure(plot, result)) written << exportFigure(plot, dir + "/sweep_a_sequential_perception", formats, {1600, 800, 150});
-    if (buildFollowingSweepFigure(plot, result)) written << exportFigure(plot, dir + "/sweep_b_following", formats, {2100, 800, 150});
-    if (buildComputeSweepFigure(plot, result)) written << exportFigure(plot, dir + "/sweep_c_compute", formats, {1600, 800, 150});
+    if (buildRecognitionFigure(plot, result))
+        written << exportFigure(plot, dir + "/figure9_recognition", formats, {1900, 1700, 150});
+    if (buildPerceptionSweepFigure(plot, result))
+        written << exportFigure(plot, dir + "/sweep_a_sequential_perception", formats,
+                                {1600, 800, 150});
+    if (buildFollowingSweepFigure(plot, result))
+        written << exportFigure(plot, dir + "/sweep_b_following", formats, {2100, 800, 150});
+    if (buildComputeSweepFigure(plot, result))
+        written << exportFigure(plot, dir + "/sweep_c_compute", formats, {1600, 800, 150});
     return written;
 }
 

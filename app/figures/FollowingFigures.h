@@ -14,7 +14,8 @@ namespace activetouch {
 struct RunResult;
 
 /// Paths of the trials in `mode`, one panel per shape. Returns false if there are none.
-bool buildPathFigure(QCustomPlot& plot, const RunResult& result, FollowingMode mode, const QString& title);
+bool buildPathFigure(QCustomPlot& plot, const RunResult& result, FollowingMode mode,
+                     const QString& title);
 
 /// Writes every figure of a run (5, 6, and 7-9 where the run has them) as PNG, PDF and SVG into
 /// <outDir>/figures. Needs a QApplication. Returns the files written.

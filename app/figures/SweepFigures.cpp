@@ -11,12 +11,14 @@ namespace activetouch {
 namespace {
 
 QColor seriesColour(int i) {
-    static const QColor palette[] = {QColor(31, 119, 180), QColor(255, 127, 14), QColor(44, 160, 44), QColor(214, 39, 40),
-                                     QColor(148, 103, 189), QColor(140, 86, 75), QColor(227, 119, 194), QColor(127, 127, 127)};
+    static const QColor palette[] = {
+        QColor(31, 119, 180),  QColor(255, 127, 14), QColor(44, 160, 44),   QColor(214, 39, 40),
+        QColor(148, 103, 189), QColor(140, 86, 75),  QColor(227, 119, 194), QColor(127, 127, 127)};
     return palette[i % 8];
 }
 
-QCPAxisRect* panel(QCPLayoutGrid* grid, int column, const QString& title, const QString& x, const QString& y) {
+QCPAxisRect* panel(QCPLayoutGrid* grid, int column, const QString& title, const QString& x,
+                   const QString& y) {
     auto* rect = new QCPAxisRect(grid->parentPlot());
     grid->addElement(0, column, rect);
     setPanelTitle(rect, title);
@@ -34,9 +36,11 @@ QCPLegend* legendIn(QCPAxisRect* rect) {
     return legend;
 }
 
-QCPGraph* series(QCPAxisRect* rect, QCPLegend* legend, const QString& name, const QVector<double>& x, const QVector<double>& y, QColor colour,
+QCPGraph* series(QCPAxisRect* rect, QCPLegend* legend, const QString& name,
+                 const QVector<double>& x, const QVector<double>& y, QColor colour,
                  bool lines = true) {
-    auto* g = rect->parentPlot()->addGraph(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+    auto* g =
+        rect->parentPlot()->addGraph(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
     g->setData(x, y);
     g->setName(name);
     g->setPen(lines ? QPen(colour, 1.8) : QPen(Qt::NoPen));
@@ -48,7 +52,8 @@ QCPGraph* series(QCPAxisRect* rect, QCPLegend* legend, const QString& name, cons
 
 void markPaper(QCPAxisRect* rect, QCPLegend* legend, double x, double y, const QString& what) {
     auto* g = series(rect, legend, what, {x}, {y}, Qt::black, false);
-    g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssStar, QPen(Qt::black, 2), Qt::NoBrush, 14));
+    g->setScatterStyle(
+        QCPScatterStyle(QCPScatterStyle::ssStar, QPen(Qt::black, 2), Qt::NoBrush, 14));
 }
 
 void pointLabel(QCPAxisRect* rect, double x, double y, const QString& text) {
@@ -83,7 +88,8 @@ void fit(QCPAxisRect* rect) {
 
 bool buildPerceptionSweepFigure(QCustomPlot& plot, const RunResult& r) {
     const auto& rows = r.sweeps.perception;
-    startFigure(plot, "Accuracy costs time (a): sequential perception, error against taps per decision");
+    startFigure(plot,
+                "Accuracy costs time (a): sequential perception, error against taps per decision");
     if (rows.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
     QVector<double> taps, angle, position;
@@ -111,47 +117,64 @@ bool buildPerceptionSweepFigure(QCustomPlot& plot, const RunResult& r) {
 
 bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& r) {
     const auto& rows = r.sweeps.following;
-    startFigure(plot, "Accuracy costs time (b): contour following against step lengths and belief threshold");
+    startFigure(
+        plot,
+        "Accuracy costs time (b): contour following against step lengths and belief threshold");
     if (rows.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    auto* completion = panel(grid, 0, "completion (single-tap decisions)", "follow step (mm)", "trials completed (%)");
-    auto* time = panel(grid, 1, "robot time per completed trial (single tap)", "follow step (mm)", "robot time per completion (s)");
-    auto* trade = panel(grid, 2, "every active setting: time against path error", "mean distance of taps to the contour (mm)",
-                        "robot time per completion (s)");
+    auto* completion = panel(grid, 0, "completion (single-tap decisions)", "follow step (mm)",
+                             "trials completed (%)");
+    auto* time = panel(grid, 1, "robot time per completed trial (single tap)", "follow step (mm)",
+                       "robot time per completion (s)");
+    auto* trade =
+        panel(grid, 2, "every active setting: time against path error",
+              "mean distance of taps to the contour (mm)", "robot time per completion (s)");
     auto* lc = legendIn(completion);
     auto* lt = legendIn(time);
     auto* lx = legendIn(trade);
-    std::map<std::pair<int, double>, std::pair<QVector<double>, std::pair<QVector<double>, QVector<double>>>> lines;
+    std::map<std::pair<int, double>,
+             std::pair<QVector<double>, std::pair<QVector<double>, QVector<double>>>>
+        lines;
     for (const auto& row : rows) {
         if (row.beliefThreshold != 0.0) continue;
         auto& l = lines[{int(row.mode), row.repositionStep_mm}];
         l.first << row.followStep_mm;
         l.second.first << 100.0 * row.completed / row.trials;
-        l.second.second << (std::isfinite(row.robotTimePerCompletion_s) ? row.robotTimePerCompletion_s : qQNaN());
+        l.second.second << (std::isfinite(row.robotTimePerCompletion_s)
+                                ? row.robotTimePerCompletion_s
+                                : qQNaN());
     }
     int i = 0;
     for (const auto& [key, l] : lines) {
-        const QString name = key.first == int(FollowingMode::Active) ? QString("active, reposition %1 mm").arg(key.second) : QString("passive");
+        const QString name = key.first == int(FollowingMode::Active)
+                                 ? QString("active, reposition %1 mm").arg(key.second)
+                                 : QString("passive");
         series(completion, lc, name, l.first, l.second.first, seriesColour(i));
         series(time, lt, name, l.first, l.second.second, seriesColour(i));
         ++i;
     }
     std::map<double, std::pair<QVector<double>, QVector<double>>> byThreshold;
     for (const auto& row : rows) {
-        if (row.mode != FollowingMode::Active || !std::isfinite(row.robotTimePerCompletion_s)) continue;
+        if (row.mode != FollowingMode::Active || !std::isfinite(row.robotTimePerCompletion_s))
+            continue;
         byThreshold[row.beliefThreshold].first << row.meanContourDistance_mm;
         byThreshold[row.beliefThreshold].second << row.robotTimePerCompletion_s;
     }
     i = 0;
     for (const auto& [threshold, pts] : byThreshold)
-        series(trade, lx, threshold == 0.0 ? QString("single tap") : QString("belief threshold %1").arg(threshold, 0, 'g', 12), pts.first,
-               pts.second, seriesColour(i++), false);
+        series(trade, lx,
+               threshold == 0.0 ? QString("single tap")
+                                : QString("belief threshold %1").arg(threshold, 0, 'g', 12),
+               pts.first, pts.second, seriesColour(i++), false);
     for (const auto& row : rows)
         if (row.paperSetting && row.mode == FollowingMode::Active) {
-            markPaper(completion, lc, row.followStep_mm, 100.0 * row.completed / row.trials, "paper: 2 mm, 1 mm, single tap");
+            markPaper(completion, lc, row.followStep_mm, 100.0 * row.completed / row.trials,
+                      "paper: 2 mm, 1 mm, single tap");
             if (std::isfinite(row.robotTimePerCompletion_s)) {
-                markPaper(time, lt, row.followStep_mm, row.robotTimePerCompletion_s, "paper: 2 mm, 1 mm, single tap");
-                markPaper(trade, lx, row.meanContourDistance_mm, row.robotTimePerCompletion_s, "paper: 2 mm, 1 mm, single tap");
+                markPaper(time, lt, row.followStep_mm, row.robotTimePerCompletion_s,
+                          "paper: 2 mm, 1 mm, single tap");
+                markPaper(trade, lx, row.meanContourDistance_mm, row.robotTimePerCompletion_s,
+                          "paper: 2 mm, 1 mm, single tap");
             }
         }
     fit(completion);
@@ -163,7 +186,9 @@ bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& r) {
 
 bool buildComputeSweepFigure(QCustomPlot& plot, const RunResult& r) {
     const auto& rows = r.sweeps.compute;
-    startFigure(plot, "Accuracy costs time (c): classifier error against microseconds per decision (labels: histogram bins)");
+    startFigure(plot,
+                "Accuracy costs time (c): classifier error against microseconds per decision "
+                "(labels: histogram bins)");
     if (rows.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
     auto* a = panel(grid, 0, "angle error", "microseconds per decision", "angle error (deg)");
@@ -179,8 +204,10 @@ bool buildComputeSweepFigure(QCustomPlot& plot, const RunResult& r) {
             us << row->microsecondsPerDecision;
             angle << row->angleError_deg;
             position << row->positionError_mm;
-            pointLabel(a, row->microsecondsPerDecision, row->angleError_deg, QString::number(row->bins));
-            pointLabel(p, row->microsecondsPerDecision, row->positionError_mm, QString::number(row->bins));
+            pointLabel(a, row->microsecondsPerDecision, row->angleError_deg,
+                       QString::number(row->bins));
+            pointLabel(p, row->microsecondsPerDecision, row->positionError_mm,
+                       QString::number(row->bins));
         }
         series(a, la, QString("%1 samples per tap").arg(samples), us, angle, seriesColour(i));
         series(p, lp, QString("%1 samples per tap").arg(samples), us, position, seriesColour(i));
@@ -188,8 +215,10 @@ bool buildComputeSweepFigure(QCustomPlot& plot, const RunResult& r) {
     }
     for (const auto& row : rows)
         if (row.paperSetting) {
-            markPaper(a, la, row.microsecondsPerDecision, row.angleError_deg, "paper: 100 bins, 50 samples");
-            markPaper(p, lp, row.microsecondsPerDecision, row.positionError_mm, "paper: 100 bins, 50 samples");
+            markPaper(a, la, row.microsecondsPerDecision, row.angleError_deg,
+                      "paper: 100 bins, 50 samples");
+            markPaper(p, lp, row.microsecondsPerDecision, row.positionError_mm,
+                      "paper: 100 bins, 50 samples");
         }
     fit(a);
     fit(p);

@@ -12,9 +12,10 @@ namespace {
 
 // Twelve colours that stay distinct in print and for the common colour-vision deficiencies.
 QColor taxelColour(int k) {
-    static const QColor palette[] = {QColor(0, 114, 178), QColor(230, 159, 0), QColor(0, 158, 115), QColor(204, 121, 167),
-                                     QColor(86, 180, 233), QColor(213, 94, 0), QColor(0, 0, 0), QColor(240, 228, 66),
-                                     QColor(127, 127, 127), QColor(148, 103, 189), QColor(140, 86, 75), QColor(23, 190, 207)};
+    static const QColor palette[] = {
+        QColor(0, 114, 178),   QColor(230, 159, 0),   QColor(0, 158, 115), QColor(204, 121, 167),
+        QColor(86, 180, 233),  QColor(213, 94, 0),    QColor(0, 0, 0),     QColor(240, 228, 66),
+        QColor(127, 127, 127), QColor(148, 103, 189), QColor(140, 86, 75), QColor(23, 190, 207)};
     return palette[k % 12];
 }
 
@@ -25,7 +26,8 @@ void integerTicks(QCPAxis* axis, double step) {
     axis->setTicker(t);
 }
 
-QCPAxisRect* addPanel(QCPLayoutGrid* grid, int row, int column, const QString& xLabel, const QString& yLabel) {
+QCPAxisRect* addPanel(QCPLayoutGrid* grid, int row, int column, const QString& xLabel,
+                      const QString& yLabel) {
     auto* rect = new QCPAxisRect(grid->parentPlot());
     grid->addElement(row, column, rect);
     rect->axis(QCPAxis::atBottom)->setLabel(xLabel);
@@ -36,7 +38,8 @@ QCPAxisRect* addPanel(QCPLayoutGrid* grid, int row, int column, const QString& x
 QSharedPointer<QCPAxisTickerText> orientationTicker(const ClassSet& cs) {
     QSharedPointer<QCPAxisTickerText> t(new QCPAxisTickerText);
     for (std::size_t o = 0; o < cs.orientationsDeg.size(); ++o)
-        t->addTick(double(o), QString::fromStdString(ClassSet::orientationName(cs.orientationsDeg[o])));
+        t->addTick(double(o),
+                   QString::fromStdString(ClassSet::orientationName(cs.orientationsDeg[o])));
     return t;
 }
 
@@ -68,14 +71,18 @@ void buildTapFigure(QCustomPlot& plot, const RunResult& r) {
     const ClassSet& cs = r.classes;
     const int O = static_cast<int>(cs.orientationsDeg.size());
     const int K = r.classifier.trained() ? r.classifier.taxelCount() : kFingertipTaxels;
-    const int firstSet = r.spec.training.trainingSets.empty() ? 1 : r.spec.training.trainingSets.front();
+    const int firstSet =
+        r.spec.training.trainingSets.empty() ? 1 : r.spec.training.trainingSets.front();
     const int columns = O >= 4 ? 2 : 1;
     startFigure(plot, QString("Figure 5 - taps across each edge (data set %1)").arg(firstSet));
     QCPLayoutGrid* panels = addFigureRow(plot, 1.0);
     for (int o = 0; o < O; ++o) {
-        auto* rect = addPanel(panels, o / columns, o % columns, "tap position across the edge (mm; plane to air)",
-                              "pressure (normalised)");
-        setPanelTitle(rect, QString::fromStdString(ClassSet::orientationName(cs.orientationsDeg[static_cast<std::size_t>(o)])) + " edge");
+        auto* rect =
+            addPanel(panels, o / columns, o % columns,
+                     "tap position across the edge (mm; plane to air)", "pressure (normalised)");
+        setPanelTitle(rect, QString::fromStdString(ClassSet::orientationName(
+                                cs.orientationsDeg[static_cast<std::size_t>(o)])) +
+                                " edge");
         // Normalise each panel to a maximum of one, as the paper does.
         double peak = 0.0;
         for (const auto& t : r.taps)
@@ -109,7 +116,8 @@ void buildTapFigure(QCustomPlot& plot, const RunResult& r) {
     legend->setLayer("legend");
     legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
     legend->setWrap(6);
-    for (int k = 0; k < K && k < plot.graphCount(); ++k) legend->addItem(new QCPPlottableLegendItem(legend, plot.graph(k)));
+    for (int k = 0; k < K && k < plot.graphCount(); ++k)
+        legend->addItem(new QCPPlottableLegendItem(legend, plot.graph(k)));
 }
 
 void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
@@ -121,23 +129,32 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
     // all "far off" and share the top colour.
     const double maxPosition = std::ceil((P - 1) * cs.positionStep_mm / 3.0);
 
-    struct Heat { const char* title; double max; bool angle; const char* unit; };
-    const Heat heats[2] = {{"A  angle error", maxAngle, true, "angle error (deg)"},
-                           {"B  position error", maxPosition, false, "position error (mm, top colour = at or above)"}};
-    startFigure(plot, QString("Figure 6 - offline validation over %1 test taps: angle error %2 deg, position error %3 mm")
-                       .arg(r.validation.percepts.size())
-                       .arg(r.validation.angleError_deg, 0, 'f', 1)
-                       .arg(r.validation.positionError_mm, 0, 'f', 2));
+    struct Heat {
+        const char* title;
+        double max;
+        bool angle;
+        const char* unit;
+    };
+    const Heat heats[2] = {
+        {"A  angle error", maxAngle, true, "angle error (deg)"},
+        {"B  position error", maxPosition, false, "position error (mm, top colour = at or above)"}};
+    startFigure(plot, QString("Figure 6 - offline validation over %1 test taps: angle error %2 "
+                              "deg, position error %3 mm")
+                          .arg(r.validation.percepts.size())
+                          .arg(r.validation.angleError_deg, 0, 'f', 1)
+                          .arg(r.validation.positionError_mm, 0, 'f', 2));
     QCPLayoutGrid* upper = addFigureRow(plot, 1.0);
     for (int h = 0; h < 2; ++h) {
-        auto* rect = addPanel(upper, 0, 2 * h, "position (mm; 1 = plane, 18 = air)", "edge orientation");
+        auto* rect =
+            addPanel(upper, 0, 2 * h, "position (mm; 1 = plane, 18 = air)", "edge orientation");
         rect->axis(QCPAxis::atLeft)->setTicker(orientationTicker(cs));
         setPanelTitle(rect, heats[h].title);
         auto* map = new QCPColorMap(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
         map->data()->setSize(P, O);
         map->data()->setRange(QCPRange(1, P), QCPRange(0, O - 1));
         for (const auto& e : r.validation.byClass)
-            map->data()->setCell(e.position - 1, e.orientationIndex, heats[h].angle ? e.angleError_deg : e.positionError_mm);
+            map->data()->setCell(e.position - 1, e.orientationIndex,
+                                 heats[h].angle ? e.angleError_deg : e.positionError_mm);
         map->setInterpolate(false);
         map->setTightBoundary(false);
         auto* scale = new QCPColorScale(&plot);
@@ -155,9 +172,17 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         rect->axis(QCPAxis::atLeft)->setRange(-0.5, O - 0.5);
     }
     // Heatmaps and their scales sit in row 0, columns 0..3; the line panels span below.
-    struct Line { const char* title; const std::vector<double>* mean; const std::vector<double>* sd; const char* unit; };
-    const Line lines[2] = {{"C  angle error, mean over orientations +- 1 std", &r.validation.angleMean, &r.validation.angleStd, "angle error (deg)"},
-                           {"D  position error, mean over orientations +- 1 std", &r.validation.positionMean, &r.validation.positionStd, "position error (mm)"}};
+    struct Line {
+        const char* title;
+        const std::vector<double>* mean;
+        const std::vector<double>* sd;
+        const char* unit;
+    };
+    const Line lines[2] = {
+        {"C  angle error, mean over orientations +- 1 std", &r.validation.angleMean,
+         &r.validation.angleStd, "angle error (deg)"},
+        {"D  position error, mean over orientations +- 1 std", &r.validation.positionMean,
+         &r.validation.positionStd, "position error (mm)"}};
     QCPLayoutGrid* lower = addFigureRow(plot, 1.0);
     for (int l = 0; l < 2; ++l) {
         auto* rect = new QCPAxisRect(&plot);

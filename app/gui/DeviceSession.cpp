@@ -16,7 +16,8 @@ bool DeviceSession::ready() {
 void DeviceSession::connectDevices(const SceneSpec& scene) {
     try {
         scene_ = scene;
-        rig_ = std::make_unique<SimulatedRig>(scene, std::make_shared<const FingertipContactModel>(scene.fingertip));
+        rig_ = std::make_unique<SimulatedRig>(
+            scene, std::make_shared<const FingertipContactModel>(scene.fingertip));
         emit connectedChanged(true, tr("simulated rig: %1 at (%2, %3) mm")
                                         .arg(QString::fromStdString(scene.object.shape))
                                         .arg(scene.object.offset.x)
@@ -46,14 +47,18 @@ void DeviceSession::move(Vec2 target) {
     }
 }
 
-void DeviceSession::home() { move({0.0, 0.0}); }
+void DeviceSession::home() {
+    move({0.0, 0.0});
+}
 
 void DeviceSession::jog(double dx, double dy) {
     if (!ready()) return;
     move(rig_->rig().stage.position() + Vec2{dx, dy});
 }
 
-void DeviceSession::goTo(double x, double y) { move({x, y}); }
+void DeviceSession::goTo(double x, double y) {
+    move({x, y});
+}
 
 void DeviceSession::testTap() {
     if (!ready()) return;
@@ -65,10 +70,13 @@ void DeviceSession::testTap() {
     double peak = 0.0;
     for (double v : r.tap.samples) peak = std::max(peak, v);
     live_.publishTap(shown, tr("test tap: %1 at %2 mm indentation, peak %3 counts")
-                                .arg(r.ending == TapEnding::ContactReflex ? tr("reflex stop") : tr("stroke limit"))
+                                .arg(r.ending == TapEnding::ContactReflex ? tr("reflex stop")
+                                                                          : tr("stroke limit"))
                                 .arg(r.stopDepth_mm, 0, 'f', 2)
                                 .arg(peak, 0, 'f', 0));
-    emit tapperState(tr("retracted (last tap: %1)").arg(r.ending == TapEnding::ContactReflex ? tr("reflex stop") : tr("stroke limit")));
+    emit tapperState(
+        tr("retracted (last tap: %1)")
+            .arg(r.ending == TapEnding::ContactReflex ? tr("reflex stop") : tr("stroke limit")));
 }
 
 void DeviceSession::setContactThreshold(double counts) {
@@ -77,7 +85,8 @@ void DeviceSession::setContactThreshold(double counts) {
     emit message(tr("contact threshold set to %1 counts").arg(counts));
 }
 
-DeviceThread::DeviceThread(LiveFeed& live, QObject* parent) : QObject(parent), session_(new DeviceSession(live)) {
+DeviceThread::DeviceThread(LiveFeed& live, QObject* parent)
+    : QObject(parent), session_(new DeviceSession(live)) {
     qRegisterMetaType<SceneSpec>();
     session_->moveToThread(&thread_);
     connect(&thread_, &QThread::finished, session_, &QObject::deleteLater);

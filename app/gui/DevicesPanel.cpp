@@ -11,16 +11,24 @@
 
 namespace activetouch {
 
-DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent) : QWidget(parent), session_(session) {
+DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
+    : QWidget(parent), session_(session) {
     auto* layout = new QVBoxLayout(this);
-    auto call = [this](auto&&... slotAndArgs) { QMetaObject::invokeMethod(session_, slotAndArgs..., Qt::QueuedConnection); };
+    auto call = [this](auto&&... slotAndArgs) {
+        QMetaObject::invokeMethod(session_, slotAndArgs..., Qt::QueuedConnection);
+    };
 
     connect_ = new QPushButton(tr("Connect"));
     connect_->setObjectName("connectDevices");
     layout->addWidget(connect_);
     connect(connect_, &QPushButton::clicked, this, [this] {
-        if (connected_) QMetaObject::invokeMethod(session_, &DeviceSession::disconnectDevices, Qt::QueuedConnection);
-        else QMetaObject::invokeMethod(session_, [s = session_, scene = scene_] { s->connectDevices(scene); }, Qt::QueuedConnection);
+        if (connected_)
+            QMetaObject::invokeMethod(session_, &DeviceSession::disconnectDevices,
+                                      Qt::QueuedConnection);
+        else
+            QMetaObject::invokeMethod(
+                session_, [s = session_, scene = scene_] { s->connectDevices(scene); },
+                Qt::QueuedConnection);
     });
 
     auto* stage = new QGroupBox(tr("XY stage"));
@@ -47,7 +55,9 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent) : QWidget(pa
         jog->addWidget(b, row, col);
         connect(b, &QPushButton::clicked, this, [this, dx, dy] {
             const double s = step_->value();
-            QMetaObject::invokeMethod(session_, [x = session_, dx, dy, s] { x->jog(dx * s, dy * s); }, Qt::QueuedConnection);
+            QMetaObject::invokeMethod(
+                session_, [x = session_, dx, dy, s] { x->jog(dx * s, dy * s); },
+                Qt::QueuedConnection);
         });
     };
     jogButton("+y", 0, 1, 0, 1);
@@ -75,7 +85,8 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent) : QWidget(pa
     sf->addRow(tr("Target"), goRow);
     connect(go, &QPushButton::clicked, this, [this] {
         const double x = gotoX_->value(), y = gotoY_->value();
-        QMetaObject::invokeMethod(session_, [s = session_, x, y] { s->goTo(x, y); }, Qt::QueuedConnection);
+        QMetaObject::invokeMethod(
+            session_, [s = session_, x, y] { s->goTo(x, y); }, Qt::QueuedConnection);
     });
     layout->addWidget(stage);
 
@@ -100,7 +111,8 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent) : QWidget(pa
     connect(testTap, &QPushButton::clicked, this, [call] { call(&DeviceSession::testTap); });
     connect(threshold_, &QDoubleSpinBox::editingFinished, this, [this] {
         const double v = threshold_->value();
-        QMetaObject::invokeMethod(session_, [s = session_, v] { s->setContactThreshold(v); }, Qt::QueuedConnection);
+        QMetaObject::invokeMethod(
+            session_, [s = session_, v] { s->setContactThreshold(v); }, Qt::QueuedConnection);
     });
     layout->addWidget(tapper);
 
@@ -118,12 +130,16 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent) : QWidget(pa
         connect_->setText(on ? tr("Disconnect") : tr("Connect"));
         stageState_->setText(on ? tr("connected: %1").arg(what) : tr("disconnected"));
         if (!on) tapperState_->setText(tr("disconnected"));
-        limits_->setText(on ? tr("x 0..%1, y 0..%2 mm").arg(scene_.stage.travel_mm.x).arg(scene_.stage.travel_mm.y) : "-");
+        limits_->setText(on ? tr("x 0..%1, y 0..%2 mm")
+                                  .arg(scene_.stage.travel_mm.x)
+                                  .arg(scene_.stage.travel_mm.y)
+                            : "-");
         threshold_->setValue(scene_.tap.contactThreshold);
         emit log(on ? tr("devices connected (%1)").arg(what) : tr("devices disconnected"));
     });
-    connect(session_, &DeviceSession::positionChanged, this,
-            [this](double x, double y) { position_->setText(tr("x %1 mm, y %2 mm").arg(x, 0, 'f', 3).arg(y, 0, 'f', 3)); });
+    connect(session_, &DeviceSession::positionChanged, this, [this](double x, double y) {
+        position_->setText(tr("x %1 mm, y %2 mm").arg(x, 0, 'f', 3).arg(y, 0, 'f', 3));
+    });
     connect(session_, &DeviceSession::tapperState, tapperState_, &QLabel::setText);
     connect(session_, &DeviceSession::message, this, &DevicesPanel::log);
     connect(session_, &DeviceSession::failed, this, &DevicesPanel::log);

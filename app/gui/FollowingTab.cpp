@@ -37,8 +37,9 @@ FollowingTab::FollowingTab(QWidget* parent)
     views->addTab(paths, tr("Paths: active and passive"));
     auto* lower = new QSplitter(Qt::Horizontal);
     table_ = new QTableWidget(0, 9);
-    table_->setHorizontalHeaderLabels({tr("shape"), tr("mode"), tr("trial"), tr("result"), tr("taps"), tr("robot time (s)"),
-                                       tr("coverage (%)"), tr("mean dist. (mm)"), tr("max dist. (mm)")});
+    table_->setHorizontalHeaderLabels({tr("shape"), tr("mode"), tr("trial"), tr("result"),
+                                       tr("taps"), tr("robot time (s)"), tr("coverage (%)"),
+                                       tr("mean dist. (mm)"), tr("max dist. (mm)")});
     table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     table_->setSelectionBehavior(QAbstractItemView::SelectRows);
@@ -62,15 +63,19 @@ FollowingTab::FollowingTab(QWidget* parent)
     views->addTab(lower, tr("Trials and replay"));
     layout->addWidget(views);
     connect(trial_, &QComboBox::currentIndexChanged, this, [this](int i) { replay(i, 0); });
-    connect(slider_, &QSlider::valueChanged, this, [this](int tap) { replay(trial_->currentIndex(), tap); });
-    connect(table_, &QTableWidget::cellClicked, this, [this](int row, int) { trial_->setCurrentIndex(row); });
+    connect(slider_, &QSlider::valueChanged, this,
+            [this](int tap) { replay(trial_->currentIndex(), tap); });
+    connect(table_, &QTableWidget::cellClicked, this,
+            [this](int row, int) { trial_->setCurrentIndex(row); });
 }
 
 void FollowingTab::showRun(std::shared_ptr<const RunResult> result) {
     result_ = std::move(result);
     const RunResult& r = *result_;
-    buildPathFigure(active_->plot(), r, FollowingMode::Active, tr("Active contour following (ACF)"));
-    buildPathFigure(passive_->plot(), r, FollowingMode::Passive, tr("Passive contour following (PCF)"));
+    buildPathFigure(active_->plot(), r, FollowingMode::Active,
+                    tr("Active contour following (ACF)"));
+    buildPathFigure(passive_->plot(), r, FollowingMode::Passive,
+                    tr("Passive contour following (PCF)"));
     for (auto* p : {active_, passive_}) {
         p->plot().replot();
         applyEqualAspect(p->plot());
@@ -80,12 +85,20 @@ void FollowingTab::showRun(std::shared_ptr<const RunResult> result) {
     trial_->clear();
     for (std::size_t i = 0; i < r.trials.size(); ++i) {
         const TrialRun& t = r.trials[i];
-        const QStringList cells{QString::fromStdString(t.label), modeName(t.result.mode), QString::number(t.trial), trialEndName(t.result.end),
-                                QString::number(t.result.taps.size()), QString::number(t.result.robotTime_s, 'f', 0),
-                                QString::number(100 * t.result.coverage, 'f', 0), QString::number(t.result.meanContourDistance_mm, 'f', 2),
+        const QStringList cells{QString::fromStdString(t.label),
+                                modeName(t.result.mode),
+                                QString::number(t.trial),
+                                trialEndName(t.result.end),
+                                QString::number(t.result.taps.size()),
+                                QString::number(t.result.robotTime_s, 'f', 0),
+                                QString::number(100 * t.result.coverage, 'f', 0),
+                                QString::number(t.result.meanContourDistance_mm, 'f', 2),
                                 QString::number(t.result.maxContourDistance_mm, 'f', 2)};
-        for (int c = 0; c < cells.size(); ++c) table_->setItem(static_cast<int>(i), c, new QTableWidgetItem(cells[c]));
-        trial_->addItem(QString("%1 %2 %3").arg(modeName(t.result.mode), QString::fromStdString(t.label)).arg(t.trial));
+        for (int c = 0; c < cells.size(); ++c)
+            table_->setItem(static_cast<int>(i), c, new QTableWidgetItem(cells[c]));
+        trial_->addItem(QString("%1 %2 %3")
+                            .arg(modeName(t.result.mode), QString::fromStdString(t.label))
+                            .arg(t.trial));
     }
     if (!r.trials.empty()) replay(0, 0);
 }
@@ -111,11 +124,13 @@ void FollowingTab::replay(int index, int tap) {
     };
     curve(t.outline.vertices(), true, QPen(Qt::black, 2), 0);
     std::vector<Vec2> done;
-    for (int i = 0; i <= tap; ++i) done.push_back(t.result.taps[static_cast<std::size_t>(i)].record.pose);
+    for (int i = 0; i <= tap; ++i)
+        done.push_back(t.result.taps[static_cast<std::size_t>(i)].record.pose);
     curve(done, false, QPen(QColor(31, 119, 180), 1), 4);
     const FollowedTap& f = t.result.taps[static_cast<std::size_t>(tap)];
     curve({f.record.pose}, false, QPen(QColor(214, 39, 40), 2), 10);
-    curve({f.record.pose, f.record.pose + f.decision.move()}, false, QPen(QColor(214, 39, 40), 2, Qt::DashLine), 0);
+    curve({f.record.pose, f.record.pose + f.decision.move()}, false,
+          QPen(QColor(214, 39, 40), 2, Qt::DashLine), 0);
     p.xAxis->setLabel(tr("x (mm)"));
     p.yAxis->setLabel(tr("y (mm)"));
     const Vec2 lo = t.outline.boundingBoxMin(), hi = t.outline.boundingBoxMax();
@@ -125,7 +140,8 @@ void FollowingTab::replay(int index, int tap) {
     p.replot();
     applyEqualAspect(p);
     const Rule& rule = ruleFor(f.decision.rule);
-    step_->setText(tr("Tap %1 of %2 at (%3, %4) mm: perceived %5, position %6 (posterior %7). Rule '%8': when %9, then %10. "
+    step_->setText(tr("Tap %1 of %2 at (%3, %4) mm: perceived %5, position %6 (posterior %7). Rule "
+                      "'%8': when %9, then %10. "
                       "Progress %11 mm, %12 mm from the contour.")
                        .arg(tap + 1)
                        .arg(t.result.taps.size())
@@ -139,6 +155,8 @@ void FollowingTab::replay(int index, int tap) {
                        .arg(std::abs(f.contourDistance_mm), 0, 'f', 1));
 }
 
-QString FollowingTab::replayText() const { return step_->text(); }
+QString FollowingTab::replayText() const {
+    return step_->text();
+}
 
 }  // namespace activetouch

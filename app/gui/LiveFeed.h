@@ -12,10 +12,10 @@ namespace activetouch {
 class LiveFeed {
 public:
     struct Snapshot {
-        Tap tap;                 ///< the most recent complete tap
+        Tap tap;                    ///< the most recent complete tap
         std::vector<double> frame;  ///< the most recent frame (may run ahead of `tap` when paced)
         Vec2 pose;
-        QString what;            ///< what the tap was, in a sentence
+        QString what;  ///< what the tap was, in a sentence
         std::uint64_t tapSerial = 0;
         std::uint64_t frameSerial = 0;
     };

@@ -10,7 +10,10 @@
 namespace activetouch {
 
 LiveView::LiveView(LiveFeed& feed, QWidget* parent)
-    : QWidget(parent), feed_(feed), bars_(new PlotPanel("live_taxels", this)), traces_(new PlotPanel("last_tap_traces", this)) {
+    : QWidget(parent),
+      feed_(feed),
+      bars_(new PlotPanel("live_taxels", this)),
+      traces_(new PlotPanel("last_tap_traces", this)) {
     auto* layout = new QVBoxLayout(this);
     auto* info = new QGridLayout;
     pose_ = new QLabel(tr("Stage: -"));
@@ -31,7 +34,9 @@ LiveView::LiveView(LiveFeed& feed, QWidget* parent)
 
     QCustomPlot& b = bars_->plot();
     b.plotLayout()->insertRow(0);
-    b.plotLayout()->addElement(0, 0, new QCPTextElement(&b, tr("Taxel pressures (live, 50 Hz)"), QFont("Sans", 11, QFont::Bold)));
+    b.plotLayout()->addElement(0, 0,
+                               new QCPTextElement(&b, tr("Taxel pressures (live, 50 Hz)"),
+                                                  QFont("Sans", 11, QFont::Bold)));
     barPlottable_ = new QCPBars(b.xAxis, b.yAxis);
     barPlottable_->setBrush(QColor(31, 119, 180));
     barPlottable_->setPen(Qt::NoPen);
@@ -56,7 +61,8 @@ LiveView::LiveView(LiveFeed& feed, QWidget* parent)
 
     QCustomPlot& t = traces_->plot();
     t.plotLayout()->insertRow(0);
-    t.plotLayout()->addElement(0, 0, new QCPTextElement(&t, tr("Last tap"), QFont("Sans", 11, QFont::Bold)));
+    t.plotLayout()->addElement(
+        0, 0, new QCPTextElement(&t, tr("Last tap"), QFont("Sans", 11, QFont::Bold)));
     t.legend->setVisible(true);
     t.legend->setFont(QFont("Sans", 7));
     t.axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignTop | Qt::AlignRight);
@@ -92,7 +98,8 @@ void LiveView::tick() {
             traces_->plot().graph(k)->setData(x, y, true);
         }
         traces_->requestReplot();
-        pose_->setText(tr("Stage: x %1 mm, y %2 mm").arg(s.pose.x, 0, 'f', 2).arg(s.pose.y, 0, 'f', 2));
+        pose_->setText(
+            tr("Stage: x %1 mm, y %2 mm").arg(s.pose.x, 0, 'f', 2).arg(s.pose.y, 0, 'f', 2));
         percept_->setText(tr("Percept: %1").arg(s.what));
     }
     // Streamed frames show as they come; otherwise the newest tap is replayed at 50 Hz.

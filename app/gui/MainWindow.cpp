@@ -58,7 +58,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     confusion_ = new QTableWidget;
     confusion_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     recognition->addWidget(recognition_);
-    auto* confusionBox = new QGroupBox(tr("Confusion over the recognised trials (rows: true shape; columns: predicted by the paper's rule)"));
+    auto* confusionBox =
+        new QGroupBox(tr("Confusion over the recognised trials (rows: true shape; columns: "
+                         "predicted by the paper's rule)"));
     (new QVBoxLayout(confusionBox))->addWidget(confusion_);
     recognition->addWidget(confusionBox);
     recognition->setStretchFactor(0, 4);
@@ -70,7 +72,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     sweeps->addTab(sweepPerception_, tr("(a) taps per decision"));
     sweeps->addTab(sweepFollowing_, tr("(b) following steps"));
     sweeps->addTab(sweepCompute_, tr("(c) compute"));
-    sweeps->setToolTip(tr("Run an experiment with sweeps, such as experiments/accuracy_vs_time.json"));
+    sweeps->setToolTip(
+        tr("Run an experiment with sweeps, such as experiments/accuracy_vs_time.json"));
     tabs_->addTab(sweeps, tr("Accuracy vs time"));
     setCentralWidget(tabs_);
     for (PlotPanel* p : plotPanels()) {
@@ -103,27 +106,35 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     auto* bar = addToolBar(tr("Run"));
     bar->setObjectName("runToolBar");
     bar->addAction(tr("Open..."), this, [this] {
-        const QString path = QFileDialog::getOpenFileName(this, tr("Open an experiment"), QFileInfo(experimentPath_).path(), tr("Experiments (*.json)"));
+        const QString path = QFileDialog::getOpenFileName(this, tr("Open an experiment"),
+                                                          QFileInfo(experimentPath_).path(),
+                                                          tr("Experiments (*.json)"));
         if (!path.isEmpty()) openExperiment(path);
     });
     bar->addAction(tr("Save as..."), this, [this] {
-        const QString path = QFileDialog::getSaveFileName(this, tr("Save the experiment"), experimentPath_, tr("Experiments (*.json)"));
+        const QString path = QFileDialog::getSaveFileName(
+            this, tr("Save the experiment"), experimentPath_, tr("Experiments (*.json)"));
         if (!path.isEmpty()) saveExperiment(path);
     });
     bar->addSeparator();
-    runAll_ = bar->addAction(tr("Run whole protocol"), this, [this] { startRun(RunController::What::Everything); });
+    runAll_ = bar->addAction(tr("Run whole protocol"), this,
+                             [this] { startRun(RunController::What::Everything); });
     runAll_->setObjectName("runAll");
-    runTraining_ = bar->addAction(tr("Run training && validation"), this, [this] { startRun(RunController::What::TrainingOnly); });
-    runFollowing_ = bar->addAction(tr("Run following"), this, [this] { startRun(RunController::What::FollowingOnly); });
+    runTraining_ = bar->addAction(tr("Run training && validation"), this,
+                                  [this] { startRun(RunController::What::TrainingOnly); });
+    runFollowing_ = bar->addAction(tr("Run following"), this,
+                                   [this] { startRun(RunController::What::FollowingOnly); });
     cancel_ = bar->addAction(tr("Cancel"), this, &MainWindow::cancelRun);
     cancel_->setObjectName("cancel");
     pace_ = new QComboBox;
-    pace_->addItems({tr("as fast as possible"), tr("live frames (1 s per tap)"), tr("robot time (2.5 s per tap)")});
+    pace_->addItems({tr("as fast as possible"), tr("live frames (1 s per tap)"),
+                     tr("robot time (2.5 s per tap)")});
     pace_->setCurrentIndex(settings.value("pace", 0).toInt());
     bar->addWidget(pace_);
     bar->addSeparator();
     exportAll_ = bar->addAction(tr("Export all figures..."), this, [this] {
-        const QString dir = QFileDialog::getExistingDirectory(this, tr("Export all figures into"), lastOutDir_);
+        const QString dir =
+            QFileDialog::getExistingDirectory(this, tr("Export all figures into"), lastOutDir_);
         if (!dir.isEmpty()) exportAllFigures(dir);
     });
 
@@ -136,12 +147,13 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     statusBar()->addPermanentWidget(status_, 1);
     statusBar()->addPermanentWidget(progress_);
 
-    connect(&runs_, &RunController::progress, this, [this](int done, int planned, const QString& step, double left) {
-        progress_->setRange(0, std::max(planned, done));
-        progress_->setValue(done);
-        progress_->setFormat(tr("%1 taps, about %2 s left").arg(done).arg(left, 0, 'f', 0));
-        status_->setText(step);
-    });
+    connect(&runs_, &RunController::progress, this,
+            [this](int done, int planned, const QString& step, double left) {
+                progress_->setRange(0, std::max(planned, done));
+                progress_->setValue(done);
+                progress_->setFormat(tr("%1 taps, about %2 s left").arg(done).arg(left, 0, 'f', 0));
+                status_->setText(step);
+            });
     connect(&runs_, &RunController::finished, this, &MainWindow::showRun);
     connect(&runs_, &RunController::failed, this, [this](const QString& m) {
         showError(m);
@@ -153,18 +165,32 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     restoreState(settings.value("windowState").toByteArray());
     const QString last = settings.value("lastExperiment").toString();
     const QString fallback = QDir(ACTIVETOUCH_SOURCE_DIR).filePath("experiments/paper.json");
-    if (!(QFileInfo::exists(last) && openExperiment(last)) && QFileInfo::exists(fallback)) openExperiment(fallback);
+    if (!(QFileInfo::exists(last) && openExperiment(last)) && QFileInfo::exists(fallback))
+        openExperiment(fallback);
     updateActions();
 }
 
-MainWindow::~MainWindow() { runs_.stopAndWait(2000); }
-
-QList<PlotPanel*> MainWindow::plotPanels() const {
-    return {live_->barsPanel(), live_->tracesPanel(), taps_, errors_, following_->activePanel(), following_->passivePanel(),
-            following_->replayPanel(), recognition_, sweepPerception_, sweepFollowing_, sweepCompute_};
+MainWindow::~MainWindow() {
+    runs_.stopAndWait(2000);
 }
 
-void MainWindow::setPace(Pace pace) { pace_->setCurrentIndex(static_cast<int>(pace)); }
+QList<PlotPanel*> MainWindow::plotPanels() const {
+    return {live_->barsPanel(),
+            live_->tracesPanel(),
+            taps_,
+            errors_,
+            following_->activePanel(),
+            following_->passivePanel(),
+            following_->replayPanel(),
+            recognition_,
+            sweepPerception_,
+            sweepFollowing_,
+            sweepCompute_};
+}
+
+void MainWindow::setPace(Pace pace) {
+    pace_->setCurrentIndex(static_cast<int>(pace));
+}
 
 void MainWindow::log(const QString& text) {
     log_->appendPlainText(QDateTime::currentDateTime().toString("hh:mm:ss  ") + text);
@@ -172,7 +198,8 @@ void MainWindow::log(const QString& text) {
 
 void MainWindow::showError(const QString& message) {
     log(tr("error: %1").arg(message));
-    auto* box = new QMessageBox(QMessageBox::Warning, tr("ActiveTouch Workbench"), message, QMessageBox::Ok, this);
+    auto* box = new QMessageBox(QMessageBox::Warning, tr("ActiveTouch Workbench"), message,
+                                QMessageBox::Ok, this);
     box->setAttribute(Qt::WA_DeleteOnClose);
     box->setObjectName("errorDialog");
     box->open();  // not modal to the event loop: runs and the live view go on
@@ -183,8 +210,11 @@ bool MainWindow::openExperiment(const QString& path) {
     try {
         const Json j = readJsonFile(path.toStdString());
         if (!looksLikeExperiment(j))
-            throw InputError(path.toStdString(), "/", "this is not an experiment file (it has no 'scene'); open an experiment such as experiments/paper.json");
-        ExperimentSpec spec = parseExperiment(j, path.toStdString(), QFileInfo(path).path().toStdString());
+            throw InputError(path.toStdString(), "/",
+                             "this is not an experiment file (it has no 'scene'); open an "
+                             "experiment such as experiments/paper.json");
+        ExperimentSpec spec =
+            parseExperiment(j, path.toStdString(), QFileInfo(path).path().toStdString());
         validateEffects(spec.scene, FingertipContactModel(spec.scene.fingertip));
         // Only a fully valid file replaces the session.
         spec_ = spec;
@@ -218,7 +248,9 @@ bool MainWindow::saveExperiment(const QString& path) {
         Json j = experimentJson_;
         j["scene"] = sceneToJson(spec.scene);
         QFile f(path);
-        if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) throw InputError(path.toStdString(), "", "cannot write the file; choose a writable place");
+        if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate))
+            throw InputError(path.toStdString(), "",
+                             "cannot write the file; choose a writable place");
         f.write(QByteArray::fromStdString(j.dump(2) + "\n"));
         log(tr("saved %1").arg(path));
         return true;
@@ -240,9 +272,11 @@ bool MainWindow::startRun(RunController::What what) {
         showError(tr("The scene as shown cannot run: %1").arg(e.what()));
         return false;
     }
-    const QString dir = QDir(outputBase_).filePath(QString::fromStdString(spec.name) + "-" +
-                                                   QDateTime::currentDateTime().toString("yyyyMMdd-hhmmss-zzz"));
-    if (!runs_.start(spec, dir, what, static_cast<Pace>(pace_->currentIndex()), last_)) return false;
+    const QString dir = QDir(outputBase_)
+                            .filePath(QString::fromStdString(spec.name) + "-" +
+                                      QDateTime::currentDateTime().toString("yyyyMMdd-hhmmss-zzz"));
+    if (!runs_.start(spec, dir, what, static_cast<Pace>(pace_->currentIndex()), last_))
+        return false;
     lastOutDir_ = dir;
     progress_->setRange(0, plannedTapEstimate(spec));
     progress_->setValue(0);
@@ -259,7 +293,8 @@ void MainWindow::cancelRun() {
 
 void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString& dir) {
     const RunResult& r = *result;
-    const bool trainingRun = !r.taps.empty();  // a following-only run keeps the training figures shown
+    const bool trainingRun =
+        !r.taps.empty();  // a following-only run keeps the training figures shown
     last_ = result;
     lastOutDir_ = dir;
     if (trainingRun) buildTapFigure(taps_->plot(), r);
@@ -289,12 +324,15 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
     for (std::size_t a = 0; a < shapes.size(); ++a)
         for (std::size_t b = 0; b < shapes.size(); ++b) {
             int n = 0;
-            for (const auto& t : r.trials) n += t.recognised && t.label == shapes[a] && t.recognition.predicted == shapes[b];
-            confusion_->setItem(static_cast<int>(a), static_cast<int>(b), new QTableWidgetItem(QString::number(n)));
+            for (const auto& t : r.trials)
+                n += t.recognised && t.label == shapes[a] && t.recognition.predicted == shapes[b];
+            confusion_->setItem(static_cast<int>(a), static_cast<int>(b),
+                                new QTableWidgetItem(QString::number(n)));
         }
     progress_->setRange(0, std::max(1, progress_->value()));
     progress_->setValue(progress_->maximum());
-    const QString state = r.cancelled ? tr("cancelled") : (r.failure.empty() ? tr("finished") : tr("failed"));
+    const QString state =
+        r.cancelled ? tr("cancelled") : (r.failure.empty() ? tr("finished") : tr("failed"));
     progress_->setFormat(tr("%1: %2 taps").arg(state).arg(r.tapsSimulated));
     status_->setText(tr("%1, results in %2").arg(state, dir));
     if (!r.validation.byClass.empty())
@@ -304,9 +342,14 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
                 .arg(r.validation.validRange.first)
                 .arg(r.validation.validRange.last));
     for (const auto& t : r.trials)
-        log(tr("%1 %2 trial %3: %4").arg(modeName(t.result.mode), QString::fromStdString(t.label)).arg(t.trial).arg(QString::fromStdString(t.result.detail)));
+        log(tr("%1 %2 trial %3: %4")
+                .arg(modeName(t.result.mode), QString::fromStdString(t.label))
+                .arg(t.trial)
+                .arg(QString::fromStdString(t.result.detail)));
     log(tr("run %1: %2 taps, results in %3").arg(state).arg(r.tapsSimulated).arg(dir));
-    if (!r.failure.empty()) showError(tr("The run stopped: %1. Every tap taken so far is in %2/data.").arg(QString::fromStdString(r.failure), dir));
+    if (!r.failure.empty())
+        showError(tr("The run stopped: %1. Every tap taken so far is in %2/data.")
+                      .arg(QString::fromStdString(r.failure), dir));
     emit runEnded(!r.cancelled && r.failure.empty());
 }
 

@@ -18,7 +18,8 @@
 
 namespace activetouch {
 
-PlotPanel::PlotPanel(const QString& name, QWidget* parent) : QWidget(parent), name_(name), plot_(new QCustomPlot(this)) {
+PlotPanel::PlotPanel(const QString& name, QWidget* parent)
+    : QWidget(parent), name_(name), plot_(new QCustomPlot(this)) {
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addWidget(plot_);
@@ -34,7 +35,9 @@ PlotPanel::PlotPanel(const QString& name, QWidget* parent) : QWidget(parent), na
     replotTimer_.start();
 }
 
-void PlotPanel::requestReplot() { dirty_ = true; }
+void PlotPanel::requestReplot() {
+    dirty_ = true;
+}
 
 void PlotPanel::resizeEvent(QResizeEvent* event) {
     QWidget::resizeEvent(event);
@@ -42,7 +45,8 @@ void PlotPanel::resizeEvent(QResizeEvent* event) {
     applyEqualAspect(*plot_);
 }
 
-QStringList PlotPanel::exportTo(const QString& basePath, const QStringList& formats, const FigureSize& size) {
+QStringList PlotPanel::exportTo(const QString& basePath, const QStringList& formats,
+                                const FigureSize& size) {
     // Export at the requested size, then restore the on-screen layout.
     const QSize shown = plot_->size();
     QStringList files;
@@ -62,7 +66,8 @@ QStringList PlotPanel::exportTo(const QString& basePath, const QStringList& form
 void PlotPanel::exportCsv(const QString& path) const {
     QFile file(path);
     if (!file.open(QIODevice::WriteOnly | QIODevice::Truncate | QIODevice::Text))
-        throw std::runtime_error("cannot write " + path.toStdString() + "; check the folder is writable");
+        throw std::runtime_error("cannot write " + path.toStdString() +
+                                 "; check the folder is writable");
     QTextStream out(&file);
     out << "plottable,name,x,y,value\n";
     for (int i = 0; i < plot_->plottableCount(); ++i) {
@@ -70,27 +75,35 @@ void PlotPanel::exportCsv(const QString& path) const {
         const QString name = QString(p->name()).replace(',', ';');
         if (auto* g = qobject_cast<QCPGraph*>(p)) {
             for (auto it = g->data()->constBegin(); it != g->data()->constEnd(); ++it)
-                if (!qIsNaN(it->value)) out << i << ',' << name << ',' << it->key << ',' << it->value << ",\n";
+                if (!qIsNaN(it->value))
+                    out << i << ',' << name << ',' << it->key << ',' << it->value << ",\n";
         } else if (auto* c = qobject_cast<QCPCurve*>(p)) {
-            for (auto it = c->data()->constBegin(); it != c->data()->constEnd(); ++it) out << i << ',' << name << ',' << it->key << ',' << it->value << ",\n";
+            for (auto it = c->data()->constBegin(); it != c->data()->constEnd(); ++it)
+                out << i << ',' << name << ',' << it->key << ',' << it->value << ",\n";
         } else if (auto* b = qobject_cast<QCPBars*>(p)) {
-            for (auto it = b->data()->constBegin(); it != b->data()->constEnd(); ++it) out << i << ',' << name << ',' << it->key << ",," << it->value << '\n';
+            for (auto it = b->data()->constBegin(); it != b->data()->constEnd(); ++it)
+                out << i << ',' << name << ',' << it->key << ",," << it->value << '\n';
         } else if (auto* m = qobject_cast<QCPColorMap*>(p)) {
             QCPColorMapData* d = m->data();
             for (int x = 0; x < d->keySize(); ++x)
                 for (int y = 0; y < d->valueSize(); ++y) {
                     double kx, vy;
                     d->cellToCoord(x, y, &kx, &vy);
-                    out << i << ',' << name << ',' << kx << ',' << vy << ',' << d->cell(x, y) << '\n';
+                    out << i << ',' << name << ',' << kx << ',' << vy << ',' << d->cell(x, y)
+                        << '\n';
                 }
         } else if (auto* e = qobject_cast<QCPErrorBars*>(p)) {
-            for (int k = 0; k < e->dataCount(); ++k) out << i << ",error bars,," << ',' << e->data()->at(k).errorPlus << '\n';
+            for (int k = 0; k < e->dataCount(); ++k)
+                out << i << ",error bars,," << ',' << e->data()->at(k).errorPlus << '\n';
         }
     }
-    if (out.status() != QTextStream::Ok) throw std::runtime_error("could not write all of " + path.toStdString());
+    if (out.status() != QTextStream::Ok)
+        throw std::runtime_error("could not write all of " + path.toStdString());
 }
 
-void PlotPanel::copyToClipboard() { QApplication::clipboard()->setPixmap(plot_->toPixmap()); }
+void PlotPanel::copyToClipboard() {
+    QApplication::clipboard()->setPixmap(plot_->toPixmap());
+}
 
 void PlotPanel::showMenu(const QPoint& where) {
     QMenu menu(this);
@@ -100,7 +113,8 @@ void PlotPanel::showMenu(const QPoint& where) {
         emit exported(tr("%1 copied to the clipboard").arg(name_));
     });
     menu.addAction(tr("Export data as CSV..."), this, [this] {
-        const QString path = QFileDialog::getSaveFileName(this, tr("Export the data behind %1").arg(name_), name_ + ".csv", tr("CSV (*.csv)"));
+        const QString path = QFileDialog::getSaveFileName(
+            this, tr("Export the data behind %1").arg(name_), name_ + ".csv", tr("CSV (*.csv)"));
         if (path.isEmpty()) return;
         try {
             exportCsv(path);
@@ -138,12 +152,14 @@ void PlotPanel::exportWithDialog() {
     connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
     connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
     if (dialog.exec() != QDialog::Accepted) return;
-    const QString path = QFileDialog::getSaveFileName(this, tr("Export %1").arg(name_), name_ + "." + format->currentText());
+    const QString path = QFileDialog::getSaveFileName(this, tr("Export %1").arg(name_),
+                                                      name_ + "." + format->currentText());
     if (path.isEmpty()) return;
     QString base = path;
     if (base.endsWith("." + format->currentText())) base.chop(format->currentText().size() + 1);
     try {
-        const QStringList files = exportTo(base, {format->currentText()}, {width->value(), height->value(), dpi->value()});
+        const QStringList files = exportTo(base, {format->currentText()},
+                                           {width->value(), height->value(), dpi->value()});
         emit exported(tr("%1 written to %2").arg(name_, files.join(", ")));
     } catch (const std::exception& e) {
         emit failed(QString::fromStdString(e.what()));

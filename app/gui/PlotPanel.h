@@ -24,7 +24,8 @@ public:
     void requestReplot();
 
     /// Writes the plot in each format as <basePath>.<format>. Throws std::runtime_error.
-    QStringList exportTo(const QString& basePath, const QStringList& formats, const FigureSize& size);
+    QStringList exportTo(const QString& basePath, const QStringList& formats,
+                         const FigureSize& size);
     /// Writes every plottable's data, long format: plottable,name,x,y,value.
     void exportCsv(const QString& path) const;
     void copyToClipboard();

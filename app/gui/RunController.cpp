@@ -12,9 +12,13 @@ RunController::RunController(LiveFeed& live, QObject* parent) : QObject(parent),
     qRegisterMetaType<std::shared_ptr<const RunResult>>();
 }
 
-RunController::~RunController() { stopAndWait(2000); }
+RunController::~RunController() {
+    stopAndWait(2000);
+}
 
-void RunController::cancel() { cancel_ = true; }
+void RunController::cancel() {
+    cancel_ = true;
+}
 
 bool RunController::stopAndWait(int ms) {
     if (!thread_) return true;
@@ -41,8 +45,11 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
         options.outDir = outDir.toStdString();
         options.cancel = &cancel_;
         options.progress = [this, started](const RunProgress& p) {
-            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-            const double left = p.tapsDone > 0 ? elapsed / p.tapsDone * std::max(0, p.tapsPlanned - p.tapsDone) : 0.0;
+            const double elapsed =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            const double left = p.tapsDone > 0
+                                    ? elapsed / p.tapsDone * std::max(0, p.tapsPlanned - p.tapsDone)
+                                    : 0.0;
             emit progress(p.tapsDone, p.tapsPlanned, QString::fromStdString(p.step), left);
         };
         options.tapTaken = [this, pace](const TapRecord& r, const std::string& what) {
@@ -54,20 +61,25 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
                 std::this_thread::sleep_for(std::chrono::milliseconds(20));
             }
             if (pace == Pace::RobotTime) {
-                const auto settle = std::chrono::duration<double>(std::max(0.0, r.cycleTime_s - r.tap.sampleCount() * 0.02));
+                const auto settle = std::chrono::duration<double>(
+                    std::max(0.0, r.cycleTime_s - r.tap.sampleCount() * 0.02));
                 const auto until = std::chrono::steady_clock::now() + settle;
-                while (!cancel_ && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+                while (!cancel_ && std::chrono::steady_clock::now() < until)
+                    std::this_thread::sleep_for(std::chrono::milliseconds(20));
             }
         };
         try {
-            auto result = std::make_shared<RunResult>(what == What::FollowingOnly ? runFollowing(*trained, spec, options)
-                                                                                  : runExperiment(spec, options));
+            auto result = std::make_shared<RunResult>(what == What::FollowingOnly
+                                                          ? runFollowing(*trained, spec, options)
+                                                          : runExperiment(spec, options));
             writeRunTables(*result, options.outDir);
-            const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            const double wall =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
             writeSummary(*result, options.outDir, wall, 0.0);
             emit finished(result, outDir);
         } catch (const std::exception& e) {
-            emit failed(tr("The run stopped: %1. Every tap taken so far is in %2/data.").arg(QString::fromStdString(e.what()), outDir));
+            emit failed(tr("The run stopped: %1. Every tap taken so far is in %2/data.")
+                            .arg(QString::fromStdString(e.what()), outDir));
         }
     });
     connect(thread_, &QThread::finished, this, [this] {

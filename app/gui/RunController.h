@@ -13,9 +13,9 @@
 namespace activetouch {
 
 enum class Pace {
-    Fastest,      ///< as fast as the simulation goes; the live view shows the latest tap
-    LiveFrames,   ///< each tap's frames at 50 Hz (1 s per tap), no settle pauses
-    RobotTime,    ///< the robot's own timing: frames at 50 Hz and the settle pause
+    Fastest,     ///< as fast as the simulation goes; the live view shows the latest tap
+    LiveFrames,  ///< each tap's frames at 50 Hz (1 s per tap), no settle pauses
+    RobotTime,   ///< the robot's own timing: frames at 50 Hz and the settle pause
 };
 
 class RunController : public QObject {

@@ -89,7 +89,8 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
     }
     layout->addWidget(effectsBox);
     layout->addStretch();
-    for (auto* s : {width_, height_, arm_, opening_, x_, y_, rotation_, top_}) connect(s, &QDoubleSpinBox::valueChanged, this, &ScenePanel::changed);
+    for (auto* s : {width_, height_, arm_, opening_, x_, y_, rotation_, top_})
+        connect(s, &QDoubleSpinBox::valueChanged, this, &ScenePanel::changed);
     connect(shape_, &QComboBox::currentTextChanged, this, &ScenePanel::changed);
     // Only the sizes the chosen shape has are editable.
     auto enableSizes = [this](const QString& shape) {
@@ -116,14 +117,16 @@ void ScenePanel::showScene(const SceneSpec& scene) {
     rotation_->setValue(o.rotationDeg);
     top_->setValue(o.height_mm);
     polygon_ = o.polygon;
-    polygonLabel_->setText(polygon_.empty() ? tr("no polygon loaded") : tr("polygon of %1 vertices").arg(polygon_.size()));
+    polygonLabel_->setText(polygon_.empty() ? tr("no polygon loaded")
+                                            : tr("polygon of %1 vertices").arg(polygon_.size()));
     for (auto& [name, w] : effects_) w.box->setChecked(false);
     for (const EffectSpec& e : scene.effects) {
         auto it = effects_.find(e.name);
         if (it == effects_.end()) continue;
         it->second.box->setChecked(true);
         for (auto& [key, s] : it->second.parameters)
-            if (e.parameters.contains(key) && e.parameters[key].is_number()) s->setValue(e.parameters[key].get<double>());
+            if (e.parameters.contains(key) && e.parameters[key].is_number())
+                s->setValue(e.parameters[key].get<double>());
         if (it->second.taxels && e.parameters.contains("taxels")) {
             QStringList list;
             for (const auto& v : e.parameters["taxels"]) list << QString::number(v.get<int>());
@@ -161,7 +164,9 @@ SceneSpec ScenePanel::sceneFromPanel(const SceneSpec& base) const {
             for (const QString& part : w.taxels->text().split(',', Qt::SkipEmptyParts)) {
                 bool ok = false;
                 const int k = part.trimmed().toInt(&ok);
-                if (!ok) throw InputError("scene panel", d.name + " taxels", "'" + part.trimmed().toStdString() + "' is not a taxel index");
+                if (!ok)
+                    throw InputError("scene panel", d.name + " taxels",
+                                     "'" + part.trimmed().toStdString() + "' is not a taxel index");
                 list.push_back(k);
             }
             e["taxels"] = list;
@@ -172,18 +177,24 @@ SceneSpec ScenePanel::sceneFromPanel(const SceneSpec& base) const {
     return parseScene(j, "scene panel", "", ".");
 }
 
-void ScenePanel::setEffectEnabled(const std::string& name, bool on) { effects_.at(name).box->setChecked(on); }
+void ScenePanel::setEffectEnabled(const std::string& name, bool on) {
+    effects_.at(name).box->setChecked(on);
+}
 
-bool ScenePanel::effectEnabled(const std::string& name) const { return effects_.at(name).box->isChecked(); }
+bool ScenePanel::effectEnabled(const std::string& name) const {
+    return effects_.at(name).box->isChecked();
+}
 
 void ScenePanel::loadPolygon() {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Load a polygon"), QString(), tr("JSON (*.json)"));
+    const QString path =
+        QFileDialog::getOpenFileName(this, tr("Load a polygon"), QString(), tr("JSON (*.json)"));
     if (path.isEmpty()) return;
     try {
         const Json j = readJsonFile(path.toStdString());
         Json object = j.contains("object") ? j["object"] : j;
         object["shape"] = "polygon";
-        const ObjectSpec o = parseObject(JsonFields(object, path.toStdString(), j.contains("object") ? "/object" : ""));
+        const ObjectSpec o = parseObject(
+            JsonFields(object, path.toStdString(), j.contains("object") ? "/object" : ""));
         polygon_ = o.polygon;
         shape_->setCurrentText("polygon");
         polygonLabel_->setText(tr("polygon of %1 vertices").arg(polygon_.size()));

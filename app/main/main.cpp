@@ -1,6 +1,7 @@
 // activetouch: the workbench window.
 //   activetouch [experiment.json]
-//   activetouch --screenshots <dir> [experiment.json]   run the experiment, save a PNG of each tab, quit
+//   activetouch --screenshots <dir> [experiment.json]   run the experiment, save a PNG of each tab,
+//   quit
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QDir>
@@ -16,15 +17,21 @@ int main(int argc, char** argv) {
     QApplication::setOrganizationName("ActiveTouch");
     QApplication::setApplicationName("Workbench");
     QCommandLineParser parser;
-    parser.setApplicationDescription("ActiveTouch Workbench: active tactile perception experiments on a simulated or real rig.");
+    parser.setApplicationDescription(
+        "ActiveTouch Workbench: active tactile perception experiments on a simulated or real rig.");
     parser.addHelpOption();
-    QCommandLineOption shots("screenshots", "Run the experiment, save a screenshot of each tab into <dir>, and quit.", "dir");
+    QCommandLineOption shots(
+        "screenshots", "Run the experiment, save a screenshot of each tab into <dir>, and quit.",
+        "dir");
     parser.addOption(shots);
-    parser.addPositionalArgument("experiment", "Experiment file to open (default: the last one, or experiments/paper.json).");
+    parser.addPositionalArgument(
+        "experiment",
+        "Experiment file to open (default: the last one, or experiments/paper.json).");
     parser.process(app);
 
     MainWindow window;
-    if (!parser.positionalArguments().isEmpty() && !window.openExperiment(parser.positionalArguments().front())) {
+    if (!parser.positionalArguments().isEmpty() &&
+        !window.openExperiment(parser.positionalArguments().front())) {
         if (parser.isSet(shots)) return 2;
     }
     window.resize(1700, 1050);
@@ -46,7 +53,8 @@ int main(int argc, char** argv) {
                 QEventLoop wait;
                 QTimer::singleShot(300, &wait, &QEventLoop::quit);
                 wait.exec();
-                const QString name = window.tabs()->tabText(i).replace("&&", "and").replace(' ', '_').toLower();
+                const QString name =
+                    window.tabs()->tabText(i).replace("&&", "and").replace(' ', '_').toLower();
                 window.grab().save(QDir(dir).filePath(QString("%1_%2.png").arg(i + 1).arg(name)));
             }
             status = completed ? 0 : 1;

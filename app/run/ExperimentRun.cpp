@@ -20,12 +20,17 @@ namespace {
 void ensureDirectory(const fs::path& dir) {
     std::error_code ec;
     fs::create_directories(dir, ec);
-    if (ec) throw InputError(dir.string(), "", "cannot create the output folder (" + ec.message() + "); choose a writable --out");
+    if (ec)
+        throw InputError(
+            dir.string(), "",
+            "cannot create the output folder (" + ec.message() + "); choose a writable --out");
 }
 
 std::FILE* openTable(const fs::path& path) {
     std::FILE* f = std::fopen(path.string().c_str(), "w");
-    if (!f) throw InputError(path.string(), "", "cannot write the file; check the output folder is writable");
+    if (!f)
+        throw InputError(path.string(), "",
+                         "cannot write the file; check the output folder is writable");
     return f;
 }
 
@@ -42,12 +47,15 @@ int plannedTapEstimate(const ExperimentSpec& spec) {
 
 namespace {
 
-void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> model, const RunOptions& options, RunProgress& progress) {
+void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> model,
+               const RunOptions& options, RunProgress& progress) {
     const ExperimentSpec& spec = result.spec;
     if (spec.trials.empty()) return;
     std::unique_ptr<FollowingRecording> recording;
     if (!options.outDir.empty())
-        recording = std::make_unique<FollowingRecording>((fs::path(options.outDir) / "data" / "following_taps.csv").string(), model->taxelCount());
+        recording = std::make_unique<FollowingRecording>(
+            (fs::path(options.outDir) / "data" / "following_taps.csv").string(),
+            model->taxelCount());
     std::map<std::string, int> counters;  // trials so far per (label, mode)
     int trialIndex = 0;
     for (const TrialSpec& ts : spec.trials) {
@@ -55,7 +63,10 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
             // Each trial gets its own world on the trial's object, with its own noise.
             SceneSpec scene = spec.scene;
             scene.object = ts.object;
-            scene.seed = RandomStream::derived(spec.scene.seed, "trial:" + std::to_string(trialIndex)).next() >> 1;
+            scene.seed =
+                RandomStream::derived(spec.scene.seed, "trial:" + std::to_string(trialIndex))
+                    .next() >>
+                1;
             SimulatedRig simulated(scene, model);
             Rig rig = simulated.rig();
             TrialRun run;
@@ -69,19 +80,26 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
             setup.settings = spec.following;
             setup.valid = result.validOffsets;
             setup.noiseFloor = spec.scene.tap.noiseFloor;
-            progress.step = std::string(modeName(ts.mode)) + " following, " + ts.label + " trial " + std::to_string(run.trial);
+            progress.step = std::string(modeName(ts.mode)) + " following, " + ts.label + " trial " +
+                            std::to_string(run.trial);
             int tapIndex = 0;
-            run.result = runTrial(rig, result.classifier, result.classes, run.outline, setup, [&](const FollowedTap& tap) {
-                if (recording) recording->append(run.label, ts.mode, run.trial, tapIndex, tap);
-                if (options.tapTaken)
-                    options.tapTaken(tap.record, std::string(modeName(ts.mode)) + " " + run.label + " trial " + std::to_string(run.trial) +
-                                                     ": " + tap.percept.shapeClass() + ", position " + std::to_string(tap.percept.position) +
-                                                     " -> " + ruleFor(tap.decision.rule).name);
-                ++tapIndex;
-                ++progress.tapsDone;
-                if (options.progress) options.progress(progress);
-                return !(options.cancel && options.cancel->load());
-            });
+            run.result =
+                runTrial(rig, result.classifier, result.classes, run.outline, setup,
+                         [&](const FollowedTap& tap) {
+                             if (recording)
+                                 recording->append(run.label, ts.mode, run.trial, tapIndex, tap);
+                             if (options.tapTaken)
+                                 options.tapTaken(
+                                     tap.record, std::string(modeName(ts.mode)) + " " + run.label +
+                                                     " trial " + std::to_string(run.trial) + ": " +
+                                                     tap.percept.shapeClass() + ", position " +
+                                                     std::to_string(tap.percept.position) + " -> " +
+                                                     ruleFor(tap.decision.rule).name);
+                             ++tapIndex;
+                             ++progress.tapsDone;
+                             if (options.progress) options.progress(progress);
+                             return !(options.cancel && options.cancel->load());
+                         });
             result.robotTime_s += run.result.robotTime_s;
             result.tapsSimulated += simulated.world().tapsSimulated();
             result.trials.push_back(std::move(run));
@@ -105,7 +123,8 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
         if (seen) continue;
         ShapeTemplate t;
         t.shape = run.label;
-        t.raw = pathHistogram(idealFollowingPath(run.outline, centre, spec.following.followStep_mm), spec.recognition.bins);
+        t.raw = pathHistogram(idealFollowingPath(run.outline, centre, spec.following.followStep_mm),
+                              spec.recognition.bins);
         t.smooth = smoothed(t.raw, spec.recognition.smoothingSigmaBins);
         result.templates.push_back(t);
     }
@@ -113,7 +132,8 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
     for (TrialRun& run : result.trials) {
         if (run.result.mode != spec.recognition.ofMode) continue;
         run.recognised = true;
-        run.recognition = recognise(run.result.path(), result.templates, spec.recognition.smoothingSigmaBins);
+        run.recognition =
+            recognise(run.result.path(), result.templates, spec.recognition.smoothingSigmaBins);
         ++recognised;
         correct += run.recognition.predicted == run.label;
         correctSmoothed += run.recognition.predictedSmoothed == run.label;
@@ -138,12 +158,14 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     Rig rig = simulated.rig();
     result.activeEffects = simulated.world().activeEffects();
     result.classes = spec.classes;
-    result.classes.regions = computeClassRegions(*model, spec.classes, spec.scene.tap, spec.scene.strokeLimitDepth());
+    result.classes.regions =
+        computeClassRegions(*model, spec.classes, spec.scene.tap, spec.scene.strokeLimitDepth());
 
     std::unique_ptr<TapCsvWriter> recording;
     if (!options.outDir.empty()) {
         ensureDirectory(fs::path(options.outDir) / "data");
-        recording = std::make_unique<TapCsvWriter>((fs::path(options.outDir) / "data" / "taps.csv").string(), model->taxelCount());
+        recording = std::make_unique<TapCsvWriter>(
+            (fs::path(options.outDir) / "data" / "taps.csv").string(), model->taxelCount());
     }
 
     RunProgress progress;
@@ -152,31 +174,39 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     auto onTap = [&](const CollectedTap& tap) {
         if (recording) recording->append(tap, result.classes);
         if (options.tapTaken)
-            options.tapTaken(tap.record, "training set " + std::to_string(tap.dataSet) + ": " +
-                                             ClassSet::orientationName(result.classes.orientationDegOf(tap.cls)) + " edge, position " +
-                                             std::to_string(result.classes.positionOf(tap.cls)));
+            options.tapTaken(
+                tap.record,
+                "training set " + std::to_string(tap.dataSet) + ": " +
+                    ClassSet::orientationName(result.classes.orientationDegOf(tap.cls)) +
+                    " edge, position " + std::to_string(result.classes.positionOf(tap.cls)));
         ++progress.tapsDone;
         if (options.progress) options.progress(progress);
         return !(options.cancel && options.cancel->load());
     };
-    result.taps = collectTrainingTaps(rig, simulated.world().object(), result.classes, spec.training,
-                                      RandomStream::derived(spec.scene.seed, "protocol:placement"), onTap);
+    result.taps =
+        collectTrainingTaps(rig, simulated.world().object(), result.classes, spec.training,
+                            RandomStream::derived(spec.scene.seed, "protocol:placement"), onTap);
     result.robotTime_s = simulated.world().now_s();
     result.tapsSimulated = simulated.world().tapsSimulated();
     if (static_cast<int>(result.taps.size()) < spec.plannedTaps()) {
         result.cancelled = true;
-        result.runWall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        result.runWall_s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         return result;
     }
 
     std::vector<LabelledTap> training;
     std::vector<const CollectedTap*> tests;
     for (const auto& t : result.taps) {
-        if (spec.training.isTrainingSet(t.dataSet)) training.push_back({&t.record.tap, t.cls});
-        else tests.push_back(&t);
+        if (spec.training.isTrainingSet(t.dataSet))
+            training.push_back({&t.record.tap, t.cls});
+        else
+            tests.push_back(&t);
     }
-    result.classifier = HistogramClassifier::train(training, result.classes.classCount(), spec.classifier);
-    result.validation = validateOffline(result.classifier, result.classes, tests, spec.validRangeWidth);
+    result.classifier =
+        HistogramClassifier::train(training, result.classes.classCount(), spec.classifier);
+    result.validation =
+        validateOffline(result.classifier, result.classes, tests, spec.validRangeWidth);
     // The controller's valid range: the class positions' span, half a step wide on each side.
     const double half = 0.5 * result.classes.positionStep_mm;
     result.validOffsets = {result.classes.offsetOf(result.validation.validRange.first) - half,
@@ -203,11 +233,13 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
         if (options.progress) options.progress(progress);
         result.sweeps = runSweeps(result, options);
     }
-    result.runWall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    result.runWall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return result;
 }
 
-RunResult runFollowing(const RunResult& trained, const ExperimentSpec& specIn, const RunOptions& options) {
+RunResult runFollowing(const RunResult& trained, const ExperimentSpec& specIn,
+                       const RunOptions& options) {
     const auto started = std::chrono::steady_clock::now();
     RunResult result = trained;
     result.spec = specIn;
@@ -227,7 +259,8 @@ RunResult runFollowing(const RunResult& trained, const ExperimentSpec& specIn, c
     RunProgress progress;
     progress.tapsPlanned = plannedTapEstimate(result.spec) - result.spec.plannedTaps();
     runTrials(result, model, options, progress);
-    result.runWall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    result.runWall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return result;
 }
 
@@ -239,58 +272,78 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
     std::FILE* f = openTable(data / "class_regions.csv");
     std::fprintf(f, "class,orientation_deg,orientation,position,offset_mm,region\n");
     for (int c = 0; c < cs.classCount(); ++c)
-        std::fprintf(f, "%d,%g,%s,%d,%g,%s\n", c, cs.orientationDegOf(c), ClassSet::orientationName(cs.orientationDegOf(c)).c_str(),
-                     cs.positionOf(c), cs.offsetOf(cs.positionOf(c)), regionName(cs.regionOf(c)));
+        std::fprintf(f, "%d,%g,%s,%d,%g,%s\n", c, cs.orientationDegOf(c),
+                     ClassSet::orientationName(cs.orientationDegOf(c)).c_str(), cs.positionOf(c),
+                     cs.offsetOf(cs.positionOf(c)), regionName(cs.regionOf(c)));
     std::fclose(f);
     if (!r.validation.byClass.empty()) {
-    f = openTable(data / "validation_by_class.csv");
-    std::fprintf(f, "orientation_deg,orientation,position,region,test_taps,angle_error_deg,position_error_mm,correct_fraction\n");
-    for (const auto& e : r.validation.byClass) {
-        const double deg = cs.orientationsDeg[static_cast<std::size_t>(e.orientationIndex)];
-        std::fprintf(f, "%g,%s,%d,%s,%d,%.10g,%.10g,%.10g\n", deg, ClassSet::orientationName(deg).c_str(), e.position,
-                     regionName(e.region), e.taps, e.angleError_deg, e.positionError_mm, e.correctFraction);
-    }
-    std::fclose(f);
+        f = openTable(data / "validation_by_class.csv");
+        std::fprintf(f,
+                     "orientation_deg,orientation,position,region,test_taps,angle_error_deg,"
+                     "position_error_mm,correct_fraction\n");
+        for (const auto& e : r.validation.byClass) {
+            const double deg = cs.orientationsDeg[static_cast<std::size_t>(e.orientationIndex)];
+            std::fprintf(f, "%g,%s,%d,%s,%d,%.10g,%.10g,%.10g\n", deg,
+                         ClassSet::orientationName(deg).c_str(), e.position, regionName(e.region),
+                         e.taps, e.angleError_deg, e.positionError_mm, e.correctFraction);
+        }
+        std::fclose(f);
 
-    f = openTable(data / "validation_by_position.csv");
-    std::fprintf(f, "position,offset_mm,angle_error_deg_mean,angle_error_deg_std,position_error_mm_mean,position_error_mm_std,in_valid_range\n");
-    for (int p = 1; p <= cs.positions; ++p) {
-        const auto i = static_cast<std::size_t>(p - 1);
-        std::fprintf(f, "%d,%g,%.10g,%.10g,%.10g,%.10g,%d\n", p, cs.offsetOf(p), r.validation.angleMean[i], r.validation.angleStd[i],
-                     r.validation.positionMean[i], r.validation.positionStd[i],
-                     p >= r.validation.validRange.first && p <= r.validation.validRange.last ? 1 : 0);
-    }
-    std::fclose(f);
+        f = openTable(data / "validation_by_position.csv");
+        std::fprintf(f,
+                     "position,offset_mm,angle_error_deg_mean,angle_error_deg_std,position_error_"
+                     "mm_mean,position_error_mm_std,in_valid_range\n");
+        for (int p = 1; p <= cs.positions; ++p) {
+            const auto i = static_cast<std::size_t>(p - 1);
+            std::fprintf(
+                f, "%d,%g,%.10g,%.10g,%.10g,%.10g,%d\n", p, cs.offsetOf(p),
+                r.validation.angleMean[i], r.validation.angleStd[i], r.validation.positionMean[i],
+                r.validation.positionStd[i],
+                p >= r.validation.validRange.first && p <= r.validation.validRange.last ? 1 : 0);
+        }
+        std::fclose(f);
 
-    f = openTable(data / "test_percepts.csv");
-    std::fprintf(f, "set,true_class,true_orientation_deg,true_position,true_offset_mm,perceived_class,shape_class,perceived_orientation_deg,perceived_position,posterior\n");
-    std::size_t i = 0;
-    for (const auto& t : r.taps) {
-        if (r.spec.training.isTrainingSet(t.dataSet)) continue;
-        const Percept& p = r.validation.percepts[i++];
-        std::fprintf(f, "%d,%d,%g,%d,%.10g,%d,%s,%g,%d,%.10g\n", t.dataSet, t.cls, cs.orientationDegOf(t.cls), cs.positionOf(t.cls),
-                     t.trueOffset_mm, p.cls, p.shapeClass().c_str(), p.orientationDeg, p.position, p.posterior);
-    }
-    std::fclose(f);
-
+        f = openTable(data / "test_percepts.csv");
+        std::fprintf(f,
+                     "set,true_class,true_orientation_deg,true_position,true_offset_mm,perceived_"
+                     "class,shape_class,perceived_orientation_deg,perceived_position,posterior\n");
+        std::size_t i = 0;
+        for (const auto& t : r.taps) {
+            if (r.spec.training.isTrainingSet(t.dataSet)) continue;
+            const Percept& p = r.validation.percepts[i++];
+            std::fprintf(f, "%d,%d,%g,%d,%.10g,%d,%s,%g,%d,%.10g\n", t.dataSet, t.cls,
+                         cs.orientationDegOf(t.cls), cs.positionOf(t.cls), t.trueOffset_mm, p.cls,
+                         p.shapeClass().c_str(), p.orientationDeg, p.position, p.posterior);
+        }
+        std::fclose(f);
     }
     if (!r.trials.empty()) {
         f = openTable(data / "following_trials.csv");
-        std::fprintf(f, "shape,mode,trial,completed,end,taps,robot_time_s,coverage,mean_contour_distance_mm,max_contour_distance_mm,progress_mm,start_x_mm,start_y_mm\n");
+        std::fprintf(f,
+                     "shape,mode,trial,completed,end,taps,robot_time_s,coverage,mean_contour_"
+                     "distance_mm,max_contour_distance_mm,progress_mm,start_x_mm,start_y_mm\n");
         for (const auto& t : r.trials)
-            std::fprintf(f, "%s,%s,%d,%d,%s,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", t.label.c_str(), modeName(t.result.mode), t.trial,
-                         t.result.completed() ? 1 : 0, trialEndName(t.result.end), t.result.taps.size(), t.result.robotTime_s, t.result.coverage,
-                         t.result.meanContourDistance_mm, t.result.maxContourDistance_mm, t.result.progress_mm, t.start.x, t.start.y);
+            std::fprintf(f, "%s,%s,%d,%d,%s,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+                         t.label.c_str(), modeName(t.result.mode), t.trial,
+                         t.result.completed() ? 1 : 0, trialEndName(t.result.end),
+                         t.result.taps.size(), t.result.robotTime_s, t.result.coverage,
+                         t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
+                         t.result.progress_mm, t.start.x, t.start.y);
         std::fclose(f);
         f = openTable(data / "following_paths.csv");
-        std::fprintf(f, "shape,mode,trial,tap,x_mm,y_mm,shape_class,orientation_deg,position,rule,move_x_mm,move_y_mm,progress_mm,contour_distance_mm\n");
+        std::fprintf(f,
+                     "shape,mode,trial,tap,x_mm,y_mm,shape_class,orientation_deg,position,rule,"
+                     "move_x_mm,move_y_mm,progress_mm,contour_distance_mm\n");
         for (const auto& t : r.trials) {
             int i = 0;
             for (const auto& tap : t.result.taps) {
                 const Vec2 m = tap.decision.move();
-                std::fprintf(f, "%s,%s,%d,%d,%.10g,%.10g,%s,%g,%d,%s,%.10g,%.10g,%.10g,%.10g\n", t.label.c_str(), modeName(t.result.mode), t.trial,
-                             i++, tap.record.pose.x, tap.record.pose.y, tap.percept.shapeClass().c_str(), tap.percept.orientationDeg,
-                             tap.percept.position, ruleFor(tap.decision.rule).name, m.x, m.y, tap.progress_mm, tap.contourDistance_mm);
+                std::fprintf(f, "%s,%s,%d,%d,%.10g,%.10g,%s,%g,%d,%s,%.10g,%.10g,%.10g,%.10g\n",
+                             t.label.c_str(), modeName(t.result.mode), t.trial, i++,
+                             tap.record.pose.x, tap.record.pose.y, tap.percept.shapeClass().c_str(),
+                             tap.percept.orientationDeg, tap.percept.position,
+                             ruleFor(tap.decision.rule).name, m.x, m.y, tap.progress_mm,
+                             tap.contourDistance_mm);
             }
         }
         std::fclose(f);
@@ -301,7 +354,8 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
             if (written[t.label]) continue;
             written[t.label] = true;
             for (std::size_t v = 0; v < t.outline.size(); ++v)
-                std::fprintf(f, "%s,%zu,%.10g,%.10g\n", t.label.c_str(), v, t.outline.vertex(v).x, t.outline.vertex(v).y);
+                std::fprintf(f, "%s,%zu,%.10g,%.10g\n", t.label.c_str(), v, t.outline.vertex(v).x,
+                             t.outline.vertex(v).y);
         }
         std::fclose(f);
     }
@@ -313,18 +367,23 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
         std::fputc('\n', f);
         for (const auto& t : r.trials) {
             if (!t.recognised) continue;
-            std::fprintf(f, "%s,%d,%s,%s", t.label.c_str(), t.trial, t.recognition.predicted.c_str(), t.recognition.predictedSmoothed.c_str());
-            for (const auto& tp : r.templates) std::fprintf(f, ",%.10g", t.recognition.distances.at(tp.shape));
-            for (const auto& tp : r.templates) std::fprintf(f, ",%.10g", t.recognition.smoothedDistances.at(tp.shape));
+            std::fprintf(f, "%s,%d,%s,%s", t.label.c_str(), t.trial,
+                         t.recognition.predicted.c_str(), t.recognition.predictedSmoothed.c_str());
+            for (const auto& tp : r.templates)
+                std::fprintf(f, ",%.10g", t.recognition.distances.at(tp.shape));
+            for (const auto& tp : r.templates)
+                std::fprintf(f, ",%.10g", t.recognition.smoothedDistances.at(tp.shape));
             std::fputc('\n', f);
         }
         std::fclose(f);
         f = openTable(data / "path_histograms.csv");
         std::fprintf(f, "kind,shape,trial,smoothed,ix,iy,value\n");
-        auto dump = [&](const char* kind, const std::string& shape, int trial, bool smooth, const PathHistogram& h) {
+        auto dump = [&](const char* kind, const std::string& shape, int trial, bool smooth,
+                        const PathHistogram& h) {
             for (int iy = 0; iy < h.bins; ++iy)
                 for (int ix = 0; ix < h.bins; ++ix)
-                    std::fprintf(f, "%s,%s,%d,%d,%d,%d,%.10g\n", kind, shape.c_str(), trial, smooth ? 1 : 0, ix, iy, h.at(ix, iy));
+                    std::fprintf(f, "%s,%s,%d,%d,%d,%d,%.10g\n", kind, shape.c_str(), trial,
+                                 smooth ? 1 : 0, ix, iy, h.at(ix, iy));
         };
         for (const auto& t : r.templates) {
             dump("template", t.shape, 0, false, t.raw);
@@ -341,27 +400,38 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
     const SweepResults& sw = r.sweeps;
     if (!sw.perception.empty()) {
         f = openTable(data / "sweep_perception.csv");
-        std::fprintf(f, "belief_threshold,mean_taps_per_decision,angle_error_deg,position_error_mm,correct_fraction\n");
+        std::fprintf(f,
+                     "belief_threshold,mean_taps_per_decision,angle_error_deg,position_error_mm,"
+                     "correct_fraction\n");
         for (const auto& row : sw.perception)
-            std::fprintf(f, "%.15g,%.6g,%.6g,%.6g,%.6g\n", row.threshold, row.meanTaps, row.angleError_deg, row.positionError_mm, row.correctFraction);
+            std::fprintf(f, "%.15g,%.6g,%.6g,%.6g,%.6g\n", row.threshold, row.meanTaps,
+                         row.angleError_deg, row.positionError_mm, row.correctFraction);
         std::fclose(f);
     }
     if (!sw.following.empty()) {
         f = openTable(data / "sweep_following.csv");
-        std::fprintf(f, "mode,follow_step_mm,reposition_step_mm,belief_threshold,trials,completed,completion_rate,mean_contour_distance_mm,"
-                        "mean_taps,mean_robot_time_s,robot_time_per_completion_s,paper_setting\n");
+        std::fprintf(f,
+                     "mode,follow_step_mm,reposition_step_mm,belief_threshold,trials,completed,"
+                     "completion_rate,mean_contour_distance_mm,"
+                     "mean_taps,mean_robot_time_s,robot_time_per_completion_s,paper_setting\n");
         for (const auto& row : sw.following)
-            std::fprintf(f, "%s,%g,%g,%.15g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%d\n", modeName(row.mode), row.followStep_mm, row.repositionStep_mm,
-                         row.beliefThreshold, row.trials, row.completed, double(row.completed) / row.trials, row.meanContourDistance_mm,
-                         row.meanTaps, row.meanRobotTime_s, row.robotTimePerCompletion_s, row.paperSetting ? 1 : 0);
+            std::fprintf(f, "%s,%g,%g,%.15g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%d\n",
+                         modeName(row.mode), row.followStep_mm, row.repositionStep_mm,
+                         row.beliefThreshold, row.trials, row.completed,
+                         double(row.completed) / row.trials, row.meanContourDistance_mm,
+                         row.meanTaps, row.meanRobotTime_s, row.robotTimePerCompletion_s,
+                         row.paperSetting ? 1 : 0);
         std::fclose(f);
     }
     if (!sw.compute.empty()) {
         f = openTable(data / "sweep_compute.csv");
-        std::fprintf(f, "bins,samples_per_tap,angle_error_deg,position_error_mm,microseconds_per_decision,paper_setting\n");
+        std::fprintf(f,
+                     "bins,samples_per_tap,angle_error_deg,position_error_mm,microseconds_per_"
+                     "decision,paper_setting\n");
         for (const auto& row : sw.compute)
-            std::fprintf(f, "%d,%d,%.6g,%.6g,%.6g,%d\n", row.bins, row.samples, row.angleError_deg, row.positionError_mm,
-                         row.microsecondsPerDecision, row.paperSetting ? 1 : 0);
+            std::fprintf(f, "%d,%d,%.6g,%.6g,%.6g,%d\n", row.bins, row.samples, row.angleError_deg,
+                         row.positionError_mm, row.microsecondsPerDecision,
+                         row.paperSetting ? 1 : 0);
         std::fclose(f);
     }
 
@@ -372,7 +442,9 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
     std::fputc('\n', f);
     for (int a = 0; a < cs.classCount(); ++a) {
         std::fprintf(f, "%d", a);
-        for (int b = 0; b < cs.classCount(); ++b) std::fprintf(f, ",%d", r.validation.confusion[static_cast<std::size_t>(a * cs.classCount() + b)]);
+        for (int b = 0; b < cs.classCount(); ++b)
+            std::fprintf(f, ",%d",
+                         r.validation.confusion[static_cast<std::size_t>(a * cs.classCount() + b)]);
         std::fputc('\n', f);
     }
     std::fclose(f);
@@ -389,53 +461,78 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
     j["effects_active"] = r.activeEffects;
     Json regions = Json::array();
     for (int c = 0; c < cs.classCount(); ++c) regions.push_back(regionName(cs.regionOf(c)));
-    j["classes"] = {{"orientations_deg", cs.orientationsDeg}, {"positions", cs.positions},
-                    {"position_step_mm", cs.positionStep_mm}, {"regions", regions}};
-    j["classifier"] = {{"bins", r.spec.classifier.bins}, {"smoothing", r.spec.classifier.smoothing}};
-    j["training"] = {{"data_sets", r.spec.training.dataSets}, {"training_sets", r.spec.training.trainingSets},
-                     {"taps_per_class", r.spec.training.tapsPerClass}, {"test_offset_mm", r.spec.training.testOffset_mm},
+    j["classes"] = {{"orientations_deg", cs.orientationsDeg},
+                    {"positions", cs.positions},
+                    {"position_step_mm", cs.positionStep_mm},
+                    {"regions", regions}};
+    j["classifier"] = {{"bins", r.spec.classifier.bins},
+                       {"smoothing", r.spec.classifier.smoothing}};
+    j["training"] = {{"data_sets", r.spec.training.dataSets},
+                     {"training_sets", r.spec.training.trainingSets},
+                     {"taps_per_class", r.spec.training.tapsPerClass},
+                     {"test_offset_mm", r.spec.training.testOffset_mm},
                      {"placement_jitter_mm", r.spec.training.placementJitter_mm}};
     if (!r.validation.byClass.empty()) {
         const auto& v = r.validation;
         Json byClass = Json::array();
         for (const auto& e : v.byClass) {
             const double deg = cs.orientationsDeg[static_cast<std::size_t>(e.orientationIndex)];
-            byClass.push_back({{"orientation_deg", deg}, {"orientation", ClassSet::orientationName(deg)}, {"position", e.position},
-                               {"region", regionName(e.region)}, {"test_taps", e.taps}, {"angle_error_deg", e.angleError_deg},
-                               {"position_error_mm", e.positionError_mm}, {"correct_fraction", e.correctFraction}});
+            byClass.push_back({{"orientation_deg", deg},
+                               {"orientation", ClassSet::orientationName(deg)},
+                               {"position", e.position},
+                               {"region", regionName(e.region)},
+                               {"test_taps", e.taps},
+                               {"angle_error_deg", e.angleError_deg},
+                               {"position_error_mm", e.positionError_mm},
+                               {"correct_fraction", e.correctFraction}});
         }
         Json byPosition = Json::array();
         for (int p = 1; p <= cs.positions; ++p) {
             const auto i = static_cast<std::size_t>(p - 1);
-            byPosition.push_back({{"position", p}, {"angle_error_deg_mean", v.angleMean[i]}, {"angle_error_deg_std", v.angleStd[i]},
-                                  {"position_error_mm_mean", v.positionMean[i]}, {"position_error_mm_std", v.positionStd[i]}});
+            byPosition.push_back({{"position", p},
+                                  {"angle_error_deg_mean", v.angleMean[i]},
+                                  {"angle_error_deg_std", v.angleStd[i]},
+                                  {"position_error_mm_mean", v.positionMean[i]},
+                                  {"position_error_mm_std", v.positionStd[i]}});
         }
         j["validation"] = {
             {"angle_error_deg_mean", v.angleError_deg},
             {"position_error_mm_mean", v.positionError_mm},
             {"class_accuracy", v.correctFraction},
-            {"valid_range_mm", {v.validRange.first * cs.positionStep_mm, v.validRange.last * cs.positionStep_mm}},
+            {"valid_range_mm",
+             {v.validRange.first * cs.positionStep_mm, v.validRange.last * cs.positionStep_mm}},
             {"valid_range_positions", {v.validRange.first, v.validRange.last}},
-            {"valid_range_offset_mm", {cs.offsetOf(v.validRange.first), cs.offsetOf(v.validRange.last)}},
+            {"valid_range_offset_mm",
+             {cs.offsetOf(v.validRange.first), cs.offsetOf(v.validRange.last)}},
             {"valid_range_rule", "the window of " + std::to_string(r.spec.validRangeWidth) +
-                                     " consecutive positions with the lowest sum of orientation-averaged angle and position errors, "
-                                     "each normalised by its maximum over positions; ties to the window nearest the edge"},
+                                     " consecutive positions with the lowest sum of "
+                                     "orientation-averaged angle and position errors, "
+                                     "each normalised by its maximum over positions; ties to the "
+                                     "window nearest the edge"},
             {"test_taps", v.percepts.size()},
             {"by_class", byClass},
             {"by_position", byPosition}};
     }
     if (!r.failure.empty()) j["failure"] = r.failure;
-    j["controller"] = {{"valid_offsets_mm", {r.validOffsets.low, r.validOffsets.high}},
-                       {"orientation_trusted_positions", {r.trustedPositions.first, r.trustedPositions.second}},
-                       {"orientation_trusted_offsets_mm", {r.validOffsets.trustedLow, r.validOffsets.trustedHigh}},
-                       {"orientation_trust_max_error_deg", r.spec.following.orientationTrustMaxError_deg}};
+    j["controller"] = {
+        {"valid_offsets_mm", {r.validOffsets.low, r.validOffsets.high}},
+        {"orientation_trusted_positions", {r.trustedPositions.first, r.trustedPositions.second}},
+        {"orientation_trusted_offsets_mm", {r.validOffsets.trustedLow, r.validOffsets.trustedHigh}},
+        {"orientation_trust_max_error_deg", r.spec.following.orientationTrustMaxError_deg}};
     Json following = Json::array();
     for (const auto& t : r.trials)
-        following.push_back({{"shape", t.label}, {"mode", modeName(t.result.mode)}, {"trial", t.trial}, {"completed", t.result.completed()},
-                             {"reason", trialEndName(t.result.end)}, {"detail", t.result.detail}, {"taps", t.result.taps.size()},
-                             {"robot_time_s", t.result.robotTime_s}, {"coverage", t.result.coverage},
+        following.push_back({{"shape", t.label},
+                             {"mode", modeName(t.result.mode)},
+                             {"trial", t.trial},
+                             {"completed", t.result.completed()},
+                             {"reason", trialEndName(t.result.end)},
+                             {"detail", t.result.detail},
+                             {"taps", t.result.taps.size()},
+                             {"robot_time_s", t.result.robotTime_s},
+                             {"coverage", t.result.coverage},
                              {"mean_contour_distance_mm", t.result.meanContourDistance_mm},
-                             {"max_contour_distance_mm", t.result.maxContourDistance_mm}, {"progress_mm", t.result.progress_mm},
+                             {"max_contour_distance_mm", t.result.maxContourDistance_mm},
+                             {"progress_mm", t.result.progress_mm},
                              {"start_mm", {t.start.x, t.start.y}}});
     j["following"] = following;
     if (!r.templates.empty()) {
@@ -443,36 +540,59 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
         std::map<std::string, std::map<std::string, int>> confusion;
         for (const auto& t : r.trials) {
             if (!t.recognised) continue;
-            trials.push_back({{"shape", t.label}, {"trial", t.trial}, {"predicted", t.recognition.predicted},
-                              {"predicted_smoothed", t.recognition.predictedSmoothed}, {"distances", t.recognition.distances},
+            trials.push_back({{"shape", t.label},
+                              {"trial", t.trial},
+                              {"predicted", t.recognition.predicted},
+                              {"predicted_smoothed", t.recognition.predictedSmoothed},
+                              {"distances", t.recognition.distances},
                               {"smoothed_distances", t.recognition.smoothedDistances}});
             ++confusion[t.label][t.recognition.predicted];
         }
-        j["recognition"] = {{"accuracy", r.recognitionAccuracy}, {"accuracy_smoothed", r.recognitionAccuracySmoothed},
-                            {"of_mode", modeName(r.spec.recognition.ofMode)}, {"bins", r.spec.recognition.bins},
-                            {"smoothing_sigma_bins", r.spec.recognition.smoothingSigmaBins}, {"trials", trials}, {"confusion", confusion}};
+        j["recognition"] = {{"accuracy", r.recognitionAccuracy},
+                            {"accuracy_smoothed", r.recognitionAccuracySmoothed},
+                            {"of_mode", modeName(r.spec.recognition.ofMode)},
+                            {"bins", r.spec.recognition.bins},
+                            {"smoothing_sigma_bins", r.spec.recognition.smoothingSigmaBins},
+                            {"trials", trials},
+                            {"confusion", confusion}};
     }
     if (!r.sweeps.empty()) {
         Json perception = Json::array(), following = Json::array(), compute = Json::array();
         for (const auto& row : r.sweeps.perception)
-            perception.push_back({{"belief_threshold", row.threshold}, {"mean_taps_per_decision", row.meanTaps},
-                                  {"angle_error_deg", row.angleError_deg}, {"position_error_mm", row.positionError_mm},
+            perception.push_back({{"belief_threshold", row.threshold},
+                                  {"mean_taps_per_decision", row.meanTaps},
+                                  {"angle_error_deg", row.angleError_deg},
+                                  {"position_error_mm", row.positionError_mm},
                                   {"correct_fraction", row.correctFraction}});
         for (const auto& row : r.sweeps.following)
-            following.push_back({{"mode", modeName(row.mode)}, {"follow_step_mm", row.followStep_mm}, {"reposition_step_mm", row.repositionStep_mm},
-                                 {"belief_threshold", row.beliefThreshold}, {"trials", row.trials}, {"completed", row.completed},
-                                 {"mean_contour_distance_mm", row.meanContourDistance_mm}, {"mean_taps", row.meanTaps},
-                                 {"mean_robot_time_s", row.meanRobotTime_s},
-                                 {"robot_time_per_completion_s", std::isfinite(row.robotTimePerCompletion_s) ? Json(row.robotTimePerCompletion_s) : Json()},
-                                 {"paper_setting", row.paperSetting}});
+            following.push_back(
+                {{"mode", modeName(row.mode)},
+                 {"follow_step_mm", row.followStep_mm},
+                 {"reposition_step_mm", row.repositionStep_mm},
+                 {"belief_threshold", row.beliefThreshold},
+                 {"trials", row.trials},
+                 {"completed", row.completed},
+                 {"mean_contour_distance_mm", row.meanContourDistance_mm},
+                 {"mean_taps", row.meanTaps},
+                 {"mean_robot_time_s", row.meanRobotTime_s},
+                 {"robot_time_per_completion_s", std::isfinite(row.robotTimePerCompletion_s)
+                                                     ? Json(row.robotTimePerCompletion_s)
+                                                     : Json()},
+                 {"paper_setting", row.paperSetting}});
         for (const auto& row : r.sweeps.compute)
-            compute.push_back({{"bins", row.bins}, {"samples_per_tap", row.samples}, {"angle_error_deg", row.angleError_deg},
-                               {"position_error_mm", row.positionError_mm}, {"microseconds_per_decision", row.microsecondsPerDecision},
+            compute.push_back({{"bins", row.bins},
+                               {"samples_per_tap", row.samples},
+                               {"angle_error_deg", row.angleError_deg},
+                               {"position_error_mm", row.positionError_mm},
+                               {"microseconds_per_decision", row.microsecondsPerDecision},
                                {"paper_setting", row.paperSetting}});
         j["sweeps"] = {{"perception", perception}, {"following", following}, {"compute", compute}};
     }
-    j["timing"] = {{"wall_s", wall_s}, {"run_wall_s", r.runWall_s}, {"figures_wall_s", figures_s},
-                   {"taps_simulated", r.tapsSimulated}, {"robot_time_s", r.robotTime_s}};
+    j["timing"] = {{"wall_s", wall_s},
+                   {"run_wall_s", r.runWall_s},
+                   {"figures_wall_s", figures_s},
+                   {"taps_simulated", r.tapsSimulated},
+                   {"robot_time_s", r.robotTime_s}};
     return j;
 }
 
@@ -481,7 +601,9 @@ void writeSummary(const RunResult& r, const std::string& outDir, double wall_s, 
     const fs::path temp = fs::path(outDir) / "summary.json.partial";
     {
         std::ofstream out(temp);
-        if (!out) throw InputError(temp.string(), "", "cannot write the summary; check the output folder is writable");
+        if (!out)
+            throw InputError(temp.string(), "",
+                             "cannot write the summary; check the output folder is writable");
         out << summaryJson(r, wall_s, figures_s).dump(2) << '\n';
     }
     fs::rename(temp, final);

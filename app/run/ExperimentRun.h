@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "app/run/Sweeps.h"
 #include "core/classify/HistogramClassifier.h"
 #include "core/control/ContourFollower.h"
-#include "app/run/Sweeps.h"
-#include "core/recognition/PathHistogram.h"
 #include "core/experiment/Experiment.h"
+#include "core/recognition/PathHistogram.h"
 #include "core/validation/OfflineValidation.h"
 #include "core/validation/TrainingProtocol.h"
 
@@ -27,7 +27,7 @@ struct RunProgress {
 
 struct TrialRun {
     std::string label;
-    int trial = 1;          ///< 1-based within its label and mode
+    int trial = 1;  ///< 1-based within its label and mode
     Polygon outline;
     Vec2 start;
     TrialResult result;
@@ -36,27 +36,29 @@ struct TrialRun {
 };
 
 struct RunResult {
-    ExperimentSpec spec;            ///< with the seed actually used
-    ClassSet classes;               ///< with the region map
+    ExperimentSpec spec;  ///< with the seed actually used
+    ClassSet classes;     ///< with the region map
     std::vector<std::string> activeEffects;
-    std::vector<CollectedTap> taps; ///< every tap, in order
+    std::vector<CollectedTap> taps;  ///< every tap, in order
     HistogramClassifier classifier;
     ValidationResult validation;
-    ValidOffsets validOffsets;      ///< the valid range as offsets from the edge, used by the controller
-    std::pair<int, int> trustedPositions{1, 1};  ///< positions whose orientation the controller uses
+    ValidOffsets
+        validOffsets;  ///< the valid range as offsets from the edge, used by the controller
+    std::pair<int, int> trustedPositions{1,
+                                         1};  ///< positions whose orientation the controller uses
     std::vector<TrialRun> trials;
     std::vector<ShapeTemplate> templates;
     double recognitionAccuracy = 0.0, recognitionAccuracySmoothed = 0.0;
     SweepResults sweeps;
-    std::string failure;            ///< a device error that stopped the run, if any
+    std::string failure;  ///< a device error that stopped the run, if any
     bool cancelled = false;
     double robotTime_s = 0.0;
     std::uint64_t tapsSimulated = 0;
-    double runWall_s = 0.0;         ///< simulation, training and validation
+    double runWall_s = 0.0;  ///< simulation, training and validation
 };
 
 struct RunOptions {
-    std::string outDir;               ///< empty: write nothing
+    std::string outDir;  ///< empty: write nothing
     std::optional<std::uint64_t> seed;
     std::function<void(const RunProgress&)> progress;
     /// Sees every tap as it is taken, with a sentence saying what it was (for live views). Runs on
@@ -75,7 +77,8 @@ RunResult runExperiment(const ExperimentSpec& spec, const RunOptions& options);
 
 /// Runs only the following trials (and recognition) of `spec` with the classifier, class regions
 /// and valid range of an earlier run.
-RunResult runFollowing(const RunResult& trained, const ExperimentSpec& spec, const RunOptions& options);
+RunResult runFollowing(const RunResult& trained, const ExperimentSpec& spec,
+                       const RunOptions& options);
 
 /// How many taps a run will take: exact for training, estimated for following trials.
 int plannedTapEstimate(const ExperimentSpec& spec);
@@ -84,7 +87,8 @@ int plannedTapEstimate(const ExperimentSpec& spec);
 void writeRunTables(const RunResult& result, const std::string& outDir);
 
 /// Writes <outDir>/summary.json atomically; `timing` adds keys under "timing".
-void writeSummary(const RunResult& result, const std::string& outDir, double wall_s, double figures_s);
+void writeSummary(const RunResult& result, const std::string& outDir, double wall_s,
+                  double figures_s);
 
 /// The summary document itself (what writeSummary writes).
 Json summaryJson(const RunResult& result, double wall_s, double figures_s);

@@ -14,7 +14,9 @@
 namespace activetouch {
 namespace {
 
-bool cancelled(const RunOptions& o) { return o.cancel && o.cancel->load(); }
+bool cancelled(const RunOptions& o) {
+    return o.cancel && o.cancel->load();
+}
 
 double angleError(const ClassSet& cs, int perceived, int truth) {
     return angleDifferenceDeg(cs.orientationDegOf(perceived), cs.orientationDegOf(truth));
@@ -52,7 +54,8 @@ std::vector<PerceptionSweepRow> perceptionSweep(const RunResult& r, const RunOpt
             for (std::size_t start = 0; start < list.size(); ++start) {
                 SequentialBelief belief(r.classes);
                 const CollectedTap* last = nullptr;
-                for (std::size_t k = 0; k < list.size() && belief.taps() < sw.maxTapsPerDecision; ++k) {
+                for (std::size_t k = 0; k < list.size() && belief.taps() < sw.maxTapsPerDecision;
+                     ++k) {
                     last = list[(start + k) % list.size()];
                     belief.update(evidence[last].data());
                     if (belief.decided(threshold)) break;
@@ -60,7 +63,8 @@ std::vector<PerceptionSweepRow> perceptionSweep(const RunResult& r, const RunOpt
                 const int perceived = belief.best();
                 row.meanTaps += belief.taps();
                 row.angleError_deg += angleError(r.classes, perceived, cls);
-                row.positionError_mm += std::abs(r.classes.offsetOf(r.classes.positionOf(perceived)) - last->trueOffset_mm);
+                row.positionError_mm += std::abs(
+                    r.classes.offsetOf(r.classes.positionOf(perceived)) - last->trueOffset_mm);
                 row.correctFraction += perceived == cls;
                 ++decisions;
             }
@@ -89,18 +93,25 @@ std::vector<FollowingSweepRow> followingSweep(const RunResult& r, const RunOptio
     int setting = 0;
     for (FollowingMode mode : sw.modes) {
         for (double follow : sw.followSteps_mm) {
-            for (double reposition : (mode == FollowingMode::Active ? sw.repositionSteps_mm : std::vector<double>{0.0})) {
+            for (double reposition : (mode == FollowingMode::Active ? sw.repositionSteps_mm
+                                                                    : std::vector<double>{0.0})) {
                 for (double threshold : sw.followingBeliefThresholds) {
                     FollowingSweepRow row{mode, follow, reposition, threshold};
-                    row.paperSetting = follow == 2.0 && (mode == FollowingMode::Passive || reposition == 1.0) && threshold == 0.0;
+                    row.paperSetting = follow == 2.0 &&
+                                       (mode == FollowingMode::Passive || reposition == 1.0) &&
+                                       threshold == 0.0;
                     double time = 0, taps = 0, distance = 0;
                     for (const TrialSpec* object : objects) {
                         for (int k = 0; k < sw.followingRepeats; ++k) {
                             if (cancelled(options)) return rows;
                             SceneSpec scene = r.spec.scene;
                             scene.object = object->object;
-                            scene.seed = RandomStream::derived(r.spec.scene.seed, "sweep:following:" + std::to_string(setting) + ":" +
-                                                                                      object->label + ":" + std::to_string(k)).next() >> 1;
+                            scene.seed = RandomStream::derived(
+                                             r.spec.scene.seed,
+                                             "sweep:following:" + std::to_string(setting) + ":" +
+                                                 object->label + ":" + std::to_string(k))
+                                             .next() >>
+                                         1;
                             SimulatedRig simulated(scene, model);
                             Rig rig = simulated.rig();
                             TrialSetup setup;
@@ -112,9 +123,11 @@ std::vector<FollowingSweepRow> followingSweep(const RunResult& r, const RunOptio
                             setup.valid = r.validOffsets;
                             setup.noiseFloor = r.spec.scene.tap.noiseFloor;
                             const Polygon outline = simulated.world().object();
-                            setup.start = object->start ? *object->start : lowerEdgeStart(outline, r.validOffsets);
-                            const TrialResult t = runTrial(rig, r.classifier, r.classes, outline, setup,
-                                                           [&](const FollowedTap&) { return !cancelled(options); });
+                            setup.start = object->start ? *object->start
+                                                        : lowerEdgeStart(outline, r.validOffsets);
+                            const TrialResult t =
+                                runTrial(rig, r.classifier, r.classes, outline, setup,
+                                         [&](const FollowedTap&) { return !cancelled(options); });
                             ++row.trials;
                             row.completed += t.completed();
                             time += t.robotTime_s;
@@ -126,7 +139,9 @@ std::vector<FollowingSweepRow> followingSweep(const RunResult& r, const RunOptio
                     row.meanRobotTime_s = time / row.trials;
                     row.meanTaps = taps / row.trials;
                     row.meanContourDistance_mm = distance / row.trials;
-                    row.robotTimePerCompletion_s = row.completed > 0 ? time / row.completed : std::numeric_limits<double>::infinity();
+                    row.robotTimePerCompletion_s = row.completed > 0
+                                                       ? time / row.completed
+                                                       : std::numeric_limits<double>::infinity();
                     rows.push_back(row);
                 }
             }
@@ -140,7 +155,8 @@ Tap subsampled(const Tap& tap, int samples) {
     Tap out(samples, tap.taxels);
     const int T = tap.sampleCount();
     for (int s = 0; s < samples; ++s) {
-        const int from = samples == 1 ? T / 2 : static_cast<int>(std::lround(s * (T - 1.0) / (samples - 1)));
+        const int from =
+            samples == 1 ? T / 2 : static_cast<int>(std::lround(s * (T - 1.0) / (samples - 1)));
         for (int k = 0; k < tap.taxels; ++k) out.at(s, k) = tap.at(from, k);
     }
     return out;
@@ -164,24 +180,31 @@ std::vector<ComputeSweepRow> computeSweep(const RunResult& r, const RunOptions& 
             }
         }
         std::vector<LabelledTap> labelled;
-        for (std::size_t i = 0; i < train.size(); ++i) labelled.push_back({&train[i], trainLabels[i]});
+        for (std::size_t i = 0; i < train.size(); ++i)
+            labelled.push_back({&train[i], trainLabels[i]});
         for (int bins : sw.bins) {
             if (cancelled(options)) return rows;
             ClassifierSettings settings = r.spec.classifier;
             settings.bins = bins;
-            const HistogramClassifier c = HistogramClassifier::train(labelled, r.classes.classCount(), settings);
-            ComputeSweepRow row{bins, samples, 0, 0, 0, bins == 100 && samples == r.spec.scene.tap.samples};
+            const HistogramClassifier c =
+                HistogramClassifier::train(labelled, r.classes.classCount(), settings);
+            ComputeSweepRow row{bins, samples, 0,
+                                0,    0,       bins == 100 && samples == r.spec.scene.tap.samples};
             std::vector<int> decided(test.size());
             // Time the decisions over enough repetitions to measure; report per decision.
-            const int repeats = std::max(1, static_cast<int>(20000 / std::max<std::size_t>(1, test.size())));
+            const int repeats =
+                std::max(1, static_cast<int>(20000 / std::max<std::size_t>(1, test.size())));
             const auto t0 = std::chrono::steady_clock::now();
             for (int rep = 0; rep < repeats; ++rep)
                 for (std::size_t i = 0; i < test.size(); ++i) decided[i] = c.classify(test[i]);
             const auto t1 = std::chrono::steady_clock::now();
-            row.microsecondsPerDecision = std::chrono::duration<double, std::micro>(t1 - t0).count() / (repeats * static_cast<double>(test.size()));
+            row.microsecondsPerDecision =
+                std::chrono::duration<double, std::micro>(t1 - t0).count() /
+                (repeats * static_cast<double>(test.size()));
             for (std::size_t i = 0; i < test.size(); ++i) {
                 row.angleError_deg += angleError(r.classes, decided[i], testLabels[i]);
-                row.positionError_mm += std::abs(r.classes.offsetOf(r.classes.positionOf(decided[i])) - testOffsets[i]);
+                row.positionError_mm +=
+                    std::abs(r.classes.offsetOf(r.classes.positionOf(decided[i])) - testOffsets[i]);
             }
             row.angleError_deg /= static_cast<double>(test.size());
             row.positionError_mm /= static_cast<double>(test.size());

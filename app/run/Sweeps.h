@@ -32,7 +32,7 @@ struct FollowingSweepRow {
 struct ComputeSweepRow {
     int bins, samples;
     double angleError_deg, positionError_mm, microsecondsPerDecision;
-    bool paperSetting = false;            ///< 100 bins, 50 samples
+    bool paperSetting = false;  ///< 100 bins, 50 samples
 };
 
 struct SweepResults {

@@ -10,7 +10,8 @@
 namespace activetouch {
 
 std::string ClassifierSettings::problem() const {
-    if (bins < 1 || bins > 100000) return "bins must be between 1 and 100000, got " + std::to_string(bins);
+    if (bins < 1 || bins > 100000)
+        return "bins must be between 1 and 100000, got " + std::to_string(bins);
     if (!(smoothing > 0.0) || !std::isfinite(smoothing))
         return "smoothing must be a positive number (zero would make unseen bins impossible)";
     return {};
@@ -44,12 +45,14 @@ HistogramClassifier HistogramClassifier::train(const std::vector<LabelledTap>& t
     for (const auto& lt : taps) {
         if (lt.tap->taxels != K) throw std::invalid_argument("training taps differ in taxel count");
         if (lt.cls < 0 || lt.cls >= classCount)
-            throw std::invalid_argument("training label " + std::to_string(lt.cls) + " is outside 0.." + std::to_string(classCount - 1));
+            throw std::invalid_argument("training label " + std::to_string(lt.cls) +
+                                        " is outside 0.." + std::to_string(classCount - 1));
         if (lt.tap->sampleCount() < 1) throw std::invalid_argument("a training tap has no samples");
         ++tapsPerClass[static_cast<std::size_t>(lt.cls)];
         for (std::size_t i = 0; i < lt.tap->samples.size(); ++i) {
             const double v = lt.tap->samples[i];
-            if (!std::isfinite(v)) throw std::invalid_argument("a training tap holds a non-finite sample");
+            if (!std::isfinite(v))
+                throw std::invalid_argument("a training tap holds a non-finite sample");
             const auto k = i % static_cast<std::size_t>(K);
             c.min_[k] = std::min(c.min_[k], v);
             c.max_[k] = std::max(c.max_[k], v);
@@ -70,12 +73,14 @@ HistogramClassifier HistogramClassifier::train(const std::vector<LabelledTap>& t
         for (std::size_t k = 0; k < static_cast<std::size_t>(K); ++k) {
             c.minTiled_.push_back(c.min_[k]);
             c.scaleTiled_.push_back(c.scale_[k]);
-            c.cellBaseTiled_.push_back(static_cast<std::uint32_t>(k * static_cast<std::size_t>(c.bins_)));
+            c.cellBaseTiled_.push_back(
+                static_cast<std::uint32_t>(k * static_cast<std::size_t>(c.bins_)));
         }
     }
 
     // Counts per [taxel][bin][class], then smoothed log probabilities in place.
-    const std::size_t B = static_cast<std::size_t>(c.bins_), C = static_cast<std::size_t>(classCount);
+    const std::size_t B = static_cast<std::size_t>(c.bins_),
+                      C = static_cast<std::size_t>(classCount);
     c.logTable_.assign(static_cast<std::size_t>(K) * B * C, 0.0);
     std::vector<double> total(static_cast<std::size_t>(K) * C, 0.0);
     for (const auto& lt : taps) {
@@ -83,7 +88,8 @@ HistogramClassifier HistogramClassifier::train(const std::vector<LabelledTap>& t
         for (int s = 0; s < t.sampleCount(); ++s) {
             for (int k = 0; k < K; ++k) {
                 const auto b = static_cast<std::size_t>(c.binOf(k, t.at(s, k)));
-                c.logTable_[(static_cast<std::size_t>(k) * B + b) * C + static_cast<std::size_t>(lt.cls)] += 1.0;
+                c.logTable_[(static_cast<std::size_t>(k) * B + b) * C +
+                            static_cast<std::size_t>(lt.cls)] += 1.0;
                 total[static_cast<std::size_t>(k) * C + static_cast<std::size_t>(lt.cls)] += 1.0;
             }
         }
@@ -93,7 +99,8 @@ HistogramClassifier HistogramClassifier::train(const std::vector<LabelledTap>& t
         for (std::size_t b = 0; b < B; ++b) {
             for (std::size_t cls = 0; cls < C; ++cls) {
                 double& cell = c.logTable_[(k * B + b) * C + cls];
-                cell = std::log(cell + alpha) - std::log(total[k * C + cls] + static_cast<double>(B) * alpha);
+                cell = std::log(cell + alpha) -
+                       std::log(total[k * C + cls] + static_cast<double>(B) * alpha);
             }
         }
     }
@@ -110,7 +117,8 @@ namespace {
 using Double4 = double __attribute__((vector_size(32)));
 
 template <std::size_t Vectors>
-inline void accumulateChunk(const double* const* rows, const double* weights, std::size_t rowCount, std::size_t c0, double* out) {
+inline void accumulateChunk(const double* const* rows, const double* weights, std::size_t rowCount,
+                            std::size_t c0, double* out) {
     Double4 acc[Vectors] = {};
     for (std::size_t i = 0; i < rowCount; ++i) {
         const double* row = rows[i] + c0;
@@ -124,8 +132,11 @@ inline void accumulateChunk(const double* const* rows, const double* weights, st
     std::memcpy(out + c0, acc, sizeof acc);
 }
 
-__attribute__((target_clones("avx2", "default")))
-void accumulateRows(const double* const* rows, const double* weights, std::size_t rowCount, std::size_t classes, double* out) {
+__attribute__((target_clones("avx2", "default"))) void accumulateRows(const double* const* rows,
+                                                                      const double* weights,
+                                                                      std::size_t rowCount,
+                                                                      std::size_t classes,
+                                                                      double* out) {
     std::size_t c0 = 0;
     for (; c0 + 24 <= classes; c0 += 24) accumulateChunk<6>(rows, weights, rowCount, c0, out);
     for (; c0 + 4 <= classes; c0 += 4) accumulateChunk<1>(rows, weights, rowCount, c0, out);
@@ -140,9 +151,10 @@ void accumulateRows(const double* const* rows, const double* weights, std::size_
 // taxel range tiled to the block's length: (v - min) * scale clamped to [0, B - 1]; NaN compares
 // false and lands in bin 0; a degenerate taxel has scale 0 (and inf * 0 = NaN), so it lands in
 // bin 0 too. Equal to binOf() for every value.
-__attribute__((target_clones("avx2", "default")))
-void binBlock(const double* __restrict samples, std::size_t count, const double* __restrict min, const double* __restrict scale,
-              const std::uint32_t* __restrict cellBase, double lastBin, std::uint32_t* __restrict cells) {
+__attribute__((target_clones("avx2", "default"))) void binBlock(
+    const double* __restrict samples, std::size_t count, const double* __restrict min,
+    const double* __restrict scale, const std::uint32_t* __restrict cellBase, double lastBin,
+    std::uint32_t* __restrict cells) {
     for (std::size_t i = 0; i < count; ++i) {
         double x = (samples[i] - min[i]) * scale[i];
         x = x > 0.0 ? x : 0.0;
@@ -155,7 +167,10 @@ void binBlock(const double* __restrict samples, std::size_t count, const double*
 
 void HistogramClassifier::logLikelihoods(const Tap& tap, double* out) const {
     const std::size_t C = static_cast<std::size_t>(classes_);
-    if (tap.taxels != taxels_) throw std::invalid_argument("tap has " + std::to_string(tap.taxels) + " taxels, the classifier was trained on " + std::to_string(taxels_));
+    if (tap.taxels != taxels_)
+        throw std::invalid_argument("tap has " + std::to_string(tap.taxels) +
+                                    " taxels, the classifier was trained on " +
+                                    std::to_string(taxels_));
 
     // The tap's count vector over (taxel, bin) cells: count samples per cell and mark the cells
     // touched in a bitmap, then visit the marked cells in ascending order (so the sum does not
@@ -164,7 +179,8 @@ void HistogramClassifier::logLikelihoods(const Tap& tap, double* out) const {
     thread_local std::vector<const double*> rows;
     thread_local std::vector<double> weights;
     thread_local std::vector<std::uint64_t> touched;
-    const std::size_t cellsTotal = static_cast<std::size_t>(taxels_) * static_cast<std::size_t>(bins_);
+    const std::size_t cellsTotal =
+        static_cast<std::size_t>(taxels_) * static_cast<std::size_t>(bins_);
     if (counts.size() < cellsTotal) {
         counts.assign(cellsTotal, 0);
         touched.assign((cellsTotal + 63) / 64, 0);
@@ -172,8 +188,9 @@ void HistogramClassifier::logLikelihoods(const Tap& tap, double* out) const {
     cellOf.resize(tap.samples.size());
     const std::size_t block = minTiled_.size();
     for (std::size_t start = 0; start < tap.samples.size(); start += block)
-        binBlock(tap.samples.data() + start, std::min(block, tap.samples.size() - start), minTiled_.data(), scaleTiled_.data(),
-                 cellBaseTiled_.data(), static_cast<double>(bins_ - 1), cellOf.data() + start);
+        binBlock(tap.samples.data() + start, std::min(block, tap.samples.size() - start),
+                 minTiled_.data(), scaleTiled_.data(), cellBaseTiled_.data(),
+                 static_cast<double>(bins_ - 1), cellOf.data() + start);
     std::uint32_t* const count = counts.data();
     std::uint64_t* const marks = touched.data();
     for (const std::uint32_t cell : cellOf) {
@@ -235,7 +252,8 @@ HistogramClassifier::Decision HistogramClassifier::decide(const Tap& tap) const 
     logLikelihoods(tap, scores.data());
     Decision d;
     d.cls = argmaxLowestIndex(scores.data(), classes_);
-    d.posterior = std::exp(scores[static_cast<std::size_t>(d.cls)] - logSumExp(scores.data(), classes_));
+    d.posterior =
+        std::exp(scores[static_cast<std::size_t>(d.cls)] - logSumExp(scores.data(), classes_));
     return d;
 }
 

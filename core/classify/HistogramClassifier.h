@@ -19,8 +19,9 @@
 namespace activetouch {
 
 struct ClassifierSettings {
-    int bins = 100;          ///< B (paper: 100)
-    double smoothing = 0.01;  ///< alpha, additive pseudo-count per bin, > 0 (see README: chosen by validation)
+    int bins = 100;  ///< B (paper: 100)
+    double smoothing =
+        0.01;  ///< alpha, additive pseudo-count per bin, > 0 (see README: chosen by validation)
     /// Why the settings cannot train a classifier, or empty.
     std::string problem() const;
 };
@@ -51,7 +52,10 @@ public:
 
     /// log P_k(bin | class) for one cell.
     double logProbability(int taxel, int bin, int cls) const {
-        return logTable_[(static_cast<std::size_t>(taxel) * static_cast<std::size_t>(bins_) + static_cast<std::size_t>(bin)) * static_cast<std::size_t>(classes_) + static_cast<std::size_t>(cls)];
+        return logTable_[(static_cast<std::size_t>(taxel) * static_cast<std::size_t>(bins_) +
+                          static_cast<std::size_t>(bin)) *
+                             static_cast<std::size_t>(classes_) +
+                         static_cast<std::size_t>(cls)];
     }
 
     /// Sum over the tap's samples of log P for every class into `out` (classCount values).
@@ -68,10 +72,11 @@ public:
 
 private:
     int classes_ = 0, taxels_ = 0, bins_ = 0;
-    std::vector<double> min_, max_, scale_;  // per taxel; scale_ = bins / (max - min), 0 if degenerate
+    std::vector<double> min_, max_,
+        scale_;  // per taxel; scale_ = bins / (max - min), 0 if degenerate
     std::vector<double> minTiled_, scaleTiled_;  // the same, repeated over a block of frames
     std::vector<std::uint32_t> cellBaseTiled_;   // taxel * bins, likewise
-    std::vector<double> logTable_;           // [taxel][bin][class]
+    std::vector<double> logTable_;               // [taxel][bin][class]
 };
 
 /// Relative width of a tie: scores this close to the maximum are equal for the decision. Sums

@@ -18,7 +18,8 @@ void SequentialBelief::update(const double* ll) {
     for (int c = 0; c < C; ++c) {
         // A class the evidence rules out (-inf) stays at -inf; NaN evidence counts as ruling out.
         const double v = ll[c];
-        logPosterior_[static_cast<std::size_t>(c)] += std::isnan(v) ? -std::numeric_limits<double>::infinity() : v;
+        logPosterior_[static_cast<std::size_t>(c)] +=
+            std::isnan(v) ? -std::numeric_limits<double>::infinity() : v;
     }
     double norm = logSumExp(logPosterior_.data(), C);
     if (!std::isfinite(norm)) {
@@ -41,23 +42,33 @@ void SequentialBelief::shift(Vec2 move) {
     std::vector<double> out(logPosterior_.size());
     for (std::size_t o = 0; o < cs.orientationsDeg.size(); ++o) {
         // Moving outward along the normal raises the offset, i.e. the position index.
-        const int steps = static_cast<int>(std::lround(dot(move, directionFromDegrees(cs.orientationsDeg[o])) / cs.positionStep_mm));
+        const int steps = static_cast<int>(std::lround(
+            dot(move, directionFromDegrees(cs.orientationsDeg[o])) / cs.positionStep_mm));
         std::vector<double> mass(static_cast<std::size_t>(P), 0.0);
         for (int p = 1; p <= P; ++p) {
             const int to = std::clamp(p + steps, 1, P);
-            mass[static_cast<std::size_t>(to - 1)] += std::exp(logPosterior_[static_cast<std::size_t>(cs.classOf(static_cast<int>(o), p))]);
+            mass[static_cast<std::size_t>(to - 1)] += std::exp(
+                logPosterior_[static_cast<std::size_t>(cs.classOf(static_cast<int>(o), p))]);
         }
-        for (int p = 1; p <= P; ++p) out[static_cast<std::size_t>(cs.classOf(static_cast<int>(o), p))] = std::log(mass[static_cast<std::size_t>(p - 1)]);
+        for (int p = 1; p <= P; ++p)
+            out[static_cast<std::size_t>(cs.classOf(static_cast<int>(o), p))] =
+                std::log(mass[static_cast<std::size_t>(p - 1)]);
     }
     const double norm = logSumExp(out.data(), static_cast<int>(out.size()));
     for (double& v : out) v -= norm;
     logPosterior_ = out;
 }
 
-int SequentialBelief::best() const { return argmaxLowestIndex(logPosterior_.data(), static_cast<int>(logPosterior_.size())); }
+int SequentialBelief::best() const {
+    return argmaxLowestIndex(logPosterior_.data(), static_cast<int>(logPosterior_.size()));
+}
 
-double SequentialBelief::bestPosterior() const { return std::exp(logPosterior_[static_cast<std::size_t>(best())]); }
+double SequentialBelief::bestPosterior() const {
+    return std::exp(logPosterior_[static_cast<std::size_t>(best())]);
+}
 
-double SequentialBelief::posterior(int cls) const { return std::exp(logPosterior_[static_cast<std::size_t>(cls)]); }
+double SequentialBelief::posterior(int cls) const {
+    return std::exp(logPosterior_[static_cast<std::size_t>(cls)]);
+}
 
 }  // namespace activetouch

@@ -29,7 +29,7 @@ public:
     void shift(Vec2 move);
 
     int taps() const { return taps_; }
-    int best() const;                 ///< argmax, lowest index on ties
+    int best() const;  ///< argmax, lowest index on ties
     double bestPosterior() const;
     double posterior(int cls) const;  ///< exp of the normalised log posterior
     const std::vector<double>& logPosterior() const { return logPosterior_; }

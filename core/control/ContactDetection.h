@@ -13,7 +13,8 @@ namespace activetouch {
 /// before the stroke limit (a partial contact near an edge).
 inline bool contactMade(const TapRecord& r, double noiseFloor) {
     if (r.ending == TapEnding::ContactReflex) return true;
-    return !r.tap.samples.empty() && *std::max_element(r.tap.samples.begin(), r.tap.samples.end()) > noiseFloor;
+    return !r.tap.samples.empty() &&
+           *std::max_element(r.tap.samples.begin(), r.tap.samples.end()) > noiseFloor;
 }
 
 }  // namespace activetouch

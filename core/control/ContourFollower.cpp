@@ -6,21 +6,28 @@
 #include <optional>
 #include <stdexcept>
 
-#include "core/control/ContactDetection.h"
 #include "core/classify/SequentialPerception.h"
+#include "core/control/ContactDetection.h"
 #include "core/control/MotorCommand.h"
 
 namespace activetouch {
 
 const char* trialEndName(TrialEnd e) {
     switch (e) {
-        case TrialEnd::Completed: return "completed";
-        case TrialEnd::LostOutside: return "lost: too far outside the contour";
-        case TrialEnd::LostInside: return "lost: too far inside the object";
-        case TrialEnd::LostPlaneOrAir: return "lost: plane or air percepts in a row";
-        case TrialEnd::TapCap: return "tap cap reached";
-        case TrialEnd::DeviceError: return "device error";
-        case TrialEnd::Cancelled: return "cancelled";
+        case TrialEnd::Completed:
+            return "completed";
+        case TrialEnd::LostOutside:
+            return "lost: too far outside the contour";
+        case TrialEnd::LostInside:
+            return "lost: too far inside the object";
+        case TrialEnd::LostPlaneOrAir:
+            return "lost: plane or air percepts in a row";
+        case TrialEnd::TapCap:
+            return "tap cap reached";
+        case TrialEnd::DeviceError:
+            return "device error";
+        case TrialEnd::Cancelled:
+            return "cancelled";
     }
     return "";
 }
@@ -49,7 +56,9 @@ Vec2 lowerEdgeStart(const Polygon& outline, const ValidOffsets& valid) {
             start = mid + 0.5 * (valid.low + valid.high) * n;
         }
     }
-    if (!start) throw std::invalid_argument("the object has no edge facing down (within 45 degrees) to start on");
+    if (!start)
+        throw std::invalid_argument(
+            "the object has no edge facing down (within 45 degrees) to start on");
     return *start;
 }
 
@@ -57,19 +66,24 @@ std::string startProblem(const Polygon& outline, Vec2 start, const FollowingSett
     const double sd = outline.signedDistance(start);
     char buf[200];
     if (-sd > s.lostOutside_mm) {
-        std::snprintf(buf, sizeof buf, "the start pose (%.2f, %.2f) mm is %.1f mm outside the object, beyond the %.1f mm at which a trial counts as lost; start on an edge",
+        std::snprintf(buf, sizeof buf,
+                      "the start pose (%.2f, %.2f) mm is %.1f mm outside the object, beyond the "
+                      "%.1f mm at which a trial counts as lost; start on an edge",
                       start.x, start.y, -sd, s.lostOutside_mm);
         return buf;
     }
     if (sd > s.lostInside_mm) {
-        std::snprintf(buf, sizeof buf, "the start pose (%.2f, %.2f) mm is %.1f mm inside the object, beyond the %.1f mm at which a trial counts as lost; start on an edge",
+        std::snprintf(buf, sizeof buf,
+                      "the start pose (%.2f, %.2f) mm is %.1f mm inside the object, beyond the "
+                      "%.1f mm at which a trial counts as lost; start on an edge",
                       start.x, start.y, sd, s.lostInside_mm);
         return buf;
     }
     return {};
 }
 
-void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double coverageRadius, TrialResult& r) {
+void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double coverageRadius,
+                 TrialResult& r) {
     r.coverage = 0.0;
     r.meanContourDistance_mm = r.maxContourDistance_mm = 0.0;
     if (path.empty()) return;
@@ -95,15 +109,18 @@ void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double c
     r.coverage = static_cast<double>(covered) / samples;
 }
 
-TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const ClassSet& classes, const Polygon& outline,
-                     const TrialSetup& setup, const std::function<bool(const FollowedTap&)>& onTap) {
+TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const ClassSet& classes,
+                     const Polygon& outline, const TrialSetup& setup,
+                     const std::function<bool(const FollowedTap&)>& onTap) {
     const FollowingSettings& s = setup.settings;
     TrialResult result;
     result.mode = setup.mode;
     const double perimeter = outline.perimeter();
     const bool sequential = s.beliefThreshold > 0.0;
     const int tapsPerDecision = sequential ? s.maxTapsPerDecision : 1;
-    const int tapCap = std::max(1, static_cast<int>(std::ceil(s.tapCapPerimeters * perimeter / s.followStep_mm)) * tapsPerDecision);
+    const int tapCap =
+        std::max(1, static_cast<int>(std::ceil(s.tapCapPerimeters * perimeter / s.followStep_mm)) *
+                        tapsPerDecision);
     SequentialBelief belief(classes);
     const double startTime = rig.clock.now_s();
 
@@ -131,8 +148,10 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
                     // Gather more evidence here; optionally reposition toward the valid range.
                     decisionMade = false;
                     t.decision = {RuleId::Sensing, {}, {}};
-                    if (s.repositionWhileSensing && setup.mode == FollowingMode::Active && orientationTrusted(t.percept, setup.valid))
-                        t.decision.reposition = decide(t.percept, memory, setup.mode, s, setup.valid).reposition;
+                    if (s.repositionWhileSensing && setup.mode == FollowingMode::Active &&
+                        orientationTrusted(t.percept, setup.valid))
+                        t.decision.reposition =
+                            decide(t.percept, memory, setup.mode, s, setup.valid).reposition;
                 }
             } else {
                 t.percept = perceive(classifier, classes, t.record.tap);
@@ -150,20 +169,40 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
             t.contourDistance_mm = outline.contains(pose) ? nearest.distance : -nearest.distance;
 
             const bool passive = setup.mode == FollowingMode::Passive;
-            if (decisionMade) memory.update(t.percept, passive ? t.percept.region == Region::Edge : orientationTrusted(t.percept, setup.valid));
+            if (decisionMade)
+                memory.update(t.percept, passive ? t.percept.region == Region::Edge
+                                                 : orientationTrusted(t.percept, setup.valid));
             result.taps.push_back(t);
             const bool keepGoing = !onTap || onTap(result.taps.back());
 
-            if (-t.contourDistance_mm > s.lostOutside_mm) { result.end = TrialEnd::LostOutside; break; }
-            if (t.contourDistance_mm > s.lostInside_mm) { result.end = TrialEnd::LostInside; break; }
-            if (memory.planeOrAirRun >= s.lostPlaneOrAirTaps) { result.end = TrialEnd::LostPlaneOrAir; break; }
-            if (progress >= perimeter && distance(pose, setup.start) <= s.completionRadius_mm) { result.end = TrialEnd::Completed; break; }
-            if (!keepGoing) { result.end = TrialEnd::Cancelled; break; }
-            if (sequential) {
-                if (decisionMade) belief = SequentialBelief(classes);
-                else belief.shift(t.decision.move());
+            if (-t.contourDistance_mm > s.lostOutside_mm) {
+                result.end = TrialEnd::LostOutside;
+                break;
             }
-            if (n + 1 < tapCap && t.decision.move() != Vec2{}) pose = sendMotorCommand(rig.stage, pose, t.decision);
+            if (t.contourDistance_mm > s.lostInside_mm) {
+                result.end = TrialEnd::LostInside;
+                break;
+            }
+            if (memory.planeOrAirRun >= s.lostPlaneOrAirTaps) {
+                result.end = TrialEnd::LostPlaneOrAir;
+                break;
+            }
+            if (progress >= perimeter && distance(pose, setup.start) <= s.completionRadius_mm) {
+                result.end = TrialEnd::Completed;
+                break;
+            }
+            if (!keepGoing) {
+                result.end = TrialEnd::Cancelled;
+                break;
+            }
+            if (sequential) {
+                if (decisionMade)
+                    belief = SequentialBelief(classes);
+                else
+                    belief.shift(t.decision.move());
+            }
+            if (n + 1 < tapCap && t.decision.move() != Vec2{})
+                pose = sendMotorCommand(rig.stage, pose, t.decision);
         }
     } catch (const RigError& e) {
         result.end = TrialEnd::DeviceError;
@@ -171,8 +210,8 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
     }
     if (result.detail.empty()) {
         char buf[160];
-        std::snprintf(buf, sizeof buf, "%s after %zu taps, %.0f of %.0f mm of contour", trialEndName(result.end), result.taps.size(),
-                      progress, perimeter);
+        std::snprintf(buf, sizeof buf, "%s after %zu taps, %.0f of %.0f mm of contour",
+                      trialEndName(result.end), result.taps.size(), progress, perimeter);
         result.detail = buf;
     }
     result.progress_mm = progress;

@@ -20,20 +20,29 @@ struct FollowedTap {
     Percept percept;
     Decision decision;
     bool contact = false;
-    double progress_mm = 0.0;          ///< unwrapped progress along the contour so far
-    double contourDistance_mm = 0.0;   ///< signed distance of the pose to the true outline (+ inside)
+    double progress_mm = 0.0;  ///< unwrapped progress along the contour so far
+    double contourDistance_mm =
+        0.0;  ///< signed distance of the pose to the true outline (+ inside)
 };
 
-enum class TrialEnd { Completed, LostOutside, LostInside, LostPlaneOrAir, TapCap, DeviceError, Cancelled };
+enum class TrialEnd {
+    Completed,
+    LostOutside,
+    LostInside,
+    LostPlaneOrAir,
+    TapCap,
+    DeviceError,
+    Cancelled
+};
 const char* trialEndName(TrialEnd e);
 
 struct TrialResult {
     FollowingMode mode = FollowingMode::Active;
     TrialEnd end = TrialEnd::TapCap;
-    std::string detail;                ///< the sentence behind `end`
+    std::string detail;  ///< the sentence behind `end`
     std::vector<FollowedTap> taps;
     double robotTime_s = 0.0;
-    double coverage = 0.0;             ///< fraction of the perimeter with a tap within the coverage radius
+    double coverage = 0.0;  ///< fraction of the perimeter with a tap within the coverage radius
     double meanContourDistance_mm = 0.0;
     double maxContourDistance_mm = 0.0;
     double progress_mm = 0.0;
@@ -45,7 +54,7 @@ struct TrialResult {
 struct TrialSetup {
     FollowingMode mode = FollowingMode::Active;
     Vec2 start;
-    double startEdgeDeg = 270.0;      ///< the edge the tip starts on (memory's first edge)
+    double startEdgeDeg = 270.0;  ///< the edge the tip starts on (memory's first edge)
     FollowingSettings settings;
     ValidOffsets valid;
     double noiseFloor = 1.0;
@@ -62,10 +71,12 @@ std::string startProblem(const Polygon& outline, Vec2 start, const FollowingSett
 /// Runs one trial. `onTap` sees each tap as it is taken (for the recording) and may return false
 /// to cancel. A device error ends the trial with TrialEnd::DeviceError and its message; every
 /// tap taken so far is kept.
-TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const ClassSet& classes, const Polygon& outline,
-                     const TrialSetup& setup, const std::function<bool(const FollowedTap&)>& onTap = {});
+TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const ClassSet& classes,
+                     const Polygon& outline, const TrialSetup& setup,
+                     const std::function<bool(const FollowedTap&)>& onTap = {});
 
 /// Coverage and contour distances of a path against an outline.
-void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double coverageRadius, TrialResult& result);
+void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double coverageRadius,
+                 TrialResult& result);
 
 }  // namespace activetouch

@@ -9,9 +9,9 @@ enum class FollowingMode { Active, Passive };
 const char* modeName(FollowingMode m);
 
 struct FollowingSettings {
-    double followStep_mm = 2.0;        ///< along the perceived edge, every tap (paper: 2 mm)
-    double repositionStep_mm = 1.0;    ///< along the edge normal toward the valid range (paper: 1 mm)
-    double planeStep_mm = 2.0;         ///< active, plane percept: outward along the last edge's normal
+    double followStep_mm = 2.0;      ///< along the perceived edge, every tap (paper: 2 mm)
+    double repositionStep_mm = 1.0;  ///< along the edge normal toward the valid range (paper: 1 mm)
+    double planeStep_mm = 2.0;  ///< active, plane percept: outward along the last edge's normal
     double planeRetreatStep_mm = 2.0;  ///< active, plane percept: back against the last heading
     double airInwardStep_mm = 2.0;     ///< active, air percept: inward along the last edge's normal
     double airRetreatStep_mm = 2.0;    ///< active, air percept: back against the last heading

@@ -10,11 +10,12 @@
 namespace activetouch {
 
 struct ShortTermMemory {
-    double lastEdgeDeg = 270.0;          ///< outward normal of the last confirmed edge (trials start on the lower edge)
+    double lastEdgeDeg =
+        270.0;  ///< outward normal of the last confirmed edge (trials start on the lower edge)
     std::optional<Percept> lastEdgePercept;
-    Vec2 heading{1.0, 0.0};              ///< direction of travel along the last confirmed edge
-    int planeOrAirRun = 0;               ///< consecutive percepts without a usable edge
-    int confirmationsNeeded = 1;         ///< same-orientation edge percepts in a row that confirm an edge
+    Vec2 heading{1.0, 0.0};       ///< direction of travel along the last confirmed edge
+    int planeOrAirRun = 0;        ///< consecutive percepts without a usable edge
+    int confirmationsNeeded = 1;  ///< same-orientation edge percepts in a row that confirm an edge
     double candidateEdgeDeg = 270.0;
     int candidateRun = 0;
 
@@ -45,7 +46,11 @@ struct ShortTermMemory {
 
 /// Counter-clockwise traversal (object on the left): the direction along an edge whose outward
 /// normal points at `normalDeg`.
-inline Vec2 followDirection(double normalDeg) { return directionFromDegrees(normalDeg + 90.0); }
-inline Vec2 outwardNormal(double normalDeg) { return directionFromDegrees(normalDeg); }
+inline Vec2 followDirection(double normalDeg) {
+    return directionFromDegrees(normalDeg + 90.0);
+}
+inline Vec2 outwardNormal(double normalDeg) {
+    return directionFromDegrees(normalDeg);
+}
 
 }  // namespace activetouch

@@ -1,7 +1,7 @@
 #include "core/experiment/Experiment.h"
 
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 #include "core/control/ContourFollower.h"
@@ -9,9 +9,13 @@
 namespace activetouch {
 namespace fs = std::filesystem;
 
-bool looksLikeExperiment(const Json& json) { return json.is_object() && json.contains("scene"); }
+bool looksLikeExperiment(const Json& json) {
+    return json.is_object() && json.contains("scene");
+}
 
-int ExperimentSpec::plannedTaps() const { return training.dataSets * classes.classCount() * training.tapsPerClass; }
+int ExperimentSpec::plannedTaps() const {
+    return training.dataSets * classes.classCount() * training.tapsPerClass;
+}
 
 namespace {
 
@@ -23,10 +27,12 @@ FollowingMode parseMode(const JsonFields& f, const std::string& key, const std::
 }
 
 void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
-    f.rejectUnknownKeys({"follow_step_mm", "reposition_step_mm", "plane_step_mm", "plane_retreat_step_mm", "air_inward_step_mm", "air_retreat_step_mm", "orientation_trust_max_error_deg", "edge_confirmation_taps", "belief_threshold", "max_taps_per_decision",
-                         "reposition_while_sensing",
-                         "completion_radius_mm", "lost_outside_mm", "lost_inside_mm", "lost_plane_or_air_taps", "tap_cap_perimeters",
-                         "coverage_radius_mm", "trials"});
+    f.rejectUnknownKeys(
+        {"follow_step_mm", "reposition_step_mm", "plane_step_mm", "plane_retreat_step_mm",
+         "air_inward_step_mm", "air_retreat_step_mm", "orientation_trust_max_error_deg",
+         "edge_confirmation_taps", "belief_threshold", "max_taps_per_decision",
+         "reposition_while_sensing", "completion_radius_mm", "lost_outside_mm", "lost_inside_mm",
+         "lost_plane_or_air_taps", "tap_cap_perimeters", "coverage_radius_mm", "trials"});
     FollowingSettings& s = e.following;
     s.followStep_mm = f.number("follow_step_mm", 0.05, 50.0, s.followStep_mm);
     s.repositionStep_mm = f.number("reposition_step_mm", 0.0, 50.0, s.repositionStep_mm);
@@ -34,7 +40,8 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
     s.planeRetreatStep_mm = f.number("plane_retreat_step_mm", 0.0, 50.0, s.planeRetreatStep_mm);
     s.airInwardStep_mm = f.number("air_inward_step_mm", 0.0, 50.0, s.airInwardStep_mm);
     s.airRetreatStep_mm = f.number("air_retreat_step_mm", 0.0, 50.0, s.airRetreatStep_mm);
-    s.orientationTrustMaxError_deg = f.number("orientation_trust_max_error_deg", 0.0, 180.0, s.orientationTrustMaxError_deg);
+    s.orientationTrustMaxError_deg =
+        f.number("orientation_trust_max_error_deg", 0.0, 180.0, s.orientationTrustMaxError_deg);
     s.edgeConfirmationTaps = f.integer("edge_confirmation_taps", 1, 100, s.edgeConfirmationTaps);
     s.beliefThreshold = f.number("belief_threshold", 0.0, 0.99999999, s.beliefThreshold);
     s.maxTapsPerDecision = f.integer("max_taps_per_decision", 1, 1000, s.maxTapsPerDecision);
@@ -47,7 +54,10 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
     s.coverageRadius_mm = f.number("coverage_radius_mm", 0.1, 100.0, s.coverageRadius_mm);
     if (!f.has("trials")) return;
     const Json& list = f.raw("trials");
-    if (!list.is_array()) f.fail("trials", "expected a list of trials, e.g. [{\"mode\": \"active\", \"object\": {\"shape\": \"cross\"}, \"repeats\": 2}]");
+    if (!list.is_array())
+        f.fail("trials",
+               "expected a list of trials, e.g. [{\"mode\": \"active\", \"object\": {\"shape\": "
+               "\"cross\"}, \"repeats\": 2}]");
     for (std::size_t i = 0; i < list.size(); ++i) {
         const std::string place = f.placeOf("trials") + "/" + std::to_string(i);
         JsonFields t(list[i], f.source(), place);
@@ -58,11 +68,13 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
         spec.object = parseObject(t.object("object"));
         spec.label = t.text("label", spec.object.shape);
         spec.repeats = t.integer("repeats", 1, 1000, 1);
-        if (const std::string problem = objectPlacementProblem(spec.object, e.scene); !problem.empty())
+        if (const std::string problem = objectPlacementProblem(spec.object, e.scene);
+            !problem.empty())
             throw InputError(f.source(), place + "/object", problem);
         if (t.has("start_mm")) {
             spec.start = t.point("start_mm");
-            if (const std::string problem = startProblem(spec.object.outline(), *spec.start, s); !problem.empty())
+            if (const std::string problem = startProblem(spec.object.outline(), *spec.start, s);
+                !problem.empty())
                 t.fail("start_mm", problem);
         } else {
             try {
@@ -76,9 +88,11 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
 }
 
 /// A non-empty list of numbers in (lo, hi) (or [lo, hi] when `closed`), refused otherwise.
-std::vector<double> sweepRange(const JsonFields& f, const std::string& key, double lo, double hi, bool closed, const std::string& what) {
+std::vector<double> sweepRange(const JsonFields& f, const std::string& key, double lo, double hi,
+                               bool closed, const std::string& what) {
     if (!f.raw(key).is_array() || f.raw(key).empty())
-        f.fail(key, "'" + key + "' must be a non-empty list of " + what + "; an empty sweep measures nothing");
+        f.fail(key, "'" + key + "' must be a non-empty list of " + what +
+                        "; an empty sweep measures nothing");
     std::vector<double> v;
     for (std::size_t i = 0; i < f.raw(key).size(); ++i) {
         const Json& x = f.raw(key)[i];
@@ -87,7 +101,8 @@ std::vector<double> sweepRange(const JsonFields& f, const std::string& key, doub
         const bool inside = closed ? (d >= lo && d <= hi) : (d > lo && d < hi);
         if (!number || !inside)
             throw InputError(f.source(), f.placeOf(key) + "/" + std::to_string(i),
-                             describeJson(x) + " is not " + what + " (" + (closed ? "from " : "strictly between ") + std::to_string(lo) +
+                             describeJson(x) + " is not " + what + " (" +
+                                 (closed ? "from " : "strictly between ") + std::to_string(lo) +
                                  (closed ? " to " : " and ") + std::to_string(hi) + ")");
         v.push_back(d);
     }
@@ -100,35 +115,51 @@ void parseSweeps(const JsonFields& f, ExperimentSpec& e) {
     if (f.has("perception")) {
         const JsonFields p = f.object("perception");
         p.rejectUnknownKeys({"belief_thresholds", "taps_per_class", "max_taps_per_decision"});
-        if (!p.has("belief_thresholds")) p.fail("belief_thresholds", "missing 'belief_thresholds': the thresholds to sweep, each in (0, 1)");
-        s.beliefThresholds = sweepRange(p, "belief_thresholds", 0.0, 1.0, false, "a belief threshold");
+        if (!p.has("belief_thresholds"))
+            p.fail("belief_thresholds",
+                   "missing 'belief_thresholds': the thresholds to sweep, each in (0, 1)");
+        s.beliefThresholds =
+            sweepRange(p, "belief_thresholds", 0.0, 1.0, false, "a belief threshold");
         s.tapsPerClass = p.integer("taps_per_class", 1, 100, s.tapsPerClass);
         s.maxTapsPerDecision = p.integer("max_taps_per_decision", 1, 100, s.maxTapsPerDecision);
     }
     if (f.has("following")) {
         const JsonFields p = f.object("following");
-        p.rejectUnknownKeys({"follow_steps_mm", "reposition_steps_mm", "belief_thresholds", "modes", "repeats"});
+        p.rejectUnknownKeys(
+            {"follow_steps_mm", "reposition_steps_mm", "belief_thresholds", "modes", "repeats"});
         for (const char* key : {"follow_steps_mm", "reposition_steps_mm"})
-            if (!p.has(key)) p.fail(key, std::string("missing '") + key + "': the step lengths to sweep, in mm");
-        s.followSteps_mm = sweepRange(p, "follow_steps_mm", 0.0, 50.0, false, "a positive step length");
-        s.repositionSteps_mm = sweepRange(p, "reposition_steps_mm", 0.0, 50.0, true, "a step length, 0 or more");
-        s.followingBeliefThresholds = p.has("belief_thresholds") ? sweepRange(p, "belief_thresholds", 0.0, 1.0, true, "0 (single tap) or a threshold below 1")
-                                                                 : std::vector<double>{0.0};
+            if (!p.has(key))
+                p.fail(key, std::string("missing '") + key + "': the step lengths to sweep, in mm");
+        s.followSteps_mm =
+            sweepRange(p, "follow_steps_mm", 0.0, 50.0, false, "a positive step length");
+        s.repositionSteps_mm =
+            sweepRange(p, "reposition_steps_mm", 0.0, 50.0, true, "a step length, 0 or more");
+        s.followingBeliefThresholds = p.has("belief_thresholds")
+                                          ? sweepRange(p, "belief_thresholds", 0.0, 1.0, true,
+                                                       "0 (single tap) or a threshold below 1")
+                                          : std::vector<double>{0.0};
         for (double t : s.followingBeliefThresholds)
             if (t >= 1.0) p.fail("belief_thresholds", "a belief threshold must be below 1");
         s.modes.clear();
         if (p.has("modes")) {
-            if (!p.raw("modes").is_array() || p.raw("modes").empty()) p.fail("modes", "'modes' must list active and/or passive");
+            if (!p.raw("modes").is_array() || p.raw("modes").empty())
+                p.fail("modes", "'modes' must list active and/or passive");
             for (const auto& m : p.raw("modes")) {
-                if (m == "active") s.modes.push_back(FollowingMode::Active);
-                else if (m == "passive") s.modes.push_back(FollowingMode::Passive);
-                else p.fail("modes", "mode " + describeJson(m) + " is neither active nor passive");
+                if (m == "active")
+                    s.modes.push_back(FollowingMode::Active);
+                else if (m == "passive")
+                    s.modes.push_back(FollowingMode::Passive);
+                else
+                    p.fail("modes", "mode " + describeJson(m) + " is neither active nor passive");
             }
         } else {
             s.modes = {FollowingMode::Active, FollowingMode::Passive};
         }
         s.followingRepeats = p.integer("repeats", 1, 100, s.followingRepeats);
-        if (e.trials.empty()) p.fail("follow_steps_mm", "a following sweep needs trials (following.trials) to know which objects to follow");
+        if (e.trials.empty())
+            p.fail("follow_steps_mm",
+                   "a following sweep needs trials (following.trials) to know which objects to "
+                   "follow");
     }
     if (f.has("compute")) {
         const JsonFields p = f.object("compute");
@@ -139,8 +170,11 @@ void parseSweeps(const JsonFields& f, ExperimentSpec& e) {
             if (b != std::floor(b)) p.fail("bins", "bins must be whole numbers");
             s.bins.push_back(static_cast<int>(b));
         }
-        for (double t : sweepRange(p, "samples_per_tap", 1.0, 100000.0, true, "a whole number of samples")) {
-            if (t != std::floor(t) || t > e.scene.tap.samples) p.fail("samples_per_tap", "samples per tap must be whole numbers up to the tap's " + std::to_string(e.scene.tap.samples));
+        for (double t :
+             sweepRange(p, "samples_per_tap", 1.0, 100000.0, true, "a whole number of samples")) {
+            if (t != std::floor(t) || t > e.scene.tap.samples)
+                p.fail("samples_per_tap", "samples per tap must be whole numbers up to the tap's " +
+                                              std::to_string(e.scene.tap.samples));
             s.samplesPerTap.push_back(static_cast<int>(t));
         }
     }
@@ -148,20 +182,25 @@ void parseSweeps(const JsonFields& f, ExperimentSpec& e) {
 
 }  // namespace
 
-ExperimentSpec parseExperiment(const Json& json, const std::string& source, const std::string& baseDirectory) {
+ExperimentSpec parseExperiment(const Json& json, const std::string& source,
+                               const std::string& baseDirectory) {
     JsonFields f(json, source, "");
-    f.rejectUnknownKeys({"name", "description", "scene", "seed", "classes", "classifier", "training", "validation", "following",
-                         "recognition", "sweeps"});
+    f.rejectUnknownKeys({"name", "description", "scene", "seed", "classes", "classifier",
+                         "training", "validation", "following", "recognition", "sweeps"});
     ExperimentSpec e;
     e.source = source;
     e.name = f.text("name");
     e.description = f.text("description", "");
-    if (!f.has("scene")) f.fail("scene", "missing 'scene': a scene object or the path of a scene file");
+    if (!f.has("scene"))
+        f.fail("scene", "missing 'scene': a scene object or the path of a scene file");
     const Json& scene = f.raw("scene");
     if (scene.is_string()) {
         fs::path p(scene.get<std::string>());
         if (p.is_relative()) p = fs::path(baseDirectory) / p;
-        if (!fs::exists(p)) f.fail("scene", "scene file '" + p.string() + "' does not exist; check the path (relative to the experiment file)");
+        if (!fs::exists(p))
+            f.fail("scene",
+                   "scene file '" + p.string() +
+                       "' does not exist; check the path (relative to the experiment file)");
         e.scene = loadScene(p.string());
     } else {
         e.scene = parseScene(scene, source, "/scene", baseDirectory);
@@ -173,10 +212,12 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source, cons
         c.rejectUnknownKeys({"orientations_deg", "positions", "position_step_mm"});
         if (c.has("orientations_deg")) {
             e.classes.orientationsDeg = c.numbers("orientations_deg", -360.0, 360.0);
-            if (e.classes.orientationsDeg.empty()) c.fail("orientations_deg", "list at least one orientation");
+            if (e.classes.orientationsDeg.empty())
+                c.fail("orientations_deg", "list at least one orientation");
         }
         e.classes.positions = c.integer("positions", 2, 200, e.classes.positions);
-        e.classes.positionStep_mm = c.number("position_step_mm", 0.05, 10.0, e.classes.positionStep_mm);
+        e.classes.positionStep_mm =
+            c.number("position_step_mm", 0.05, 10.0, e.classes.positionStep_mm);
     }
     if (f.has("classifier")) {
         const JsonFields c = f.object("classifier");
@@ -186,21 +227,25 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source, cons
     }
     if (f.has("training")) {
         const JsonFields t = f.object("training");
-        t.rejectUnknownKeys({"data_sets", "training_sets", "taps_per_class", "test_offset_mm", "placement_jitter_mm"});
+        t.rejectUnknownKeys({"data_sets", "training_sets", "taps_per_class", "test_offset_mm",
+                             "placement_jitter_mm"});
         e.training.dataSets = t.integer("data_sets", 2, 1000, e.training.dataSets);
         if (t.has("training_sets")) {
             e.training.trainingSets.clear();
-            for (double s : t.numbers("training_sets", 1, 1000)) e.training.trainingSets.push_back(static_cast<int>(s));
+            for (double s : t.numbers("training_sets", 1, 1000))
+                e.training.trainingSets.push_back(static_cast<int>(s));
         }
         e.training.tapsPerClass = t.integer("taps_per_class", 1, 1000, e.training.tapsPerClass);
         e.training.testOffset_mm = t.number("test_offset_mm", -5.0, 5.0, e.training.testOffset_mm);
-        e.training.placementJitter_mm = t.number("placement_jitter_mm", 0.0, 5.0, e.training.placementJitter_mm);
+        e.training.placementJitter_mm =
+            t.number("placement_jitter_mm", 0.0, 5.0, e.training.placementJitter_mm);
         if (auto p = e.training.problem(); !p.empty()) throw InputError(source, "/training", p);
     }
     if (f.has("validation")) {
         const JsonFields v = f.object("validation");
         v.rejectUnknownKeys({"valid_range_positions"});
-        e.validRangeWidth = v.integer("valid_range_positions", 1, e.classes.positions, e.validRangeWidth);
+        e.validRangeWidth =
+            v.integer("valid_range_positions", 1, e.classes.positions, e.validRangeWidth);
     }
     if (f.has("following")) parseFollowing(f.object("following"), e);
     if (f.has("recognition")) {
@@ -208,11 +253,14 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source, cons
         r.rejectUnknownKeys({"bins", "smoothing_sigma_bins", "of_mode"});
         e.recognition.enabled = true;
         e.recognition.bins = r.integer("bins", 2, 200, e.recognition.bins);
-        e.recognition.smoothingSigmaBins = r.number("smoothing_sigma_bins", 0.0, 20.0, e.recognition.smoothingSigmaBins);
+        e.recognition.smoothingSigmaBins =
+            r.number("smoothing_sigma_bins", 0.0, 20.0, e.recognition.smoothingSigmaBins);
         e.recognition.ofMode = parseMode(r, "of_mode", "active");
         bool any = false;
         for (const auto& t : e.trials) any = any || t.mode == e.recognition.ofMode;
-        if (!any) r.fail("of_mode", std::string("no ") + modeName(e.recognition.ofMode) + " trials to recognise; add trials or change of_mode");
+        if (!any)
+            r.fail("of_mode", std::string("no ") + modeName(e.recognition.ofMode) +
+                                  " trials to recognise; add trials or change of_mode");
     }
     if (f.has("sweeps")) parseSweeps(f.object("sweeps"), e);
     // The training object must offer an edge for every orientation.
@@ -227,7 +275,9 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source, cons
 ExperimentSpec loadExperiment(const std::string& path) {
     const Json j = readJsonFile(path);
     if (!looksLikeExperiment(j))
-        throw InputError(path, "/", "this is not an experiment file (it has no 'scene'); run an experiment, or use 'check' for a scene");
+        throw InputError(path, "/",
+                         "this is not an experiment file (it has no 'scene'); run an experiment, "
+                         "or use 'check' for a scene");
     return parseExperiment(j, path, fs::path(path).parent_path().string());
 }
 

@@ -14,12 +14,12 @@ namespace activetouch {
 
 /// A set of contour-following trials on one object.
 struct TrialSpec {
-    std::string label;            ///< the shape's name for recognition (default: the library shape)
+    std::string label;  ///< the shape's name for recognition (default: the library shape)
     FollowingMode mode = FollowingMode::Active;
     ObjectSpec object;
     int repeats = 1;
-    std::optional<Vec2> start;    ///< default: the lower edge's middle, centred in the valid range
-    std::string place;            ///< JSON pointer, for errors
+    std::optional<Vec2> start;  ///< default: the lower edge's middle, centred in the valid range
+    std::string place;          ///< JSON pointer, for errors
 };
 
 struct RecognitionSpec {
@@ -33,16 +33,18 @@ struct RecognitionSpec {
 struct SweepSpec {
     // (a) sequential perception: error vs mean taps per decision over belief thresholds
     std::vector<double> beliefThresholds;
-    int tapsPerClass = 8;        ///< repeated taps per class collected for the sweep
+    int tapsPerClass = 8;  ///< repeated taps per class collected for the sweep
     int maxTapsPerDecision = 8;
     // (b) contour following vs follow step, repositioning step and belief threshold
     std::vector<double> followSteps_mm, repositionSteps_mm, followingBeliefThresholds;
     std::vector<FollowingMode> modes;
-    int followingRepeats = 1;    ///< trials per object per setting
+    int followingRepeats = 1;  ///< trials per object per setting
     // (c) compute: classifier error vs bins and samples per tap, against microseconds per decision
     std::vector<int> bins, samplesPerTap;
 
-    bool any() const { return !beliefThresholds.empty() || !followSteps_mm.empty() || !bins.empty(); }
+    bool any() const {
+        return !beliefThresholds.empty() || !followSteps_mm.empty() || !bins.empty();
+    }
 };
 
 struct ExperimentSpec {
@@ -63,7 +65,8 @@ struct ExperimentSpec {
 };
 
 /// Parses an experiment; the scene may be inline or a path relative to the experiment file.
-ExperimentSpec parseExperiment(const Json& json, const std::string& source, const std::string& baseDirectory);
+ExperimentSpec parseExperiment(const Json& json, const std::string& source,
+                               const std::string& baseDirectory);
 ExperimentSpec loadExperiment(const std::string& path);
 
 /// Whether a JSON file is an experiment (has "scene") or a bare scene.

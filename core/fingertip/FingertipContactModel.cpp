@@ -1,8 +1,8 @@
 #include "core/fingertip/FingertipContactModel.h"
 
 #include <algorithm>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -17,7 +17,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // pad, z_f: lateral): x_f = (0, c, -s), y_f = (0, -s, -c), z_f = (-1, 0, 0).
 struct Tilt {
     double c, s;
-    explicit Tilt(double degrees) : c(std::cos(degrees * M_PI / 180)), s(std::sin(degrees * M_PI / 180)) {}
+    explicit Tilt(double degrees)
+        : c(std::cos(degrees * M_PI / 180)), s(std::sin(degrees * M_PI / 180)) {}
     double worldX(double, double, double zf) const { return -zf; }
     double worldY(double xf, double yf) const { return c * xf - s * yf; }
     double worldZ(double xf, double yf) const { return -s * xf - c * yf; }
@@ -60,7 +61,8 @@ double FingertipContactModel::lowestBodyHeight(double X, double Y) const {
 FingertipContactModel::FingertipContactModel(const FingertipSpec& spec) : spec_(spec) {
     if (spec.taxels.empty()) throw std::invalid_argument("the fingertip has no taxels");
     if (spec.taxels.size() > static_cast<std::size_t>(kLanes))
-        throw std::invalid_argument("the contact model handles at most " + std::to_string(kLanes) + " taxels per fingertip");
+        throw std::invalid_argument("the contact model handles at most " + std::to_string(kLanes) +
+                                    " taxels per fingertip");
     if (!(spec.mountTiltDeg > 1 && spec.mountTiltDeg < 89))
         throw std::invalid_argument("mount tilt must be between 1 and 89 degrees");
     if (!(spec.radius > 0) || !(spec.tipEnd > spec.capStart))
@@ -106,7 +108,10 @@ FingertipContactModel::FingertipContactModel(const FingertipSpec& spec) : spec_(
     const double sigma = spec.receptiveFieldSigma;
     const double half = std::max(reach + 3.5 * sigma, 2.0 * (R + L));
     const int n = static_cast<int>(std::ceil(half / step));
-    struct Candidate { Vec2 offset; double height; };
+    struct Candidate {
+        Vec2 offset;
+        double height;
+    };
     std::vector<Candidate> grid;
     grid.reserve(static_cast<std::size_t>((2 * n + 1) * (2 * n + 1)));
     for (int i = -n; i <= n; ++i) {
@@ -125,7 +130,9 @@ FingertipContactModel::FingertipContactModel(const FingertipSpec& spec) : spec_(
         return std::exp(-dot(d, d) / (2 * sigma * sigma));
     };
     for (const auto& c : grid)
-        for (int k = 0; k < taxelCount_; ++k) norms[static_cast<std::size_t>(k)] += gauss(c.offset, projectedTaxels_[static_cast<std::size_t>(k)]);
+        for (int k = 0; k < taxelCount_; ++k)
+            norms[static_cast<std::size_t>(k)] +=
+                gauss(c.offset, projectedTaxels_[static_cast<std::size_t>(k)]);
 
     std::vector<std::size_t> kept;
     for (std::size_t q = 0; q < grid.size(); ++q)
@@ -155,11 +162,13 @@ double FingertipContactModel::surfaceHeightAt(Vec2 offset) const {
     return lowestBodyHeight(body.x, body.y + lowestY_) - lowestZ_;
 }
 
-FingertipContactModel::Contact FingertipContactModel::contactAt(const Polygon& object, Vec2 centre) const {
+FingertipContactModel::Contact FingertipContactModel::contactAt(const Polygon& object,
+                                                                Vec2 centre) const {
     return Contact(*this, object, centre);
 }
 
-FingertipContactModel::Contact::Contact(const FingertipContactModel& model, const Polygon& object, Vec2 centre)
+FingertipContactModel::Contact::Contact(const FingertipContactModel& model, const Polygon& object,
+                                        Vec2 centre)
     : model_(&model), centre_(centre) {
     centreInside_ = object.contains(centre);
     // An edge matters only if it passes within the patch radius (plus half a cell for the
@@ -237,7 +246,8 @@ double FingertipContactModel::Contact::totalPressure(double depth) {
     return total;
 }
 
-std::optional<double> FingertipContactModel::Contact::depthReaching(double threshold, double maxDepth) {
+std::optional<double> FingertipContactModel::Contact::depthReaching(double threshold,
+                                                                    double maxDepth) {
     // F(d) = sum_q c_q W_q (d - h_q) over h_q < d is piecewise linear and increasing: walk the
     // breakpoints with running sums S0 = sum c W and S1 = sum c W h.
     const auto& pts = model_->points_;
@@ -264,9 +274,11 @@ using Float16 = float __attribute__((vector_size(64)));
 
 // Running sums over patch points in height order: A += c w and B += c w h, sixteen taxel lanes
 // (zero-padded) per point. Cloned for AVX2; each lane sees the same operations in either clone.
-__attribute__((target_clones("avx2", "default")))
-void sweepPatch(const float* weights, const float* coverage, const float* heights, std::size_t from, std::size_t to,
-                float* sumA, float* sumB) {
+__attribute__((target_clones("avx2", "default"))) void sweepPatch(const float* weights,
+                                                                  const float* coverage,
+                                                                  const float* heights,
+                                                                  std::size_t from, std::size_t to,
+                                                                  float* sumA, float* sumB) {
     Float16 a, b;
     std::memcpy(&a, sumA, sizeof a);
     std::memcpy(&b, sumB, sizeof b);
@@ -283,7 +295,8 @@ void sweepPatch(const float* weights, const float* coverage, const float* height
 
 }  // namespace
 
-void FingertipContactModel::Contact::taxelPressuresAtDepths(const double* depths, std::size_t count, double* out) {
+void FingertipContactModel::Contact::taxelPressuresAtDepths(const double* depths, std::size_t count,
+                                                            double* out) {
     static_assert(kLanes == 16, "sweepPatch works on sixteen lanes");
     const int K = model_->taxelCount_;
     const auto& pts = model_->points_;
@@ -299,9 +312,11 @@ void FingertipContactModel::Contact::taxelPressuresAtDepths(const double* depths
         coverUpTo(depth);
         std::size_t end = q;
         while (end < pts.size() && pts[end].height < depth) ++end;
-        sweepPatch(model_->weights_.data(), coverage_.data(), model_->heights_.data(), q, end, sumA, sumB);
+        sweepPatch(model_->weights_.data(), coverage_.data(), model_->heights_.data(), q, end, sumA,
+                   sumB);
         q = end;
-        for (int k = 0; k < K; ++k) o[k] = std::max(0.0, depth * sumA[k] - static_cast<double>(sumB[k]));
+        for (int k = 0; k < K; ++k)
+            o[k] = std::max(0.0, depth * sumA[k] - static_cast<double>(sumB[k]));
     }
 }
 

@@ -69,14 +69,14 @@ public:
         const FingertipContactModel* model_;
         Vec2 centre_;
         bool centreInside_ = false;
-        std::vector<NearEdge> nearEdges_;     // outline edges that can reach the patch
+        std::vector<NearEdge> nearEdges_;  // outline edges that can reach the patch
         // The common case: one edge crossing the whole patch. A point's side and distance then
         // come from one dot product with the edge's unit normal.
         bool singleLine_ = false;
         Vec2 lineNormal_;
         double centreSide_ = 0.0;
-        std::vector<float> coverage_;         // per patch point, filled in height order
-        std::size_t covered_ = 0;             // points [0, covered_) have coverage
+        std::vector<float> coverage_;  // per patch point, filled in height order
+        std::size_t covered_ = 0;      // points [0, covered_) have coverage
     };
 
     /// The contact of the tip centred at `centre` over `object`.
@@ -100,7 +100,7 @@ private:
     // Receptive-field weights scaled by countsPerMm, one padded row of kLanes floats per point.
     static constexpr int kLanes = 16;
     std::vector<float> weights_;
-    std::vector<float> heights_;            // points_[q].height, as float for the sweep
+    std::vector<float> heights_;  // points_[q].height, as float for the sweep
     double patchRadius_ = 0.0;
 };
 

@@ -16,18 +16,18 @@ struct TaxelPosition {
 struct FingertipSpec {
     std::string name;
     std::vector<TaxelPosition> taxels;  ///< published layout (PROTOCOLS.md §4)
-    // Body: a cylinder of radius `radius` closed by a half-ellipsoid cap from `capStart` to `tipEnd`
-    // along the axis. Taxels are placed on this surface at their published axial position and
-    // angle around the axis.
+    // Body: a cylinder of radius `radius` closed by a half-ellipsoid cap from `capStart` to
+    // `tipEnd` along the axis. Taxels are placed on this surface at their published axial position
+    // and angle around the axis.
     double radius = 6.5;
     double capStart = 12.0;
     double tipEnd = 24.5;
-    double mountTiltDeg = 20.0;     ///< finger axis below the horizontal, pad facing down
-    double mountHeadingDeg = 90.0;  ///< direction the finger points in the stage plane
+    double mountTiltDeg = 20.0;        ///< finger axis below the horizontal, pad facing down
+    double mountHeadingDeg = 90.0;     ///< direction the finger points in the stage plane
     double receptiveFieldSigma = 1.3;  ///< taxel receptive field on the contact plane, mm
-    double countsPerMm = 100.0;     ///< counts per mm of mean indentation over a receptive field
-    double gridStep = 0.5;          ///< contact-plane discretisation, mm
-    double maxIndentation = 6.0;    ///< deepest indentation the model resolves, mm
+    double countsPerMm = 100.0;        ///< counts per mm of mean indentation over a receptive field
+    double gridStep = 0.5;             ///< contact-plane discretisation, mm
+    double maxIndentation = 6.0;       ///< deepest indentation the model resolves, mm
 };
 
 }  // namespace activetouch

@@ -55,7 +55,8 @@ std::optional<std::string> Polygon::problemWith(const std::vector<Vec2>& v) {
             return vertexText(i, v[i]) + " repeats the next vertex; remove the duplicate";
     }
     bool collinear = true;
-    for (std::size_t i = 2; i < v.size() && collinear; ++i) collinear = orientation(v[0], v[1], v[i]) == 0;
+    for (std::size_t i = 2; i < v.size() && collinear; ++i)
+        collinear = orientation(v[0], v[1], v[i]) == 0;
     if (collinear) return "the outline encloses no area (all vertices on one line)";
     const std::size_t n = v.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -93,7 +94,9 @@ Polygon::Polygon(std::vector<Vec2> vertices) {
     }
 }
 
-double Polygon::area() const { return std::abs(signedArea(vertices_)); }
+double Polygon::area() const {
+    return std::abs(signedArea(vertices_));
+}
 
 bool Polygon::contains(Vec2 p) const {
     bool inside = false;
@@ -133,7 +136,8 @@ Vec2 Polygon::pointAtArcLength(double s) const {
     s = std::fmod(s, total);
     if (s < 0) s += total;
     auto it = std::upper_bound(cumulativeLength_.begin(), cumulativeLength_.end(), s);
-    std::size_t i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, (it - cumulativeLength_.begin()) - 1));
+    std::size_t i =
+        static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, (it - cumulativeLength_.begin()) - 1));
     i = std::min(i, vertices_.size() - 1);
     const double len = cumulativeLength_[i + 1] - cumulativeLength_[i];
     const double t = len > 0 ? (s - cumulativeLength_[i]) / len : 0.0;

@@ -22,7 +22,8 @@ Polygon libraryShape(const std::string& name, const ShapeSize& s) {
     if (name == "rectangle") return Polygon({at(0, 0), at(w, 0), at(w, h), at(0, h)});
     if (!(a > 0)) throw std::invalid_argument("arm width must be positive");
     if (name == "cross") {
-        if (a >= w || a >= h) throw std::invalid_argument("the cross's arm must be narrower than the shape");
+        if (a >= w || a >= h)
+            throw std::invalid_argument("the cross's arm must be narrower than the shape");
         const double xa = (w - a) / 2, ya = (h - a) / 2;
         return Polygon({at(xa, 0), at(xa + a, 0), at(xa + a, ya), at(w, ya), at(w, ya + a),
                         at(xa + a, ya + a), at(xa + a, h), at(xa, h), at(xa, ya + a), at(0, ya + a),
@@ -37,7 +38,8 @@ Polygon libraryShape(const std::string& name, const ShapeSize& s) {
                         at(w, h), at(0, h)});
     }
     if (name == "l") {
-        if (a >= w || a >= h) throw std::invalid_argument("the L's arm must be narrower than the shape");
+        if (a >= w || a >= h)
+            throw std::invalid_argument("the L's arm must be narrower than the shape");
         return Polygon({at(0, 0), at(w, 0), at(w, a), at(a, a), at(a, h), at(0, h)});
     }
     throw std::invalid_argument("unknown shape '" + name +

@@ -13,14 +13,26 @@ struct Vec2 {
     friend Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
     friend Vec2 operator*(Vec2 a, double s) { return {s * a.x, s * a.y}; }
     friend bool operator==(Vec2 a, Vec2 b) = default;
-    Vec2& operator+=(Vec2 b) { x += b.x; y += b.y; return *this; }
+    Vec2& operator+=(Vec2 b) {
+        x += b.x;
+        y += b.y;
+        return *this;
+    }
 };
 
-inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+inline double dot(Vec2 a, Vec2 b) {
+    return a.x * b.x + a.y * b.y;
+}
+inline double cross(Vec2 a, Vec2 b) {
+    return a.x * b.y - a.y * b.x;
+}
 // Millimetre-scale values never approach overflow, so plain sqrt (not hypot) is safe and fast.
-inline double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
-inline double distance(Vec2 a, Vec2 b) { return norm(a - b); }
+inline double norm(Vec2 a) {
+    return std::sqrt(a.x * a.x + a.y * a.y);
+}
+inline double distance(Vec2 a, Vec2 b) {
+    return norm(a - b);
+}
 
 /// Unit vector at `degrees` counter-clockwise from +x; exact for multiples of 90 degrees, so that
 /// moves along axis-aligned edges stay on the millimetre grid.

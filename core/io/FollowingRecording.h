@@ -17,7 +17,8 @@ public:
     FollowingRecording(const FollowingRecording&) = delete;
     FollowingRecording& operator=(const FollowingRecording&) = delete;
 
-    void append(const std::string& label, FollowingMode mode, int trial, int tapIndex, const FollowedTap& tap);
+    void append(const std::string& label, FollowingMode mode, int trial, int tapIndex,
+                const FollowedTap& tap);
 
 private:
     std::FILE* file_ = nullptr;

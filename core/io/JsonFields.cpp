@@ -13,12 +13,18 @@ Json parseJsonText(const std::string& text, const std::string& source) {
         std::size_t line = 1, column = 1;
         const std::size_t end = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
         for (std::size_t i = 0; i < end; ++i) {
-            if (text[i] == '\n') { ++line; column = 1; } else { ++column; }
+            if (text[i] == '\n') {
+                ++line;
+                column = 1;
+            } else {
+                ++column;
+            }
         }
         std::string what = e.what();
         const auto colon = what.rfind(": ");
         if (colon != std::string::npos) what = what.substr(colon + 2);
-        throw InputError(source, "line " + std::to_string(line) + ", column " + std::to_string(column),
+        throw InputError(source,
+                         "line " + std::to_string(line) + ", column " + std::to_string(column),
                          "the file is not valid JSON (" + what + "); fix the syntax there");
     }
 }
@@ -73,10 +79,12 @@ static std::string rangeText(double lo, double hi) {
 double JsonFields::number(const std::string& key, double lo, double hi) const {
     if (!has(key)) fail(key, "missing required number '" + key + "' (" + rangeText(lo, hi) + ")");
     const Json& v = raw(key);
-    if (!v.is_number()) fail(key, "expected a number " + rangeText(lo, hi) + ", found " + describeJson(v));
+    if (!v.is_number())
+        fail(key, "expected a number " + rangeText(lo, hi) + ", found " + describeJson(v));
     const double d = v.get<double>();
     if (!std::isfinite(d) || d < lo || d > hi)
-        fail(key, "'" + key + "' is " + describeJson(v) + ", outside the allowed range (" + rangeText(lo, hi) + ")");
+        fail(key, "'" + key + "' is " + describeJson(v) + ", outside the allowed range (" +
+                      rangeText(lo, hi) + ")");
     return d;
 }
 
@@ -85,11 +93,17 @@ double JsonFields::number(const std::string& key, double lo, double hi, double f
 }
 
 int JsonFields::integer(const std::string& key, long lo, long hi) const {
-    if (!has(key)) fail(key, "missing required whole number '" + key + "' (" + rangeText(double(lo), double(hi)) + ")");
+    if (!has(key))
+        fail(key, "missing required whole number '" + key + "' (" +
+                      rangeText(double(lo), double(hi)) + ")");
     const Json& v = raw(key);
-    if (!v.is_number_integer()) fail(key, "expected a whole number " + rangeText(double(lo), double(hi)) + ", found " + describeJson(v));
+    if (!v.is_number_integer())
+        fail(key, "expected a whole number " + rangeText(double(lo), double(hi)) + ", found " +
+                      describeJson(v));
     const long n = v.get<long>();
-    if (n < lo || n > hi) fail(key, "'" + key + "' is " + std::to_string(n) + ", outside the allowed range (" + rangeText(double(lo), double(hi)) + ")");
+    if (n < lo || n > hi)
+        fail(key, "'" + key + "' is " + std::to_string(n) + ", outside the allowed range (" +
+                      rangeText(double(lo), double(hi)) + ")");
     return static_cast<int>(n);
 }
 
@@ -135,9 +149,11 @@ std::vector<double> JsonFields::numbers(const std::string& key, double lo, doubl
     if (!v.is_array()) fail(key, "expected a list of numbers, found " + describeJson(v));
     std::vector<double> out;
     for (std::size_t i = 0; i < v.size(); ++i) {
-        if (!v[i].is_number() || !std::isfinite(v[i].get<double>()) || v[i].get<double>() < lo || v[i].get<double>() > hi)
-            throw InputError(source_, placeOf(key) + "/" + std::to_string(i),
-                             "expected a number " + rangeText(lo, hi) + ", found " + describeJson(v[i]));
+        if (!v[i].is_number() || !std::isfinite(v[i].get<double>()) || v[i].get<double>() < lo ||
+            v[i].get<double>() > hi)
+            throw InputError(
+                source_, placeOf(key) + "/" + std::to_string(i),
+                "expected a number " + rangeText(lo, hi) + ", found " + describeJson(v[i]));
         out.push_back(v[i].get<double>());
     }
     return out;

@@ -3,11 +3,10 @@
 // what to do. Unknown keys are errors too: a misspelt parameter must not be silently ignored.
 #include <cmath>
 #include <initializer_list>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/common/InputError.h"
 #include "core/geometry/Vec2.h"

@@ -9,8 +9,9 @@
 namespace activetouch {
 namespace {
 
-const char* kFixedColumns[] = {"set", "class", "orientation_deg", "position", "true_offset_mm", "pose_x_mm",
-                               "pose_y_mm", "robot_time_s", "ending", "sample"};
+const char* kFixedColumns[] = {
+    "set",       "class",     "orientation_deg", "position", "true_offset_mm",
+    "pose_x_mm", "pose_y_mm", "robot_time_s",    "ending",   "sample"};
 constexpr int kFixed = 10;
 
 std::vector<std::string> splitCsv(const std::string& line) {
@@ -18,7 +19,8 @@ std::vector<std::string> splitCsv(const std::string& line) {
     std::size_t start = 0;
     while (true) {
         const auto comma = line.find(',', start);
-        out.push_back(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        out.push_back(
+            line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
         if (comma == std::string::npos) break;
         start = comma + 1;
     }
@@ -30,7 +32,9 @@ std::vector<std::string> splitCsv(const std::string& line) {
 
 TapCsvWriter::TapCsvWriter(const std::string& path, int taxels) : path_(path), taxels_(taxels) {
     file_ = std::fopen(path.c_str(), "w");
-    if (!file_) throw InputError(path, "", "cannot create the file; check the output folder exists and is writable");
+    if (!file_)
+        throw InputError(path, "",
+                         "cannot create the file; check the output folder exists and is writable");
     for (int i = 0; i < kFixed; ++i) std::fprintf(file_, "%s%s", i ? "," : "", kFixedColumns[i]);
     for (int k = 0; k < taxels; ++k) std::fprintf(file_, ",taxel_%d", k);
     std::fputc('\n', file_);
@@ -45,8 +49,9 @@ void TapCsvWriter::append(const CollectedTap& c, const ClassSet& classes) {
     const TapRecord& r = c.record;
     const char* ending = r.ending == TapEnding::ContactReflex ? "reflex" : "stroke_limit";
     for (int t = 0; t < r.tap.sampleCount(); ++t) {
-        std::fprintf(file_, "%d,%d,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%s,%d", c.dataSet, c.cls, classes.orientationDegOf(c.cls),
-                     classes.positionOf(c.cls), c.trueOffset_mm, r.pose.x, r.pose.y, r.startTime_s, ending, t);
+        std::fprintf(file_, "%d,%d,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%s,%d", c.dataSet, c.cls,
+                     classes.orientationDegOf(c.cls), classes.positionOf(c.cls), c.trueOffset_mm,
+                     r.pose.x, r.pose.y, r.startTime_s, ending, t);
         for (int k = 0; k < taxels_; ++k) std::fprintf(file_, ",%.17g", r.tap.at(t, k));
         std::fputc('\n', file_);
     }
@@ -57,16 +62,21 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     std::ifstream in(path);
     if (!in) throw InputError(path, "", "cannot open the file; check the path");
     std::string line;
-    if (!std::getline(in, line)) throw InputError(path, "line 1", "the file is empty; expected a header row");
+    if (!std::getline(in, line))
+        throw InputError(path, "line 1", "the file is empty; expected a header row");
     const auto header = splitCsv(line);
     int taxels = static_cast<int>(header.size()) - kFixed;
     bool ok = taxels >= 1;
-    for (int i = 0; ok && i < kFixed; ++i) ok = header[static_cast<std::size_t>(i)] == kFixedColumns[i];
-    for (int k = 0; ok && k < taxels; ++k) ok = header[static_cast<std::size_t>(kFixed + k)] == "taxel_" + std::to_string(k);
+    for (int i = 0; ok && i < kFixed; ++i)
+        ok = header[static_cast<std::size_t>(i)] == kFixedColumns[i];
+    for (int k = 0; ok && k < taxels; ++k)
+        ok = header[static_cast<std::size_t>(kFixed + k)] == "taxel_" + std::to_string(k);
     if (!ok) {
         std::string expected;
         for (const char* c : kFixedColumns) expected += std::string(c) + ",";
-        throw InputError(path, "line 1", "unexpected columns; a tap file starts with " + expected + "taxel_0,...,taxel_11");
+        throw InputError(
+            path, "line 1",
+            "unexpected columns; a tap file starts with " + expected + "taxel_0,...,taxel_11");
     }
     std::vector<CollectedTap> taps;
     std::vector<std::vector<double>> samples;
@@ -75,9 +85,11 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
         double v = 0.0;
         const auto res = std::from_chars(field.data(), field.data() + field.size(), v);
         if (res.ec != std::errc() || res.ptr != field.data() + field.size())
-            throw InputError(path, "line " + std::to_string(lineNo) + ", column " + column, "'" + field + "' is not a number");
+            throw InputError(path, "line " + std::to_string(lineNo) + ", column " + column,
+                             "'" + field + "' is not a number");
         if (!std::isfinite(v))
-            throw InputError(path, "line " + std::to_string(lineNo) + ", column " + column, "'" + field + "' is not a finite number");
+            throw InputError(path, "line " + std::to_string(lineNo) + ", column " + column,
+                             "'" + field + "' is not a finite number");
         return v;
     };
     auto finishTap = [&]() {
@@ -85,7 +97,8 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
         Tap& t = taps.back().record.tap;
         t = Tap(static_cast<int>(samples.size()), taxels);
         for (std::size_t s = 0; s < samples.size(); ++s)
-            for (int k = 0; k < taxels; ++k) t.at(static_cast<int>(s), k) = samples[s][static_cast<std::size_t>(k)];
+            for (int k = 0; k < taxels; ++k)
+                t.at(static_cast<int>(s), k) = samples[s][static_cast<std::size_t>(k)];
         samples.clear();
     };
     while (std::getline(in, line)) {
@@ -94,12 +107,15 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
         const auto f = splitCsv(line);
         if (static_cast<int>(f.size()) != kFixed + taxels)
             throw InputError(path, "line " + std::to_string(lineNo),
-                             "has " + std::to_string(f.size()) + " fields, the header has " + std::to_string(kFixed + taxels));
+                             "has " + std::to_string(f.size()) + " fields, the header has " +
+                                 std::to_string(kFixed + taxels));
         const int set = static_cast<int>(number(f[0], "set"));
         const int cls = static_cast<int>(number(f[1], "class"));
         if (cls < 0 || cls >= classes.classCount())
             throw InputError(path, "line " + std::to_string(lineNo) + ", column class",
-                             "class " + f[1] + " is outside 0.." + std::to_string(classes.classCount() - 1) + " for this experiment's classes");
+                             "class " + f[1] + " is outside 0.." +
+                                 std::to_string(classes.classCount() - 1) +
+                                 " for this experiment's classes");
         const int sample = static_cast<int>(number(f[9], "sample"));
         if (sample == 0) {
             finishTap();
@@ -110,12 +126,16 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
             c.record.pose = {number(f[5], "pose_x_mm"), number(f[6], "pose_y_mm")};
             c.record.startTime_s = number(f[7], "robot_time_s");
             if (f[8] != "reflex" && f[8] != "stroke_limit")
-                throw InputError(path, "line " + std::to_string(lineNo) + ", column ending", "'" + f[8] + "' is neither reflex nor stroke_limit");
+                throw InputError(path, "line " + std::to_string(lineNo) + ", column ending",
+                                 "'" + f[8] + "' is neither reflex nor stroke_limit");
             c.record.ending = f[8] == "reflex" ? TapEnding::ContactReflex : TapEnding::StrokeLimit;
             taps.push_back(c);
-        } else if (taps.empty() || sample != static_cast<int>(samples.size()) || taps.back().cls != cls || taps.back().dataSet != set) {
+        } else if (taps.empty() || sample != static_cast<int>(samples.size()) ||
+                   taps.back().cls != cls || taps.back().dataSet != set) {
             throw InputError(path, "line " + std::to_string(lineNo) + ", column sample",
-                             "sample " + f[9] + " does not continue the tap above it; each tap's samples run 0, 1, 2, ... in order");
+                             "sample " + f[9] +
+                                 " does not continue the tap above it; each tap's samples run 0, "
+                                 "1, 2, ... in order");
         }
         std::vector<double> frame(static_cast<std::size_t>(taxels));
         for (int k = 0; k < taxels; ++k) {
@@ -123,7 +143,8 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
             const double v = number(f[static_cast<std::size_t>(kFixed + k)], column);
             if (v < 0.0 || v > 255.0)
                 throw InputError(path, "line " + std::to_string(lineNo) + ", column " + column,
-                                 "pressure " + f[static_cast<std::size_t>(kFixed + k)] + " is outside the fingertip's 0..255 counts");
+                                 "pressure " + f[static_cast<std::size_t>(kFixed + k)] +
+                                     " is outside the fingertip's 0..255 counts");
             frame[static_cast<std::size_t>(k)] = v;
         }
         samples.push_back(std::move(frame));

@@ -23,7 +23,9 @@ PathHistogram pathHistogram(const std::vector<Vec2>& points, int bins) {
         return std::clamp(i, 0, h.bins - 1);
     };
     const double weight = 1.0 / static_cast<double>(points.size());
-    for (Vec2 p : points) h.cells[static_cast<std::size_t>(binOf(p.y, lo.y, hi.y) * h.bins + binOf(p.x, lo.x, hi.x))] += weight;
+    for (Vec2 p : points)
+        h.cells[static_cast<std::size_t>(binOf(p.y, lo.y, hi.y) * h.bins +
+                                         binOf(p.x, lo.x, hi.x))] += weight;
     return h;
 }
 
@@ -32,17 +34,24 @@ PathHistogram smoothed(const PathHistogram& h, double sigma) {
     const int n = h.bins;
     const int radius = std::max(1, static_cast<int>(std::ceil(3 * sigma)));
     std::vector<double> kernel(static_cast<std::size_t>(2 * radius + 1));
-    for (int i = -radius; i <= radius; ++i) kernel[static_cast<std::size_t>(i + radius)] = std::exp(-0.5 * i * i / (sigma * sigma));
+    for (int i = -radius; i <= radius; ++i)
+        kernel[static_cast<std::size_t>(i + radius)] = std::exp(-0.5 * i * i / (sigma * sigma));
     // Separable blur; mass that would leave the grid is dropped, then the rest renormalised.
     std::vector<double> tmp(h.cells.size(), 0.0), out(h.cells.size(), 0.0);
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x)
             for (int i = -radius; i <= radius; ++i)
-                if (x + i >= 0 && x + i < n) tmp[static_cast<std::size_t>(y * n + x)] += kernel[static_cast<std::size_t>(i + radius)] * h.cells[static_cast<std::size_t>(y * n + x + i)];
+                if (x + i >= 0 && x + i < n)
+                    tmp[static_cast<std::size_t>(y * n + x)] +=
+                        kernel[static_cast<std::size_t>(i + radius)] *
+                        h.cells[static_cast<std::size_t>(y * n + x + i)];
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x)
             for (int i = -radius; i <= radius; ++i)
-                if (y + i >= 0 && y + i < n) out[static_cast<std::size_t>(y * n + x)] += kernel[static_cast<std::size_t>(i + radius)] * tmp[static_cast<std::size_t>((y + i) * n + x)];
+                if (y + i >= 0 && y + i < n)
+                    out[static_cast<std::size_t>(y * n + x)] +=
+                        kernel[static_cast<std::size_t>(i + radius)] *
+                        tmp[static_cast<std::size_t>((y + i) * n + x)];
     double total = 0.0;
     for (double v : out) total += v;
     PathHistogram s = h;
@@ -53,7 +62,8 @@ PathHistogram smoothed(const PathHistogram& h, double sigma) {
 double histogramDistance(const PathHistogram& a, const PathHistogram& b) {
     double sum = 0.0;
     const std::size_t n = std::min(a.cells.size(), b.cells.size());
-    for (std::size_t i = 0; i < n; ++i) sum += (a.cells[i] - b.cells[i]) * (a.cells[i] - b.cells[i]);
+    for (std::size_t i = 0; i < n; ++i)
+        sum += (a.cells[i] - b.cells[i]) * (a.cells[i] - b.cells[i]);
     return std::sqrt(sum);
 }
 
@@ -75,7 +85,8 @@ std::vector<Vec2> idealFollowingPath(const Polygon& outline, double offset_mm, d
     return path;
 }
 
-Recognition recognise(const std::vector<Vec2>& path, const std::vector<ShapeTemplate>& templates, double sigma) {
+Recognition recognise(const std::vector<Vec2>& path, const std::vector<ShapeTemplate>& templates,
+                      double sigma) {
     Recognition r;
     r.raw = pathHistogram(path, templates.empty() ? 20 : templates.front().raw.bins);
     r.smooth = smoothed(r.raw, sigma);
@@ -85,8 +96,14 @@ Recognition recognise(const std::vector<Vec2>& path, const std::vector<ShapeTemp
         const double ds = histogramDistance(r.smooth, t.smooth);
         r.distances[t.shape] = d;
         r.smoothedDistances[t.shape] = ds;
-        if (d < best) { best = d; r.predicted = t.shape; }
-        if (ds < bestSmooth) { bestSmooth = ds; r.predictedSmoothed = t.shape; }
+        if (d < best) {
+            best = d;
+            r.predicted = t.shape;
+        }
+        if (ds < bestSmooth) {
+            bestSmooth = ds;
+            r.predictedSmoothed = t.shape;
+        }
     }
     return r;
 }

@@ -45,6 +45,7 @@ struct Recognition {
     PathHistogram raw, smooth;
 };
 
-Recognition recognise(const std::vector<Vec2>& path, const std::vector<ShapeTemplate>& templates, double sigmaBins);
+Recognition recognise(const std::vector<Vec2>& path, const std::vector<ShapeTemplate>& templates,
+                      double sigmaBins);
 
 }  // namespace activetouch

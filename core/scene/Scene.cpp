@@ -37,13 +37,15 @@ FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& re
         path = fs::path(resourceDirectory()) / "fingertip" / (nameOrPath + ".json");
     }
     if (!fs::exists(path))
-        throw InputError(source, place, "fingertip '" + nameOrPath + "' not found (looked for " + path.string() +
-                                            "); use a name from resources/fingertip/ or a path to a .json file");
+        throw InputError(source, place,
+                         "fingertip '" + nameOrPath + "' not found (looked for " + path.string() +
+                             "); use a name from resources/fingertip/ or a path to a .json file");
     const std::string file = path.string();
     const Json j = readJsonFile(file);
     JsonFields f(j, file, "");
-    f.rejectUnknownKeys({"name", "description", "taxels_mm", "body", "mount", "receptive_field_sigma_mm",
-                         "counts_per_mm", "grid_step_mm", "max_indentation_mm"});
+    f.rejectUnknownKeys({"name", "description", "taxels_mm", "body", "mount",
+                         "receptive_field_sigma_mm", "counts_per_mm", "grid_step_mm",
+                         "max_indentation_mm"});
     FingertipSpec spec;
     spec.name = f.text("name");
     if (!f.has("taxels_mm") || !f.raw("taxels_mm").is_array() || f.raw("taxels_mm").empty())
@@ -51,8 +53,10 @@ FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& re
     const Json& taxels = f.raw("taxels_mm");
     for (std::size_t i = 0; i < taxels.size(); ++i) {
         const Json& t = taxels[i];
-        if (!t.is_array() || t.size() != 3 || !t[0].is_number() || !t[1].is_number() || !t[2].is_number())
-            throw InputError(file, "/taxels_mm/" + std::to_string(i), "expected [x, y, z] in mm, found " + describeJson(t));
+        if (!t.is_array() || t.size() != 3 || !t[0].is_number() || !t[1].is_number() ||
+            !t[2].is_number())
+            throw InputError(file, "/taxels_mm/" + std::to_string(i),
+                             "expected [x, y, z] in mm, found " + describeJson(t));
         spec.taxels.push_back({t[0].get<double>(), t[1].get<double>(), t[2].get<double>()});
     }
     const JsonFields body = f.object("body");
@@ -78,10 +82,12 @@ ObjectSpec parseObject(const JsonFields& f) {
     o.shape = f.text("shape");
     if (o.shape == "polygon") {
         if (!f.has("polygon_mm") || !f.raw("polygon_mm").is_array())
-            f.fail("polygon_mm", "a polygon object needs 'polygon_mm': a list of [x, y] vertices in mm");
+            f.fail("polygon_mm",
+                   "a polygon object needs 'polygon_mm': a list of [x, y] vertices in mm");
         const Json& v = f.raw("polygon_mm");
         for (std::size_t i = 0; i < v.size(); ++i) {
-            if (!v[i].is_array() || v[i].size() != 2 || !v[i][0].is_number() || !v[i][1].is_number())
+            if (!v[i].is_array() || v[i].size() != 2 || !v[i][0].is_number() ||
+                !v[i][1].is_number())
                 throw InputError(f.source(), f.placeOf("polygon_mm") + "/" + std::to_string(i),
                                  "expected a vertex [x, y] in mm, found " + describeJson(v[i]));
             o.polygon.push_back({v[i][0].get<double>(), v[i][1].get<double>()});
@@ -92,7 +98,8 @@ ObjectSpec parseObject(const JsonFields& f) {
         bool known = false;
         for (const auto& n : libraryShapeNames()) known = known || n == o.shape;
         if (!known)
-            f.fail("shape", "unknown shape '" + o.shape + "'; use rectangle, cross, c, l, or polygon with polygon_mm");
+            f.fail("shape", "unknown shape '" + o.shape +
+                                "'; use rectangle, cross, c, l, or polygon with polygon_mm");
         o.size = defaultShapeSize(o.shape);
         o.size.width = f.number("width_mm", 1.0, 1000.0, o.size.width);
         o.size.height = f.number("height_mm", 1.0, 1000.0, o.size.height);
@@ -101,7 +108,8 @@ ObjectSpec parseObject(const JsonFields& f) {
         try {
             libraryShape(o.shape, o.size);
         } catch (const std::invalid_argument& e) {
-            throw InputError(f.source(), f.pointer(), std::string("the ") + o.shape + " sizes make no outline: " + e.what());
+            throw InputError(f.source(), f.pointer(),
+                             std::string("the ") + o.shape + " sizes make no outline: " + e.what());
         }
     }
     o.rotationDeg = f.number("rotation_deg", -360.0, 360.0, 0.0);
@@ -112,16 +120,22 @@ ObjectSpec parseObject(const JsonFields& f) {
 
 std::string objectPlacementProblem(const ObjectSpec& object, const SceneSpec& scene) {
     if (object.height_mm >= scene.tap.retractHeight_mm)
-        return "the object's top (" + std::to_string(object.height_mm) + " mm) is not below the tapper's retract height (" +
-               std::to_string(scene.tap.retractHeight_mm) + " mm); raise tap.retract_height_mm or use a lower object";
+        return "the object's top (" + std::to_string(object.height_mm) +
+               " mm) is not below the tapper's retract height (" +
+               std::to_string(scene.tap.retractHeight_mm) +
+               " mm); raise tap.retract_height_mm or use a lower object";
     if (scene.tap.stroke_mm - (scene.tap.retractHeight_mm - object.height_mm) <= 0.0)
-        return "the stroke ends above the object's top face, so no tap can touch it; lengthen the stroke or lower the retract height";
+        return "the stroke ends above the object's top face, so no tap can touch it; lengthen the "
+               "stroke or lower the retract height";
     const Polygon outline = object.outline();
     const Vec2 lo = outline.boundingBoxMin(), hi = outline.boundingBoxMax();
     if (lo.x < 0 || lo.y < 0 || hi.x > scene.stage.travel_mm.x || hi.y > scene.stage.travel_mm.y)
-        return "the object (x " + std::to_string(lo.x) + ".." + std::to_string(hi.x) + ", y " + std::to_string(lo.y) + ".." +
-               std::to_string(hi.y) + " mm) does not fit inside the stage travel (0.." + std::to_string(scene.stage.travel_mm.x) +
-               ", 0.." + std::to_string(scene.stage.travel_mm.y) + " mm); move it with offset_mm or make it smaller";
+        return "the object (x " + std::to_string(lo.x) + ".." + std::to_string(hi.x) + ", y " +
+               std::to_string(lo.y) + ".." + std::to_string(hi.y) +
+               " mm) does not fit inside the stage travel (0.." +
+               std::to_string(scene.stage.travel_mm.x) + ", 0.." +
+               std::to_string(scene.stage.travel_mm.y) +
+               " mm); move it with offset_mm or make it smaller";
     return {};
 }
 
@@ -129,8 +143,9 @@ namespace {
 
 TapSpec parseTap(const JsonFields& f) {
     TapSpec t;
-    f.rejectUnknownKeys({"retract_height_mm", "descent_speed_mm_s", "stroke_mm", "contact_threshold_counts",
-                         "contact_time_s", "settle_s", "samples", "sample_rate_hz", "noise_floor_counts"});
+    f.rejectUnknownKeys({"retract_height_mm", "descent_speed_mm_s", "stroke_mm",
+                         "contact_threshold_counts", "contact_time_s", "settle_s", "samples",
+                         "sample_rate_hz", "noise_floor_counts"});
     t.retractHeight_mm = f.number("retract_height_mm", 0.1, 500.0, t.retractHeight_mm);
     t.descentSpeed_mm_s = f.number("descent_speed_mm_s", 0.1, 1000.0, t.descentSpeed_mm_s);
     t.stroke_mm = f.number("stroke_mm", 0.1, 100.0, t.stroke_mm);
@@ -142,9 +157,10 @@ TapSpec parseTap(const JsonFields& f) {
     t.noiseFloor = f.number("noise_floor_counts", 0.0, 255.0, t.noiseFloor);
     if (t.worstCaseStroke_s() > t.window_s() + 1e-9)
         throw InputError(f.source(), f.pointer(),
-                         "a full stroke (down " + std::to_string(t.stroke_mm) + " mm, hold, back up) takes " +
-                             std::to_string(t.worstCaseStroke_s()) + " s but the tap window is " +
-                             std::to_string(t.window_s()) + " s; shorten the stroke, speed up the descent or record more samples");
+                         "a full stroke (down " + std::to_string(t.stroke_mm) +
+                             " mm, hold, back up) takes " + std::to_string(t.worstCaseStroke_s()) +
+                             " s but the tap window is " + std::to_string(t.window_s()) +
+                             " s; shorten the stroke, speed up the descent or record more samples");
     return t;
 }
 
@@ -160,13 +176,16 @@ SceneSpec parseScene(const Json& json, const std::string& source, const std::str
     s.object = parseObject(f.object("object"));
     s.fingertipName = f.text("fingertip", s.fingertipName);
     s.fingertip = loadFingertip(s.fingertipName, baseDirectory, source, f.placeOf("fingertip"));
-    if (f.has("tap")) s.tap = parseTap(f.object("tap"));
-    else s.tap = parseTap(JsonFields(Json::object(), source, f.placeOf("tap")));
+    if (f.has("tap"))
+        s.tap = parseTap(f.object("tap"));
+    else
+        s.tap = parseTap(JsonFields(Json::object(), source, f.placeOf("tap")));
     if (f.has("stage")) {
         const JsonFields st = f.object("stage");
         st.rejectUnknownKeys({"travel_mm", "speed_mm_s"});
         s.stage.travel_mm = st.point("travel_mm", s.stage.travel_mm);
-        if (!(s.stage.travel_mm.x > 0 && s.stage.travel_mm.y > 0)) st.fail("travel_mm", "stage travel must be positive on both axes");
+        if (!(s.stage.travel_mm.x > 0 && s.stage.travel_mm.y > 0))
+            st.fail("travel_mm", "stage travel must be positive on both axes");
         s.stage.speed_mm_s = st.number("speed_mm_s", 0.1, 2000.0, s.stage.speed_mm_s);
     }
     s.seed = static_cast<std::uint64_t>(f.integer("seed", 0, 2147483647L, 1));
@@ -174,14 +193,19 @@ SceneSpec parseScene(const Json& json, const std::string& source, const std::str
     if (const std::string problem = objectPlacementProblem(s.object, s); !problem.empty()) {
         // Name the setting most likely at fault.
         std::string place = f.placeOf("object");
-        if (problem.find("retract height") != std::string::npos) place += "/top_height_mm";
-        else if (problem.find("stroke ends") != std::string::npos) place = f.placeOf("tap") + "/stroke_mm";
+        if (problem.find("retract height") != std::string::npos)
+            place += "/top_height_mm";
+        else if (problem.find("stroke ends") != std::string::npos)
+            place = f.placeOf("tap") + "/stroke_mm";
         throw InputError(source, place, problem);
     }
 
     if (f.has("effects")) {
         const Json& list = f.raw("effects");
-        if (!list.is_array()) f.fail("effects", "expected a list of effects, e.g. [{\"name\": \"taxel_noise\", \"sigma_counts\": 2}]");
+        if (!list.is_array())
+            f.fail("effects",
+                   "expected a list of effects, e.g. [{\"name\": \"taxel_noise\", "
+                   "\"sigma_counts\": 2}]");
         for (std::size_t i = 0; i < list.size(); ++i) {
             const std::string place = f.placeOf("effects") + "/" + std::to_string(i);
             JsonFields e(list[i], source, place);
@@ -190,7 +214,8 @@ SceneSpec parseScene(const Json& json, const std::string& source, const std::str
             spec.parameters = list[i];
             spec.parameters.erase("name");
             spec.place = place;
-            if (s.lists(spec.name)) e.fail("name", "effect '" + spec.name + "' is listed twice; list each effect once");
+            if (s.lists(spec.name))
+                e.fail("name", "effect '" + spec.name + "' is listed twice; list each effect once");
             s.effects.push_back(std::move(spec));
         }
     }
@@ -226,11 +251,17 @@ Json sceneToJson(const SceneSpec& s) {
     if (!s.description.empty()) j["description"] = s.description;
     j["object"] = objectToJson(s.object);
     j["fingertip"] = s.fingertipName;
-    j["tap"] = {{"retract_height_mm", s.tap.retractHeight_mm}, {"descent_speed_mm_s", s.tap.descentSpeed_mm_s},
-                {"stroke_mm", s.tap.stroke_mm}, {"contact_threshold_counts", s.tap.contactThreshold},
-                {"contact_time_s", s.tap.contactTime_s}, {"settle_s", s.tap.settle_s}, {"samples", s.tap.samples},
-                {"sample_rate_hz", s.tap.sampleRate_hz}, {"noise_floor_counts", s.tap.noiseFloor}};
-    j["stage"] = {{"travel_mm", {s.stage.travel_mm.x, s.stage.travel_mm.y}}, {"speed_mm_s", s.stage.speed_mm_s}};
+    j["tap"] = {{"retract_height_mm", s.tap.retractHeight_mm},
+                {"descent_speed_mm_s", s.tap.descentSpeed_mm_s},
+                {"stroke_mm", s.tap.stroke_mm},
+                {"contact_threshold_counts", s.tap.contactThreshold},
+                {"contact_time_s", s.tap.contactTime_s},
+                {"settle_s", s.tap.settle_s},
+                {"samples", s.tap.samples},
+                {"sample_rate_hz", s.tap.sampleRate_hz},
+                {"noise_floor_counts", s.tap.noiseFloor}};
+    j["stage"] = {{"travel_mm", {s.stage.travel_mm.x, s.stage.travel_mm.y}},
+                  {"speed_mm_s", s.stage.speed_mm_s}};
     j["seed"] = s.seed;
     Json effects = Json::array();
     for (const auto& e : s.effects) {

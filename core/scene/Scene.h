@@ -15,10 +15,10 @@ namespace activetouch {
 struct ObjectSpec {
     std::string shape = "rectangle";  ///< a library name, or "polygon"
     ShapeSize size = defaultShapeSize("rectangle");
-    std::vector<Vec2> polygon;        ///< for shape == "polygon", object frame, mm
-    double rotationDeg = 0.0;         ///< about the object frame origin
-    Vec2 offset{150.0, 150.0};        ///< where the object frame origin sits on the stage, mm
-    double height_mm = 10.0;          ///< top face above the table
+    std::vector<Vec2> polygon;  ///< for shape == "polygon", object frame, mm
+    double rotationDeg = 0.0;   ///< about the object frame origin
+    Vec2 offset{150.0, 150.0};  ///< where the object frame origin sits on the stage, mm
+    double height_mm = 10.0;    ///< top face above the table
 
     /// The outline on the stage (world frame).
     Polygon outline() const;
@@ -27,15 +27,15 @@ struct ObjectSpec {
 /// The tapper's stroke (DESIGN.md §2): lower from the retract height at constant speed, stop when
 /// the fingertip's total pressure crosses the threshold (or at the stroke limit), hold, return.
 struct TapSpec {
-    double retractHeight_mm = 12.0;   ///< fingertip first-contact point above the table
+    double retractHeight_mm = 12.0;  ///< fingertip first-contact point above the table
     double descentSpeed_mm_s = 25.0;
-    double stroke_mm = 5.0;           ///< deepest travel below the retract height
-    double contactThreshold = 40.0;   ///< total pressure over all taxels, counts
+    double stroke_mm = 5.0;          ///< deepest travel below the retract height
+    double contactThreshold = 40.0;  ///< total pressure over all taxels, counts
     double contactTime_s = 0.5;
-    double settle_s = 1.5;            ///< pause after the tap window before the next move
-    int samples = 50;                 ///< T
+    double settle_s = 1.5;  ///< pause after the tap window before the next move
+    int samples = 50;       ///< T
     double sampleRate_hz = 50.0;
-    double noiseFloor = 1.0;          ///< counts below which a taxel reads as no contact
+    double noiseFloor = 1.0;  ///< counts below which a taxel reads as no contact
 
     double window_s() const { return samples / sampleRate_hz; }
     /// Time the worst-case stroke (full stroke down, hold, back up) takes.
@@ -54,7 +54,7 @@ struct EffectSpec {
 };
 
 struct SceneSpec {
-    std::string source;       ///< file it came from, for errors
+    std::string source;  ///< file it came from, for errors
     std::string description;
     ObjectSpec object;
     std::string fingertipName = "icub_fingertip_2010";
@@ -65,7 +65,9 @@ struct SceneSpec {
     std::vector<EffectSpec> effects;
 
     /// Depth below the object's top face at which the stroke limit stops the tip.
-    double strokeLimitDepth() const { return tap.stroke_mm - (tap.retractHeight_mm - object.height_mm); }
+    double strokeLimitDepth() const {
+        return tap.stroke_mm - (tap.retractHeight_mm - object.height_mm);
+    }
     bool lists(const std::string& effect) const;
 };
 

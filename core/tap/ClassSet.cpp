@@ -7,9 +7,12 @@ namespace activetouch {
 
 const char* regionName(Region r) {
     switch (r) {
-        case Region::Plane: return "plane";
-        case Region::Edge: return "edge";
-        case Region::Air: return "air";
+        case Region::Plane:
+            return "plane";
+        case Region::Edge:
+            return "edge";
+        case Region::Air:
+            return "air";
     }
     return "edge";
 }

@@ -21,15 +21,25 @@ struct ClassSet {
     std::vector<Region> regions;  ///< per class; empty until computed from geometry
 
     int classCount() const { return static_cast<int>(orientationsDeg.size()) * positions; }
-    int classOf(int orientationIndex, int position) const { return orientationIndex * positions + position - 1; }
+    int classOf(int orientationIndex, int position) const {
+        return orientationIndex * positions + position - 1;
+    }
     int orientationIndexOf(int cls) const { return cls / positions; }
     int positionOf(int cls) const { return cls % positions + 1; }
-    double orientationDegOf(int cls) const { return orientationsDeg[static_cast<std::size_t>(orientationIndexOf(cls))]; }
+    double orientationDegOf(int cls) const {
+        return orientationsDeg[static_cast<std::size_t>(orientationIndexOf(cls))];
+    }
     /// Signed distance of the tip centre from the edge along the outward normal for position p.
-    double offsetOf(double position) const { return (position - 0.5 * (positions + 1)) * positionStep_mm; }
+    double offsetOf(double position) const {
+        return (position - 0.5 * (positions + 1)) * positionStep_mm;
+    }
     /// The (fractional) position whose offset is `offset_mm`.
-    double positionAtOffset(double offset_mm) const { return offset_mm / positionStep_mm + 0.5 * (positions + 1); }
-    Region regionOf(int cls) const { return regions.empty() ? Region::Edge : regions[static_cast<std::size_t>(cls)]; }
+    double positionAtOffset(double offset_mm) const {
+        return offset_mm / positionStep_mm + 0.5 * (positions + 1);
+    }
+    Region regionOf(int cls) const {
+        return regions.empty() ? Region::Edge : regions[static_cast<std::size_t>(cls)];
+    }
 
     static std::string orientationName(double degrees);
 };

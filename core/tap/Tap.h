@@ -8,8 +8,8 @@
 
 namespace activetouch {
 
-inline constexpr int kSamplesPerTap = 50;   ///< T: 1 s at 50 Hz (DESIGN.md §2)
-inline constexpr int kFingertipTaxels = 12; ///< K
+inline constexpr int kSamplesPerTap = 50;    ///< T: 1 s at 50 Hz (DESIGN.md §2)
+inline constexpr int kFingertipTaxels = 12;  ///< K
 inline constexpr double kSampleRateHz = 50.0;
 
 struct Tap {
@@ -23,7 +23,9 @@ struct Tap {
     int sampleCount() const { return taxels > 0 ? static_cast<int>(samples.size()) / taxels : 0; }
     double at(int t, int k) const { return samples[static_cast<std::size_t>(t * taxels + k)]; }
     double& at(int t, int k) { return samples[static_cast<std::size_t>(t * taxels + k)]; }
-    const double* frame(int t) const { return samples.data() + static_cast<std::size_t>(t * taxels); }
+    const double* frame(int t) const {
+        return samples.data() + static_cast<std::size_t>(t * taxels);
+    }
 };
 
 /// How the tapper's stroke ended.
@@ -33,9 +35,9 @@ enum class TapEnding { ContactReflex, StrokeLimit };
 /// tapper stopped.
 struct TapRecord {
     Tap tap;
-    Vec2 pose;                  ///< commanded fingertip centre, mm
-    double startTime_s = 0.0;   ///< robot time at tap start
-    double cycleTime_s = 0.0;   ///< tap window plus settle time
+    Vec2 pose;                 ///< commanded fingertip centre, mm
+    double startTime_s = 0.0;  ///< robot time at tap start
+    double cycleTime_s = 0.0;  ///< tap window plus settle time
     TapEnding ending = TapEnding::StrokeLimit;
     double stopDepth_mm = 0.0;  ///< indentation where the stroke stopped (0 = no contact)
 };

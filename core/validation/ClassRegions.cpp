@@ -16,12 +16,15 @@ std::vector<Region> computeClassRegions(const FingertipContactModel& model, cons
         const Polygon halfPlane({big * t, -big * t, -big * t - big * n, big * t - big * n});
         for (int p = 1; p <= classes.positions; ++p) {
             auto contact = model.contactAt(halfPlane, classes.offsetOf(p) * n);
-            const double depth = contact.depthReaching(tap.contactThreshold, strokeLimitDepth).value_or(strokeLimitDepth);
+            const double depth = contact.depthReaching(tap.contactThreshold, strokeLimitDepth)
+                                     .value_or(strokeLimitDepth);
             contact.taxelPressures(depth, pressures.data());
             const double peak = *std::max_element(pressures.begin(), pressures.end());
             Region r = Region::Edge;
-            if (peak < tap.noiseFloor) r = Region::Air;
-            else if (contact.patchFullyOnObject(depth)) r = Region::Plane;
+            if (peak < tap.noiseFloor)
+                r = Region::Air;
+            else if (contact.patchFullyOnObject(depth))
+                r = Region::Plane;
             regions[static_cast<std::size_t>(classes.classOf(static_cast<int>(o), p))] = r;
         }
     }

@@ -28,11 +28,13 @@ Percept perceive(const HistogramClassifier& classifier, const ClassSet& classes,
     return perceptOf(d.cls, d.posterior, classes);
 }
 
-ValidRange deriveValidRange(const std::vector<double>& angle, const std::vector<double>& position, int width) {
+ValidRange deriveValidRange(const std::vector<double>& angle, const std::vector<double>& position,
+                            int width) {
     const int n = static_cast<int>(angle.size());
     width = std::clamp(width, 1, std::max(1, n));
     const double amax = angle.empty() ? 0.0 : *std::max_element(angle.begin(), angle.end());
-    const double pmax = position.empty() ? 0.0 : *std::max_element(position.begin(), position.end());
+    const double pmax =
+        position.empty() ? 0.0 : *std::max_element(position.begin(), position.end());
     auto norm = [](double v, double m) { return m > 0.0 ? v / m : 0.0; };
     const double edgeCentre = 0.5 * (n + 1);
     ValidRange best;
@@ -40,10 +42,11 @@ ValidRange deriveValidRange(const std::vector<double>& angle, const std::vector<
     for (int first = 1; first + width - 1 <= n; ++first) {
         double score = 0.0;
         for (int p = first; p < first + width; ++p)
-            score += norm(angle[static_cast<std::size_t>(p - 1)], amax) + norm(position[static_cast<std::size_t>(p - 1)], pmax);
+            score += norm(angle[static_cast<std::size_t>(p - 1)], amax) +
+                     norm(position[static_cast<std::size_t>(p - 1)], pmax);
         const double centreDistance = std::abs(first + 0.5 * (width - 1) - edgeCentre);
-        const bool better = score < bestScore - 1e-12 ||
-                            (std::abs(score - bestScore) <= 1e-12 && centreDistance < bestDistance - 1e-12);
+        const bool better = score < bestScore - 1e-12 || (std::abs(score - bestScore) <= 1e-12 &&
+                                                          centreDistance < bestDistance - 1e-12);
         if (better) {
             bestScore = score;
             bestDistance = centreDistance;
@@ -54,7 +57,8 @@ ValidRange deriveValidRange(const std::vector<double>& angle, const std::vector<
 }
 
 ValidationResult validateOffline(const HistogramClassifier& classifier, const ClassSet& classes,
-                                 const std::vector<const CollectedTap*>& testTaps, int validRangeWidth) {
+                                 const std::vector<const CollectedTap*>& testTaps,
+                                 int validRangeWidth) {
     const int C = classes.classCount();
     const int O = static_cast<int>(classes.orientationsDeg.size());
     const int P = classes.positions;
@@ -73,7 +77,8 @@ ValidationResult validateOffline(const HistogramClassifier& classifier, const Cl
         const Percept p = perceive(classifier, classes, t->record.tap);
         r.percepts.push_back(p);
         auto& e = r.byClass[static_cast<std::size_t>(t->cls)];
-        const double angleErr = angleDifferenceDeg(p.orientationDeg, classes.orientationDegOf(t->cls));
+        const double angleErr =
+            angleDifferenceDeg(p.orientationDeg, classes.orientationDegOf(t->cls));
         const double posErr = std::abs(p.offset_mm - t->trueOffset_mm);
         e.angleError_deg += angleErr;
         e.positionError_mm += posErr;
@@ -96,7 +101,8 @@ ValidationResult validateOffline(const HistogramClassifier& classifier, const Cl
     r.correctFraction = correct / n;
 
     // Panels C, D: per position, mean and standard deviation over orientations.
-    for (auto* series : {&r.angleMean, &r.angleStd, &r.positionMean, &r.positionStd}) series->assign(static_cast<std::size_t>(P), 0.0);
+    for (auto* series : {&r.angleMean, &r.angleStd, &r.positionMean, &r.positionStd})
+        series->assign(static_cast<std::size_t>(P), 0.0);
     for (int p = 1; p <= P; ++p) {
         double sa = 0, sp = 0, qa = 0, qp = 0;
         for (int o = 0; o < O; ++o) {

@@ -15,8 +15,8 @@ struct Percept {
     int cls = 0;
     Region region = Region::Edge;  ///< plane / edge / air; an edge carries its orientation
     double orientationDeg = 0.0;
-    int position = 1;              ///< class position, 1..positions
-    double offset_mm = 0.0;        ///< perceived signed distance of the tip centre from the edge
+    int position = 1;        ///< class position, 1..positions
+    double offset_mm = 0.0;  ///< perceived signed distance of the tip centre from the edge
     double posterior = 0.0;
 
     /// "lower edge", "upper edge", "left edge", "right edge", "plane" or "air".
@@ -32,9 +32,9 @@ struct ClassError {
     int position = 1;
     Region region = Region::Edge;
     int taps = 0;
-    double angleError_deg = 0.0;     ///< mean over test taps
-    double positionError_mm = 0.0;   ///< mean |perceived - true| over test taps
-    double correctFraction = 0.0;    ///< exact class hits
+    double angleError_deg = 0.0;    ///< mean over test taps
+    double positionError_mm = 0.0;  ///< mean |perceived - true| over test taps
+    double correctFraction = 0.0;   ///< exact class hits
 };
 
 /// The valid range rule: over every window of `width` consecutive positions, the sum of the
@@ -45,21 +45,23 @@ struct ValidRange {
     int first = 1, last = 1;  ///< class positions, inclusive
     double score = 0.0;
 };
-ValidRange deriveValidRange(const std::vector<double>& angleByPosition, const std::vector<double>& positionByPosition,
-                            int width);
+ValidRange deriveValidRange(const std::vector<double>& angleByPosition,
+                            const std::vector<double>& positionByPosition, int width);
 
 struct ValidationResult {
     std::vector<ClassError> byClass;  ///< orientation-major, like class indices
-    std::vector<double> angleMean, angleStd, positionMean, positionStd;  ///< per position, over orientations
-    double angleError_deg = 0.0;      ///< mean over all test taps
+    std::vector<double> angleMean, angleStd, positionMean,
+        positionStd;              ///< per position, over orientations
+    double angleError_deg = 0.0;  ///< mean over all test taps
     double positionError_mm = 0.0;
     double correctFraction = 0.0;
     ValidRange validRange;
-    std::vector<int> confusion;       ///< classCount x classCount, true-major
-    std::vector<Percept> percepts;    ///< per test tap, in the order given
+    std::vector<int> confusion;     ///< classCount x classCount, true-major
+    std::vector<Percept> percepts;  ///< per test tap, in the order given
 };
 
 ValidationResult validateOffline(const HistogramClassifier& classifier, const ClassSet& classes,
-                                 const std::vector<const CollectedTap*>& testTaps, int validRangeWidth);
+                                 const std::vector<const CollectedTap*>& testTaps,
+                                 int validRangeWidth);
 
 }  // namespace activetouch

@@ -14,11 +14,15 @@ std::string TrainingProtocolSettings::problem() const {
     if (dataSets < 2) return "at least 2 data sets are needed (one to train, one to test)";
     if (trainingSets.empty()) return "name at least one training set";
     for (int s : trainingSets)
-        if (s < 1 || s > dataSets) return "training set " + std::to_string(s) + " does not exist (sets are 1.." + std::to_string(dataSets) + ")";
-    if (static_cast<int>(trainingSets.size()) >= dataSets) return "every set trains; leave at least one set to test";
+        if (s < 1 || s > dataSets)
+            return "training set " + std::to_string(s) + " does not exist (sets are 1.." +
+                   std::to_string(dataSets) + ")";
+    if (static_cast<int>(trainingSets.size()) >= dataSets)
+        return "every set trains; leave at least one set to test";
     if (tapsPerClass < 1) return "taps per class must be at least 1";
     if (!(placementJitter_mm >= 0.0)) return "placement jitter must not be negative";
-    if (!std::isfinite(testOffset_mm) || std::abs(testOffset_mm) > 5.0) return "test offset must be within +-5 mm";
+    if (!std::isfinite(testOffset_mm) || std::abs(testOffset_mm) > 5.0)
+        return "test offset must be within +-5 mm";
     return {};
 }
 
@@ -37,22 +41,26 @@ std::vector<EdgeSite> edgeSites(const Polygon& object, const ClassSet& classes) 
             }
         }
         if (bestLength == 0.0)
-            throw std::invalid_argument("the training object has no edge facing " + ClassSet::orientationName(deg) +
-                                        " (" + std::to_string(deg) + " deg); train on a shape with an edge for every orientation");
+            throw std::invalid_argument(
+                "the training object has no edge facing " + ClassSet::orientationName(deg) + " (" +
+                std::to_string(deg) + " deg); train on a shape with an edge for every orientation");
         sites.push_back(best);
     }
     return sites;
 }
 
-std::vector<CollectedTap> collectTrainingTaps(Rig& rig, const Polygon& object, const ClassSet& classes,
-                                              const TrainingProtocolSettings& settings, RandomStream rng,
-                                              const std::function<bool(const CollectedTap&)>& onTap) {
+std::vector<CollectedTap> collectTrainingTaps(
+    Rig& rig, const Polygon& object, const ClassSet& classes,
+    const TrainingProtocolSettings& settings, RandomStream rng,
+    const std::function<bool(const CollectedTap&)>& onTap) {
     const auto sites = edgeSites(object, classes);
     std::vector<CollectedTap> taps;
-    taps.reserve(static_cast<std::size_t>(settings.dataSets * classes.classCount() * settings.tapsPerClass));
+    taps.reserve(
+        static_cast<std::size_t>(settings.dataSets * classes.classCount() * settings.tapsPerClass));
     for (int set = 1; set <= settings.dataSets; ++set) {
         // Re-placing the object moves it relative to the commanded poses.
-        const Vec2 placement{rng.normal(0, settings.placementJitter_mm), rng.normal(0, settings.placementJitter_mm)};
+        const Vec2 placement{rng.normal(0, settings.placementJitter_mm),
+                             rng.normal(0, settings.placementJitter_mm)};
         const double shift = settings.isTrainingSet(set) ? 0.0 : settings.testOffset_mm;
         for (std::size_t o = 0; o < sites.size(); ++o) {
             for (int p = 1; p <= classes.positions; ++p) {

@@ -18,8 +18,8 @@ struct TrainingProtocolSettings {
     int dataSets = 5;
     std::vector<int> trainingSets{1};  ///< 1-based set numbers; the others test
     int tapsPerClass = 1;
-    double testOffset_mm = 0.0;        ///< test taps shifted along the edge normal
-    double placementJitter_mm = 0.2;   ///< per-set object displacement, standard deviation per axis
+    double testOffset_mm = 0.0;       ///< test taps shifted along the edge normal
+    double placementJitter_mm = 0.2;  ///< per-set object displacement, standard deviation per axis
 
     bool isTrainingSet(int set) const;
     /// Why the settings cannot run, or empty.
@@ -44,8 +44,9 @@ std::vector<EdgeSite> edgeSites(const Polygon& object, const ClassSet& classes);
 
 /// Runs the protocol on `rig`. `onTap` sees every tap as it is taken (for the run's recording)
 /// and may return false to stop early; the taps collected so far are returned.
-std::vector<CollectedTap> collectTrainingTaps(Rig& rig, const Polygon& object, const ClassSet& classes,
-                                              const TrainingProtocolSettings& settings, RandomStream rng,
-                                              const std::function<bool(const CollectedTap&)>& onTap = {});
+std::vector<CollectedTap> collectTrainingTaps(
+    Rig& rig, const Polygon& object, const ClassSet& classes,
+    const TrainingProtocolSettings& settings, RandomStream rng,
+    const std::function<bool(const CollectedTap&)>& onTap = {});
 
 }  // namespace activetouch

@@ -6,7 +6,8 @@
 namespace activetouch {
 namespace {
 
-std::unique_ptr<Effect> buildEffect(const SceneSpec& scene, const EffectSpec& spec, const FingertipContactModel& model) {
+std::unique_ptr<Effect> buildEffect(const SceneSpec& scene, const EffectSpec& spec,
+                                    const FingertipContactModel& model) {
     const EffectDescription* d = findEffect(spec.name);
     if (!d) {
         std::string known;
@@ -41,18 +42,26 @@ void validateEffects(const SceneSpec& scene, const FingertipContactModel& model)
     }
 }
 
-SimulatedWorld::SimulatedWorld(const SceneSpec& scene, std::shared_ptr<const FingertipContactModel> model)
+SimulatedWorld::SimulatedWorld(const SceneSpec& scene,
+                               std::shared_ptr<const FingertipContactModel> model)
     : scene_(scene), object_(scene.object.outline()), model_(std::move(model)) {
     for (const auto& spec : scene_.effects) {
         auto effect = buildEffect(scene_, spec, *model_);
         switch (effect->acts()) {
-            case Effect::Acts::Pose: poseEffects_.push_back(std::move(effect)); break;
-            case Effect::Acts::Mechanics: mechanicsEffects_.push_back(std::move(effect)); break;
-            case Effect::Acts::Signal: signalEffects_.push_back(std::move(effect)); break;
+            case Effect::Acts::Pose:
+                poseEffects_.push_back(std::move(effect));
+                break;
+            case Effect::Acts::Mechanics:
+                mechanicsEffects_.push_back(std::move(effect));
+                break;
+            case Effect::Acts::Signal:
+                signalEffects_.push_back(std::move(effect));
+                break;
         }
     }
-    std::stable_sort(signalEffects_.begin(), signalEffects_.end(),
-                     [](const auto& a, const auto& b) { return a->signalOrder() < b->signalOrder(); });
+    std::stable_sort(
+        signalEffects_.begin(), signalEffects_.end(),
+        [](const auto& a, const auto& b) { return a->signalOrder() < b->signalOrder(); });
     lastFrame_.assign(static_cast<std::size_t>(model_->taxelCount()), 0.0);
 }
 
@@ -70,7 +79,9 @@ void SimulatedWorld::moveStage(Vec2 target) {
     for (auto& e : poseEffects_) actual_ = e->perturbPose(actual_);
 }
 
-void SimulatedWorld::latestFrame(double* out) const { std::copy(lastFrame_.begin(), lastFrame_.end(), out); }
+void SimulatedWorld::latestFrame(double* out) const {
+    std::copy(lastFrame_.begin(), lastFrame_.end(), out);
+}
 
 TapRecord SimulatedWorld::tap() {
     const TapSpec& ts = scene_.tap;
@@ -107,19 +118,25 @@ TapRecord SimulatedWorld::tap() {
     for (int i = 0; i < ts.samples; ++i) {
         const double t = i * period;
         double depth;
-        if (t < stopTime) depth = v * t - clearance;
-        else if (t <= release) depth = stopDepth;
-        else depth = stopDepth - v * (t - release);
+        if (t < stopTime)
+            depth = v * t - clearance;
+        else if (t <= release)
+            depth = stopDepth;
+        else
+            depth = stopDepth - v * (t - release);
         sampleDepths_[static_cast<std::size_t>(i)] = depth;
         if (depth > 0.0) distinctDepths_.push_back(depth);
     }
     distinctDepths_.push_back(stopDepth);
     std::sort(distinctDepths_.begin(), distinctDepths_.end());
-    distinctDepths_.erase(std::unique(distinctDepths_.begin(), distinctDepths_.end()), distinctDepths_.end());
+    distinctDepths_.erase(std::unique(distinctDepths_.begin(), distinctDepths_.end()),
+                          distinctDepths_.end());
     depthPressures_.resize(distinctDepths_.size() * static_cast<std::size_t>(K));
-    contact.taxelPressuresAtDepths(distinctDepths_.data(), distinctDepths_.size(), depthPressures_.data());
+    contact.taxelPressuresAtDepths(distinctDepths_.data(), distinctDepths_.size(),
+                                   depthPressures_.data());
     auto pressuresAt = [&](double depth) {
-        const auto at = std::lower_bound(distinctDepths_.begin(), distinctDepths_.end(), depth) - distinctDepths_.begin();
+        const auto at = std::lower_bound(distinctDepths_.begin(), distinctDepths_.end(), depth) -
+                        distinctDepths_.begin();
         return depthPressures_.data() + static_cast<std::size_t>(at) * static_cast<std::size_t>(K);
     };
     const double* holdPressures = pressuresAt(stopDepth);
@@ -136,7 +153,8 @@ TapRecord SimulatedWorld::tap() {
 
     record.cycleTime_s = ts.window_s() + ts.settle_s;
     clock_s_ += record.cycleTime_s;
-    std::copy(record.tap.frame(ts.samples - 1), record.tap.frame(ts.samples - 1) + K, lastFrame_.begin());
+    std::copy(record.tap.frame(ts.samples - 1), record.tap.frame(ts.samples - 1) + K,
+              lastFrame_.begin());
     ++taps_;
     return record;
 }
@@ -144,8 +162,9 @@ TapRecord SimulatedWorld::tap() {
 void SimulatedStage::moveTo(Vec2 target) {
     const Vec2 travel = world_.scene().stage.travel_mm;
     if (!(target.x >= 0 && target.y >= 0 && target.x <= travel.x && target.y <= travel.y))
-        throw RigError("simulated stage: target (" + std::to_string(target.x) + ", " + std::to_string(target.y) +
-                       ") mm is outside the travel 0.." + std::to_string(travel.x) + " x 0.." + std::to_string(travel.y) + " mm");
+        throw RigError("simulated stage: target (" + std::to_string(target.x) + ", " +
+                       std::to_string(target.y) + ") mm is outside the travel 0.." +
+                       std::to_string(travel.x) + " x 0.." + std::to_string(travel.y) + " mm");
     world_.moveStage(target);
 }
 

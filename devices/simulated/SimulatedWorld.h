@@ -59,6 +59,7 @@ public:
     explicit SimulatedStage(SimulatedWorld& world) : world_(world) {}
     void moveTo(Vec2 target) override;
     Vec2 position() const override { return world_.commandedPose(); }
+
 private:
     SimulatedWorld& world_;
 };
@@ -67,6 +68,7 @@ class SimulatedTapper final : public Tapper {
 public:
     explicit SimulatedTapper(SimulatedWorld& world) : world_(world) {}
     TapRecord tap() override { return world_.tap(); }
+
 private:
     SimulatedWorld& world_;
 };
@@ -76,6 +78,7 @@ public:
     explicit SimulatedFingertip(const SimulatedWorld& world) : world_(world) {}
     int taxelCount() const override { return world_.model().taxelCount(); }
     void latestFrame(double* out) const override { world_.latestFrame(out); }
+
 private:
     const SimulatedWorld& world_;
 };
@@ -87,6 +90,7 @@ public:
         : world_(scene, std::move(model)), stage_(world_), tapper_(world_), sensor_(world_) {}
     Rig rig() { return Rig{stage_, tapper_, sensor_, world_}; }
     SimulatedWorld& world() { return world_; }
+
 private:
     SimulatedWorld world_;
     SimulatedStage stage_;

@@ -14,7 +14,8 @@ class TestAccuracyVsTime : public QObject {
 
 private slots:
     void initTestCase() {
-        const ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/accuracy_vs_time.json"));
+        const ExperimentSpec spec =
+            loadExperiment(test::sourcePath("experiments/accuracy_vs_time.json"));
         for (std::uint64_t seed : {1u, 2u, 3u}) {
             RunOptions options;
             options.seed = seed;
@@ -33,12 +34,17 @@ private slots:
                 correct[i] += r.sweeps.perception[i].correctFraction / runs_.size();
             }
         }
-        for (std::size_t i = 1; i < n; ++i) QVERIFY(taps[i] >= taps[i - 1]);  // higher thresholds take more taps
+        for (std::size_t i = 1; i < n; ++i)
+            QVERIFY(taps[i] >= taps[i - 1]);  // higher thresholds take more taps
         QVERIFY(taps.back() > taps.front() + 0.3);
-        QVERIFY2(position.back() < position.front(), qPrintable(QString("%1 -> %2 mm").arg(position.front()).arg(position.back())));
+        QVERIFY2(position.back() < position.front(),
+                 qPrintable(QString("%1 -> %2 mm").arg(position.front()).arg(position.back())));
         QVERIFY(correct.back() > correct.front());
-        qInfo("sequential perception: %.2f -> %.2f taps per decision, position error %.3f -> %.3f mm, correct %.1f -> %.1f %%",
-              taps.front(), taps.back(), position.front(), position.back(), 100 * correct.front(), 100 * correct.back());
+        qInfo(
+            "sequential perception: %.2f -> %.2f taps per decision, position error %.3f -> %.3f "
+            "mm, correct %.1f -> %.1f %%",
+            taps.front(), taps.back(), position.front(), position.back(), 100 * correct.front(),
+            100 * correct.back());
     }
 
     void fewerSamplesAndBinsCostAccuracyAndSaveTime() {
@@ -69,9 +75,18 @@ private slots:
             bool sequentialCheaper = false;
             for (const auto& row : r.sweeps.following) {
                 if (row.mode != FollowingMode::Active) continue;
-                if (row.followStep_mm == 1.0) { timeShort += row.meanRobotTime_s; distShort += row.meanContourDistance_mm; ++nShort; }
-                if (row.followStep_mm == 4.0) { timeLong += row.meanRobotTime_s; distLong += row.meanContourDistance_mm; ++nLong; }
-                if (row.beliefThreshold > 0 && row.completed == row.trials && row.robotTimePerCompletion_s < paper->robotTimePerCompletion_s)
+                if (row.followStep_mm == 1.0) {
+                    timeShort += row.meanRobotTime_s;
+                    distShort += row.meanContourDistance_mm;
+                    ++nShort;
+                }
+                if (row.followStep_mm == 4.0) {
+                    timeLong += row.meanRobotTime_s;
+                    distLong += row.meanContourDistance_mm;
+                    ++nLong;
+                }
+                if (row.beliefThreshold > 0 && row.completed == row.trials &&
+                    row.robotTimePerCompletion_s < paper->robotTimePerCompletion_s)
                     sequentialCheaper = true;
             }
             QVERIFY(timeLong / nLong < timeShort / nShort);
@@ -81,7 +96,10 @@ private slots:
             for (const auto& row : r.sweeps.following)
                 if (row.mode == FollowingMode::Passive) QVERIFY(row.completed <= row.trials / 4);
         }
-        qInfo("runs with a sequential setting completing every trial in less robot time than the paper's setting: %d of 3", cheaperComplete);
+        qInfo(
+            "runs with a sequential setting completing every trial in less robot time than the "
+            "paper's setting: %d of 3",
+            cheaperComplete);
         QVERIFY(cheaperComplete >= 2);
     }
 };

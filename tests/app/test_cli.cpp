@@ -1,13 +1,13 @@
 // The headless runner as a user drives it: runs write complete artefacts; bad input gets exit
 // code 2, a message naming the file, the place and the problem, and nothing written.
-#include <QtTest>
 #include <QDir>
 #include <QFile>
+#include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
-#include <QJsonArray>
 #include <QProcess>
 #include <QTemporaryDir>
+#include <QtTest>
 
 #include "support/Paths.h"
 
@@ -22,9 +22,12 @@ Outcome runCli(const QStringList& args) {
     QProcess p;
     p.start(qEnvironmentVariable("ACTIVETOUCH_CLI"), args);
     p.waitForFinished(300000);
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
+    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(),
+            p.readAllStandardError()};
 }
-QString source(const QString& relative) { return QString::fromStdString(test::sourcePath(relative.toStdString())); }
+QString source(const QString& relative) {
+    return QString::fromStdString(test::sourcePath(relative.toStdString()));
+}
 }  // namespace
 
 class TestCli : public QObject {
@@ -47,18 +50,22 @@ private slots:
         QVERIFY(f.open(QIODevice::ReadOnly));
         const QJsonObject s = QJsonDocument::fromJson(f.readAll()).object();
         const QJsonObject v = s["validation"].toObject();
-        for (const char* key : {"angle_error_deg_mean", "position_error_mm_mean", "valid_range_mm", "by_class"}) QVERIFY2(v.contains(key), key);
+        for (const char* key :
+             {"angle_error_deg_mean", "position_error_mm_mean", "valid_range_mm", "by_class"})
+            QVERIFY2(v.contains(key), key);
         QCOMPARE(v["by_class"].toArray().size(), 72);
         QCOMPARE(v["valid_range_mm"].toArray().size(), 2);
-        QVERIFY(v["valid_range_mm"].toArray()[0].toDouble() < v["valid_range_mm"].toArray()[1].toDouble());
+        QVERIFY(v["valid_range_mm"].toArray()[0].toDouble() <
+                v["valid_range_mm"].toArray()[1].toDouble());
         // Following: passive on the rectangle x 2, active on four shapes x 2, every trial reported.
         const QJsonArray following = s["following"].toArray();
         QCOMPARE(following.size(), 10);
         int followingTaps = 0, passive = 0;
         for (const auto& v : following) {
             const QJsonObject f = v.toObject();
-            for (const char* key : {"shape", "mode", "trial", "completed", "reason", "taps", "robot_time_s", "coverage",
-                                    "mean_contour_distance_mm", "max_contour_distance_mm"})
+            for (const char* key :
+                 {"shape", "mode", "trial", "completed", "reason", "taps", "robot_time_s",
+                  "coverage", "mean_contour_distance_mm", "max_contour_distance_mm"})
                 QVERIFY2(f.contains(key), key);
             followingTaps += f["taps"].toInt();
             passive += f["mode"].toString() == "passive";
@@ -76,9 +83,11 @@ private slots:
         const QJsonObject t = s["timing"].toObject();
         QVERIFY(t["wall_s"].toDouble() > 0);
         QCOMPARE(t["taps_simulated"].toInt(), 360 + followingTaps);
-        for (const char* table : {"taps.csv", "class_regions.csv", "validation_by_class.csv", "validation_by_position.csv", "confusion.csv",
-                                  "test_percepts.csv", "following_taps.csv", "following_paths.csv", "following_trials.csv", "outlines.csv",
-                                  "recognition.csv", "path_histograms.csv"})
+        for (const char* table :
+             {"taps.csv", "class_regions.csv", "validation_by_class.csv",
+              "validation_by_position.csv", "confusion.csv", "test_percepts.csv",
+              "following_taps.csv", "following_paths.csv", "following_trials.csv", "outlines.csv",
+              "recognition.csv", "path_histograms.csv"})
             QVERIFY2(QFile::exists(out + "/data/" + table), table);
         // taps.csv: a header plus 50 rows per tap.
         QFile taps(out + "/data/taps.csv");
@@ -87,9 +96,12 @@ private slots:
         QFile followingRecording(out + "/data/following_taps.csv");
         QVERIFY(followingRecording.open(QIODevice::ReadOnly));
         QCOMPARE(followingRecording.readAll().count('\n'), 1 + followingTaps * 50);
-        for (const char* figure : {"figure5_taps", "figure6_errors", "figure7_passive_paths", "figure8_active_paths", "figure9_recognition"}) {
-            QFile png(out + "/figures/" + figure + ".png"), pdf(out + "/figures/" + figure + ".pdf"), svg(out + "/figures/" + figure + ".svg");
-            QVERIFY(png.open(QIODevice::ReadOnly) && pdf.open(QIODevice::ReadOnly) && svg.open(QIODevice::ReadOnly));
+        for (const char* figure : {"figure5_taps", "figure6_errors", "figure7_passive_paths",
+                                   "figure8_active_paths", "figure9_recognition"}) {
+            QFile png(out + "/figures/" + figure + ".png"),
+                pdf(out + "/figures/" + figure + ".pdf"), svg(out + "/figures/" + figure + ".svg");
+            QVERIFY(png.open(QIODevice::ReadOnly) && pdf.open(QIODevice::ReadOnly) &&
+                    svg.open(QIODevice::ReadOnly));
             QVERIFY(png.read(8) == QByteArray("\x89PNG\r\n\x1a\n", 8));
             QVERIFY(pdf.read(5) == "%PDF-");
             QVERIFY(svg.readAll().contains("<svg"));
@@ -98,10 +110,23 @@ private slots:
 
     void seedMakesRunsReproducibleAndDistinct() {
         const QString a = dir_.filePath("a"), b = dir_.filePath("b"), c = dir_.filePath("c");
-        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", a, "--seed", "5", "--no-figures"}).exitCode, 0);
-        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", b, "--seed", "5", "--no-figures"}).exitCode, 0);
-        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", c, "--seed", "6", "--no-figures"}).exitCode, 0);
-        auto read = [](const QString& d) { QFile f(d + "/data/taps.csv"); f.open(QIODevice::ReadOnly); return f.readAll(); };
+        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", a, "--seed", "5",
+                         "--no-figures"})
+                     .exitCode,
+                 0);
+        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", b, "--seed", "5",
+                         "--no-figures"})
+                     .exitCode,
+                 0);
+        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", c, "--seed", "6",
+                         "--no-figures"})
+                     .exitCode,
+                 0);
+        auto read = [](const QString& d) {
+            QFile f(d + "/data/taps.csv");
+            f.open(QIODevice::ReadOnly);
+            return f.readAll();
+        };
         QVERIFY(read(a) == read(b));
         QVERIFY(read(a) != read(c));
         QVERIFY(!QDir(a + "/figures").exists());
@@ -110,9 +135,11 @@ private slots:
     void checkAcceptsEveryShippedFile() {
         QDir experiments(source("experiments"));
         QStringList files;
-        for (const QString& f : experiments.entryList({"*.json"}, QDir::Files)) files << experiments.filePath(f);
+        for (const QString& f : experiments.entryList({"*.json"}, QDir::Files))
+            files << experiments.filePath(f);
         QDir scenes(source("experiments/scenes"));
-        for (const QString& f : scenes.entryList({"*.json"}, QDir::Files)) files << scenes.filePath(f);
+        for (const QString& f : scenes.entryList({"*.json"}, QDir::Files))
+            files << scenes.filePath(f);
         QVERIFY(files.size() >= 2);
         for (const QString& f : files) {
             const Outcome o = runCli({"check", f});
@@ -124,26 +151,43 @@ private slots:
         QTest::addColumn<QString>("file");
         QTest::addColumn<QString>("text");
         QTest::addColumn<QString>("message");
-        const QString scene = R"({"object": {"shape": "rectangle", "offset_mm": [150, 150]}, "effects": [EFFECTS]})";
+        const QString scene =
+            R"({"object": {"shape": "rectangle", "offset_mm": [150, 150]}, "effects": [EFFECTS]})";
         auto experiment = [&](const QString& effects) {
             QString s = scene;
             s.replace("EFFECTS", effects);
             return QString(R"({"name": "bad", "scene": %1})").arg(s);
         };
-        QTest::newRow("malformed JSON") << "broken.json" << R"({"name": "x", "scene": {)" << "line 1, column";
-        QTest::newRow("unknown effect") << "effect.json" << experiment(R"({"name": "magic"})") << "/scene/effects/0/name: unknown effect 'magic'";
-        QTest::newRow("missing parameter") << "param.json" << experiment(R"({"name": "taxel_noise"})") << "missing required number 'sigma_counts'";
-        QTest::newRow("out-of-range parameter") << "range.json" << experiment(R"({"name": "stage_error", "sigma_mm": 9})") << "/scene/effects/0/sigma_mm";
-        QTest::newRow("unknown shape") << "shape.json" << R"({"name": "x", "scene": {"object": {"shape": "blob"}}})" << "unknown shape 'blob'";
-        QTest::newRow("a scene is not an experiment") << "scene.json" << R"({"object": {"shape": "rectangle"}})" << "not an experiment file";
+        QTest::newRow("malformed JSON") << "broken.json"
+                                        << R"({"name": "x", "scene": {)"
+                                        << "line 1, column";
+        QTest::newRow("unknown effect") << "effect.json" << experiment(R"({"name": "magic"})")
+                                        << "/scene/effects/0/name: unknown effect 'magic'";
+        QTest::newRow("missing parameter")
+            << "param.json" << experiment(R"({"name": "taxel_noise"})")
+            << "missing required number 'sigma_counts'";
+        QTest::newRow("out-of-range parameter")
+            << "range.json" << experiment(R"({"name": "stage_error", "sigma_mm": 9})")
+            << "/scene/effects/0/sigma_mm";
+        QTest::newRow("unknown shape") << "shape.json"
+                                       << R"({"name": "x", "scene": {"object": {"shape": "blob"}}})"
+                                       << "unknown shape 'blob'";
+        QTest::newRow("a scene is not an experiment") << "scene.json"
+                                                      << R"({"object": {"shape": "rectangle"}})"
+                                                      << "not an experiment file";
         const QString paperScene = "\"" + source("experiments/scenes/paper_rectangle.json") + "\"";
         QTest::newRow("start pose off the object")
             << "start.json"
-            << QString(R"({"name": "x", "scene": %1, "following": {"trials": [{"object": {"shape": "l", "offset_mm": [150, 150]}, "start_mm": [150, 100]}]}})").arg(paperScene)
-            << "/following/trials/0/start_mm: the start pose (150.00, 100.00) mm is 20.0 mm outside the object";
+            << QString(
+                   R"({"name": "x", "scene": %1, "following": {"trials": [{"object": {"shape": "l", "offset_mm": [150, 150]}, "start_mm": [150, 100]}]}})")
+                   .arg(paperScene)
+            << "/following/trials/0/start_mm: the start pose (150.00, 100.00) mm is 20.0 mm "
+               "outside the object";
         QTest::newRow("object larger than the stage travel")
             << "big.json"
-            << QString(R"({"name": "x", "scene": %1, "following": {"trials": [{"object": {"shape": "rectangle", "width_mm": 700, "height_mm": 50, "offset_mm": [350, 150]}}]}})").arg(paperScene)
+            << QString(
+                   R"({"name": "x", "scene": %1, "following": {"trials": [{"object": {"shape": "rectangle", "width_mm": 700, "height_mm": 50, "offset_mm": [350, 150]}}]}})")
+                   .arg(paperScene)
             << "/following/trials/0/object: the object (x 0.000000..700.000000";
     }
     void badInputExitsTwoAndWritesNothing() {
@@ -169,11 +213,14 @@ private slots:
         // A long run (many trials) killed part-way: the recording holds whole taps, in order,
         // except at most the one in flight.
         const QString paperScene = "\"" + source("experiments/scenes/paper_rectangle.json") + "\"";
-        const QString path = write("long.json", QString(R"({"name": "long", "scene": %1, "following": {"trials": [
-            {"mode": "active", "object": {"shape": "rectangle", "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150]}, "repeats": 400}]}})").arg(paperScene));
+        const QString path =
+            write("long.json", QString(R"({"name": "long", "scene": %1, "following": {"trials": [
+            {"mode": "active", "object": {"shape": "rectangle", "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150]}, "repeats": 400}]}})")
+                                   .arg(paperScene));
         const QString out = dir_.filePath("killed");
         QProcess p;
-        p.start(qEnvironmentVariable("ACTIVETOUCH_CLI"), {"run", path, "--out", out, "--no-figures"});
+        p.start(qEnvironmentVariable("ACTIVETOUCH_CLI"),
+                {"run", path, "--out", out, "--no-figures"});
         QVERIFY(p.waitForStarted());
         QFile recording(out + "/data/following_taps.csv");
         QTRY_VERIFY_WITH_TIMEOUT(recording.exists() && recording.size() > 2000000, 60000);
@@ -209,17 +256,24 @@ private slots:
 
     void checkReadsTapRecordings() {
         const QString out = dir_.filePath("csvrun");
-        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", out, "--no-figures"}).exitCode, 0);
+        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", out, "--no-figures"})
+                     .exitCode,
+                 0);
         const Outcome good = runCli({"check", out + "/data/taps.csv"});
         QCOMPARE(good.exitCode, 0);
         QVERIFY(good.out.contains("360 taps"));
         const QString bad = write("bad_taps.csv", "set,class,orientation_deg\n1,2,3\n");
         const Outcome o = runCli({"check", bad});
         QCOMPARE(o.exitCode, 2);
-        QVERIFY2(o.err.contains(bad) && o.err.contains("line 1") && o.err.contains("unexpected columns"), qPrintable(o.err));
-        const QString nan = write("nan_taps.csv", "set,class,orientation_deg,position,true_offset_mm,pose_x_mm,pose_y_mm,robot_time_s,ending,sample,"
-                                                  "taxel_0,taxel_1,taxel_2,taxel_3,taxel_4,taxel_5,taxel_6,taxel_7,taxel_8,taxel_9,taxel_10,taxel_11\n"
-                                                  "1,0,270,1,-8.5,150,129,0,reflex,0,nan,0,0,0,0,0,0,0,0,0,0,0\n");
+        QVERIFY2(
+            o.err.contains(bad) && o.err.contains("line 1") && o.err.contains("unexpected columns"),
+            qPrintable(o.err));
+        const QString nan = write("nan_taps.csv",
+                                  "set,class,orientation_deg,position,true_offset_mm,pose_x_mm,"
+                                  "pose_y_mm,robot_time_s,ending,sample,"
+                                  "taxel_0,taxel_1,taxel_2,taxel_3,taxel_4,taxel_5,taxel_6,taxel_7,"
+                                  "taxel_8,taxel_9,taxel_10,taxel_11\n"
+                                  "1,0,270,1,-8.5,150,129,0,reflex,0,nan,0,0,0,0,0,0,0,0,0,0,0\n");
         const Outcome n = runCli({"check", nan});
         QCOMPARE(n.exitCode, 2);
         QVERIFY2(n.err.contains("line 2, column taxel_0"), qPrintable(n.err));

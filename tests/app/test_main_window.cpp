@@ -2,7 +2,6 @@
 // watch the progress reach the end; cancel half-way and find every finished tap kept; toggle an
 // effect and see the next run use it; export every figure in every format; open bad files and
 // keep the session; drive the simulated devices from their panel.
-#include <QtTest>
 #include <QGroupBox>
 #include <QLabel>
 #include <QMessageBox>
@@ -11,6 +10,7 @@
 #include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QToolButton>
+#include <QtTest>
 
 #include "app/gui/FollowingTab.h"
 #include "app/gui/LiveView.h"
@@ -23,7 +23,9 @@
 using namespace activetouch;
 
 namespace {
-QString source(const QString& relative) { return QString::fromStdString(test::sourcePath(relative.toStdString())); }
+QString source(const QString& relative) {
+    return QString::fromStdString(test::sourcePath(relative.toStdString()));
+}
 
 void click(QMainWindow& w, const char* actionName) {
     QAction* action = w.findChild<QAction*>(actionName);
@@ -80,7 +82,8 @@ private slots:
         QVERIFY(QFile::exists(window_->lastRunDirectory() + "/summary.json"));
         // The tabs show the run: traces, error maps, paths, histograms, a replay.
         for (PlotPanel* p : window_->plotPanels())
-            if (!p->name().startsWith("sweep")) QVERIFY2(p->plot().plottableCount() > 0, qPrintable(p->name()));
+            if (!p->name().startsWith("sweep"))
+                QVERIFY2(p->plot().plottableCount() > 0, qPrintable(p->name()));
         window_->followingTab()->replay(3, 10);
         QVERIFY(window_->followingTab()->replayText().contains("Rule '"));
         QVERIFY(window_->liveView()->framesDrawn() > 0);
@@ -93,14 +96,16 @@ private slots:
             const QStringList files = p->exportTo(base, {"png", "pdf", "svg"}, {1200, 800, 120});
             QCOMPARE(files.size(), 3);
             QFile png(base + ".png"), pdf(base + ".pdf"), svg(base + ".svg");
-            QVERIFY(png.open(QIODevice::ReadOnly) && pdf.open(QIODevice::ReadOnly) && svg.open(QIODevice::ReadOnly));
+            QVERIFY(png.open(QIODevice::ReadOnly) && pdf.open(QIODevice::ReadOnly) &&
+                    svg.open(QIODevice::ReadOnly));
             QVERIFY(png.read(8) == QByteArray("\x89PNG\r\n\x1a\n", 8));
             QVERIFY(pdf.read(5) == "%PDF-");
             QVERIFY(svg.readAll().contains("<svg"));
             QImage image(base + ".png");
             QCOMPARE(image.width(), 1200);
             p->exportCsv(base + ".csv");
-            if (!p->name().startsWith("sweep")) QVERIFY2(linesIn(base + ".csv") > 1, qPrintable(p->name()));
+            if (!p->name().startsWith("sweep"))
+                QVERIFY2(linesIn(base + ".csv") > 1, qPrintable(p->name()));
         }
         const QStringList all = window_->exportAllFigures(dir_.filePath("all"));
         QVERIFY(all.size() >= 6);
@@ -171,7 +176,8 @@ private slots:
         QCOMPARE(int(sw.following.size()), 2);
         QCOMPARE(int(sw.compute.size()), 4);
         for (PlotPanel* p : window_->plotPanels())
-            if (p->name().startsWith("sweep")) QVERIFY2(p->plot().plottableCount() > 0, qPrintable(p->name()));
+            if (p->name().startsWith("sweep"))
+                QVERIFY2(p->plot().plottableCount() > 0, qPrintable(p->name()));
         QTRY_VERIFY(!window_->running());
         QVERIFY(window_->openExperiment(source("experiments/paper.json")));
     }
@@ -179,10 +185,14 @@ private slots:
     void badFilesShowTheProblemAndKeepTheSession_data() {
         QTest::addColumn<QString>("text");
         QTest::addColumn<QString>("problem");
-        QTest::newRow("malformed experiment") << R"({"name": "x", "scene": )" << "not valid JSON";
-        QTest::newRow("unknown effect") << QString(R"({"name": "x", "scene": {"object": {"shape": "rectangle"}, "effects": [{"name": "wobble"}]}})")
-                                        << "unknown effect 'wobble'";
-        QTest::newRow("not an experiment") << R"({"object": {"shape": "rectangle"}})" << "not an experiment file";
+        QTest::newRow("malformed experiment") << R"({"name": "x", "scene": )"
+                                              << "not valid JSON";
+        QTest::newRow("unknown effect")
+            << QString(
+                   R"({"name": "x", "scene": {"object": {"shape": "rectangle"}, "effects": [{"name": "wobble"}]}})")
+            << "unknown effect 'wobble'";
+        QTest::newRow("not an experiment") << R"({"object": {"shape": "rectangle"}})"
+                                           << "not an experiment file";
     }
     void badFilesShowTheProblemAndKeepTheSession() {
         QFETCH(QString, text);

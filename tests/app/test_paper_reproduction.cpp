@@ -34,8 +34,12 @@ private slots:
                 // Where it went wrong: it had followed an edge up to a corner.
                 const Vec2 last = t.result.taps.back().record.pose;
                 double nearestCorner = 1e9;
-                for (Vec2 v : t.outline.vertices()) nearestCorner = std::min(nearestCorner, distance(v, last));
-                QVERIFY2(nearestCorner <= 15.0, qPrintable(QString("seed %1: lost %2 mm from the nearest corner").arg(run.spec.scene.seed).arg(nearestCorner)));
+                for (Vec2 v : t.outline.vertices())
+                    nearestCorner = std::min(nearestCorner, distance(v, last));
+                QVERIFY2(nearestCorner <= 15.0,
+                         qPrintable(QString("seed %1: lost %2 mm from the nearest corner")
+                                        .arg(run.spec.scene.seed)
+                                        .arg(nearestCorner)));
                 QVERIFY(t.result.progress_mm > 15.0);
             }
         }
@@ -59,7 +63,10 @@ private slots:
                     QVERIFY(t.result.coverage > 0.9);
                     QVERIFY(t.result.meanContourDistance_mm < 2.0);
                 } else {
-                    failures << QString("seed %1 %2 trial %3: %4").arg(run.spec.scene.seed).arg(QString::fromStdString(t.label)).arg(t.trial)
+                    failures << QString("seed %1 %2 trial %3: %4")
+                                    .arg(run.spec.scene.seed)
+                                    .arg(QString::fromStdString(t.label))
+                                    .arg(t.trial)
                                     .arg(QString::fromStdString(t.result.detail));
                 }
             }
@@ -69,7 +76,8 @@ private slots:
         QCOMPARE(trials, 80);
         QVERIFY(completed >= 72);  // at least 90 % over ten whole runs
         for (const auto& t : runs_.front().trials)
-            if (t.result.mode == FollowingMode::Active) QVERIFY2(t.result.completed(), t.result.detail.c_str());
+            if (t.result.mode == FollowingMode::Active)
+                QVERIFY2(t.result.completed(), t.result.detail.c_str());
     }
 
     void recognitionNamesTheActivePaths() {
@@ -84,7 +92,8 @@ private slots:
                 smooth += t.recognition.predictedSmoothed == t.label;
             }
         }
-        qInfo("recognition of completed active paths: paper's rule %d of %d, smoothed %d of %d", raw, completedPaths, smooth, completedPaths);
+        qInfo("recognition of completed active paths: paper's rule %d of %d, smoothed %d of %d",
+              raw, completedPaths, smooth, completedPaths);
         QCOMPARE(smooth, completedPaths);
         QVERIFY(raw >= completedPaths * 8 / 10);
         QCOMPARE(runs_.front().recognitionAccuracy, 1.0);

@@ -10,7 +10,8 @@
 namespace activetouch::bench {
 
 /// Median microseconds per call of `work` over `rounds` rounds of `iterations` calls.
-inline double medianMicroseconds(const std::function<void()>& work, int iterations, int rounds = 7) {
+inline double medianMicroseconds(const std::function<void()>& work, int iterations,
+                                 int rounds = 7) {
     std::vector<double> perCall;
     for (int r = 0; r < rounds; ++r) {
         const auto t0 = std::chrono::steady_clock::now();

@@ -10,7 +10,8 @@
 using namespace activetouch;
 
 int main(int argc, char** argv) {
-    const std::string experiment = argc > 1 ? argv[1] : std::string(ACTIVETOUCH_SOURCE_DIR) + "/experiments/paper.json";
+    const std::string experiment =
+        argc > 1 ? argv[1] : std::string(ACTIVETOUCH_SOURCE_DIR) + "/experiments/paper.json";
     const ExperimentSpec spec = loadExperiment(experiment);
     const RunResult run = runExperiment(spec, {});
     std::vector<const Tap*> tests;
@@ -18,7 +19,8 @@ int main(int argc, char** argv) {
         if (!spec.training.isTrainingSet(t.dataSet)) tests.push_back(&t.record.tap);
     std::size_t i = 0;
     int sink = 0;
-    const double us = bench::medianMicroseconds([&] { sink += run.classifier.classify(*tests[i++ % tests.size()]); }, 20000);
+    const double us = bench::medianMicroseconds(
+        [&] { sink += run.classifier.classify(*tests[i++ % tests.size()]); }, 20000);
     bench::report("classify one tap (72 classes, T=50, K=12)", us, "us", 2.0);
     // A sequential update: one tap's log-likelihoods into the belief, renormalised. (The budget
     // is that of a decision: a tap's classification plus its update should stay within 2 us.)

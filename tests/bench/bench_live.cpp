@@ -1,13 +1,14 @@
 // CPU share of the live view at 50 Hz (DESIGN.md §7: <= 10 % of one core): the Live tab's taxel
 // bars and traces fed frames at 50 Hz and a new tap every second, for 10 s; process CPU time
 // (user + system) over wall time. Run offscreen or under Xvfb.
+#include <sys/resource.h>
+
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QTimer>
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <sys/resource.h>
 #include <thread>
 
 #include "app/gui/LiveView.h"
@@ -19,12 +20,14 @@ namespace {
 double cpuSeconds() {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
-    return u.ru_utime.tv_sec + u.ru_utime.tv_usec * 1e-6 + u.ru_stime.tv_sec + u.ru_stime.tv_usec * 1e-6;
+    return u.ru_utime.tv_sec + u.ru_utime.tv_usec * 1e-6 + u.ru_stime.tv_sec +
+           u.ru_stime.tv_usec * 1e-6;
 }
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
+    if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM"))
+        qputenv("QT_QPA_PLATFORM", "offscreen");
     QApplication app(argc, argv);
     LiveFeed feed;
     LiveView view(feed);
@@ -38,7 +41,8 @@ int main(int argc, char** argv) {
             TapRecord r;
             r.tap = Tap(kSamplesPerTap, kFingertipTaxels);
             for (int s = 0; s < kSamplesPerTap; ++s)
-                for (int k = 0; k < kFingertipTaxels; ++k) r.tap.at(s, k) = 100 + 80 * std::sin(0.1 * s + k + n);
+                for (int k = 0; k < kFingertipTaxels; ++k)
+                    r.tap.at(s, k) = 100 + 80 * std::sin(0.1 * s + k + n);
             feed.publishTap(r, "benchmark tap");
             for (int s = 0; s < kSamplesPerTap && !stop; ++s) {
                 feed.publishFrame(r.tap.frame(s), kFingertipTaxels);

@@ -13,9 +13,11 @@
 using namespace activetouch;
 
 int main(int argc, char** argv) {
-    if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
+    if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM"))
+        qputenv("QT_QPA_PLATFORM", "offscreen");
     QApplication app(argc, argv);
-    const ExperimentSpec spec = loadExperiment(std::string(ACTIVETOUCH_SOURCE_DIR) + "/experiments/paper.json");
+    const ExperimentSpec spec =
+        loadExperiment(std::string(ACTIVETOUCH_SOURCE_DIR) + "/experiments/paper.json");
     QTemporaryDir dir;
     auto once = [&](bool figures) {
         RunOptions options;
@@ -25,7 +27,9 @@ int main(int argc, char** argv) {
         if (figures) writeRunFigures(r, dir.path());
         writeSummary(r, options.outDir, 0, 0);
     };
-    bench::report("paper reproduction, headless, no figures", bench::medianMicroseconds([&] { once(false); }, 1, 5) / 1e6, "s", 1.0);
-    bench::report("paper reproduction, headless, with figures", bench::medianMicroseconds([&] { once(true); }, 1, 5) / 1e6, "s", 10.0);
+    bench::report("paper reproduction, headless, no figures",
+                  bench::medianMicroseconds([&] { once(false); }, 1, 5) / 1e6, "s", 1.0);
+    bench::report("paper reproduction, headless, with figures",
+                  bench::medianMicroseconds([&] { once(true); }, 1, 5) / 1e6, "s", 10.0);
     return 0;
 }

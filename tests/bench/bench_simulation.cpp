@@ -14,16 +14,19 @@ double microsecondsPerTap(SceneSpec scene, std::shared_ptr<const FingertipContac
     Rig r = rig.rig();
     int i = 0;
     double sink = 0;
-    const double us = bench::medianMicroseconds([&] {
-        const double off = -8.5 + (i++ % 18);
-        sink += r.tapAt({150, 121 - off}).tap.samples[600];
-    }, 4000);
+    const double us = bench::medianMicroseconds(
+        [&] {
+            const double off = -8.5 + (i++ % 18);
+            sink += r.tapAt({150, 121 - off}).tap.samples[600];
+        },
+        4000);
     return sink == -1 ? 0 : us;
 }
 }  // namespace
 
 int main() {
-    SceneSpec scene = loadScene(std::string(ACTIVETOUCH_SOURCE_DIR) + "/experiments/scenes/paper_rectangle.json");
+    SceneSpec scene =
+        loadScene(std::string(ACTIVETOUCH_SOURCE_DIR) + "/experiments/scenes/paper_rectangle.json");
     auto model = std::make_shared<const FingertipContactModel>(scene.fingertip);
     SceneSpec ideal = scene;
     ideal.effects.clear();

@@ -1,7 +1,6 @@
 // The histogram classifier's hard cases (DESIGN.md §2): every degenerate input stays finite and
 // decides exactly as an independent long-double implementation of eq. 1-2 does.
 #include <QtTest>
-
 #include <cmath>
 #include <limits>
 
@@ -22,7 +21,8 @@ struct Reference {
     std::vector<long double> counts;  // [c][k][b]
     std::vector<long double> totals;  // [c][k]
 
-    Reference(const std::vector<std::pair<Tap, int>>& training, int classes, int bins, double smoothing)
+    Reference(const std::vector<std::pair<Tap, int>>& training, int classes, int bins,
+              double smoothing)
         : C(classes), K(training.front().first.taxels), B(bins), alpha(smoothing) {
         lo.assign(K, std::numeric_limits<long double>::infinity());
         hi.assign(K, -std::numeric_limits<long double>::infinity());
@@ -53,8 +53,9 @@ struct Reference {
         for (int c = 0; c < C; ++c)
             for (int k = 0; k < K; ++k)
                 for (int t = 0; t < tap.sampleCount(); ++t) {
-                    const long double p = (counts[(std::size_t(c) * K + k) * B + bin(k, tap.at(t, k))] + alpha) /
-                                          (totals[std::size_t(c) * K + k] + B * alpha);
+                    const long double p =
+                        (counts[(std::size_t(c) * K + k) * B + bin(k, tap.at(t, k))] + alpha) /
+                        (totals[std::size_t(c) * K + k] + B * alpha);
                     s[c] += std::log(p);
                 }
         return s;
@@ -63,7 +64,8 @@ struct Reference {
         // Lowest class among those within the tie tolerance of the maximum.
         const auto s = scores(tap);
         const long double m = *std::max_element(s.begin(), s.end());
-        const long double floor = m - (long double)kTieTolerance * std::max<long double>(1.0L, std::abs(m));
+        const long double floor =
+            m - (long double)kTieTolerance * std::max<long double>(1.0L, std::abs(m));
         for (int c = 0; c < C; ++c)
             if (s[c] >= floor) return c;
         return 0;
@@ -73,7 +75,8 @@ struct Reference {
 Tap randomTap(RandomStream& r, int T, int K, double centre, double spread) {
     Tap t(T, K);
     for (int s = 0; s < T; ++s)
-        for (int k = 0; k < K; ++k) t.at(s, k) = std::clamp(r.normal(centre + 7.0 * k, spread), 0.0, 255.0);
+        for (int k = 0; k < K; ++k)
+            t.at(s, k) = std::clamp(r.normal(centre + 7.0 * k, spread), 0.0, 255.0);
     return t;
 }
 
@@ -86,7 +89,8 @@ struct Problem {
 Problem makeProblem(int classes, int T, int K, double separation, std::uint64_t seed) {
     RandomStream r(seed);
     Problem p{{}, classes};
-    for (int c = 0; c < classes; ++c) p.training.push_back({randomTap(r, T, K, 40.0 + separation * c, 6.0), c});
+    for (int c = 0; c < classes; ++c)
+        p.training.push_back({randomTap(r, T, K, 40.0 + separation * c, 6.0), c});
     return p;
 }
 
@@ -96,7 +100,8 @@ HistogramClassifier trainOn(const Problem& p, int bins = 100, double smoothing =
     return HistogramClassifier::train(labelled, p.classes, {bins, smoothing});
 }
 
-void verifyFiniteAndMatchesReference(const HistogramClassifier& clf, const Reference& ref, const Tap& tap) {
+void verifyFiniteAndMatchesReference(const HistogramClassifier& clf, const Reference& ref,
+                                     const Tap& tap) {
     std::vector<double> scores(clf.classCount());
     clf.logLikelihoods(tap, scores.data());
     for (double s : scores) QVERIFY2(std::isfinite(s), "a log-likelihood is not finite");
@@ -106,7 +111,8 @@ void verifyFiniteAndMatchesReference(const HistogramClassifier& clf, const Refer
     // The fast sum equals the dense long-double sum to rounding.
     const auto refScores = ref.scores(tap);
     for (int c = 0; c < clf.classCount(); ++c)
-        QVERIFY(std::abs(double(refScores[c]) - scores[c]) <= 1e-9 * std::max(1.0, std::abs(scores[c])));
+        QVERIFY(std::abs(double(refScores[c]) - scores[c]) <=
+                1e-9 * std::max(1.0, std::abs(scores[c])));
 }
 
 }  // namespace
@@ -119,7 +125,9 @@ private slots:
         const auto clf = trainOn(p);
         const Reference ref(p.training, p.classes, 100, 0.01);
         RandomStream r(99);
-        for (int i = 0; i < 200; ++i) verifyFiniteAndMatchesReference(clf, ref, randomTap(r, 50, 12, r.uniform(30, 150), 6.0));
+        for (int i = 0; i < 200; ++i)
+            verifyFiniteAndMatchesReference(clf, ref,
+                                            randomTap(r, 50, 12, r.uniform(30, 150), 6.0));
     }
 
     void zeroCountBinsStayFinite() {
@@ -190,7 +198,10 @@ private slots:
         RandomStream r(17);
         Problem p{{}, 8};
         const Tap shared = randomTap(r, 50, 12, 80.0, 5.0);
-        for (int c = 0; c < 8; ++c) p.training.push_back({(c == 2 || c == 5 || c == 6) ? shared : randomTap(r, 50, 12, 20.0 + 25 * c, 5.0), c});
+        for (int c = 0; c < 8; ++c)
+            p.training.push_back(
+                {(c == 2 || c == 5 || c == 6) ? shared : randomTap(r, 50, 12, 20.0 + 25 * c, 5.0),
+                 c});
         const auto clf = trainOn(p);
         std::vector<double> scores(8);
         clf.logLikelihoods(shared, scores.data());
@@ -223,7 +234,9 @@ private slots:
         const auto clf = trainOn(p);
         const Reference ref(p.training, p.classes, 100, 0.01);
         RandomStream r(23);
-        for (int i = 0; i < 5; ++i) verifyFiniteAndMatchesReference(clf, ref, randomTap(r, samples, 12, r.uniform(40, 110), 6.0));
+        for (int i = 0; i < 5; ++i)
+            verifyFiniteAndMatchesReference(clf, ref,
+                                            randomTap(r, samples, 12, r.uniform(40, 110), 6.0));
     }
 
     void sixHundredFortyEightClasses() {
@@ -233,7 +246,9 @@ private slots:
         QCOMPARE(clf.classCount(), 648);
         const Reference ref(p.training, p.classes, 100, 0.01);
         RandomStream r(31);
-        for (int i = 0; i < 10; ++i) verifyFiniteAndMatchesReference(clf, ref, randomTap(r, 50, 12, r.uniform(40, 160), 6.0));
+        for (int i = 0; i < 10; ++i)
+            verifyFiniteAndMatchesReference(clf, ref,
+                                            randomTap(r, 50, 12, r.uniform(40, 160), 6.0));
     }
 
     void nearUniformLikelihood() {
@@ -274,14 +289,20 @@ private slots:
         const Problem p = makeProblem(4, 50, 12, 10.0, 47);
         std::vector<LabelledTap> labelled;
         for (const auto& [tap, c] : p.training) labelled.push_back({&tap, c});
-        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, HistogramClassifier::train(labelled, 4, {100, 0.0}));
-        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, HistogramClassifier::train(labelled, 4, {0, 0.01}));
-        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, HistogramClassifier::train(labelled, 5, {100, 0.01}));  // class 4 unseen
-        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, HistogramClassifier::train({}, 4, {100, 0.01}));
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                                 HistogramClassifier::train(labelled, 4, {100, 0.0}));
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                                 HistogramClassifier::train(labelled, 4, {0, 0.01}));
+        QVERIFY_THROWS_EXCEPTION(
+            std::invalid_argument,
+            HistogramClassifier::train(labelled, 5, {100, 0.01}));  // class 4 unseen
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                                 HistogramClassifier::train({}, 4, {100, 0.01}));
         Tap bad = p.training[0].first;
         bad.at(3, 3) = qQNaN();
         labelled[0].tap = &bad;
-        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, HistogramClassifier::train(labelled, 4, {100, 0.01}));
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                                 HistogramClassifier::train(labelled, 4, {100, 0.01}));
     }
 
     void logSumExpIsStable() {

@@ -1,6 +1,5 @@
 // The ideal fingertip physics: what comes out of geometry alone.
 #include <QtTest>
-
 #include <numeric>
 
 #include "core/fingertip/FingertipContactModel.h"
@@ -23,7 +22,9 @@ const Polygon& lowerHalf() {
     static const Polygon p({{-500, -500}, {500, -500}, {500, 0}, {-500, 0}});
     return p;
 }
-double sum(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
+double sum(const std::vector<double>& v) {
+    return std::accumulate(v.begin(), v.end(), 0.0);
+}
 }  // namespace
 
 class TestContactModel : public QObject {
@@ -33,7 +34,8 @@ private slots:
         // The fingertip centre is the tip's lowest point: nothing of the body lies below it.
         QCOMPARE(model().surfaceHeightAt({0, 0}), 0.0);
         for (double x = -8; x <= 8; x += 0.5)
-            for (double y = -12; y <= 8; y += 0.5) QVERIFY(model().surfaceHeightAt({x, y}) >= -1e-9);
+            for (double y = -12; y <= 8; y += 0.5)
+                QVERIFY(model().surfaceHeightAt({x, y}) >= -1e-9);
     }
 
     void pressureGrowsWithIndentationAndMatchesTotal() {
@@ -68,7 +70,9 @@ private slots:
             auto cb = model().contactAt(lowerHalf(), {0, y + 0.01});
             ca.taxelPressures(1.5, a.data());
             cb.taxelPressures(1.5, b.data());
-            for (int k = 0; k < 12; ++k) QVERIFY2(std::abs(a[k] - b[k]) < 1.0, qPrintable(QString("y %1 taxel %2").arg(y).arg(k)));
+            for (int k = 0; k < 12; ++k)
+                QVERIFY2(std::abs(a[k] - b[k]) < 1.0,
+                         qPrintable(QString("y %1 taxel %2").arg(y).arg(k)));
         }
     }
 
@@ -80,7 +84,9 @@ private slots:
         QVERIFY(sum(p) > 0);
         for (int k = 0; k < 12; ++k) {
             const double y = model().projectedTaxels()[k].y + 3.0;
-            if (y > 4.0) QVERIFY2(p[k] < 0.5, qPrintable(QString("taxel %1 beyond the edge reads %2").arg(k).arg(p[k])));
+            if (y > 4.0)
+                QVERIFY2(p[k] < 0.5,
+                         qPrintable(QString("taxel %1 beyond the edge reads %2").arg(k).arg(p[k])));
         }
     }
 
@@ -92,8 +98,8 @@ private slots:
         int plane = 0, air = 0;
         bool differ = false;
         for (int o = 0; o < 4; ++o) {
-            QCOMPARE(regions[cs.classOf(o, 1)], Region::Plane);   // deep on the object
-            QCOMPARE(regions[cs.classOf(o, 9)], Region::Edge);    // half a millimetre inside the edge
+            QCOMPARE(regions[cs.classOf(o, 1)], Region::Plane);  // deep on the object
+            QCOMPARE(regions[cs.classOf(o, 9)], Region::Edge);  // half a millimetre inside the edge
             for (int p = 1; p <= 18; ++p) {
                 plane += regions[cs.classOf(o, p)] == Region::Plane;
                 air += regions[cs.classOf(o, p)] == Region::Air;
@@ -101,7 +107,8 @@ private slots:
             }
         }
         QVERIFY(plane > 4 && air > 4);
-        QVERIFY2(differ, "a tilted tip should give different region maps for different orientations");
+        QVERIFY2(differ,
+                 "a tilted tip should give different region maps for different orientations");
     }
 };
 

@@ -9,7 +9,9 @@ using namespace activetouch;
 using namespace activetouch::test;
 
 namespace {
-Polygon rectangleAt(Vec2 centre) { return libraryShape("rectangle", {48, 58, 0, 0}).transformed(0, centre); }
+Polygon rectangleAt(Vec2 centre) {
+    return libraryShape("rectangle", {48, 58, 0, 0}).transformed(0, centre);
+}
 TrialSetup setupFor(const Polygon& outline, FollowingMode mode) {
     TrialSetup s;
     s.mode = mode;
@@ -24,20 +26,25 @@ class TestContourFollower : public QObject {
 private slots:
     void idealPerceptionCompletesEveryLibraryShape_data() {
         QTest::addColumn<QString>("shape");
-        for (const auto& n : libraryShapeNames()) QTest::newRow(n.c_str()) << QString::fromStdString(n);
+        for (const auto& n : libraryShapeNames())
+            QTest::newRow(n.c_str()) << QString::fromStdString(n);
     }
     void idealPerceptionCompletesEveryLibraryShape() {
         QFETCH(QString, shape);
-        const Polygon outline = libraryShape(shape.toStdString(), defaultShapeSize(shape.toStdString())).transformed(0, {150, 150});
+        const Polygon outline =
+            libraryShape(shape.toStdString(), defaultShapeSize(shape.toStdString()))
+                .transformed(0, {150, 150});
         OracleRig rig(paperClassesWithRegions());
         rig.world.perceiveIdeally(outline);
         Rig r = rig.rig();
-        const TrialResult t = runTrial(r, rig.world.classifier, rig.world.classes, outline, setupFor(outline, FollowingMode::Active));
+        const TrialResult t = runTrial(r, rig.world.classifier, rig.world.classes, outline,
+                                       setupFor(outline, FollowingMode::Active));
         QVERIFY2(t.completed(), t.detail.c_str());
         QVERIFY(t.progress_mm >= outline.perimeter());
         QVERIFY(distance(t.taps.back().record.pose, t.taps.front().record.pose) <= 4.0);
         QVERIFY(t.coverage > 0.95);
-        QVERIFY2(t.maxContourDistance_mm < 6.0, qPrintable(QString::number(t.maxContourDistance_mm)));
+        QVERIFY2(t.maxContourDistance_mm < 6.0,
+                 qPrintable(QString::number(t.maxContourDistance_mm)));
         QCOMPARE(t.robotTime_s, rig.world.clock);  // taps and moves, all on the robot clock
         QCOMPARE(t.path().size(), t.taps.size());
     }
@@ -59,11 +66,14 @@ private slots:
     }
 
     void everyEndingIsReportedWithItsTaps_data() {
-        QTest::addColumn<int>("percept");  // class the oracle always reports, or -1 for special set-ups
+        QTest::addColumn<int>(
+            "percept");  // class the oracle always reports, or -1 for special set-ups
         QTest::addColumn<int>("end");
         ClassSet cs;
-        QTest::newRow("always the lower edge in range: runs off the end") << cs.classOf(0, 10) << int(TrialEnd::LostOutside);
-        QTest::newRow("always the lower edge, on the air side: walks inward") << cs.classOf(0, 13) << int(TrialEnd::LostInside);
+        QTest::newRow("always the lower edge in range: runs off the end")
+            << cs.classOf(0, 10) << int(TrialEnd::LostOutside);
+        QTest::newRow("always the lower edge, on the air side: walks inward")
+            << cs.classOf(0, 13) << int(TrialEnd::LostInside);
         QTest::newRow("always air") << cs.classOf(0, 18) << int(TrialEnd::LostPlaneOrAir);
     }
     void everyEndingIsReportedWithItsTaps() {
@@ -101,8 +111,12 @@ private slots:
         rig.world.failAfterMoves = 6;  // the move to the start plus five following moves succeed
         Rig r = rig.rig();
         int seen = 0;
-        const TrialResult t = runTrial(r, rig.world.classifier, rig.world.classes, outline, setupFor(outline, FollowingMode::Active),
-                                       [&](const FollowedTap&) { ++seen; return true; });
+        const TrialResult t =
+            runTrial(r, rig.world.classifier, rig.world.classes, outline,
+                     setupFor(outline, FollowingMode::Active), [&](const FollowedTap&) {
+                         ++seen;
+                         return true;
+                     });
         QCOMPARE(int(t.end), int(TrialEnd::DeviceError));
         QVERIFY(QString::fromStdString(t.detail).contains("serial port vanished"));
         QCOMPARE(int(t.taps.size()), 6);
@@ -115,7 +129,8 @@ private slots:
         rig.world.perceiveIdeally(outline);
         Rig r = rig.rig();
         int seen = 0;
-        const TrialResult t = runTrial(r, rig.world.classifier, rig.world.classes, outline, setupFor(outline, FollowingMode::Active),
+        const TrialResult t = runTrial(r, rig.world.classifier, rig.world.classes, outline,
+                                       setupFor(outline, FollowingMode::Active),
                                        [&](const FollowedTap&) { return ++seen < 10; });
         QCOMPARE(int(t.end), int(TrialEnd::Cancelled));
         QCOMPARE(int(t.taps.size()), 10);
@@ -127,7 +142,9 @@ private slots:
         OracleRig rig(paperClassesWithRegions());
         ClassSet cs;
         int n = 0;
-        rig.world.oracle = [&](Vec2) { return (n++ % 2) ? cs.classOf(0, 10) : cs.classOf(2, 10); };  // lower, upper, lower...
+        rig.world.oracle = [&](Vec2) {
+            return (n++ % 2) ? cs.classOf(0, 10) : cs.classOf(2, 10);
+        };  // lower, upper, lower...
         TrialSetup s = setupFor(outline, FollowingMode::Active);
         s.settings.tapCapPerimeters = 1.0;
         Rig r = rig.rig();
@@ -137,17 +154,22 @@ private slots:
     }
 
     void startPoses() {
-        const Polygon cross = libraryShape("cross", defaultShapeSize("cross")).transformed(0, {150, 150});
+        const Polygon cross =
+            libraryShape("cross", defaultShapeSize("cross")).transformed(0, {150, 150});
         const Vec2 start = lowerEdgeStart(cross, {-2.0, 2.0});
         QCOMPARE(start.x, 150.0);  // the middle of the bottom arm's end
         QCOMPARE(start.y, 120.0);
         FollowingSettings s;
         QVERIFY(startProblem(cross, start, s).empty());
-        QVERIFY(QString::fromStdString(startProblem(cross, {150, 100}, s)).contains("outside the object"));
-        QVERIFY(QString::fromStdString(startProblem(cross, {150, 150}, s)).contains("inside the object"));
+        QVERIFY(QString::fromStdString(startProblem(cross, {150, 100}, s))
+                    .contains("outside the object"));
+        QVERIFY(QString::fromStdString(startProblem(cross, {150, 150}, s))
+                    .contains("inside the object"));
         const Polygon diamond({{0, -10}, {10, 0}, {0, 10}, {-10, 0}});
-        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, lowerEdgeStart(Polygon({{0, -30}, {5, 0}, {-5, 0}}), {}));  // a spike: its sides face left and right
-        QVERIFY(lowerEdgeStart(diamond, {}).y < 0);  // 45 degrees still counts as the lower edge
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                                 lowerEdgeStart(Polygon({{0, -30}, {5, 0}, {-5, 0}}),
+                                                {}));  // a spike: its sides face left and right
+        QVERIFY(lowerEdgeStart(diamond, {}).y < 0);    // 45 degrees still counts as the lower edge
     }
 
     void pathMetrics() {

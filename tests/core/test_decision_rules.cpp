@@ -19,7 +19,9 @@ Percept region(Region r) {
     p.region = r;
     return p;
 }
-bool near(Vec2 a, Vec2 b) { return distance(a, b) < 1e-9; }
+bool near(Vec2 a, Vec2 b) {
+    return distance(a, b) < 1e-9;
+}
 }  // namespace
 
 Q_DECLARE_METATYPE(activetouch::Percept)
@@ -36,7 +38,9 @@ private slots:
         QCOMPARE(int(rules.size()), 10);
         for (std::size_t i = 0; i < rules.size(); ++i)
             for (std::size_t j = i + 1; j < rules.size(); ++j) QVERIFY(rules[i].id != rules[j].id);
-        for (const auto& r : rules) QVERIFY(QString(r.when).size() > 0 && QString(r.then).size() > 0 && QString(r.name).size() > 0);
+        for (const auto& r : rules)
+            QVERIFY(QString(r.when).size() > 0 && QString(r.then).size() > 0 &&
+                    QString(r.name).size() > 0);
     }
 
     void rulesRowByRow_data() {
@@ -47,21 +51,36 @@ private slots:
         const int A = int(FollowingMode::Active), P = int(FollowingMode::Passive);
         // Memory: last edge = lower (270), heading +x. CCW traversal: along the lower edge is +x,
         // along the right edge +y, upper -x, left -y.
-        QTest::newRow("active, lower edge in range: follow +x") << A << edge(270, 0.5) << int(RuleId::FollowInRange) << Vec2{2, 0};
-        QTest::newRow("active, right edge in range: follow +y") << A << edge(0, -1.0) << int(RuleId::FollowInRange) << Vec2{0, 2};
-        QTest::newRow("active, upper edge in range: follow -x") << A << edge(90, 2.0) << int(RuleId::FollowInRange) << Vec2{-2, 0};
-        QTest::newRow("active, left edge in range: follow -y") << A << edge(180, -2.0) << int(RuleId::FollowInRange) << Vec2{0, -2};
-        QTest::newRow("active, lower edge plane side: + 1 mm out (-y)") << A << edge(270, -3.0) << int(RuleId::FollowRepositionOut) << Vec2{2, -1};
-        QTest::newRow("active, lower edge air side: + 1 mm in (+y)") << A << edge(270, 3.0) << int(RuleId::FollowRepositionIn) << Vec2{2, 1};
-        QTest::newRow("active, right edge air side: + 1 mm in (-x)") << A << edge(0, 3.5) << int(RuleId::FollowRepositionIn) << Vec2{-1, 2};
-        QTest::newRow("active, plane: out along last normal, back") << A << region(Region::Plane) << int(RuleId::PlaneStepBack) << Vec2{-2, -2};
-        QTest::newRow("active, air: in along last normal, back") << A << region(Region::Air) << int(RuleId::AirStepBack) << Vec2{-2, 2};
-        QTest::newRow("active, untrusted edge, plane side: as plane") << A << edge(180, -6.0) << int(RuleId::UntrustedPlaneSide) << Vec2{-2, -2};
-        QTest::newRow("active, untrusted edge, air side: as air") << A << edge(180, 6.0) << int(RuleId::UntrustedAirSide) << Vec2{-2, 2};
-        QTest::newRow("passive, edge: follow, never reposition") << P << edge(270, 6.0) << int(RuleId::PassiveFollow) << Vec2{2, 0};
-        QTest::newRow("passive, other edge: follow it") << P << edge(0, -6.0) << int(RuleId::PassiveFollow) << Vec2{0, 2};
-        QTest::newRow("passive, plane: keep heading") << P << region(Region::Plane) << int(RuleId::PassiveKeepHeading) << Vec2{2, 0};
-        QTest::newRow("passive, air: keep heading") << P << region(Region::Air) << int(RuleId::PassiveKeepHeading) << Vec2{2, 0};
+        QTest::newRow("active, lower edge in range: follow +x")
+            << A << edge(270, 0.5) << int(RuleId::FollowInRange) << Vec2{2, 0};
+        QTest::newRow("active, right edge in range: follow +y")
+            << A << edge(0, -1.0) << int(RuleId::FollowInRange) << Vec2{0, 2};
+        QTest::newRow("active, upper edge in range: follow -x")
+            << A << edge(90, 2.0) << int(RuleId::FollowInRange) << Vec2{-2, 0};
+        QTest::newRow("active, left edge in range: follow -y")
+            << A << edge(180, -2.0) << int(RuleId::FollowInRange) << Vec2{0, -2};
+        QTest::newRow("active, lower edge plane side: + 1 mm out (-y)")
+            << A << edge(270, -3.0) << int(RuleId::FollowRepositionOut) << Vec2{2, -1};
+        QTest::newRow("active, lower edge air side: + 1 mm in (+y)")
+            << A << edge(270, 3.0) << int(RuleId::FollowRepositionIn) << Vec2{2, 1};
+        QTest::newRow("active, right edge air side: + 1 mm in (-x)")
+            << A << edge(0, 3.5) << int(RuleId::FollowRepositionIn) << Vec2{-1, 2};
+        QTest::newRow("active, plane: out along last normal, back")
+            << A << region(Region::Plane) << int(RuleId::PlaneStepBack) << Vec2{-2, -2};
+        QTest::newRow("active, air: in along last normal, back")
+            << A << region(Region::Air) << int(RuleId::AirStepBack) << Vec2{-2, 2};
+        QTest::newRow("active, untrusted edge, plane side: as plane")
+            << A << edge(180, -6.0) << int(RuleId::UntrustedPlaneSide) << Vec2{-2, -2};
+        QTest::newRow("active, untrusted edge, air side: as air")
+            << A << edge(180, 6.0) << int(RuleId::UntrustedAirSide) << Vec2{-2, 2};
+        QTest::newRow("passive, edge: follow, never reposition")
+            << P << edge(270, 6.0) << int(RuleId::PassiveFollow) << Vec2{2, 0};
+        QTest::newRow("passive, other edge: follow it")
+            << P << edge(0, -6.0) << int(RuleId::PassiveFollow) << Vec2{0, 2};
+        QTest::newRow("passive, plane: keep heading")
+            << P << region(Region::Plane) << int(RuleId::PassiveKeepHeading) << Vec2{2, 0};
+        QTest::newRow("passive, air: keep heading")
+            << P << region(Region::Air) << int(RuleId::PassiveKeepHeading) << Vec2{2, 0};
     }
     void rulesRowByRow() {
         QFETCH(int, mode);
@@ -71,7 +90,8 @@ private slots:
         ShortTermMemory memory;  // lower edge, heading +x
         const Decision d = decide(percept, memory, FollowingMode(mode), settings_, valid_);
         QCOMPARE(int(d.rule), rule);
-        QVERIFY2(near(d.move(), move), qPrintable(QString("move (%1, %2)").arg(d.move().x).arg(d.move().y)));
+        QVERIFY2(near(d.move(), move),
+                 qPrintable(QString("move (%1, %2)").arg(d.move().x).arg(d.move().y)));
     }
 
     void repositioningMovesIntoTheValidRangeAndStopsThere() {
@@ -82,7 +102,8 @@ private slots:
         double y = 5.0;  // inside the object (offset -5)
         int repositioned = 0;
         for (int tap = 0; tap < 12; ++tap) {
-            const Decision d = decide(edge(270, -y), memory, FollowingMode::Active, settings_, trustAll);
+            const Decision d =
+                decide(edge(270, -y), memory, FollowingMode::Active, settings_, trustAll);
             if (d.reposition != Vec2{}) ++repositioned;
             y += d.move().y;
         }
@@ -90,7 +111,8 @@ private slots:
         QCOMPARE(y, 2.0);
         // And from the air side.
         y = -4.0;
-        for (int tap = 0; tap < 12; ++tap) y += decide(edge(270, -y), memory, FollowingMode::Active, settings_, trustAll).move().y;
+        for (int tap = 0; tap < 12; ++tap)
+            y += decide(edge(270, -y), memory, FollowingMode::Active, settings_, trustAll).move().y;
         QCOMPARE(y, -2.0);
     }
 
@@ -99,11 +121,15 @@ private slots:
         memory.confirmationsNeeded = 2;
         memory.update(edge(0, 0.0), true);  // one right-edge percept: not yet the last edge
         QCOMPARE(memory.lastEdgeDeg, 270.0);
-        QVERIFY(near(decide(region(Region::Air), memory, FollowingMode::Active, settings_, valid_).move(), {-2, 2}));
+        QVERIFY(near(
+            decide(region(Region::Air), memory, FollowingMode::Active, settings_, valid_).move(),
+            {-2, 2}));
         memory.update(edge(0, 0.5), true);  // confirmed
         QCOMPARE(memory.lastEdgeDeg, 0.0);
         QVERIFY(near(memory.heading, {0, 1}));
-        QVERIFY(near(decide(region(Region::Air), memory, FollowingMode::Active, settings_, valid_).move(), {-2, -2}));
+        QVERIFY(near(
+            decide(region(Region::Air), memory, FollowingMode::Active, settings_, valid_).move(),
+            {-2, -2}));
         // Plane/air percepts and untrusted edges count toward being lost.
         memory.update(region(Region::Air), false);
         memory.update(edge(90, 9.0), false);

@@ -32,13 +32,14 @@ private slots:
     }
 
     void containmentAndSignedDistance() {
-        const Polygon l = libraryShape("l", defaultShapeSize("l"));  // x, y in -30..30, notch top right
+        const Polygon l =
+            libraryShape("l", defaultShapeSize("l"));  // x, y in -30..30, notch top right
         QVERIFY(l.contains({-25, 25}));
         QVERIFY(l.contains({25, -25}));
-        QVERIFY(!l.contains({10, 10}));  // inside the notch
+        QVERIFY(!l.contains({10, 10}));              // inside the notch
         QCOMPARE(l.signedDistance({-20, 0}), 10.0);  // mid-arm: 10 mm from both sides
         QCOMPARE(l.signedDistance({-35, 0}), -5.0);
-        QCOMPARE(l.signedDistance({0, 0}), -10.0);    // in the notch, 10 mm from both inner edges
+        QCOMPARE(l.signedDistance({0, 0}), -10.0);  // in the notch, 10 mm from both inner edges
     }
 
     void windingIsNormalisedCounterClockwise() {
@@ -81,10 +82,14 @@ private slots:
         QTest::addColumn<QString>("reason");
         QTest::newRow("two vertices") << QVector<QPointF>{{0, 0}, {1, 0}} << "at least 3 vertices";
         QTest::newRow("collinear") << QVector<QPointF>{{0, 0}, {1, 0}, {2, 0}} << "no area";
-        QTest::newRow("repeated vertex") << QVector<QPointF>{{0, 0}, {0, 0}, {1, 0}, {0, 1}} << "repeats the next vertex";
-        QTest::newRow("bow tie") << QVector<QPointF>{{0, 0}, {10, 10}, {10, 0}, {0, 10}} << "intersects itself";
-        QTest::newRow("NaN") << QVector<QPointF>{{0, 0}, {qQNaN(), 0}, {0, 1}} << "not a finite number";
-        QTest::newRow("spike folds back") << QVector<QPointF>{{0, 0}, {10, 0}, {5, 0}, {5, 5}} << "fold back";
+        QTest::newRow("repeated vertex")
+            << QVector<QPointF>{{0, 0}, {0, 0}, {1, 0}, {0, 1}} << "repeats the next vertex";
+        QTest::newRow("bow tie") << QVector<QPointF>{{0, 0}, {10, 10}, {10, 0}, {0, 10}}
+                                 << "intersects itself";
+        QTest::newRow("NaN") << QVector<QPointF>{{0, 0}, {qQNaN(), 0}, {0, 1}}
+                             << "not a finite number";
+        QTest::newRow("spike folds back")
+            << QVector<QPointF>{{0, 0}, {10, 0}, {5, 0}, {5, 5}} << "fold back";
     }
     void badOutlinesAreRefusedWithAReason() {
         QFETCH(QVector<QPointF>, vertices);

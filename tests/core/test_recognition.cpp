@@ -1,7 +1,6 @@
 // Shape recognition from traced paths (paper Figure 9): ideal and perturbed paths, invariance to
 // where and how large the path is, and degenerate paths.
 #include <QtTest>
-
 #include <cmath>
 
 #include "core/common/Random.h"
@@ -60,7 +59,8 @@ private slots:
             for (const auto& n : libraryShapeNames()) {
                 const Polygon p = libraryShape(n, defaultShapeSize(n)).transformed(0, {150, 150});
                 std::vector<Vec2> path;
-                for (Vec2 v : idealFollowingPath(p, -1.0, 2.0)) path.push_back(v + Vec2{r.normal(0, 0.5), r.normal(0, 0.5)});
+                for (Vec2 v : idealFollowingPath(p, -1.0, 2.0))
+                    path.push_back(v + Vec2{r.normal(0, 0.5), r.normal(0, 0.5)});
                 const Recognition rec = recognise(path, templates, 1.0);
                 rawCorrect += rec.predicted == n;
                 smoothCorrect += rec.predictedSmoothed == n;

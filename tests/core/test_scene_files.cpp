@@ -1,8 +1,7 @@
 // Scene and experiment files: every mistake a user can make is named with the file, the place
 // and what to do.
-#include <QtTest>
 #include <QTemporaryDir>
-
+#include <QtTest>
 #include <fstream>
 
 #include "core/experiment/Experiment.h"
@@ -37,7 +36,8 @@ private slots:
         QCOMPARE(s.fingertip.taxels.size(), std::size_t(12));
         QCOMPARE(s.strokeLimitDepth(), 3.0);
         // What is written back reads back the same.
-        const SceneSpec again = parseScene(sceneToJson(s), "round trip", "", dir_.path().toStdString());
+        const SceneSpec again =
+            parseScene(sceneToJson(s), "round trip", "", dir_.path().toStdString());
         QCOMPARE(sceneToJson(again).dump(), sceneToJson(s).dump());
     }
 
@@ -55,29 +55,56 @@ private slots:
         QTest::addColumn<QString>("place");
         QTest::addColumn<QString>("problem");
         const QString good = kGoodScene;
-        auto swap = [&](const QString& from, const QString& to) { QString s = good; s.replace(from, to); return s; };
-        QTest::newRow("malformed JSON") << swap("\"width_mm\": 48,", "\"width_mm\": 48,,") << "line 2, column" << "not valid JSON";
-        QTest::newRow("unknown shape") << swap("\"rectangle\"", "\"hexagon\"") << "/object/shape" << "unknown shape 'hexagon'";
-        QTest::newRow("unknown key") << swap("\"width_mm\"", "\"widht_mm\"") << "/object/widht_mm" << "unknown key 'widht_mm'";
-        QTest::newRow("out of range") << swap("\"stroke_mm\": 5", "\"stroke_mm\": -5") << "/tap/stroke_mm" << "outside the allowed range";
-        QTest::newRow("wrong type") << swap("\"width_mm\": 48", "\"width_mm\": \"wide\"") << "/object/width_mm" << "expected a number";
-        QTest::newRow("missing shape") << swap("\"shape\": \"rectangle\",", "") << "/object/shape" << "missing required text 'shape'";
+        auto swap = [&](const QString& from, const QString& to) {
+            QString s = good;
+            s.replace(from, to);
+            return s;
+        };
+        QTest::newRow("malformed JSON")
+            << swap("\"width_mm\": 48,", "\"width_mm\": 48,,") << "line 2, column"
+            << "not valid JSON";
+        QTest::newRow("unknown shape") << swap("\"rectangle\"", "\"hexagon\"") << "/object/shape"
+                                       << "unknown shape 'hexagon'";
+        QTest::newRow("unknown key") << swap("\"width_mm\"", "\"widht_mm\"") << "/object/widht_mm"
+                                     << "unknown key 'widht_mm'";
+        QTest::newRow("out of range")
+            << swap("\"stroke_mm\": 5", "\"stroke_mm\": -5") << "/tap/stroke_mm"
+            << "outside the allowed range";
+        QTest::newRow("wrong type")
+            << swap("\"width_mm\": 48", "\"width_mm\": \"wide\"") << "/object/width_mm"
+            << "expected a number";
+        QTest::newRow("missing shape") << swap("\"shape\": \"rectangle\",", "") << "/object/shape"
+                                       << "missing required text 'shape'";
         QTest::newRow("self-intersecting polygon")
             << swap("\"shape\": \"rectangle\", \"width_mm\": 48, \"height_mm\": 58,",
                     "\"shape\": \"polygon\", \"polygon_mm\": [[0,0],[40,40],[40,0],[0,40]],")
-            << "/object/polygon_mm" << "intersects itself";
+            << "/object/polygon_mm"
+            << "intersects itself";
         QTest::newRow("degenerate polygon")
             << swap("\"shape\": \"rectangle\", \"width_mm\": 48, \"height_mm\": 58,",
                     "\"shape\": \"polygon\", \"polygon_mm\": [[0,0],[10,0],[20,0]],")
-            << "/object/polygon_mm" << "no area";
-        QTest::newRow("object off the stage") << swap("[150, 150]", "[640, 150]") << "/object" << "does not fit inside the stage travel";
-        QTest::newRow("object above retract height") << swap("\"top_height_mm\": 10", "\"top_height_mm\": 20") << "/object/top_height_mm" << "retract height";
-        QTest::newRow("tap does not fit the window") << swap("\"descent_speed_mm_s\": 25", "\"descent_speed_mm_s\": 5") << "/tap" << "tap window";
-        QTest::newRow("unknown fingertip") << swap("icub_fingertip_2010", "robot_thumb") << "/fingertip" << "fingertip 'robot_thumb' not found";
-        QTest::newRow("effects not a list") << swap("[{\"name\": \"taxel_noise\", \"sigma_counts\": 1.5}]", "{}") << "/effects" << "expected a list";
+            << "/object/polygon_mm"
+            << "no area";
+        QTest::newRow("object off the stage") << swap("[150, 150]", "[640, 150]") << "/object"
+                                              << "does not fit inside the stage travel";
+        QTest::newRow("object above retract height")
+            << swap("\"top_height_mm\": 10", "\"top_height_mm\": 20") << "/object/top_height_mm"
+            << "retract height";
+        QTest::newRow("tap does not fit the window")
+            << swap("\"descent_speed_mm_s\": 25", "\"descent_speed_mm_s\": 5") << "/tap"
+            << "tap window";
+        QTest::newRow("unknown fingertip")
+            << swap("icub_fingertip_2010", "robot_thumb") << "/fingertip"
+            << "fingertip 'robot_thumb' not found";
+        QTest::newRow("effects not a list")
+            << swap("[{\"name\": \"taxel_noise\", \"sigma_counts\": 1.5}]", "{}") << "/effects"
+            << "expected a list";
         QTest::newRow("effect listed twice")
-            << swap("{\"name\": \"taxel_noise\", \"sigma_counts\": 1.5}", "{\"name\": \"taxel_noise\", \"sigma_counts\": 1.5}, {\"name\": \"taxel_noise\", \"sigma_counts\": 1}")
-            << "/effects/1/name" << "listed twice";
+            << swap("{\"name\": \"taxel_noise\", \"sigma_counts\": 1.5}",
+                    "{\"name\": \"taxel_noise\", \"sigma_counts\": 1.5}, {\"name\": "
+                    "\"taxel_noise\", \"sigma_counts\": 1}")
+            << "/effects/1/name"
+            << "listed twice";
     }
     void badSceneNamesFilePlaceAndProblem() {
         QFETCH(QString, text);
@@ -109,24 +136,50 @@ private slots:
         QTest::addColumn<QString>("experiment");
         QTest::addColumn<QString>("problem");
         const QString head = R"({"name": "x", "scene": "good.json", )";
-        QTest::newRow("training set beyond the data sets") << head + R"("training": {"data_sets": 3, "training_sets": [4]}})" << "does not exist";
-        QTest::newRow("every set trains") << head + R"("training": {"data_sets": 2, "training_sets": [1, 2]}})" << "leave at least one set to test";
-        QTest::newRow("no smoothing") << head + R"("classifier": {"smoothing": 0}})" << "outside the allowed range";
-        QTest::newRow("scene file missing") << R"({"name": "x", "scene": "nope.json"})" << "does not exist";
-        QTest::newRow("orientation with no edge") << head + R"("classes": {"orientations_deg": [45]}})" << "no edge facing";
-        QTest::newRow("no name") << R"({"scene": "good.json"})" << "missing required text 'name'";
-        const QString trials = R"("following": {"trials": [{"object": {"shape": "rectangle", "offset_mm": [150, 150]}}]}, )";
-        QTest::newRow("sweep: empty thresholds") << head + R"("sweeps": {"perception": {"belief_thresholds": []}}})" << "non-empty list";
-        QTest::newRow("sweep: threshold of 1") << head + R"("sweeps": {"perception": {"belief_thresholds": [0.9, 1.0]}}})" << "/sweeps/perception/belief_thresholds/1";
-        QTest::newRow("sweep: threshold of 0") << head + R"("sweeps": {"perception": {"belief_thresholds": [0]}}})" << "is not a belief threshold";
-        QTest::newRow("sweep: negative step") << head + trials + R"("sweeps": {"following": {"follow_steps_mm": [2, -1], "reposition_steps_mm": [1]}}})"
-                                              << "/sweeps/following/follow_steps_mm/1";
-        QTest::newRow("sweep: negative reposition") << head + trials + R"("sweeps": {"following": {"follow_steps_mm": [2], "reposition_steps_mm": [-0.5]}}})"
-                                                    << "/sweeps/following/reposition_steps_mm/0";
-        QTest::newRow("sweep: following without trials") << head + R"("sweeps": {"following": {"follow_steps_mm": [2], "reposition_steps_mm": [1]}}})"
-                                                         << "needs trials";
-        QTest::newRow("sweep: empty bins") << head + R"("sweeps": {"compute": {"bins": [], "samples_per_tap": [50]}}})" << "non-empty list";
-        QTest::newRow("sweep: more samples than a tap has") << head + R"("sweeps": {"compute": {"bins": [100], "samples_per_tap": [60]}}})" << "up to the tap's 50";
+        QTest::newRow("training set beyond the data sets")
+            << head + R"("training": {"data_sets": 3, "training_sets": [4]}})"
+            << "does not exist";
+        QTest::newRow("every set trains")
+            << head + R"("training": {"data_sets": 2, "training_sets": [1, 2]}})"
+            << "leave at least one set to test";
+        QTest::newRow("no smoothing") << head + R"("classifier": {"smoothing": 0}})"
+                                      << "outside the allowed range";
+        QTest::newRow("scene file missing") << R"({"name": "x", "scene": "nope.json"})"
+                                            << "does not exist";
+        QTest::newRow("orientation with no edge")
+            << head + R"("classes": {"orientations_deg": [45]}})"
+            << "no edge facing";
+        QTest::newRow("no name") << R"({"scene": "good.json"})"
+                                 << "missing required text 'name'";
+        const QString trials =
+            R"("following": {"trials": [{"object": {"shape": "rectangle", "offset_mm": [150, 150]}}]}, )";
+        QTest::newRow("sweep: empty thresholds")
+            << head + R"("sweeps": {"perception": {"belief_thresholds": []}}})"
+            << "non-empty list";
+        QTest::newRow("sweep: threshold of 1")
+            << head + R"("sweeps": {"perception": {"belief_thresholds": [0.9, 1.0]}}})"
+            << "/sweeps/perception/belief_thresholds/1";
+        QTest::newRow("sweep: threshold of 0")
+            << head + R"("sweeps": {"perception": {"belief_thresholds": [0]}}})"
+            << "is not a belief threshold";
+        QTest::newRow("sweep: negative step")
+            << head + trials +
+                   R"("sweeps": {"following": {"follow_steps_mm": [2, -1], "reposition_steps_mm": [1]}}})"
+            << "/sweeps/following/follow_steps_mm/1";
+        QTest::newRow("sweep: negative reposition")
+            << head + trials +
+                   R"("sweeps": {"following": {"follow_steps_mm": [2], "reposition_steps_mm": [-0.5]}}})"
+            << "/sweeps/following/reposition_steps_mm/0";
+        QTest::newRow("sweep: following without trials")
+            << head +
+                   R"("sweeps": {"following": {"follow_steps_mm": [2], "reposition_steps_mm": [1]}}})"
+            << "needs trials";
+        QTest::newRow("sweep: empty bins")
+            << head + R"("sweeps": {"compute": {"bins": [], "samples_per_tap": [50]}}})"
+            << "non-empty list";
+        QTest::newRow("sweep: more samples than a tap has")
+            << head + R"("sweeps": {"compute": {"bins": [100], "samples_per_tap": [60]}}})"
+            << "up to the tap's 50";
     }
     void badExperimentSettings() {
         QFETCH(QString, experiment);

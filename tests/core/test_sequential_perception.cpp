@@ -2,7 +2,6 @@
 // contradictory evidence, a class ruled out, thresholds of 0.5 and 0.999999; posteriors always sum
 // to one within 1e-12 and never hold NaN.
 #include <QtTest>
-
 #include <cmath>
 #include <limits>
 
@@ -18,7 +17,8 @@ void verifyNormalised(const SequentialBelief& b) {
         QVERIFY(!std::isnan(v));
         total += std::exp(static_cast<long double>(v));
     }
-    QVERIFY2(std::abs(static_cast<double>(total) - 1.0) <= 1e-12, qPrintable(QString::number(static_cast<double>(total), 'g', 17)));
+    QVERIFY2(std::abs(static_cast<double>(total) - 1.0) <= 1e-12,
+             qPrintable(QString::number(static_cast<double>(total), 'g', 17)));
 }
 }  // namespace
 

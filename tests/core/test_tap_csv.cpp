@@ -1,7 +1,6 @@
 // Tap files: what is written reads back exactly, and a broken file is refused with its line.
-#include <QtTest>
 #include <QTemporaryDir>
-
+#include <QtTest>
 #include <fstream>
 #include <sstream>
 
@@ -27,7 +26,8 @@ class TestTapCsv : public QObject {
             c.record.ending = i == 1 ? TapEnding::StrokeLimit : TapEnding::ContactReflex;
             c.record.tap = Tap(50, 12);
             for (int s = 0; s < 50; ++s)
-                for (int k = 0; k < 12; ++k) c.record.tap.at(s, k) = std::fmod(0.1 * s * (k + 1) + i, 255.0);
+                for (int k = 0; k < 12; ++k)
+                    c.record.tap.at(s, k) = std::fmod(0.1 * s * (k + 1) + i, 255.0);
             taps.push_back(c);
         }
         return taps;
@@ -44,7 +44,8 @@ class TestTapCsv : public QObject {
         std::ifstream in(path);
         std::stringstream out;
         std::string line;
-        for (int n = 1; std::getline(in, line); ++n) out << (n == lineNumber ? replacement : line) << '\n';
+        for (int n = 1; std::getline(in, line); ++n)
+            out << (n == lineNumber ? replacement : line) << '\n';
         const std::string bad = dir_.filePath("bad.csv").toStdString();
         std::ofstream(bad) << out.str();
         return bad;
@@ -69,15 +70,30 @@ private slots:
         QTest::addColumn<int>("line");
         QTest::addColumn<QString>("replacement");
         QTest::addColumn<QString>("problem");
-        QTest::newRow("wrong columns") << 1 << "set,class,x,y" << "unexpected columns";
-        QTest::newRow("too few fields") << 3 << "1,3,270,4,-1.25" << "has 5 fields";
-        QTest::newRow("not a number") << 3 << "1,3,270,4,-1.25,100,50,0,reflex,1,a,0,0,0,0,0,0,0,0,0,0,0" << "'a' is not a number";
-        QTest::newRow("NaN") << 3 << "1,3,270,4,-1.25,100,50,0,reflex,1,nan,0,0,0,0,0,0,0,0,0,0,0" << "not a finite number";
-        QTest::newRow("above 255") << 3 << "1,3,270,4,-1.25,100,50,0,reflex,1,300,0,0,0,0,0,0,0,0,0,0,0" << "outside the fingertip's 0..255";
-        QTest::newRow("negative") << 3 << "1,3,270,4,-1.25,100,50,0,reflex,1,-2,0,0,0,0,0,0,0,0,0,0,0" << "outside the fingertip's 0..255";
-        QTest::newRow("class out of range") << 2 << "1,999,270,4,-1.25,100,50,0,reflex,0,0,0,0,0,0,0,0,0,0,0,0,0" << "class 999 is outside";
-        QTest::newRow("sample out of order") << 4 << "1,3,270,4,-1.25,100,50,0,reflex,7,0,0,0,0,0,0,0,0,0,0,0,0" << "does not continue the tap";
-        QTest::newRow("bad ending") << 2 << "1,3,270,4,-1.25,100,50,0,bounced,0,0,0,0,0,0,0,0,0,0,0,0,0" << "neither reflex nor stroke_limit";
+        QTest::newRow("wrong columns") << 1 << "set,class,x,y"
+                                       << "unexpected columns";
+        QTest::newRow("too few fields") << 3 << "1,3,270,4,-1.25"
+                                        << "has 5 fields";
+        QTest::newRow("not a number")
+            << 3 << "1,3,270,4,-1.25,100,50,0,reflex,1,a,0,0,0,0,0,0,0,0,0,0,0"
+            << "'a' is not a number";
+        QTest::newRow("NaN") << 3 << "1,3,270,4,-1.25,100,50,0,reflex,1,nan,0,0,0,0,0,0,0,0,0,0,0"
+                             << "not a finite number";
+        QTest::newRow("above 255")
+            << 3 << "1,3,270,4,-1.25,100,50,0,reflex,1,300,0,0,0,0,0,0,0,0,0,0,0"
+            << "outside the fingertip's 0..255";
+        QTest::newRow("negative") << 3
+                                  << "1,3,270,4,-1.25,100,50,0,reflex,1,-2,0,0,0,0,0,0,0,0,0,0,0"
+                                  << "outside the fingertip's 0..255";
+        QTest::newRow("class out of range")
+            << 2 << "1,999,270,4,-1.25,100,50,0,reflex,0,0,0,0,0,0,0,0,0,0,0,0,0"
+            << "class 999 is outside";
+        QTest::newRow("sample out of order")
+            << 4 << "1,3,270,4,-1.25,100,50,0,reflex,7,0,0,0,0,0,0,0,0,0,0,0,0"
+            << "does not continue the tap";
+        QTest::newRow("bad ending")
+            << 2 << "1,3,270,4,-1.25,100,50,0,bounced,0,0,0,0,0,0,0,0,0,0,0,0,0"
+            << "neither reflex nor stroke_limit";
     }
     void brokenFilesNameTheLineAndProblem() {
         QFETCH(int, line);
@@ -99,7 +115,8 @@ private slots:
         const std::string empty = dir_.filePath("empty.csv").toStdString();
         std::ofstream(empty).close();
         QVERIFY_THROWS_EXCEPTION(InputError, readTapCsv(empty, classes_));
-        QVERIFY_THROWS_EXCEPTION(InputError, readTapCsv(dir_.filePath("missing.csv").toStdString(), classes_));
+        QVERIFY_THROWS_EXCEPTION(InputError,
+                                 readTapCsv(dir_.filePath("missing.csv").toStdString(), classes_));
     }
 };
 

@@ -15,16 +15,25 @@ private slots:
         QTest::addColumn<QVector<double>>("angle");
         QTest::addColumn<QVector<double>>("position");
         QTest::addColumn<int>("first");
-        QTest::newRow("clear minimum") << QVector<double>{90, 80, 60, 10, 0, 0, 0, 0, 20, 60} << QVector<double>{2, 2, 1, 0.5, 0.2, 0.2, 0.2, 0.2, 1, 2} << 5;
-        QTest::newRow("flat: ties go to the edge") << QVector<double>(10, 0.0) << QVector<double>(10, 0.0) << 4;  // window 4..7, centre 5.5
-        QTest::newRow("position breaks an angle tie") << QVector<double>{0, 0, 0, 0, 0, 0, 0, 0, 0, 0} << QVector<double>{1, 1, 1, 1, 1, 1, 0, 0, 0, 0} << 7;
-        QTest::newRow("minimum at the plane end") << QVector<double>{0, 0, 0, 0, 50, 50, 50, 50, 50, 50} << QVector<double>{0, 0, 0, 0, 1, 1, 1, 1, 1, 1} << 1;
+        QTest::newRow("clear minimum")
+            << QVector<double>{90, 80, 60, 10, 0, 0, 0, 0, 20, 60}
+            << QVector<double>{2, 2, 1, 0.5, 0.2, 0.2, 0.2, 0.2, 1, 2} << 5;
+        QTest::newRow("flat: ties go to the edge")
+            << QVector<double>(10, 0.0) << QVector<double>(10, 0.0)
+            << 4;  // window 4..7, centre 5.5
+        QTest::newRow("position breaks an angle tie")
+            << QVector<double>{0, 0, 0, 0, 0, 0, 0, 0, 0, 0}
+            << QVector<double>{1, 1, 1, 1, 1, 1, 0, 0, 0, 0} << 7;
+        QTest::newRow("minimum at the plane end")
+            << QVector<double>{0, 0, 0, 0, 50, 50, 50, 50, 50, 50}
+            << QVector<double>{0, 0, 0, 0, 1, 1, 1, 1, 1, 1} << 1;
     }
     void validRangeRule() {
         QFETCH(QVector<double>, angle);
         QFETCH(QVector<double>, position);
         QFETCH(int, first);
-        const auto r = deriveValidRange(std::vector<double>(angle.begin(), angle.end()), std::vector<double>(position.begin(), position.end()), 4);
+        const auto r = deriveValidRange(std::vector<double>(angle.begin(), angle.end()),
+                                        std::vector<double>(position.begin(), position.end()), 4);
         QCOMPARE(r.first, first);
         QCOMPARE(r.last, first + 3);
     }
@@ -40,7 +49,10 @@ private slots:
             const RunResult r = runExperiment(spec, options);
             const auto& v = r.validation;
             const auto& vr = v.validRange;
-            QVERIFY2(vr.first >= 5 && vr.last <= 14, qPrintable(QString("seed %1: valid range %2-%3").arg(seed).arg(vr.first).arg(vr.last)));
+            QVERIFY2(
+                vr.first >= 5 && vr.last <= 14,
+                qPrintable(
+                    QString("seed %1: valid range %2-%3").arg(seed).arg(vr.first).arg(vr.last)));
             auto mean = [](const std::vector<double>& e, int a, int b) {
                 double s = 0;
                 for (int p = a; p <= b; ++p) s += e[p - 1];
@@ -49,8 +61,15 @@ private slots:
             const double band = mean(v.positionMean, vr.first, vr.last);
             const double plane = mean(v.positionMean, 1, 3);
             const double towardAir = mean(v.positionMean, vr.last + 1, 18);
-            QVERIFY2(band < 0.6 * plane, qPrintable(QString("seed %1: band %2 mm vs plane %3 mm").arg(seed).arg(band).arg(plane)));
-            QVERIFY2(band < 0.6 * towardAir, qPrintable(QString("seed %1: band %2 mm vs air side %3 mm").arg(seed).arg(band).arg(towardAir)));
+            QVERIFY2(
+                band < 0.6 * plane,
+                qPrintable(
+                    QString("seed %1: band %2 mm vs plane %3 mm").arg(seed).arg(band).arg(plane)));
+            QVERIFY2(band < 0.6 * towardAir,
+                     qPrintable(QString("seed %1: band %2 mm vs air side %3 mm")
+                                    .arg(seed)
+                                    .arg(band)
+                                    .arg(towardAir)));
             QVERIFY(mean(v.angleMean, vr.first, vr.last) < 20.0);
             QVERIFY(mean(v.angleMean, 1, 2) > 45.0);
             QVERIFY(mean(v.angleMean, 17, 18) > 45.0);
@@ -64,7 +83,9 @@ private slots:
         std::atomic<bool> cancel{false};
         RunOptions options;
         options.cancel = &cancel;
-        options.progress = [&](const RunProgress& p) { if (p.tapsDone == 100) cancel = true; };
+        options.progress = [&](const RunProgress& p) {
+            if (p.tapsDone == 100) cancel = true;
+        };
         const RunResult r = runExperiment(spec, options);
         QVERIFY(r.cancelled);
         QCOMPARE(int(r.taps.size()), 100);

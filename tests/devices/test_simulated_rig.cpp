@@ -1,7 +1,6 @@
 // The simulated rig: the ideal scene is reproducible bit for bit; each effect runs only when the
 // scene lists it and changes exactly what it models.
 #include <QtTest>
-
 #include <cmath>
 #include <numeric>
 
@@ -31,7 +30,8 @@ SceneSpec withEffect(const std::string& effectJson) {
 }
 
 std::shared_ptr<const FingertipContactModel> model() {
-    static auto m = std::make_shared<const FingertipContactModel>(loadFingertip("icub_fingertip_2010", ".", "test", ""));
+    static auto m = std::make_shared<const FingertipContactModel>(
+        loadFingertip("icub_fingertip_2010", ".", "test", ""));
     return m;
 }
 
@@ -47,7 +47,8 @@ std::vector<TapRecord> tapAcrossEdge(SimulatedRig& rig) {
 
 double maxAbsDifference(const Tap& a, const Tap& b) {
     double m = 0;
-    for (std::size_t i = 0; i < a.samples.size(); ++i) m = std::max(m, std::abs(a.samples[i] - b.samples[i]));
+    for (std::size_t i = 0; i < a.samples.size(); ++i)
+        m = std::max(m, std::abs(a.samples[i] - b.samples[i]));
     return m;
 }
 
@@ -75,7 +76,8 @@ private slots:
         other.seed = 12345;
         SimulatedRig reseeded(other, model());
         const auto taps2 = tapAcrossEdge(reseeded);
-        for (std::size_t i = 0; i < taps2.size(); ++i) QVERIFY(taps2[i].tap.samples == ideal_[i].tap.samples);
+        for (std::size_t i = 0; i < taps2.size(); ++i)
+            QVERIFY(taps2[i].tap.samples == ideal_[i].tap.samples);
     }
 
     void idealTapsHaveThePaperShape() {
@@ -83,14 +85,16 @@ private slots:
         // touches; the tap fits the window (starts and ends retracted).
         QVERIFY(ideal_.front().ending == TapEnding::ContactReflex);
         QVERIFY(ideal_[17].ending == TapEnding::StrokeLimit);
-        QCOMPARE(*std::max_element(ideal_[17].tap.samples.begin(), ideal_[17].tap.samples.end()), 0.0);
+        QCOMPARE(*std::max_element(ideal_[17].tap.samples.begin(), ideal_[17].tap.samples.end()),
+                 0.0);
         const Tap& plane = ideal_.front().tap;
         for (int k = 0; k < 12; ++k) {
             QCOMPARE(plane.at(0, k), 0.0);
             QCOMPARE(plane.at(49, k), 0.0);
         }
         const double total = std::accumulate(plane.frame(25), plane.frame(25) + 12, 0.0);
-        QVERIFY2(std::abs(total - 250.0) < 0.01, qPrintable(QString::number(total, 'g', 12)));  // held at the contact threshold
+        QVERIFY2(std::abs(total - 250.0) < 0.01,
+                 qPrintable(QString::number(total, 'g', 12)));  // held at the contact threshold
     }
 
     void unlistedEffectsAreNeverConstructed() {
@@ -99,12 +103,14 @@ private slots:
         {
             SimulatedRig ideal(idealScene(), model());
             QVERIFY(ideal.world().activeEffects().empty());
-            SimulatedRig noisy(withEffect(R"({"name": "taxel_noise", "sigma_counts": 2})"), model());
+            SimulatedRig noisy(withEffect(R"({"name": "taxel_noise", "sigma_counts": 2})"),
+                               model());
             QCOMPARE(noisy.world().activeEffects(), std::vector<std::string>{"taxel_noise"});
             tapAcrossEdge(noisy);
         }
         for (const auto& d : effectCatalogue())
-            QCOMPARE(Effect::constructedCount(d.name) - before[d.name], d.name == "taxel_noise" ? 1 : 0);
+            QCOMPARE(Effect::constructedCount(d.name) - before[d.name],
+                     d.name == "taxel_noise" ? 1 : 0);
     }
 
     void eachEffectChangesWhatItModels_data() {
@@ -116,7 +122,10 @@ private slots:
             if (d.name == "dead_taxel") e["taxels"] = {9};
             if (d.name == "stage_error") e["sigma_mm"] = 0.3;
             if (d.name == "contact_latency") e["latency_s"] = 0.04;
-            if (d.name == "viscoelastic_memory") { e["fraction"] = 0.3; e["time_constant_s"] = 2.0; }
+            if (d.name == "viscoelastic_memory") {
+                e["fraction"] = 0.3;
+                e["time_constant_s"] = 2.0;
+            }
             QTest::newRow(d.name.c_str()) << QString::fromStdString(e.dump());
         }
     }
@@ -126,7 +135,8 @@ private slots:
         SimulatedRig rig(withEffect(effect.toStdString()), model());
         const auto taps = tapAcrossEdge(rig);
         double changed = 0;
-        for (std::size_t i = 0; i < taps.size(); ++i) changed = std::max(changed, maxAbsDifference(taps[i].tap, ideal_[i].tap));
+        for (std::size_t i = 0; i < taps.size(); ++i)
+            changed = std::max(changed, maxAbsDifference(taps[i].tap, ideal_[i].tap));
         QVERIFY2(changed > 0, "the effect left every tap as the ideal model made it");
 
         const Tap& plane = taps.front().tap;
@@ -134,10 +144,14 @@ private slots:
         if (name == "taxel_noise") {
             // Noise shows on every taxel, even where nothing touches, and never goes negative.
             double airSum = 0;
-            for (double v : taps[17].tap.samples) { QVERIFY(v >= 0); airSum += v; }
+            for (double v : taps[17].tap.samples) {
+                QVERIFY(v >= 0);
+                airSum += v;
+            }
             QVERIFY(airSum > 0);
         } else if (name == "baseline_drift") {
-            for (const auto& t : taps) for (double v : t.tap.samples) QVERIFY(v >= 0);
+            for (const auto& t : taps)
+                for (double v : t.tap.samples) QVERIFY(v >= 0);
         } else if (name == "adc_quantisation") {
             bool saturated = false;
             for (const auto& t : taps)
@@ -152,7 +166,8 @@ private slots:
             QVERIFY(std::abs(taps.front().stopDepth_mm - ideal_.front().stopDepth_mm - 1.0) < 1e-9);
             QVERIFY(std::accumulate(plane.frame(25), plane.frame(25) + 12, 0.0) > 250.0);
         } else if (name == "stage_error") {
-            // Taps differ because the tip landed elsewhere; the pressure pattern is still ideal physics.
+            // Taps differ because the tip landed elsewhere; the pressure pattern is still ideal
+            // physics.
             QVERIFY(rig.world().actualPose() != rig.world().commandedPose());
             QCOMPARE(rig.world().commandedPose(), (Vec2{150, 150}));
             QVERIFY(distance(rig.world().actualPose(), rig.world().commandedPose()) < 2.0);
@@ -192,11 +207,18 @@ private slots:
     void badEffectEntriesAreNamed_data() {
         QTest::addColumn<QString>("effect");
         QTest::addColumn<QString>("problem");
-        QTest::newRow("unknown effect") << R"({"name": "gravity_waves"})" << "unknown effect 'gravity_waves'";
-        QTest::newRow("missing parameter") << R"({"name": "taxel_noise"})" << "missing required number 'sigma_counts'";
-        QTest::newRow("out of range") << R"({"name": "taxel_noise", "sigma_counts": 500})" << "outside the allowed range";
-        QTest::newRow("unknown parameter") << R"({"name": "taxel_noise", "sigma_counts": 1, "colour": 3})" << "unknown key 'colour'";
-        QTest::newRow("taxel that does not exist") << R"({"name": "dead_taxel", "taxels": [12], "reading_counts": 0})" << "does not exist";
+        QTest::newRow("unknown effect") << R"({"name": "gravity_waves"})"
+                                        << "unknown effect 'gravity_waves'";
+        QTest::newRow("missing parameter") << R"({"name": "taxel_noise"})"
+                                           << "missing required number 'sigma_counts'";
+        QTest::newRow("out of range") << R"({"name": "taxel_noise", "sigma_counts": 500})"
+                                      << "outside the allowed range";
+        QTest::newRow("unknown parameter")
+            << R"({"name": "taxel_noise", "sigma_counts": 1, "colour": 3})"
+            << "unknown key 'colour'";
+        QTest::newRow("taxel that does not exist")
+            << R"({"name": "dead_taxel", "taxels": [12], "reading_counts": 0})"
+            << "does not exist";
     }
     void badEffectEntriesAreNamed() {
         QFETCH(QString, effect);
@@ -204,8 +226,10 @@ private slots:
         const SceneSpec s = withEffect(effect.toStdString());
         for (int attempt = 0; attempt < 2; ++attempt) {
             try {
-                if (attempt == 0) validateEffects(s, *model());
-                else SimulatedRig rig(s, model());
+                if (attempt == 0)
+                    validateEffects(s, *model());
+                else
+                    SimulatedRig rig(s, model());
                 QFAIL("the effect was accepted");
             } catch (const InputError& e) {
                 QVERIFY2(QString(e.what()).contains("test scene"), e.what());

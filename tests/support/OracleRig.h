@@ -26,13 +26,14 @@ struct OracleWorld {
     Vec2 pose;
     double clock = 0.0;
     int moves = 0;
-    int failAfterMoves = -1;          ///< the stage fails on this move (-1: never)
+    int failAfterMoves = -1;  ///< the stage fails on this move (-1: never)
 
     explicit OracleWorld(const ClassSet& cs) : classes(cs) {
         std::vector<Tap> taps;
         for (int c = 0; c < cs.classCount(); ++c) taps.push_back(tapForClass(c));
         std::vector<LabelledTap> labelled;
-        for (int c = 0; c < cs.classCount(); ++c) labelled.push_back({&taps[static_cast<std::size_t>(c)], c});
+        for (int c = 0; c < cs.classCount(); ++c)
+            labelled.push_back({&taps[static_cast<std::size_t>(c)], c});
         classifier = HistogramClassifier::train(labelled, cs.classCount(), {cs.classCount(), 0.01});
     }
 
@@ -46,10 +47,15 @@ struct OracleWorld {
             int o = 0;
             for (std::size_t i = 0; i < classes.orientationsDeg.size(); ++i) {
                 const double d = dot(n, directionFromDegrees(classes.orientationsDeg[i]));
-                if (d > best) { best = d; o = static_cast<int>(i); }
+                if (d > best) {
+                    best = d;
+                    o = static_cast<int>(i);
+                }
             }
             const double offset = outline.contains(p) ? -nearest.distance : nearest.distance;
-            const int position = std::clamp(static_cast<int>(std::lround(classes.positionAtOffset(offset))), 1, classes.positions);
+            const int position =
+                std::clamp(static_cast<int>(std::lround(classes.positionAtOffset(offset))), 1,
+                           classes.positions);
             return classes.classOf(o, position);
         };
     }
@@ -59,12 +65,14 @@ class OracleStage final : public Stage {
 public:
     explicit OracleStage(OracleWorld& w) : w_(w) {}
     void moveTo(Vec2 target) override {
-        if (w_.failAfterMoves >= 0 && w_.moves >= w_.failAfterMoves) throw RigError("oracle stage: the serial port vanished");
+        if (w_.failAfterMoves >= 0 && w_.moves >= w_.failAfterMoves)
+            throw RigError("oracle stage: the serial port vanished");
         ++w_.moves;
         w_.clock += distance(w_.pose, target) / 50.0;
         w_.pose = target;
     }
     Vec2 position() const override { return w_.pose; }
+
 private:
     OracleWorld& w_;
 };
@@ -82,6 +90,7 @@ public:
         w_.clock += 2.5;
         return r;
     }
+
 private:
     OracleWorld& w_;
 };
@@ -96,6 +105,7 @@ class OracleClock final : public RobotClock {
 public:
     explicit OracleClock(const OracleWorld& w) : w_(w) {}
     double now_s() const override { return w_.clock; }
+
 private:
     const OracleWorld& w_;
 };
@@ -116,7 +126,8 @@ inline ClassSet paperClassesWithRegions() {
     cs.regions.assign(static_cast<std::size_t>(cs.classCount()), Region::Edge);
     for (int o = 0; o < 4; ++o)
         for (int p = 1; p <= 18; ++p)
-            cs.regions[static_cast<std::size_t>(cs.classOf(o, p))] = p <= 4 ? Region::Plane : (p >= 15 ? Region::Air : Region::Edge);
+            cs.regions[static_cast<std::size_t>(cs.classOf(o, p))] =
+                p <= 4 ? Region::Plane : (p >= 15 ? Region::Air : Region::Edge);
     return cs;
 }
 

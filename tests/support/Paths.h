@@ -11,6 +11,8 @@ inline std::string sourceDir() {
     return s ? s : ".";
 }
 
-inline std::string sourcePath(const std::string& relative) { return sourceDir() + "/" + relative; }
+inline std::string sourcePath(const std::string& relative) {
+    return sourceDir() + "/" + relative;
+}
 
 }  // namespace activetouch::test

@@ -21,9 +21,9 @@ namespace activetouch {
 
 /// What a signal effect may know about the tap it shapes.
 struct SignalContext {
-    double startTime_s = 0.0;      ///< robot time of the tap's first sample
+    double startTime_s = 0.0;  ///< robot time of the tap's first sample
     double samplePeriod_s = 0.02;
-    double release_s = 0.0;        ///< time in the tap when the fingertip starts to rise
+    double release_s = 0.0;                 ///< time in the tap when the fingertip starts to rise
     const double* holdPressures = nullptr;  ///< ideal pressures while held (taxelCount values)
 };
 
@@ -68,7 +68,9 @@ struct EffectDescription {
     std::string models;  ///< one sentence: what the effect models
     std::vector<EffectParameter> parameters;
     bool takesTaxelList = false;  ///< dead_taxel's "taxels": [indices]
-    std::function<std::unique_ptr<Effect>(const JsonFields&, const FingertipContactModel&, RandomStream)> make;
+    std::function<std::unique_ptr<Effect>(const JsonFields&, const FingertipContactModel&,
+                                          RandomStream)>
+        make;
 };
 
 /// Every effect the simulated rig knows.

@@ -20,8 +20,12 @@ std::map<std::string, int>& counts() {
 /// Gaussian stage positioning error per move (the paper's stage: about 20 um).
 class StageError final : public Effect {
 public:
-    StageError(double sigma, RandomStream rng) : Effect("stage_error", Acts::Pose), sigma_(sigma), rng_(rng) {}
-    Vec2 perturbPose(Vec2 p) override { return {p.x + rng_.normal(0, sigma_), p.y + rng_.normal(0, sigma_)}; }
+    StageError(double sigma, RandomStream rng)
+        : Effect("stage_error", Acts::Pose), sigma_(sigma), rng_(rng) {}
+    Vec2 perturbPose(Vec2 p) override {
+        return {p.x + rng_.normal(0, sigma_), p.y + rng_.normal(0, sigma_)};
+    }
+
 private:
     double sigma_;
     RandomStream rng_;
@@ -30,8 +34,10 @@ private:
 /// The reflex stops the tapper only after a latency, so it keeps pressing (paper: 20 ms).
 class ContactLatency final : public Effect {
 public:
-    explicit ContactLatency(double latency) : Effect("contact_latency", Acts::Mechanics), latency_(latency) {}
+    explicit ContactLatency(double latency)
+        : Effect("contact_latency", Acts::Mechanics), latency_(latency) {}
     double reflexLatency_s() const override { return latency_; }
+
 private:
     double latency_;
 };
@@ -41,22 +47,28 @@ private:
 class ViscoelasticMemory final : public Effect {
 public:
     ViscoelasticMemory(double fraction, double tau, int taxels)
-        : Effect("viscoelastic_memory", Acts::Signal, 10), fraction_(fraction), tau_(tau),
+        : Effect("viscoelastic_memory", Acts::Signal, 10),
+          fraction_(fraction),
+          tau_(tau),
           lastHold_(static_cast<std::size_t>(taxels), 0.0) {}
     void shapeSignal(Tap& tap, const SignalContext& c) override {
         const int K = tap.taxels;
         for (int t = 0; t < tap.sampleCount(); ++t) {
             const double now = c.startTime_s + t * c.samplePeriod_s;
             const double sincePrev = now - lastRelease_;
-            const double prev = std::isfinite(lastRelease_) ? fraction_ * std::exp(-sincePrev / tau_) : 0.0;
+            const double prev =
+                std::isfinite(lastRelease_) ? fraction_ * std::exp(-sincePrev / tau_) : 0.0;
             const double local = t * c.samplePeriod_s;
-            const double own = local > c.release_s ? fraction_ * std::exp(-(local - c.release_s) / tau_) : 0.0;
+            const double own =
+                local > c.release_s ? fraction_ * std::exp(-(local - c.release_s) / tau_) : 0.0;
             for (int k = 0; k < K; ++k)
-                tap.at(t, k) += prev * lastHold_[static_cast<std::size_t>(k)] + own * c.holdPressures[k];
+                tap.at(t, k) +=
+                    prev * lastHold_[static_cast<std::size_t>(k)] + own * c.holdPressures[k];
         }
         for (int k = 0; k < K; ++k) lastHold_[static_cast<std::size_t>(k)] = c.holdPressures[k];
         lastRelease_ = c.startTime_s + c.release_s;
     }
+
 private:
     double fraction_, tau_;
     std::vector<double> lastHold_;
@@ -71,7 +83,8 @@ public:
         const auto& p = model.projectedTaxels();
         for (int i = 0; i < K_; ++i)
             for (int j = 0; j < K_; ++j)
-                if (i != j && distance(p[static_cast<std::size_t>(i)], p[static_cast<std::size_t>(j)]) <= radius)
+                if (i != j && distance(p[static_cast<std::size_t>(i)],
+                                       p[static_cast<std::size_t>(j)]) <= radius)
                     pairs_.push_back({i, j});
         coupling_ = coupling;
     }
@@ -79,9 +92,11 @@ public:
         std::vector<double> frame(static_cast<std::size_t>(K_));
         for (int t = 0; t < tap.sampleCount(); ++t) {
             std::copy(tap.frame(t), tap.frame(t) + K_, frame.begin());
-            for (const auto& [to, from] : pairs_) tap.at(t, to) += coupling_ * frame[static_cast<std::size_t>(from)];
+            for (const auto& [to, from] : pairs_)
+                tap.at(t, to) += coupling_ * frame[static_cast<std::size_t>(from)];
         }
     }
+
 private:
     int K_;
     double coupling_ = 0.0;
@@ -97,6 +112,7 @@ public:
         for (int t = 0; t < tap.sampleCount(); ++t)
             for (int k : taxels_) tap.at(t, k) = reading_;
     }
+
 private:
     std::vector<int> taxels_;
     double reading_;
@@ -107,10 +123,16 @@ private:
 /// (PROTOCOLS.md §4): compensation leaves a residual and slowly eats into a sustained press.
 class BaselineDrift final : public Effect {
 public:
-    BaselineDrift(double rate, double threshold, double freeGain, double touchGain, int taxels, RandomStream rng)
-        : Effect("baseline_drift", Acts::Signal, 40), rate_(rate), threshold_(threshold), freeGain_(freeGain),
-          touchGain_(touchGain), drift_(static_cast<std::size_t>(taxels), 0.0),
-          estimate_(static_cast<std::size_t>(taxels), 0.0), rng_(rng) {}
+    BaselineDrift(double rate, double threshold, double freeGain, double touchGain, int taxels,
+                  RandomStream rng)
+        : Effect("baseline_drift", Acts::Signal, 40),
+          rate_(rate),
+          threshold_(threshold),
+          freeGain_(freeGain),
+          touchGain_(touchGain),
+          drift_(static_cast<std::size_t>(taxels), 0.0),
+          estimate_(static_cast<std::size_t>(taxels), 0.0),
+          rng_(rng) {}
     void shapeSignal(Tap& tap, const SignalContext& c) override {
         // The time since the previous tap passes without touch, in steps of at most a quarter
         // second: the drift is a random walk (its variance only depends on the total time) and
@@ -123,9 +145,11 @@ public:
                 for (std::size_t k = 0; k < drift_.size(); ++k) step(k, 0.0, dt);
         }
         for (int t = 0; t < tap.sampleCount(); ++t)
-            for (int k = 0; k < tap.taxels; ++k) tap.at(t, k) = step(static_cast<std::size_t>(k), tap.at(t, k), c.samplePeriod_s);
+            for (int k = 0; k < tap.taxels; ++k)
+                tap.at(t, k) = step(static_cast<std::size_t>(k), tap.at(t, k), c.samplePeriod_s);
         lastTime_ = c.startTime_s + tap.sampleCount() * c.samplePeriod_s;
     }
+
 private:
     double step(std::size_t k, double pressure, double dt) {
         drift_[k] += rate_ * std::sqrt(dt) * rng_.normal();
@@ -156,10 +180,12 @@ private:
 /// Gaussian electronic noise on every sample; the compensated output cannot go below 0.
 class TaxelNoise final : public Effect {
 public:
-    TaxelNoise(double sigma, RandomStream rng) : Effect("taxel_noise", Acts::Signal, 50), sigma_(sigma), rng_(rng) {}
+    TaxelNoise(double sigma, RandomStream rng)
+        : Effect("taxel_noise", Acts::Signal, 50), sigma_(sigma), rng_(rng) {}
     void shapeSignal(Tap& tap, const SignalContext&) override {
         for (double& v : tap.samples) v = std::max(0.0, v + sigma_ * rng_.normal());
     }
+
 private:
     double sigma_;
     RandomStream rng_;
@@ -168,17 +194,20 @@ private:
 /// The 8-bit converter: whole counts, saturating at the top of the range.
 class AdcQuantisation final : public Effect {
 public:
-    explicit AdcQuantisation(double maxCounts) : Effect("adc_quantisation", Acts::Signal, 60), max_(maxCounts) {}
+    explicit AdcQuantisation(double maxCounts)
+        : Effect("adc_quantisation", Acts::Signal, 60), max_(maxCounts) {}
     void shapeSignal(Tap& tap, const SignalContext&) override {
         for (double& v : tap.samples) v = std::clamp(std::round(v), 0.0, max_);
     }
+
 private:
     double max_;
 };
 
 }  // namespace
 
-Effect::Effect(std::string name, Acts acts, int order) : name_(std::move(name)), acts_(acts), order_(order) {
+Effect::Effect(std::string name, Acts acts, int order)
+    : name_(std::move(name)), acts_(acts), order_(order) {
     std::lock_guard lock(countsMutex);
     ++counts()[name_];
 }
@@ -193,68 +222,94 @@ const std::vector<EffectDescription>& effectCatalogue() {
     using M = FingertipContactModel;
     static const std::vector<EffectDescription> catalogue = [] {
         std::vector<EffectDescription> c;
-        c.push_back({"taxel_noise", "Gaussian noise on every sample of every taxel, clipped at 0 counts.",
-                     {{"sigma_counts", "standard deviation, counts", 0.0, 50.0, 1.5}}, false,
-                     [](const JsonFields& f, const M&, RandomStream r) {
-                         return std::make_unique<TaxelNoise>(f.number("sigma_counts", 0.0, 50.0), r);
-                     }});
-        c.push_back({"baseline_drift", "Random-walk drift of each taxel's baseline with skinManager-style compensation.",
-                     {{"rate_counts_per_sqrt_s", "random-walk drift, counts per sqrt(second)", 0.0, 20.0, 0.5},
-                      {"touch_threshold_counts", "compensation's touch threshold, counts", 0.1, 100.0, 2.0},
-                      {"free_gain", "compensation gain without touch", 0.0, 1.0, 0.2},
-                      {"touch_gain", "compensation gain in touch", 0.0, 1.0, 0.05}},
+        c.push_back({"taxel_noise",
+                     "Gaussian noise on every sample of every taxel, clipped at 0 counts.",
+                     {{"sigma_counts", "standard deviation, counts", 0.0, 50.0, 1.5}},
                      false,
-                     [](const JsonFields& f, const M& m, RandomStream r) {
-                         return std::make_unique<BaselineDrift>(f.number("rate_counts_per_sqrt_s", 0.0, 20.0),
-                                                                f.number("touch_threshold_counts", 0.1, 100.0),
-                                                                f.number("free_gain", 0.0, 1.0), f.number("touch_gain", 0.0, 1.0),
-                                                                m.taxelCount(), r);
+                     [](const JsonFields& f, const M&, RandomStream r) {
+                         return std::make_unique<TaxelNoise>(f.number("sigma_counts", 0.0, 50.0),
+                                                             r);
                      }});
-        c.push_back({"adc_quantisation", "8-bit conversion: readings rounded to whole counts and saturated.",
-                     {{"max_counts", "saturation level, counts", 1.0, 255.0, 255.0}}, false,
+        c.push_back(
+            {"baseline_drift",
+             "Random-walk drift of each taxel's baseline with skinManager-style compensation.",
+             {{"rate_counts_per_sqrt_s", "random-walk drift, counts per sqrt(second)", 0.0, 20.0,
+               0.5},
+              {"touch_threshold_counts", "compensation's touch threshold, counts", 0.1, 100.0, 2.0},
+              {"free_gain", "compensation gain without touch", 0.0, 1.0, 0.2},
+              {"touch_gain", "compensation gain in touch", 0.0, 1.0, 0.05}},
+             false,
+             [](const JsonFields& f, const M& m, RandomStream r) {
+                 return std::make_unique<BaselineDrift>(
+                     f.number("rate_counts_per_sqrt_s", 0.0, 20.0),
+                     f.number("touch_threshold_counts", 0.1, 100.0),
+                     f.number("free_gain", 0.0, 1.0), f.number("touch_gain", 0.0, 1.0),
+                     m.taxelCount(), r);
+             }});
+        c.push_back({"adc_quantisation",
+                     "8-bit conversion: readings rounded to whole counts and saturated.",
+                     {{"max_counts", "saturation level, counts", 1.0, 255.0, 255.0}},
+                     false,
                      [](const JsonFields& f, const M&, RandomStream) {
-                         return std::make_unique<AdcQuantisation>(f.number("max_counts", 1.0, 255.0));
+                         return std::make_unique<AdcQuantisation>(
+                             f.number("max_counts", 1.0, 255.0));
                      }});
-        c.push_back({"contact_latency", "The contact reflex stops the tapper only after a latency.",
-                     {{"latency_s", "reflex latency, seconds", 0.0, 0.5, 0.02}}, false,
+        c.push_back({"contact_latency",
+                     "The contact reflex stops the tapper only after a latency.",
+                     {{"latency_s", "reflex latency, seconds", 0.0, 0.5, 0.02}},
+                     false,
                      [](const JsonFields& f, const M&, RandomStream) {
                          return std::make_unique<ContactLatency>(f.number("latency_s", 0.0, 0.5));
                      }});
-        c.push_back({"stage_error", "Gaussian positioning error of the XY stage on each move.",
-                     {{"sigma_mm", "standard deviation per axis, mm", 0.0, 2.0, 0.02}}, false,
+        c.push_back({"stage_error",
+                     "Gaussian positioning error of the XY stage on each move.",
+                     {{"sigma_mm", "standard deviation per axis, mm", 0.0, 2.0, 0.02}},
+                     false,
                      [](const JsonFields& f, const M&, RandomStream r) {
                          return std::make_unique<StageError>(f.number("sigma_mm", 0.0, 2.0), r);
                      }});
-        c.push_back({"viscoelastic_memory", "The pad keeps a decaying residual of recent presses.",
-                     {{"fraction", "residual right after release, fraction of the held pressure", 0.0, 1.0, 0.1},
+        c.push_back({"viscoelastic_memory",
+                     "The pad keeps a decaying residual of recent presses.",
+                     {{"fraction", "residual right after release, fraction of the held pressure",
+                       0.0, 1.0, 0.1},
                       {"time_constant_s", "decay time constant, seconds", 0.01, 60.0, 0.5}},
                      false,
                      [](const JsonFields& f, const M& m, RandomStream) {
-                         return std::make_unique<ViscoelasticMemory>(f.number("fraction", 0.0, 1.0),
-                                                                     f.number("time_constant_s", 0.01, 60.0), m.taxelCount());
+                         return std::make_unique<ViscoelasticMemory>(
+                             f.number("fraction", 0.0, 1.0),
+                             f.number("time_constant_s", 0.01, 60.0), m.taxelCount());
                      }});
-        c.push_back({"crosstalk", "Each taxel also reads a fraction of its neighbours' pressure.",
+        c.push_back({"crosstalk",
+                     "Each taxel also reads a fraction of its neighbours' pressure.",
                      {{"coupling", "fraction of each neighbour's pressure", 0.0, 0.5, 0.05},
-                      {"radius_mm", "neighbours within this distance on the contact plane, mm", 0.0, 30.0, 4.5}},
+                      {"radius_mm", "neighbours within this distance on the contact plane, mm", 0.0,
+                       30.0, 4.5}},
                      false,
                      [](const JsonFields& f, const M& m, RandomStream) {
-                         return std::make_unique<Crosstalk>(f.number("coupling", 0.0, 0.5), f.number("radius_mm", 0.0, 30.0), m);
+                         return std::make_unique<Crosstalk>(f.number("coupling", 0.0, 0.5),
+                                                            f.number("radius_mm", 0.0, 30.0), m);
                      }});
-        c.push_back({"dead_taxel", "Listed taxels read a fixed value (0 = dead) whatever the contact.",
-                     {{"reading_counts", "the stuck reading, counts", 0.0, 255.0, 0.0}}, true,
-                     [](const JsonFields& f, const M& m, RandomStream) {
-                         if (!f.has("taxels") || !f.raw("taxels").is_array() || f.raw("taxels").empty())
-                             f.fail("taxels", "dead_taxel needs 'taxels': a non-empty list of taxel indices 0.." +
-                                                  std::to_string(m.taxelCount() - 1));
-                         std::vector<int> list;
-                         for (const auto& v : f.raw("taxels")) {
-                             if (!v.is_number_integer() || v.get<int>() < 0 || v.get<int>() >= m.taxelCount())
-                                 f.fail("taxels", "taxel " + describeJson(v) + " does not exist; use indices 0.." +
-                                                      std::to_string(m.taxelCount() - 1));
-                             list.push_back(v.get<int>());
-                         }
-                         return std::make_unique<DeadTaxel>(list, f.number("reading_counts", 0.0, 255.0));
-                     }});
+        c.push_back(
+            {"dead_taxel",
+             "Listed taxels read a fixed value (0 = dead) whatever the contact.",
+             {{"reading_counts", "the stuck reading, counts", 0.0, 255.0, 0.0}},
+             true,
+             [](const JsonFields& f, const M& m, RandomStream) {
+                 if (!f.has("taxels") || !f.raw("taxels").is_array() || f.raw("taxels").empty())
+                     f.fail("taxels",
+                            "dead_taxel needs 'taxels': a non-empty list of taxel indices 0.." +
+                                std::to_string(m.taxelCount() - 1));
+                 std::vector<int> list;
+                 for (const auto& v : f.raw("taxels")) {
+                     if (!v.is_number_integer() || v.get<int>() < 0 ||
+                         v.get<int>() >= m.taxelCount())
+                         f.fail("taxels", "taxel " + describeJson(v) +
+                                              " does not exist; use indices 0.." +
+                                              std::to_string(m.taxelCount() - 1));
+                     list.push_back(v.get<int>());
+                 }
+                 return std::make_unique<DeadTaxel>(list, f.number("reading_counts", 0.0, 255.0));
+             }});
         return c;
     }();
     return catalogue;
