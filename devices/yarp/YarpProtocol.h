@@ -1,0 +1,72 @@
+#pragma once
+// Reading an iCub skin stream over YARP (PROTOCOLS.md §3, §4), as pure codecs: the name-server
+// query, the text-carrier data lines, the binary Vector-of-doubles payload (tag 0x10A before YARP
+// 4, 0x114 from YARP 4), picking one fingertip's 12 values out of the 192-value hand vector, and
+// skinManager-style compensation of a raw stream. No sockets here.
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace activetouch::yarp {
+
+class YarpError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// Name server (text): CONNACK extern, read "Welcome extern", then "d" and the query.
+std::string nameServerGreeting();                      ///< "CONNACK extern\n"
+std::string nameServerQuery(const std::string& port);  ///< "d\nquery /port\n"
+
+struct Registration {
+    std::string port, host;
+    int tcpPort = 0;
+    std::string carrier;
+};
+/// Reads the server's reply lines up to "*** end of message"; nothing if the port is unknown.
+/// Throws YarpError for a reply it cannot read.
+std::optional<Registration> parseRegistration(const std::vector<std::string>& lines);
+
+// Data connection (text carrier): "CONNECT extern\r\n", read "Welcome extern", then "r\n".
+std::string dataGreeting();
+std::string becomeReader();
+
+/// Whether `line` is a message header ("d", "do", "D", "do 12 3.4" with an envelope...).
+bool isMessageHeader(const std::string& line);
+/// The numbers of a data line. Throws YarpError naming the offending token.
+std::vector<double> parseDataLine(const std::string& line);
+
+/// A binary message's payload after the port command: int32 tag, int32 count, count elements.
+/// Accepts tag 0x10A and 0x114 and derives the element size (8-byte double or 4-byte float) from
+/// the payload length. Throws YarpError for anything else.
+std::vector<double> parseBinaryVector(const std::vector<std::uint8_t>& payload);
+
+/// The first taxel of each fingertip in the 192-value hand vector.
+enum class Finger { Index = 0, Middle = 12, Ring = 24, Little = 36, Thumb = 48 };
+/// The 12 values of `finger`. Throws YarpError if the vector is not 192 values long.
+std::vector<double> fingertipTaxels(const std::vector<double>& hand, Finger finger);
+
+/// skinManager's compensation of a raw stream (raw 0..255, lower = more pressure, resting near
+/// 235): calibrate the baseline and a touch threshold (95th percentile of the noise, at least 1)
+/// from resting frames, then report d = 255 - raw - baseline clamped to 0..255, nudging the
+/// baseline by gain * 0.02 * d / threshold each frame (gain 0.2 without touch, 0.05 in touch).
+class SkinCompensation {
+public:
+    explicit SkinCompensation(int taxels = 12) : taxels_(taxels) {}
+    /// Adds a resting frame to the calibration.
+    void calibrate(const std::vector<double>& raw);
+    bool calibrated() const { return !baseline_.empty(); }
+    /// The compensated frame. Throws YarpError before calibration or for a frame of the wrong size.
+    std::vector<double> compensate(const std::vector<double>& raw);
+    const std::vector<double>& threshold() const { return threshold_; }
+
+private:
+    void finishCalibration();
+    int taxels_;
+    std::vector<std::vector<double>> resting_;
+    std::vector<double> baseline_, threshold_;
+};
+
+}  // namespace activetouch::yarp
