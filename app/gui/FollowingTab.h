@@ -26,7 +26,6 @@ public:
     PlotPanel* activePanel() const { return active_; }
     PlotPanel* passivePanel() const { return passive_; }
     PlotPanel* replayPanel() const { return replay_; }
-    QTableWidget* table() const { return table_; }
     /// Replays trial `index` (in the table's order) at tap `tap`.
     void replay(int index, int tap);
     QString replayText() const;

@@ -177,14 +177,6 @@ SceneSpec ScenePanel::sceneFromPanel(const SceneSpec& base) const {
     return parseScene(j, "scene panel", "", ".");
 }
 
-void ScenePanel::setEffectEnabled(const std::string& name, bool on) {
-    effects_.at(name).box->setChecked(on);
-}
-
-bool ScenePanel::effectEnabled(const std::string& name) const {
-    return effects_.at(name).box->isChecked();
-}
-
 void ScenePanel::loadPolygon() {
     const QString path =
         QFileDialog::getOpenFileName(this, tr("Load a polygon"), QString(), tr("JSON (*.json)"));

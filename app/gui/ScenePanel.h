@@ -26,10 +26,6 @@ public:
     /// the panel's field if what is shown is not a valid scene.
     SceneSpec sceneFromPanel(const SceneSpec& base) const;
 
-    /// Turns an effect on or off as a click on its toggle would.
-    void setEffectEnabled(const std::string& name, bool on);
-    bool effectEnabled(const std::string& name) const;
-
 signals:
     void changed();
     void failed(const QString& message);

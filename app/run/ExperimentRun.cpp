@@ -36,6 +36,18 @@ std::FILE* openTable(const fs::path& path) {
 
 }  // namespace
 
+TrialSetup trialSetupFor(const RunResult& trained, FollowingMode mode,
+                         const FollowingSettings& settings, const Polygon& outline,
+                         const std::optional<Vec2>& start) {
+    TrialSetup setup;
+    setup.mode = mode;
+    setup.settings = settings;
+    setup.valid = trained.validOffsets;
+    setup.noiseFloor = trained.spec.scene.tap.noiseFloor;
+    setup.start = start ? *start : lowerEdgeStart(outline, trained.validOffsets);
+    return setup;
+}
+
 int plannedTapEstimate(const ExperimentSpec& spec) {
     // Training taps are known; a trial takes about a perimeter's worth of follow steps plus the
     // repositioning around corners, which a fifth more covers.
@@ -73,13 +85,9 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
             run.label = ts.label;
             run.trial = ++counters[ts.label + "/" + modeName(ts.mode)];
             run.outline = simulated.world().object();
-            run.start = ts.start ? *ts.start : lowerEdgeStart(run.outline, result.validOffsets);
-            TrialSetup setup;
-            setup.mode = ts.mode;
-            setup.start = run.start;
-            setup.settings = spec.following;
-            setup.valid = result.validOffsets;
-            setup.noiseFloor = spec.scene.tap.noiseFloor;
+            const TrialSetup setup =
+                trialSetupFor(result, ts.mode, spec.following, run.outline, ts.start);
+            run.start = setup.start;
             progress.step = std::string(modeName(ts.mode)) + " following, " + ts.label + " trial " +
                             std::to_string(run.trial);
             int tapIndex = 0;

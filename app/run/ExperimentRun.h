@@ -80,6 +80,12 @@ RunResult runExperiment(const ExperimentSpec& spec, const RunOptions& options);
 RunResult runFollowing(const RunResult& trained, const ExperimentSpec& spec,
                        const RunOptions& options);
 
+/// A trial's set-up on `outline` with a trained run's valid range: the given start, or the lower
+/// edge's middle centred in the valid range.
+TrialSetup trialSetupFor(const RunResult& trained, FollowingMode mode,
+                         const FollowingSettings& settings, const Polygon& outline,
+                         const std::optional<Vec2>& start);
+
 /// How many taps a run will take: exact for training, estimated for following trials.
 int plannedTapEstimate(const ExperimentSpec& spec);
 

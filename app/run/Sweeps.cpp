@@ -114,17 +114,13 @@ std::vector<FollowingSweepRow> followingSweep(const RunResult& r, const RunOptio
                                          1;
                             SimulatedRig simulated(scene, model);
                             Rig rig = simulated.rig();
-                            TrialSetup setup;
-                            setup.mode = mode;
-                            setup.settings = r.spec.following;
-                            setup.settings.followStep_mm = follow;
-                            setup.settings.repositionStep_mm = reposition;
-                            setup.settings.beliefThreshold = threshold;
-                            setup.valid = r.validOffsets;
-                            setup.noiseFloor = r.spec.scene.tap.noiseFloor;
+                            FollowingSettings settings = r.spec.following;
+                            settings.followStep_mm = follow;
+                            settings.repositionStep_mm = reposition;
+                            settings.beliefThreshold = threshold;
                             const Polygon outline = simulated.world().object();
-                            setup.start = object->start ? *object->start
-                                                        : lowerEdgeStart(outline, r.validOffsets);
+                            const TrialSetup setup =
+                                trialSetupFor(r, mode, settings, outline, object->start);
                             const TrialResult t =
                                 runTrial(rig, r.classifier, r.classes, outline, setup,
                                          [&](const FollowedTap&) { return !cancelled(options); });

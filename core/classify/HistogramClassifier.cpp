@@ -248,7 +248,8 @@ int HistogramClassifier::classify(const Tap& tap) const {
 }
 
 HistogramClassifier::Decision HistogramClassifier::decide(const Tap& tap) const {
-    std::vector<double> scores(static_cast<std::size_t>(classes_));
+    thread_local std::vector<double> scores;
+    scores.resize(static_cast<std::size_t>(classes_));
     logLikelihoods(tap, scores.data());
     Decision d;
     d.cls = argmaxLowestIndex(scores.data(), classes_);

@@ -63,23 +63,17 @@ Vec2 lowerEdgeStart(const Polygon& outline, const ValidOffsets& valid) {
 }
 
 std::string startProblem(const Polygon& outline, Vec2 start, const FollowingSettings& s) {
-    const double sd = outline.signedDistance(start);
-    char buf[200];
-    if (-sd > s.lostOutside_mm) {
-        std::snprintf(buf, sizeof buf,
-                      "the start pose (%.2f, %.2f) mm is %.1f mm outside the object, beyond the "
-                      "%.1f mm at which a trial counts as lost; start on an edge",
-                      start.x, start.y, -sd, s.lostOutside_mm);
-        return buf;
-    }
-    if (sd > s.lostInside_mm) {
-        std::snprintf(buf, sizeof buf,
-                      "the start pose (%.2f, %.2f) mm is %.1f mm inside the object, beyond the "
-                      "%.1f mm at which a trial counts as lost; start on an edge",
-                      start.x, start.y, sd, s.lostInside_mm);
-        return buf;
-    }
-    return {};
+    const double sd = outline.signedDistance(start);  // + inside
+    const bool outside = sd < 0;
+    const double depth = std::abs(sd), limit = outside ? s.lostOutside_mm : s.lostInside_mm;
+    if (depth <= limit) return {};
+    char buf[240];
+    std::snprintf(buf, sizeof buf,
+                  "the start pose (%.2f, %.2f) mm is %.1f mm %s the object, beyond the %.1f mm at "
+                  "which a trial counts as "
+                  "lost; start on an edge",
+                  start.x, start.y, depth, outside ? "outside" : "inside", limit);
+    return buf;
 }
 
 void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double coverageRadius,

@@ -169,6 +169,15 @@ private slots:
         QTest::newRow("out-of-range parameter")
             << "range.json" << experiment(R"({"name": "stage_error", "sigma_mm": 9})")
             << "/scene/effects/0/sigma_mm";
+        QTest::newRow("self-intersecting polygon")
+            << "bowtie.json"
+            << R"({"name": "x", "scene": {"object": {"shape": "polygon", "polygon_mm": [[0,0],[40,40],[40,0],[0,40]], "offset_mm": [150, 150]}}})"
+            << "/scene/object/polygon_mm: the polygon is not a usable outline: the outline "
+               "intersects itself";
+        QTest::newRow("degenerate polygon")
+            << "line.json"
+            << R"({"name": "x", "scene": {"object": {"shape": "polygon", "polygon_mm": [[0,0],[10,0],[20,0]], "offset_mm": [150, 150]}}})"
+            << "encloses no area";
         QTest::newRow("unknown shape") << "shape.json"
                                        << R"({"name": "x", "scene": {"object": {"shape": "blob"}}})"
                                        << "unknown shape 'blob'";
@@ -277,6 +286,17 @@ private slots:
         const Outcome n = runCli({"check", nan});
         QCOMPARE(n.exitCode, 2);
         QVERIFY2(n.err.contains("line 2, column taxel_0"), qPrintable(n.err));
+        const QString over = write("over_taps.csv",
+                                   "set,class,orientation_deg,position,true_offset_mm,pose_x_mm,"
+                                   "pose_y_mm,robot_time_s,ending,sample,"
+                                   "taxel_0,taxel_1,taxel_2,taxel_3,taxel_4,taxel_5,taxel_6,taxel_"
+                                   "7,taxel_8,taxel_9,taxel_10,taxel_11\n"
+                                   "1,0,270,1,-8.5,150,129,0,reflex,0,0,0,0,300,0,0,0,0,0,0,0,0\n");
+        const Outcome v = runCli({"check", over});
+        QCOMPARE(v.exitCode, 2);
+        QVERIFY2(
+            v.err.contains("column taxel_3") && v.err.contains("outside the fingertip's 0..255"),
+            qPrintable(v.err));
     }
 
     void usageErrors() {

@@ -8,6 +8,7 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QStandardPaths>
+#include <QStyleOptionGroupBox>
 #include <QTemporaryDir>
 #include <QToolButton>
 #include <QtTest>
@@ -42,6 +43,23 @@ int linesIn(const QString& path) {
     QFile f(path);
     if (!f.open(QIODevice::ReadOnly)) return -1;
     return f.readAll().count('\n');
+}
+
+/// Clicks the check box in a checkable group box's title, as a person would.
+void clickCheckBox(QGroupBox* box) {
+    box->window()->raise();
+    for (QWidget* w = box; w; w = w->parentWidget()) w->show();
+    box->ensurePolished();
+    QStyleOptionGroupBox option;
+    option.initFrom(box);
+    option.text = box->title();
+    option.subControls =
+        QStyle::SC_GroupBoxCheckBox | QStyle::SC_GroupBoxLabel | QStyle::SC_GroupBoxFrame;
+    option.features = QStyleOptionFrame::None;
+    option.state |= box->isChecked() ? QStyle::State_On : QStyle::State_Off;
+    const QRect r = box->style()->subControlRect(QStyle::CC_GroupBox, &option,
+                                                 QStyle::SC_GroupBoxCheckBox, box);
+    QTest::mouseClick(box, Qt::LeftButton, Qt::NoModifier, r.center());
 }
 
 void closeErrorDialogs(QWidget& w) {
@@ -135,7 +153,8 @@ private slots:
         QGroupBox* crosstalk = window_->findChild<QGroupBox*>("effect_crosstalk");
         QVERIFY(crosstalk);
         QVERIFY(!crosstalk->isChecked());
-        crosstalk->setChecked(true);
+        clickCheckBox(crosstalk);
+        QVERIFY(crosstalk->isChecked());
         QSignalSpy ended(window_.get(), &MainWindow::runEnded);
         QVERIFY(window_->startRun(RunController::What::TrainingOnly));
         QVERIFY(ended.wait(60000));
@@ -144,7 +163,8 @@ private slots:
         QFile summary(window_->lastRunDirectory() + "/summary.json");
         QVERIFY(summary.open(QIODevice::ReadOnly));
         QVERIFY(summary.readAll().contains("\"crosstalk\""));
-        crosstalk->setChecked(false);
+        clickCheckBox(crosstalk);
+        QVERIFY(!crosstalk->isChecked());
         QTRY_VERIFY(!window_->running());
         QVERIFY(window_->startRun(RunController::What::TrainingOnly));
         QVERIFY(ended.wait(60000));
