@@ -1,6 +1,7 @@
 #pragma once
 // A rig is a stage, a tapper and a tactile sensor, each simulated or real in any mix, and a robot
 // clock that says how much robot time the experiment has used.
+#include <chrono>
 #include <stdexcept>
 #include <string>
 
@@ -21,6 +22,22 @@ public:
     virtual ~RobotClock() = default;
     /// Robot time since the rig was assembled, seconds.
     virtual double now_s() const = 0;
+};
+
+/// Robot time for real devices: wall time since the clock was made, times `scale` (an emulated
+/// bench that runs faster than real time says how much faster).
+class WallClock final : public RobotClock {
+public:
+    explicit WallClock(double scale = 1.0)
+        : scale_(scale), start_(std::chrono::steady_clock::now()) {}
+    double now_s() const override {
+        return scale_ *
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+
+private:
+    double scale_;
+    std::chrono::steady_clock::time_point start_;
 };
 
 struct Rig {

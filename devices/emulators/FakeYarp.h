@@ -1,0 +1,73 @@
+#pragma once
+// An emulated YARP name server and skin publisher on loopback TCP (PROTOCOLS.md §3, §4): the
+// name server answers CONNACK / query; the publisher streams a 192-value hand vector at a set rate
+// over the text carrier ('d' or 'D' headers, with or without an envelope) or the binary carrier
+// (Vector tag 0x10A or 0x114). The fingertip's 12 values come from a callback. Faults: name server
+// down, port unknown, stream stalls, malformed lines, vectors of the wrong size.
+#include <atomic>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace activetouch::emu {
+
+struct FakeYarpSettings {
+    std::string portName = "/icub/skin/right_hand_comp";
+    double rate_hz = 50.0;
+    int fingerOffset = 0;       ///< first index of the fingertip in the hand vector
+    std::string header = "d";   ///< text carrier: "d", "do" or "D"
+    bool envelope = false;      ///< text carrier: "d 17 1234.5" style envelope
+    std::uint32_t binaryTag = 0x10A;  ///< binary carrier: 0x10A (YARP <= 3.12) or 0x114 (YARP 4)
+    bool binaryFloats = false;        ///< binary carrier: float32 elements (tag 0x10A in YARP 4)
+};
+
+class FakeYarp {
+public:
+    using Source = std::function<std::vector<double>()>;  ///< 12 values per frame
+    FakeYarp(FakeYarpSettings settings, Source fingertip);
+    ~FakeYarp();
+    FakeYarp(const FakeYarp&) = delete;
+    FakeYarp& operator=(const FakeYarp&) = delete;
+
+    /// Listens on loopback (ephemeral ports) and starts serving. Throws std::runtime_error.
+    void start();
+    void stop();
+    int nameServerPort() const { return nameServerPort_; }
+    int dataPort() const { return dataPort_; }
+
+    void setNameServerUp(bool up);       ///< down: the listening socket is closed
+    void setPortRegistered(bool known);  ///< unknown: queries answer only the end marker
+    void setStalled(bool stalled);       ///< stalled: readers get no frames
+    void injectMalformedLine();          ///< the next message's data is not numbers
+    void injectWrongSize(int values);    ///< the next message carries `values` values
+    std::uint64_t framesSent() const { return frames_; }
+    int readers() const { return readers_; }
+
+private:
+    struct Client;
+    void loop();
+    void serveNameServer(Client& c);
+    void serveData(Client& c);
+    void publish(Client& c);
+    std::string textMessage();
+    std::string binaryMessage();
+
+    FakeYarpSettings s_;
+    Source source_;
+    std::thread thread_;
+    std::atomic<bool> running_{false};
+    std::atomic<bool> nameServerUp_{true}, registered_{true}, stalled_{false};
+    std::atomic<bool> malformed_{false};
+    std::atomic<int> wrongSize_{0};
+    std::atomic<std::uint64_t> frames_{0};
+    std::atomic<int> readers_{0};
+    int nameServerFd_ = -1, dataFd_ = -1;
+    int nameServerPort_ = 0, dataPort_ = 0;
+    std::mutex mutex_;
+    std::vector<Client> clients_;
+    std::uint64_t count_ = 0;
+};
+
+}  // namespace activetouch::emu

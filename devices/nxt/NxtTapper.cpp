@@ -1,0 +1,206 @@
+#include "devices/nxt/NxtTapper.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <thread>
+#include <vector>
+
+namespace activetouch::nxt {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+}  // namespace
+
+NxtTapper::NxtTapper(NxtBrick& brick, TactileSensor& sensor, const RobotClock& clock,
+                     const TapSpec& tap, NxtTapperSettings settings)
+    : brick_(brick), sensor_(sensor), clock_(clock), tap_(tap), s_(settings) {
+    if (!(s_.degreesPerMm > 0) || !(s_.fullPowerDegreesPerSecond > 0) || !(s_.timeScale > 0) ||
+        s_.returnPower < 1 || s_.returnPower > 100 || s_.motorPort > 2)
+        throw RigError(
+            "NXT tapper: settings out of range (degrees per mm and full-power speed must be "
+            "positive, return power 1..100, motor port A, B or C)");
+}
+
+std::string NxtTapper::state() const {
+    switch (phase_.load()) {
+        case Phase::Retracted:
+            return "retracted";
+        case Phase::Descending:
+            return "descending";
+        case Phase::Holding:
+            return "holding on contact";
+        case Phase::Returning:
+            return "returning";
+    }
+    return "?";
+}
+
+std::uint16_t NxtTapper::connect() {
+    sleepMs_ = brick_.keepAlive();
+    lastKeepAlive_s_ = clock_.now_s();
+    brake(true);
+    brick_.call(resetMotorPosition(s_.motorPort, false, true));
+    brick_.call(resetMotorPosition(s_.motorPort, true, true));
+    setPhase(Phase::Retracted);
+    return brick_.batteryMillivolts();
+}
+
+void NxtTapper::brake(bool withReply) {
+    brick_.call(setOutputState(s_.motorPort, 0, MotorOn | Brake | Regulated, RegulationSpeed, 0,
+                               RunRunning, 0, withReply));
+}
+
+std::string NxtTapper::safeStop() noexcept {
+    try {
+        brake(false);
+    } catch (const std::exception& e) {
+        setPhase(Phase::Retracted);
+        return std::string("the motor could not be braked (") + e.what() +
+               "); it stops at its tacho limit";
+    }
+    try {
+        const auto started = Clock::now();
+        int tacho = brick_.outputState(s_.motorPort).rotationCount;
+        if (tacho > s_.retractToleranceDeg) {
+            setPhase(Phase::Returning);
+            brick_.call(setOutputState(s_.motorPort, -s_.returnPower, MotorOn | Brake | Regulated,
+                                       RegulationSpeed, 0, RunRunning,
+                                       static_cast<std::uint32_t>(tacho), true));
+            while (tacho > s_.retractToleranceDeg && secondsSince(started) < 1.0) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(s_.pollPeriodMs));
+                tacho = brick_.outputState(s_.motorPort).rotationCount;
+            }
+            brake(true);
+        }
+        setPhase(Phase::Retracted);
+        return tacho > s_.retractToleranceDeg
+                   ? "the motor was braked " + std::to_string(tacho) +
+                         " degrees short of the retract angle"
+                   : "the motor was braked and returned to the retract angle";
+    } catch (const std::exception&) {
+        setPhase(Phase::Retracted);
+        return "the motor was braked (the brick did not answer the return)";
+    }
+}
+
+TapRecord NxtTapper::tap() {
+    abort_ = false;
+    const int K = sensor_.taxelCount();
+    const int T = tap_.samples;
+    TapRecord record;
+    record.startTime_s = clock_.now_s();
+    record.tap = Tap(T, K);
+    record.ending = TapEnding::StrokeLimit;
+    std::vector<double> frame(static_cast<std::size_t>(K));
+
+    const auto limitDeg = static_cast<std::uint32_t>(std::lround(tap_.stroke_mm * s_.degreesPerMm));
+    const int power = std::clamp(
+        static_cast<int>(std::lround(tap_.descentSpeed_mm_s * s_.degreesPerMm /
+                                     s_.fullPowerDegreesPerSecond * 100.0)),
+        1, 100);
+    const double hold_s = tap_.contactTime_s / s_.timeScale;
+    // Worst case: a full stroke down and back at the commanded speeds, the hold and the window,
+    // three times over and two seconds to spare. Nothing waits longer.
+    const double deadline_s =
+        3.0 * (2.0 * tap_.stroke_mm / tap_.descentSpeed_mm_s + tap_.contactTime_s +
+               tap_.window_s()) /
+            s_.timeScale +
+        2.0;
+
+    try {
+        if (sleepMs_ > 0 && (clock_.now_s() - lastKeepAlive_s_) * 1000.0 / s_.timeScale >
+                                sleepMs_ / 2.0) {
+            sleepMs_ = brick_.keepAlive();
+            lastKeepAlive_s_ = clock_.now_s();
+        }
+        std::uint64_t seq = sensor_.waitFrame(0, s_.frameTimeoutMs, frame.data());
+        if (seq == 0)
+            throw RigError("fingertip: no frame for " + std::to_string(s_.frameTimeoutMs) +
+                           " ms before the tap; the stream has stalled (the tapper did not move)");
+        const auto started = Clock::now();
+        brick_.call(setOutputState(s_.motorPort, power, MotorOn | Brake | Regulated,
+                                   RegulationSpeed, 0, RunRunning, limitDeg, true));
+        setPhase(Phase::Descending);
+        int samples = 0;
+        int tacho = 0;
+        std::optional<int> contactTacho;
+        int stopTacho = 0;
+        Clock::time_point holdUntil{}, lastPoll = Clock::now();
+        auto poll = [&] {
+            tacho = brick_.outputState(s_.motorPort).rotationCount;
+            lastPoll = Clock::now();
+        };
+        auto stopDescent = [&](TapEnding ending) {
+            if (ending == TapEnding::ContactReflex) brake(true);
+            poll();
+            stopTacho = tacho;
+            record.ending = ending;
+            holdUntil = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(hold_s));
+            setPhase(Phase::Holding);
+        };
+        while (samples < T || phase_ != Phase::Retracted) {
+            if (abort_) throw RigError("NXT tapper: the tap was stopped");
+            if (secondsSince(started) > deadline_s)
+                throw RigError("NXT tapper: the tap did not finish within " +
+                               std::to_string(deadline_s) + " s");
+            if (samples < T) {
+                const std::uint64_t next = sensor_.waitFrame(seq, s_.frameTimeoutMs, frame.data());
+                if (next == 0)
+                    throw RigError("fingertip: no frame for " + std::to_string(s_.frameTimeoutMs) +
+                                   " ms during a tap; the stream has stalled");
+                seq = next;
+                std::copy(frame.begin(), frame.end(),
+                          record.tap.samples.begin() + static_cast<std::ptrdiff_t>(samples) * K);
+                ++samples;
+                double total = 0.0;
+                for (double v : frame) total += v;
+                if (phase_ == Phase::Descending) {
+                    if (!contactTacho && total > tap_.noiseFloor) {
+                        poll();
+                        contactTacho = tacho;
+                    }
+                    if (total >= tap_.contactThreshold) stopDescent(TapEnding::ContactReflex);
+                }
+            } else {
+                std::this_thread::sleep_for(std::chrono::milliseconds(s_.pollPeriodMs));
+            }
+            if (phase_ == Phase::Retracted) continue;
+            if (Clock::now() - lastPoll >= std::chrono::milliseconds(s_.pollPeriodMs)) {
+                const OutputState st = brick_.outputState(s_.motorPort);
+                tacho = st.rotationCount;
+                lastPoll = Clock::now();
+                if (phase_ == Phase::Descending &&
+                    (st.runState == RunIdle || tacho >= static_cast<int>(limitDeg) - 1))
+                    stopDescent(TapEnding::StrokeLimit);
+            }
+            if (phase_ == Phase::Holding && Clock::now() >= holdUntil) {
+                if (tacho > s_.retractToleranceDeg)
+                    brick_.call(setOutputState(s_.motorPort, -s_.returnPower,
+                                               MotorOn | Brake | Regulated, RegulationSpeed, 0,
+                                               RunRunning, static_cast<std::uint32_t>(tacho), true));
+                setPhase(Phase::Returning);
+            }
+            if (phase_ == Phase::Returning && tacho <= s_.retractToleranceDeg) {
+                brake(true);
+                setPhase(Phase::Retracted);
+            }
+        }
+        record.stopDepth_mm =
+            contactTacho ? std::max(0, stopTacho - *contactTacho) / s_.degreesPerMm : 0.0;
+    } catch (const RigError& e) {
+        const std::string after = safeStop();
+        throw RigError(std::string(e.what()) + "; " + after);
+    }
+    record.cycleTime_s = clock_.now_s() - record.startTime_s;
+    return record;
+}
+
+}  // namespace activetouch::nxt

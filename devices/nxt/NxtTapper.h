@@ -1,0 +1,69 @@
+#pragma once
+// The LEGO NXT tapper (PROTOCOLS.md §1): motor A lowers the fingertip at a regulated speed with the
+// stroke as tacho limit; the fingertip's total pressure crossing the contact threshold is the
+// reflex that brakes it; after the contact time the motor returns to the retract angle (tacho 0,
+// set when the tapper connects). The tap records the fingertip stream's frames from the start of
+// the stroke. On any fault the motor is braked and, if the brick still answers, sent back.
+#include <atomic>
+#include <functional>
+#include <string>
+
+#include "core/rig/Rig.h"
+#include "core/scene/Scene.h"
+#include "devices/nxt/NxtBrick.h"
+
+namespace activetouch::nxt {
+
+struct NxtTapperSettings {
+    std::uint8_t motorPort = 0;  ///< 0, 1, 2 = A, B, C
+    /// Motor degrees per mm of fingertip travel: the tapper's gearing (unverified: measure it on
+    /// the rig and set it).
+    double degreesPerMm = 20.0;
+    /// Motor speed at power 100 under speed regulation, degrees per second (unverified).
+    double fullPowerDegreesPerSecond = 900.0;
+    int returnPower = 60;
+    int pollPeriodMs = 10;            ///< GETOUTPUTSTATE while the motor moves
+    int retractToleranceDeg = 4;      ///< how close to tacho 0 counts as retracted
+    int frameTimeoutMs = 500;         ///< a fingertip stream quiet this long has stalled
+    double timeScale = 1.0;           ///< robot seconds per wall second (emulated benches)
+};
+
+class NxtTapper final : public Tapper {
+public:
+    /// `clock` times the taps. The brick, sensor and clock must outlive the tapper.
+    NxtTapper(NxtBrick& brick, TactileSensor& sensor, const RobotClock& clock, const TapSpec& tap,
+              NxtTapperSettings settings = {});
+
+    /// Keep-alive, motor position reset (the current angle becomes the retract angle), battery.
+    /// Returns the battery voltage, mV. Throws RigError.
+    std::uint16_t connect();
+
+    TapRecord tap() override;
+
+    /// Brakes the motor and, if the brick answers, returns it to the retract angle within about a
+    /// second. Never throws; says what it managed.
+    std::string safeStop() noexcept;
+
+    void setContactThreshold(double counts) { tap_.contactThreshold = counts; }
+    const TapSpec& tapSpec() const { return tap_; }
+    /// Motor state for panels ("retracted", "descending", ...); read from any thread.
+    std::string state() const;
+    /// Asks a tap in progress to stop at the next frame (the tap then throws RigError).
+    void abort() { abort_ = true; }
+
+private:
+    enum class Phase { Retracted, Descending, Holding, Returning };
+    void brake(bool withReply);
+    void setPhase(Phase p) { phase_ = p; }
+    NxtBrick& brick_;
+    TactileSensor& sensor_;
+    const RobotClock& clock_;
+    TapSpec tap_;
+    NxtTapperSettings s_;
+    std::atomic<Phase> phase_{Phase::Retracted};
+    std::atomic<bool> abort_{false};
+    double lastKeepAlive_s_ = 0.0;
+    std::uint32_t sleepMs_ = 0;
+};
+
+}  // namespace activetouch::nxt

@@ -1,0 +1,162 @@
+#include "devices/yamaha/SerialLineChannel.h"
+
+#include <QSerialPort>
+#include <future>
+
+namespace activetouch::rcx {
+
+SerialLineChannel::SerialLineChannel() {
+    thread_.setObjectName("serial");
+    context_ = new QObject;
+    context_->moveToThread(&thread_);
+    QObject::connect(&thread_, &QThread::finished, context_, &QObject::deleteLater);
+    thread_.start();
+}
+
+SerialLineChannel::~SerialLineChannel() {
+    close();
+    thread_.quit();
+    thread_.wait(2000);
+}
+
+bool SerialLineChannel::isOpen() const {
+    std::lock_guard lock(mutex_);
+    return open_ && failure_.empty();
+}
+
+void SerialLineChannel::open(const SerialSettings& settings) {
+    close();
+    settings_ = settings;
+    auto done = std::make_shared<std::promise<std::string>>();
+    auto result = done->get_future();
+    QMetaObject::invokeMethod(
+        context_,
+        [this, done] {
+            auto* port = new QSerialPort(context_);
+            port->setPortName(QString::fromStdString(settings_.portName));
+            bool ok = port->open(QIODevice::ReadWrite);
+            const auto parity = settings_.parity == 'E'   ? QSerialPort::EvenParity
+                                : settings_.parity == 'O' ? QSerialPort::OddParity
+                                                          : QSerialPort::NoParity;
+            ok = ok && port->setBaudRate(settings_.baud) &&
+                 port->setDataBits(static_cast<QSerialPort::DataBits>(settings_.dataBits)) &&
+                 port->setParity(parity) &&
+                 port->setStopBits(settings_.stopBits == 2 ? QSerialPort::TwoStop
+                                                           : QSerialPort::OneStop) &&
+                 port->setFlowControl(settings_.hardwareFlowControl ? QSerialPort::HardwareControl
+                                                                    : QSerialPort::NoFlowControl);
+            if (!ok) {
+                const std::string why = port->errorString().toStdString();
+                delete port;
+                done->set_value("serial port " + settings_.portName + " cannot be opened (" + why +
+                               "); check the name and that you may use it (group dialout)");
+                return;
+            }
+            QObject::connect(port, &QSerialPort::readyRead, context_,
+                             [this, port] { received(port->readAll()); });
+            QObject::connect(port, &QSerialPort::errorOccurred, context_,
+                             [this, port](QSerialPort::SerialPortError e) {
+                                 if (e == QSerialPort::ResourceError ||
+                                     e == QSerialPort::PermissionError ||
+                                     e == QSerialPort::DeviceNotFoundError ||
+                                     e == QSerialPort::ReadError ||
+                                     e == QSerialPort::WriteError) {
+                                     failed("serial port " + settings_.portName + " vanished (" +
+                                            port->errorString().toStdString() +
+                                            "); check the cable and connect again");
+                                     port->close();
+                                 }
+                             });
+            port_ = port;
+            done->set_value(std::string());
+        },
+        Qt::QueuedConnection);
+    if (result.wait_for(std::chrono::seconds(5)) != std::future_status::ready)
+        throw RigError("serial port " + settings.portName + ": opening did not finish in 5 s");
+    const std::string problem = result.get();
+    if (!problem.empty()) throw RigError(problem);
+    std::lock_guard lock(mutex_);
+    open_ = true;
+    failure_.clear();
+    lines_.clear();
+    partial_.clear();
+}
+
+void SerialLineChannel::close() {
+    {
+        std::lock_guard lock(mutex_);
+        if (!open_) return;
+        open_ = false;
+    }
+    auto done = std::make_shared<std::promise<void>>();
+    auto result = done->get_future();
+    QMetaObject::invokeMethod(
+        context_,
+        [this, done] {
+            if (port_) {
+                port_->close();
+                delete port_;
+                port_ = nullptr;
+            }
+            done->set_value();
+        },
+        Qt::QueuedConnection);
+    result.wait_for(std::chrono::seconds(2));
+    cv_.notify_all();
+}
+
+void SerialLineChannel::write(const std::string& bytes) {
+    {
+        std::lock_guard lock(mutex_);
+        if (!failure_.empty()) throw RigError(failure_);
+        if (!open_) throw RigError("serial port " + settings_.portName + " is not open");
+    }
+    QMetaObject::invokeMethod(
+        context_,
+        [this, data = QByteArray::fromStdString(bytes)] {
+            if (port_ && port_->isOpen()) {
+                port_->write(data);
+                port_->flush();
+            }
+        },
+        Qt::QueuedConnection);
+}
+
+std::optional<std::string> SerialLineChannel::readLine(int timeoutMs) {
+    std::unique_lock lock(mutex_);
+    cv_.wait_for(lock, std::chrono::milliseconds(timeoutMs),
+                 [&] { return !lines_.empty() || !failure_.empty() || !open_; });
+    if (!lines_.empty()) {
+        std::string line = std::move(lines_.front());
+        lines_.pop_front();
+        return line;
+    }
+    if (!failure_.empty()) throw RigError(failure_);
+    return std::nullopt;
+}
+
+void SerialLineChannel::discardInput() {
+    std::lock_guard lock(mutex_);
+    lines_.clear();
+}
+
+void SerialLineChannel::received(const QByteArray& bytes) {
+    std::lock_guard lock(mutex_);
+    partial_.append(bytes.constData(), static_cast<std::size_t>(bytes.size()));
+    std::size_t nl;
+    while ((nl = partial_.find('\n')) != std::string::npos) {
+        std::string line = partial_.substr(0, nl);
+        partial_.erase(0, nl + 1);
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        lines_.push_back(std::move(line));
+    }
+    cv_.notify_all();
+}
+
+void SerialLineChannel::failed(const std::string& why) {
+    std::lock_guard lock(mutex_);
+    if (failure_.empty()) failure_ = why;
+    cv_.notify_all();
+}
+
+}  // namespace activetouch::rcx

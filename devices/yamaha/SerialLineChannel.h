@@ -1,0 +1,61 @@
+#pragma once
+// A serial line in its own thread: QSerialPort lives in a worker thread; callers on any thread
+// write bytes and read CR LF lines with a timeout. A port that vanishes (cable pulled, adapter
+// unplugged) fails every later call with a sentence naming it.
+#include <QThread>
+#include <condition_variable>
+#include <deque>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "core/rig/Rig.h"
+
+class QSerialPort;
+
+namespace activetouch::rcx {
+
+struct SerialSettings {
+    std::string portName;   ///< /dev/ttyUSB0, /dev/ttyS0, a pseudo-terminal...
+    int baud = 9600;
+    int dataBits = 8;
+    char parity = 'O';      ///< 'N', 'E' or 'O'
+    int stopBits = 1;
+    bool hardwareFlowControl = false;
+};
+
+class SerialLineChannel {
+public:
+    SerialLineChannel();
+    ~SerialLineChannel();
+
+    /// Opens the port with `settings`. Throws RigError naming the port and the reason.
+    void open(const SerialSettings& settings);
+    void close();
+    bool isOpen() const;
+
+    /// Queues bytes for the port. Throws RigError if the port is closed or has vanished.
+    void write(const std::string& bytes);
+    /// The next line (without CR LF), waiting at most `timeoutMs`; nothing on timeout. Throws
+    /// RigError if the port has vanished.
+    std::optional<std::string> readLine(int timeoutMs);
+    /// Drops every line received so far.
+    void discardInput();
+    const std::string& portName() const { return settings_.portName; }
+
+private:
+    void received(const QByteArray& bytes);
+    void failed(const std::string& why);
+
+    SerialSettings settings_;
+    QThread thread_;
+    QObject* context_ = nullptr;  ///< lives in thread_
+    QSerialPort* port_ = nullptr;  ///< lives in thread_
+    mutable std::mutex mutex_;
+    std::condition_variable cv_;
+    std::deque<std::string> lines_;
+    std::string partial_, failure_;
+    bool open_ = false;
+};
+
+}  // namespace activetouch::rcx

@@ -1,0 +1,317 @@
+#include "devices/yarp/YarpFingertip.h"
+
+#include <QByteArray>
+#include <QTcpSocket>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace activetouch::yarp {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// Reads one line within `deadline`; empty optional on timeout or a closed socket.
+std::optional<std::string> readLine(QTcpSocket& s, QByteArray& buffer, Clock::time_point deadline) {
+    for (;;) {
+        const int nl = buffer.indexOf('\n');
+        if (nl >= 0) {
+            std::string line = buffer.left(nl).toStdString();
+            buffer.remove(0, nl + 1);
+            if (!line.empty() && line.back() == '\r') line.pop_back();
+            return line;
+        }
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+        if (left <= 0 || s.state() != QAbstractSocket::ConnectedState) return std::nullopt;
+        if (s.waitForReadyRead(static_cast<int>(std::min<long long>(left, 100))))
+            buffer += s.readAll();
+    }
+}
+
+std::string where(const YarpFingertipSettings& s) {
+    return s.nameServerHost + ":" + std::to_string(s.nameServerPort);
+}
+
+std::int32_t int32At(const QByteArray& b, int at) {
+    std::int32_t v;
+    std::memcpy(&v, b.constData() + at, 4);
+    return v;
+}
+
+}  // namespace
+
+YarpFingertip::YarpFingertip(YarpFingertipSettings settings, RawLog log)
+    : s_(std::move(settings)), log_(std::move(log)), latest_(kFingertipTaxels, 0.0),
+      compensation_(kFingertipTaxels) {}
+
+YarpFingertip::~YarpFingertip() {
+    disconnect();
+}
+
+void YarpFingertip::connect() {
+    disconnect();
+    {
+        std::lock_guard lock(mutex_);
+        failure_.clear();
+        lastProblem_.clear();
+        seq_ = 0;
+        history_.clear();
+        badInRow_ = 0;
+        calibrated_ = 0;
+        compensation_ = SkinCompensation(kFingertipTaxels);
+    }
+    badMessages_ = 0;
+    stop_ = false;
+    std::promise<std::string> ready;
+    auto result = ready.get_future();
+    thread_ = std::thread([this, &ready] { run(&ready); });
+    // The thread answers within its own bounded waits (name server, data port, welcome).
+    if (result.wait_for(std::chrono::milliseconds(3 * s_.connectTimeoutMs + 1000)) !=
+        std::future_status::ready) {
+        stop_ = true;
+        thread_.join();
+        throw RigError("YARP: connecting to " + s_.port + " did not finish in time");
+    }
+    const std::string problem = result.get();
+    if (!problem.empty()) {
+        thread_.join();
+        throw RigError(problem);
+    }
+    running_ = true;
+}
+
+void YarpFingertip::disconnect() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+    running_ = false;
+    cv_.notify_all();
+}
+
+void YarpFingertip::run(std::promise<std::string>* ready) {
+    auto say = [&](const std::string& dir, const std::string& text) {
+        if (log_) log_(dir, text);
+    };
+    const auto deadline = [&] { return Clock::now() + std::chrono::milliseconds(s_.connectTimeoutMs); };
+    QByteArray buffer;
+    Registration reg;
+    {
+        QTcpSocket ns;
+        ns.connectToHost(QString::fromStdString(s_.nameServerHost),
+                         static_cast<quint16>(s_.nameServerPort));
+        if (!ns.waitForConnected(s_.connectTimeoutMs)) {
+            ready->set_value("YARP: the name server at " + where(s_) + " does not answer (" +
+                             ns.errorString().toStdString() +
+                             "); start yarpserver there or set the name server's address");
+            return;
+        }
+        say("->", "CONNACK extern");
+        ns.write(QByteArray::fromStdString(nameServerGreeting()));
+        const auto welcome = readLine(ns, buffer, deadline());
+        if (!welcome || welcome->rfind("Welcome", 0) != 0) {
+            ready->set_value("YARP: the server at " + where(s_) +
+                             " did not greet like a YARP name server; check its address");
+            return;
+        }
+        say("<-", *welcome);
+        say("->", "query " + s_.port);
+        ns.write(QByteArray::fromStdString(nameServerQuery(s_.port)));
+        std::vector<std::string> lines;
+        const auto until = deadline();
+        for (;;) {
+            const auto line = readLine(ns, buffer, until);
+            if (!line) {
+                ready->set_value("YARP: the name server at " + where(s_) +
+                                 " did not finish its answer about " + s_.port);
+                return;
+            }
+            say("<-", *line);
+            lines.push_back(*line);
+            if (line->rfind("*** end of message", 0) == 0) break;
+        }
+        try {
+            const auto r = parseRegistration(lines);
+            if (!r) {
+                ready->set_value("YARP: the port " + s_.port +
+                                 " is not registered with the name server at " + where(s_) +
+                                 "; check the port name ('yarp name list') and that the skin "
+                                 "module is running");
+                return;
+            }
+            reg = *r;
+        } catch (const YarpError& e) {
+            ready->set_value(std::string("YARP: ") + e.what());
+            return;
+        }
+    }
+    QTcpSocket data;
+    data.connectToHost(QString::fromStdString(reg.host), static_cast<quint16>(reg.tcpPort));
+    if (!data.waitForConnected(s_.connectTimeoutMs)) {
+        ready->set_value("YARP: " + s_.port + " is registered at " + reg.host + ":" +
+                         std::to_string(reg.tcpPort) + " but refuses connections (" +
+                         data.errorString().toStdString() + "); is the skin module still running?");
+        return;
+    }
+    buffer.clear();
+    if (s_.binaryCarrier) {
+        const char header[8] = {'Y', 'A', 0x64, 0x1E, 0, 0, 'R', 'P'};
+        QByteArray hello(header, 8);
+        const std::string name = "/activetouch/reader";
+        const std::int32_t n = static_cast<std::int32_t>(name.size() + 1);
+        hello.append(reinterpret_cast<const char*>(&n), 4);
+        hello.append(name.c_str(), n);
+        hello.append("~r\n");
+        say("->", "binary header, name " + name + ", ~r");
+        data.write(hello);
+    } else {
+        say("->", "CONNECT extern");
+        data.write(QByteArray::fromStdString(dataGreeting()));
+        const auto welcome = readLine(data, buffer, deadline());
+        if (!welcome || welcome->rfind("Welcome", 0) != 0) {
+            ready->set_value("YARP: " + s_.port + " did not welcome the connection; is it a "
+                                                  "YARP port speaking the text carrier?");
+            return;
+        }
+        say("<-", *welcome);
+        say("->", "r");
+        data.write(QByteArray::fromStdString(becomeReader()));
+    }
+    data.flush();
+    ready->set_value(std::string());
+
+    bool wantHeader = true;
+    while (!stop_) {
+        if (data.state() != QAbstractSocket::ConnectedState) {
+            std::lock_guard lock(mutex_);
+            failure_ = "YARP: " + s_.port + " closed the connection; reconnect the fingertip";
+            cv_.notify_all();
+            say("!!", failure_);
+            break;
+        }
+        if (data.waitForReadyRead(50)) buffer += data.readAll();
+        if (s_.binaryCarrier) {
+            // "YA" int32 "RP", block count, block lengths, reply length, blocks.
+            while (buffer.size() >= 12) {
+                if (buffer[0] != 'Y' || buffer[1] != 'A' || buffer[6] != 'R' || buffer[7] != 'P') {
+                    const int next = buffer.indexOf("YA", 1);
+                    bad("a binary message does not start with its YA..RP marker; skipped to the "
+                        "next one");
+                    buffer.remove(0, next < 0 ? buffer.size() : next);
+                    continue;
+                }
+                const std::int32_t blocks = int32At(buffer, 8);
+                if (blocks < 1 || blocks > 16) {
+                    bad("a binary message claims " + std::to_string(blocks) + " blocks");
+                    buffer.remove(0, 2);
+                    continue;
+                }
+                const int headerBytes = 12 + 4 * blocks + 4;
+                if (buffer.size() < headerBytes) break;
+                long long total = 0;
+                for (int b = 0; b < blocks; ++b) total += int32At(buffer, 12 + 4 * b);
+                if (buffer.size() < headerBytes + total) break;
+                const std::int32_t lastLength = int32At(buffer, 12 + 4 * (blocks - 1));
+                const char* last = buffer.constData() + headerBytes + total - lastLength;
+                std::vector<std::uint8_t> payload(last, last + lastLength);
+                buffer.remove(0, headerBytes + static_cast<int>(total));
+                try {
+                    deliver(parseBinaryVector(payload));
+                } catch (const YarpError& e) {
+                    bad(e.what());
+                }
+            }
+        } else {
+            const auto noWait = Clock::now();
+            while (auto line = readLine(data, buffer, noWait)) {
+                if (wantHeader) {
+                    if (isMessageHeader(*line)) wantHeader = false;
+                    else bad("a line where a message header belongs: '" + line->substr(0, 40) + "'");
+                    continue;
+                }
+                wantHeader = true;
+                try {
+                    deliver(parseDataLine(*line));
+                } catch (const YarpError& e) {
+                    bad(e.what());
+                }
+            }
+        }
+        std::lock_guard lock(mutex_);
+        if (!failure_.empty()) break;
+    }
+    data.abort();
+}
+
+void YarpFingertip::deliver(const std::vector<double>& hand) {
+    std::vector<double> tip = fingertipTaxels(hand, s_.finger);  // throws for the wrong size
+    if (s_.compensateRaw) {
+        if (calibrated_ < s_.calibrationFrames) {
+            compensation_.calibrate(tip);
+            ++calibrated_;
+            return;
+        }
+        tip = compensation_.compensate(tip);
+    }
+    std::lock_guard lock(mutex_);
+    latest_ = tip;
+    ++seq_;
+    history_.push_back(std::move(tip));
+    if (history_.size() > kHistory) history_.pop_front();
+    lastFrame_ = Clock::now();
+    badInRow_ = 0;
+    if (log_ && seq_ % 50 == 1)
+        log_("<-", "frame " + std::to_string(seq_) + " (one in 50 shown)");
+    cv_.notify_all();
+}
+
+void YarpFingertip::bad(const std::string& problem) {
+    ++badMessages_;
+    if (log_) log_("!!", problem);
+    std::lock_guard lock(mutex_);
+    lastProblem_ = problem;
+    if (++badInRow_ >= s_.maxBadMessagesInRow) {
+        failure_ = "YARP: " + std::to_string(badInRow_) + " messages in a row from " + s_.port +
+                   " could not be read (last: " + problem + "); check the port and the finger";
+        cv_.notify_all();
+    }
+}
+
+void YarpFingertip::latestFrame(double* out) const {
+    std::lock_guard lock(mutex_);
+    std::copy(latest_.begin(), latest_.end(), out);
+}
+
+std::uint64_t YarpFingertip::waitFrame(std::uint64_t after, int timeoutMs, double* out) {
+    std::unique_lock lock(mutex_);
+    if (!running_ && failure_.empty())
+        throw RigError("YARP fingertip: not connected to " + s_.port + "; connect it first");
+    cv_.wait_for(lock, std::chrono::milliseconds(timeoutMs),
+                 [&] { return seq_ > after || !failure_.empty() || stop_; });
+    if (!failure_.empty()) throw RigError(failure_);
+    if (seq_ <= after) return 0;
+    // The frame right after `after` if it is still held (so that a tap sees every frame), else
+    // the oldest held; the latest one for a first call.
+    const std::uint64_t oldest = seq_ - history_.size() + 1;
+    const std::uint64_t want = after == 0 ? seq_ : std::max(after + 1, oldest);
+    const auto& f = history_[static_cast<std::size_t>(want - oldest)];
+    std::copy(f.begin(), f.end(), out);
+    return want;
+}
+
+std::uint64_t YarpFingertip::framesReceived() const {
+    std::lock_guard lock(mutex_);
+    return seq_;
+}
+
+std::string YarpFingertip::lastProblem() const {
+    std::lock_guard lock(mutex_);
+    return lastProblem_;
+}
+
+double YarpFingertip::secondsSinceFrame() const {
+    std::lock_guard lock(mutex_);
+    if (seq_ == 0) return std::numeric_limits<double>::infinity();
+    return std::chrono::duration<double>(Clock::now() - lastFrame_).count();
+}
+
+}  // namespace activetouch::yarp

@@ -1,0 +1,85 @@
+#pragma once
+// The iCub fingertip read over YARP (PROTOCOLS.md §3, §4): finds the skin port through the name
+// server, connects to it as a reader (text carrier by default, binary as an option), and keeps
+// the chosen fingertip's latest 12 values, compensating a raw stream skinManager-style if asked.
+// The socket lives in the client's own thread; nothing waits without a bound.
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <future>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/rig/Rig.h"
+#include "devices/yarp/YarpProtocol.h"
+
+namespace activetouch::yarp {
+
+struct YarpFingertipSettings {
+    std::string nameServerHost = "127.0.0.1";  ///< from the YARP conf file on the robot's network
+    int nameServerPort = 10000;
+    std::string port = "/icub/skin/right_hand_comp";
+    Finger finger = Finger::Index;
+    bool binaryCarrier = false;  ///< binary tcp carrier (tested against the emulator only)
+    /// The port streams raw values (255 = rest, lower = pressure): compensate them here after
+    /// `calibrationFrames` resting frames.
+    bool compensateRaw = false;
+    int calibrationFrames = 250;  ///< 5 s at 50 Hz, as skinManager
+    int connectTimeoutMs = 2000;
+    /// Messages that cannot be read in a row before the stream counts as failed.
+    int maxBadMessagesInRow = 25;
+};
+
+class YarpFingertip final : public TactileSensor {
+public:
+    using RawLog = std::function<void(const std::string& direction, const std::string& text)>;
+
+    explicit YarpFingertip(YarpFingertipSettings settings, RawLog log = {});
+    ~YarpFingertip() override;
+
+    /// Queries the name server and connects to the port as a reader. Throws RigError naming the
+    /// name server or port and what to do (server down, port unknown, refused, no welcome).
+    void connect();
+    void disconnect();
+    bool connected() const { return running_; }
+
+    int taxelCount() const override { return kFingertipTaxels; }
+    void latestFrame(double* out) const override;
+    std::uint64_t waitFrame(std::uint64_t after, int timeoutMs, double* out) override;
+
+    std::uint64_t framesReceived() const;
+    int badMessages() const { return badMessages_; }
+    /// The last message that could not be read, in a sentence (empty if none).
+    std::string lastProblem() const;
+    /// Seconds since the last good frame (infinity before the first).
+    double secondsSinceFrame() const;
+    const YarpFingertipSettings& settings() const { return s_; }
+
+private:
+    void run(std::promise<std::string>* ready);
+    void deliver(const std::vector<double>& hand);
+    void bad(const std::string& problem);
+
+    YarpFingertipSettings s_;
+    RawLog log_;
+    std::thread thread_;
+    std::atomic<bool> running_{false}, stop_{false};
+    mutable std::mutex mutex_;
+    std::condition_variable cv_;
+    std::vector<double> latest_;
+    static constexpr std::size_t kHistory = 256;
+    std::deque<std::vector<double>> history_;  ///< the last frames, newest last
+    std::uint64_t seq_ = 0;
+    std::chrono::steady_clock::time_point lastFrame_{};
+    std::string failure_, lastProblem_;
+    std::atomic<int> badMessages_{0};
+    int badInRow_ = 0;
+    SkinCompensation compensation_;
+    int calibrated_ = 0;
+};
+
+}  // namespace activetouch::yarp
