@@ -100,6 +100,9 @@ void FakeYarp::injectMalformedLine() {
 void FakeYarp::injectWrongSize(int values) {
     wrongSize_ = values;
 }
+void FakeYarp::setWrongSize(int values) {
+    alwaysWrongSize_ = values;
+}
 
 std::string FakeYarp::textMessage() {
     std::vector<double> hand(192, 0.0);
@@ -107,6 +110,7 @@ std::string FakeYarp::textMessage() {
     for (std::size_t i = 0; i < tip.size() && i < 12; ++i)
         hand[static_cast<std::size_t>(s_.fingerOffset) + i] = tip[i];
     if (const int n = wrongSize_.exchange(0)) hand.resize(static_cast<std::size_t>(n), 0.0);
+    if (const int n = alwaysWrongSize_.load()) hand.resize(static_cast<std::size_t>(n), 0.0);
     std::ostringstream o;
     o << s_.header;
     if (s_.envelope) o << ' ' << count_ << ' ' << count_ / s_.rate_hz;
@@ -127,6 +131,7 @@ std::string FakeYarp::binaryMessage() {
     for (std::size_t i = 0; i < tip.size() && i < 12; ++i)
         hand[static_cast<std::size_t>(s_.fingerOffset) + i] = tip[i];
     if (const int n = wrongSize_.exchange(0)) hand.resize(static_cast<std::size_t>(n), 0.0);
+    if (const int n = alwaysWrongSize_.load()) hand.resize(static_cast<std::size_t>(n), 0.0);
     std::string command;  // the port command: a one-element list holding "~d"... as YARP frames it
     put32(command, 2);
     command += "~d";

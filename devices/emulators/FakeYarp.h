@@ -42,6 +42,7 @@ public:
     void setStalled(bool stalled);       ///< stalled: readers get no frames
     void injectMalformedLine();          ///< the next message's data is not numbers
     void injectWrongSize(int values);    ///< the next message carries `values` values
+    void setWrongSize(int values);       ///< every message carries `values` values (0: 192)
     std::uint64_t framesSent() const { return frames_; }
     int readers() const { return readers_; }
 
@@ -60,7 +61,7 @@ private:
     std::atomic<bool> running_{false};
     std::atomic<bool> nameServerUp_{true}, registered_{true}, stalled_{false};
     std::atomic<bool> malformed_{false};
-    std::atomic<int> wrongSize_{0};
+    std::atomic<int> wrongSize_{0}, alwaysWrongSize_{0};
     std::atomic<std::uint64_t> frames_{0};
     std::atomic<int> readers_{0};
     int nameServerFd_ = -1, dataFd_ = -1;

@@ -1,0 +1,256 @@
+// The YARP fingertip client through QTcpSocket on loopback, against the emulated name server and
+// skin publisher: text carrier ('d', 'do', 'D', with and without envelope), binary carrier with
+// both Vector tags, compensation of a raw stream, and every stream fault.
+#include <QtTest>
+#include <atomic>
+#include <chrono>
+
+#include "devices/emulators/FakeYarp.h"
+#include "devices/yarp/YarpFingertip.h"
+
+using namespace activetouch;
+using namespace activetouch::yarp;
+using activetouch::emu::FakeYarp;
+using activetouch::emu::FakeYarpSettings;
+
+namespace {
+
+std::vector<double> ramp() {
+    std::vector<double> v(12);
+    for (int i = 0; i < 12; ++i) v[i] = 10.0 * i + 1.5;
+    return v;
+}
+
+YarpFingertipSettings clientFor(const FakeYarp& yarp, const FakeYarpSettings& s) {
+    YarpFingertipSettings c;
+    c.nameServerPort = yarp.nameServerPort();
+    c.port = s.portName;
+    c.finger = static_cast<Finger>(s.fingerOffset);
+    c.connectTimeoutMs = 1000;
+    return c;
+}
+
+}  // namespace
+
+class TestYarpFingertip : public QObject {
+    Q_OBJECT
+private slots:
+    void readsTheChosenFingertipOverTheTextCarrier_data() {
+        QTest::addColumn<QString>("header");
+        QTest::addColumn<bool>("envelope");
+        QTest::addColumn<int>("finger");
+        QTest::newRow("d, index") << "d" << false << 0;
+        QTest::newRow("do with envelope, middle") << "do" << true << 12;
+        QTest::newRow("D, thumb") << "D" << false << 48;
+    }
+    void readsTheChosenFingertipOverTheTextCarrier() {
+        QFETCH(QString, header);
+        QFETCH(bool, envelope);
+        QFETCH(int, finger);
+        FakeYarpSettings s;
+        s.header = header.toStdString();
+        s.envelope = envelope;
+        s.fingerOffset = finger;
+        s.rate_hz = 200;
+        FakeYarp yarp(s, ramp);
+        yarp.start();
+        std::vector<std::string> log;
+        YarpFingertip tip(clientFor(yarp, s),
+                          [&](const std::string& d, const std::string& t) { log.push_back(d + t); });
+        tip.connect();
+        double frame[12];
+        std::uint64_t seq = 0;
+        for (int i = 0; i < 20; ++i) {
+            const std::uint64_t next = tip.waitFrame(seq, 1000, frame);
+            QVERIFY(next > seq);
+            seq = next;
+        }
+        for (int i = 0; i < 12; ++i) QCOMPARE(frame[i], ramp()[i]);
+        QCOMPARE(tip.badMessages(), 0);
+        QVERIFY(std::find(log.begin(), log.end(), "->CONNACK extern") != log.end());
+        QVERIFY(std::find(log.begin(), log.end(), "<-Welcome extern") != log.end());
+    }
+
+    void readsTheBinaryCarrierWithBothVectorTags_data() {
+        QTest::addColumn<int>("tag");
+        QTest::addColumn<bool>("floats");
+        QTest::newRow("YARP 3: 0x10A doubles") << 0x10A << false;
+        QTest::newRow("YARP 4: 0x114 doubles") << 0x114 << false;
+        QTest::newRow("YARP 4: 0x10A floats") << 0x10A << true;
+    }
+    void readsTheBinaryCarrierWithBothVectorTags() {
+        QFETCH(int, tag);
+        QFETCH(bool, floats);
+        FakeYarpSettings s;
+        s.binaryTag = static_cast<std::uint32_t>(tag);
+        s.binaryFloats = floats;
+        s.rate_hz = 200;
+        FakeYarp yarp(s, ramp);
+        yarp.start();
+        auto c = clientFor(yarp, s);
+        c.binaryCarrier = true;
+        YarpFingertip tip(c);
+        tip.connect();
+        double frame[12];
+        QVERIFY(tip.waitFrame(0, 1000, frame) > 0);
+        QVERIFY(tip.waitFrame(1, 1000, frame) > 1);
+        for (int i = 0; i < 12; ++i) QCOMPARE(frame[i], ramp()[i]);
+    }
+
+    void framesArriveAtTheStreamRate() {
+        FakeYarpSettings s;  // 50 Hz, as the skin
+        FakeYarp yarp(s, ramp);
+        yarp.start();
+        YarpFingertip tip(clientFor(yarp, s));
+        tip.connect();
+        double frame[12];
+        std::uint64_t seq = tip.waitFrame(0, 1000, frame);
+        int frames = 0;
+        const auto t0 = std::chrono::steady_clock::now();
+        while (frames < 25) {
+            const auto next = tip.waitFrame(seq, 1000, frame);
+            QVERIFY(next == seq + 1);  // every frame, none skipped
+            seq = next;
+            ++frames;
+        }
+        const double s25 =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        qInfo("25 frames in %.3f s (50 Hz: 0.5 s)", s25);
+        QVERIFY(s25 > 0.3);  // not faster than the stream
+    }
+
+    void aRawStreamIsCompensatedAfterCalibration() {
+        std::atomic<bool> touching{false};
+        FakeYarpSettings s;
+        s.rate_hz = 500;
+        FakeYarp yarp(s, [&] {
+            std::vector<double> raw(12, 235.0);
+            if (touching) raw[3] = 135.0;  // lower = more pressure
+            return raw;
+        });
+        yarp.start();
+        auto c = clientFor(yarp, s);
+        c.compensateRaw = true;
+        c.calibrationFrames = 20;
+        YarpFingertip tip(c);
+        tip.connect();
+        double frame[12];
+        QVERIFY(tip.waitFrame(0, 2000, frame) > 0);  // the first frame after calibration
+        for (double v : frame) QCOMPARE(v, 0.0);
+        touching = true;
+        std::uint64_t seq = tip.waitFrame(0, 1000, frame);
+        seq = tip.waitFrame(seq + 2, 1000, frame);
+        QVERIFY(seq > 0);
+        QVERIFY2(frame[3] > 95.0 && frame[3] <= 100.0, qPrintable(QString::number(frame[3])));
+        QCOMPARE(frame[0], 0.0);
+    }
+
+    void aNameServerThatIsDownIsNamed() {
+        FakeYarpSettings s;
+        FakeYarp yarp(s, ramp);
+        yarp.start();
+        auto c = clientFor(yarp, s);
+        yarp.setNameServerUp(false);
+        QTest::qWait(20);
+        YarpFingertip tip(c);
+        try {
+            tip.connect();
+            QFAIL("connected through a name server that is down");
+        } catch (const RigError& e) {
+            const std::string m = e.what();
+            QVERIFY2(m.find("name server at 127.0.0.1:" + std::to_string(c.nameServerPort) +
+                            " does not answer") != std::string::npos,
+                     m.c_str());
+        }
+    }
+
+    void anUnknownPortIsNamed() {
+        FakeYarpSettings s;
+        FakeYarp yarp(s, ramp);
+        yarp.start();
+        yarp.setPortRegistered(false);
+        YarpFingertip tip(clientFor(yarp, s));
+        try {
+            tip.connect();
+            QFAIL("connected to an unknown port");
+        } catch (const RigError& e) {
+            QVERIFY(std::string(e.what()).find("/icub/skin/right_hand_comp is not registered") !=
+                    std::string::npos);
+        }
+    }
+
+    void aStalledStreamTimesOutAndRecovers() {
+        FakeYarpSettings s;
+        s.rate_hz = 200;
+        FakeYarp yarp(s, ramp);
+        yarp.start();
+        YarpFingertip tip(clientFor(yarp, s));
+        tip.connect();
+        double frame[12];
+        std::uint64_t seq = tip.waitFrame(0, 1000, frame);
+        QVERIFY(seq > 0);
+        yarp.setStalled(true);
+        QTest::qWait(50);
+        seq = std::max(seq, tip.framesReceived());
+        QCOMPARE(tip.waitFrame(seq, 200, frame), std::uint64_t(0));  // bounded, no frame
+        QVERIFY(tip.secondsSinceFrame() >= 0.2);
+        yarp.setStalled(false);
+        QVERIFY(tip.waitFrame(seq, 1000, frame) > seq);
+    }
+
+    void malformedLinesAndWrongSizesAreSkippedAndCounted() {
+        FakeYarpSettings s;
+        s.rate_hz = 200;
+        FakeYarp yarp(s, ramp);
+        yarp.start();
+        YarpFingertip tip(clientFor(yarp, s));
+        tip.connect();
+        double frame[12];
+        std::uint64_t seq = tip.waitFrame(0, 1000, frame);
+        yarp.injectMalformedLine();
+        QTest::qWait(30);
+        yarp.injectWrongSize(100);
+        QTest::qWait(30);
+        seq = tip.waitFrame(tip.framesReceived(), 1000, frame);
+        QVERIFY(seq > 0);
+        QCOMPARE(tip.badMessages(), 2);
+        QVERIFY2(tip.lastProblem().find("100") != std::string::npos, tip.lastProblem().c_str());
+        for (int i = 0; i < 12; ++i) QCOMPARE(frame[i], ramp()[i]);
+    }
+
+    void aStreamOfGarbageFailsTheSensor() {
+        FakeYarpSettings s;
+        s.rate_hz = 500;
+        FakeYarp yarp(s, ramp);
+        yarp.start();
+        auto c = clientFor(yarp, s);
+        c.finger = Finger::Index;
+        YarpFingertip tip(c);
+        tip.connect();
+        double frame[12];
+        QVERIFY(tip.waitFrame(0, 1000, frame) > 0);
+        yarp.setWrongSize(7);
+        try {
+            for (int i = 0; i < 100; ++i) tip.waitFrame(tip.framesReceived(), 100, frame);
+            QFAIL("a stream of wrong-size vectors did not fail the sensor");
+        } catch (const RigError& e) {
+            QVERIFY2(std::string(e.what()).find("could not be read") != std::string::npos, e.what());
+        }
+    }
+
+    void disconnectReturnsPromptly() {
+        FakeYarpSettings s;
+        FakeYarp yarp(s, ramp);
+        yarp.start();
+        YarpFingertip tip(clientFor(yarp, s));
+        tip.connect();
+        const auto t0 = std::chrono::steady_clock::now();
+        tip.disconnect();
+        QVERIFY(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(2));
+        double frame[12];
+        QVERIFY_THROWS_EXCEPTION(RigError, tip.waitFrame(0, 10, frame));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestYarpFingertip)
+#include "test_yarp_fingertip.moc"
