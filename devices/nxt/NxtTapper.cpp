@@ -28,6 +28,11 @@ NxtTapper::NxtTapper(NxtBrick& brick, TactileSensor& sensor, const RobotClock& c
             "positive, return power 1..100, motor port A, B or C)");
 }
 
+std::chrono::milliseconds NxtTapper::pollPeriod() const {
+    return std::chrono::milliseconds(
+        std::max(1, static_cast<int>(std::lround(s_.pollPeriodMs / s_.timeScale))));
+}
+
 std::string NxtTapper::state() const {
     switch (phase_.load()) {
         case Phase::Retracted:
@@ -74,7 +79,7 @@ std::string NxtTapper::safeStop() noexcept {
                                        RegulationSpeed, 0, RunRunning,
                                        static_cast<std::uint32_t>(tacho), true));
             while (tacho > s_.retractToleranceDeg && secondsSince(started) < 1.0) {
-                std::this_thread::sleep_for(std::chrono::milliseconds(s_.pollPeriodMs));
+                std::this_thread::sleep_for(pollPeriod());
                 tacho = brick_.outputState(s_.motorPort).rotationCount;
             }
             brake(true);
@@ -170,10 +175,10 @@ TapRecord NxtTapper::tap() {
                     if (total >= tap_.contactThreshold) stopDescent(TapEnding::ContactReflex);
                 }
             } else {
-                std::this_thread::sleep_for(std::chrono::milliseconds(s_.pollPeriodMs));
+                std::this_thread::sleep_for(pollPeriod());
             }
             if (phase_ == Phase::Retracted) continue;
-            if (Clock::now() - lastPoll >= std::chrono::milliseconds(s_.pollPeriodMs)) {
+            if (Clock::now() - lastPoll >= pollPeriod()) {
                 const OutputState st = brick_.outputState(s_.motorPort);
                 tacho = st.rotationCount;
                 lastPoll = Clock::now();

@@ -5,6 +5,7 @@
 // set when the tapper connects). The tap records the fingertip stream's frames from the start of
 // the stroke. On any fault the motor is braked and, if the brick still answers, sent back.
 #include <atomic>
+#include <chrono>
 #include <functional>
 #include <string>
 
@@ -23,7 +24,7 @@ struct NxtTapperSettings {
     double fullPowerDegreesPerSecond = 900.0;
     int returnPower = 60;
     int pollPeriodMs = 10;            ///< GETOUTPUTSTATE while the motor moves
-    int retractToleranceDeg = 4;      ///< how close to tacho 0 counts as retracted
+    int retractToleranceDeg = 8;      ///< how close to the retract angle counts as retracted
     int frameTimeoutMs = 500;         ///< a fingertip stream quiet this long has stalled
     double timeScale = 1.0;           ///< robot seconds per wall second (emulated benches)
 };
@@ -54,6 +55,7 @@ public:
 private:
     enum class Phase { Retracted, Descending, Holding, Returning };
     void brake(bool withReply);
+    std::chrono::milliseconds pollPeriod() const;
     void setPhase(Phase p) { phase_ = p; }
     NxtBrick& brick_;
     TactileSensor& sensor_;

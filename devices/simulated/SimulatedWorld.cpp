@@ -79,6 +79,12 @@ void SimulatedWorld::moveStage(Vec2 target) {
     for (auto& e : poseEffects_) actual_ = e->perturbPose(actual_);
 }
 
+void SimulatedWorld::placeFingertip(Vec2 reported) {
+    commanded_ = reported;
+    actual_ = reported;
+    for (auto& e : poseEffects_) actual_ = e->perturbPose(actual_);
+}
+
 void SimulatedWorld::latestFrame(double* out) const {
     std::copy(lastFrame_.begin(), lastFrame_.end(), out);
 }

@@ -31,6 +31,9 @@ public:
     /// Stage: go to `target` (commanded); the fingertip really lands where stage effects put it.
     void moveStage(Vec2 target);
     Vec2 commandedPose() const { return commanded_; }
+    /// Puts the fingertip where another (real) stage says it is, without taking robot time: a
+    /// simulated tapper and fingertip on a real stage.
+    void placeFingertip(Vec2 reported);
     Vec2 actualPose() const { return actual_; }
 
     /// Tapper: one tap at the current pose.
