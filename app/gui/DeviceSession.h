@@ -1,17 +1,28 @@
 #pragma once
 // The devices a user drives by hand from the device panels, living in their own thread so that
-// the GUI never waits on them. For now the devices are the simulated rig's; the real drivers
-// (Yamaha stage, NXT tapper, YARP fingertip) take the same calls.
+// the GUI never waits on them: any mix of the simulated devices, the Yamaha stage, the NXT tapper
+// and the YARP fingertip (or the emulated bench for demos), assembled as one rig.
 #include <QObject>
 #include <QThread>
+#include <atomic>
 #include <memory>
+#include <mutex>
 
 #include "app/gui/LiveFeed.h"
 #include "core/scene/Scene.h"
+#include "devices/rigs/RigAssembly.h"
 
 namespace activetouch {
 
-class SimulatedRig;
+namespace emu {
+class EmulatedBench;
+}
+
+/// What the panels chose: the rig configuration, or the emulated bench behind the real drivers.
+struct DeviceChoice {
+    RigConfig config;
+    bool emulatedBench = false;  ///< real drivers against the emulators (a demo, no hardware)
+};
 
 /// Lives in the device thread; every slot is called queued from the GUI.
 class DeviceSession : public QObject {
@@ -20,28 +31,40 @@ public:
     explicit DeviceSession(LiveFeed& live);
     ~DeviceSession() override;
 
+    /// Thread-safe: stops a tap or move in progress at once (closing the window).
+    void interrupt();
+
 public slots:
-    void connectDevices(const activetouch::SceneSpec& scene);
+    void connectDevices(const activetouch::SceneSpec& scene,
+                        const activetouch::DeviceChoice& choice);
     void disconnectDevices();
     void home();
     void jog(double dx, double dy);
     void goTo(double x, double y);
     void testTap();
     void setContactThreshold(double counts);
+    void readBattery();
 
 signals:
     void connectedChanged(bool connected, const QString& description);
     void positionChanged(double x, double y);
     void tapperState(const QString& state);
+    void battery(const QString& text);
     void message(const QString& text);
     void failed(const QString& message);
+    /// One line of a device's raw protocol traffic ("stage -> @SERVO ON").
+    void raw(const QString& device, const QString& direction, const QString& text);
 
 private:
     bool ready();
     void move(Vec2 target);
+    void reassemble();
     LiveFeed& live_;
     SceneSpec scene_;
-    std::unique_ptr<SimulatedRig> rig_;
+    DeviceChoice choice_;
+    std::unique_ptr<emu::EmulatedBench> bench_;
+    std::unique_ptr<AssembledRig> rig_;
+    std::mutex rigMutex_;  ///< guards rig_ against interrupt() from the GUI thread
 };
 
 /// Owns the device thread and the session in it.
@@ -60,3 +83,4 @@ private:
 }  // namespace activetouch
 
 Q_DECLARE_METATYPE(activetouch::SceneSpec)
+Q_DECLARE_METATYPE(activetouch::DeviceChoice)

@@ -6,8 +6,15 @@
 #include <QGridLayout>
 #include <QGroupBox>
 #include <QLabel>
+#include <QCheckBox>
+#include <QLineEdit>
+#include <QPlainTextEdit>
 #include <QPushButton>
+#include <QSerialPortInfo>
+#include <QSpinBox>
 #include <QVBoxLayout>
+
+#include "devices/nxt/NxtUsbTransport.h"
 
 namespace activetouch {
 
@@ -27,19 +34,47 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
                                       Qt::QueuedConnection);
         else
             QMetaObject::invokeMethod(
-                session_, [s = session_, scene = scene_] { s->connectDevices(scene); },
+                session_,
+                [s = session_, scene = scene_, c = choice()] { s->connectDevices(scene, c); },
                 Qt::QueuedConnection);
     });
 
     auto* stage = new QGroupBox(tr("XY stage"));
     auto* sf = new QFormLayout(stage);
+    stageKind_ = new QComboBox;
+    stageKind_->setObjectName("stageKind");
+    stageKind_->addItems({tr("simulated stage"), tr("Yamaha RCX on a serial port")});
     port_ = new QComboBox;
-    port_->addItem(tr("simulated stage"));
+    port_->setObjectName("serialPort");
+    port_->setEditable(true);
+    port_->setToolTip(tr("The controller's serial port; type a path if it is not listed"));
+    dialect_ = new QComboBox;
+    dialect_->addItems({"RCX22x (OK / NG)", "RCX340 (RUN / END)"});
+    baud_ = new QSpinBox;
+    baud_->setRange(1200, 115200);
+    baud_->setValue(9600);
+    parity_ = new QComboBox;
+    parity_->addItems({tr("odd"), tr("even"), tr("none")});
+    auto* refresh = new QPushButton(tr("Refresh"));
+    connect(refresh, &QPushButton::clicked, this, &DevicesPanel::refreshPorts);
+    auto* portRow = new QHBoxLayout;
+    portRow->addWidget(port_, 1);
+    portRow->addWidget(refresh);
     stageState_ = new QLabel(tr("disconnected"));
     position_ = new QLabel("-");
     position_->setObjectName("stagePosition");
     limits_ = new QLabel("-");
-    sf->addRow(tr("Port"), port_);
+    sf->addRow(tr("Device"), stageKind_);
+    sf->addRow(tr("Port"), portRow);
+    sf->addRow(tr("Dialect"), dialect_);
+    sf->addRow(tr("Baud, parity"), [&] {
+        auto* row = new QHBoxLayout;
+        row->addWidget(baud_);
+        row->addWidget(parity_);
+        auto* w = new QWidget;
+        w->setLayout(row);
+        return w;
+    }());
     sf->addRow(tr("State"), stageState_);
     sf->addRow(tr("Position"), position_);
     sf->addRow(tr("Soft limits"), limits_);
@@ -92,8 +127,13 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
 
     auto* tapper = new QGroupBox(tr("NXT tapper"));
     auto* tf = new QFormLayout(tapper);
+    tapperKind_ = new QComboBox;
+    tapperKind_->setObjectName("tapperKind");
+    tapperKind_->addItems({tr("simulated tapper and fingertip"),
+                           tr("NXT over USB with the fingertip over YARP"),
+                           tr("emulated bench: the real drivers, no hardware")});
     brick_ = new QComboBox;
-    brick_->addItem(tr("simulated tapper"));
+    brick_->setObjectName("nxtBrick");
     tapperState_ = new QLabel(tr("disconnected"));
     tapperState_->setObjectName("tapperState");
     battery_ = new QLabel(tr("- (no battery on the simulated tapper)"));
@@ -103,6 +143,7 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
     threshold_->setSuffix(tr(" counts (total)"));
     auto* testTap = new QPushButton(tr("Test tap"));
     testTap->setObjectName("testTap");
+    tf->addRow(tr("Devices"), tapperKind_);
     tf->addRow(tr("Brick"), brick_);
     tf->addRow(tr("Motor"), tapperState_);
     tf->addRow(tr("Battery"), battery_);
@@ -118,22 +159,59 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
 
     auto* finger = new QGroupBox(tr("Fingertip"));
     auto* ff = new QFormLayout(finger);
-    source_ = new QComboBox;
-    source_->addItem(tr("simulated fingertip"));
-    ff->addRow(tr("Source"), source_);
-    ff->addRow(new QLabel(tr("Its taxels show live in the Live tab.")));
+    nameServerHost_ = new QLineEdit("127.0.0.1");
+    nameServerPort_ = new QSpinBox;
+    nameServerPort_->setRange(1, 65535);
+    nameServerPort_->setValue(10000);
+    yarpPort_ = new QLineEdit("/icub/skin/right_hand_comp");
+    yarpPort_->setObjectName("yarpPort");
+    finger_ = new QComboBox;
+    finger_->addItems({tr("index"), tr("middle"), tr("ring"), tr("little"), tr("thumb")});
+    carrier_ = new QComboBox;
+    carrier_->addItems({tr("text (recommended)"), tr("binary (tested against the emulator only)")});
+    compensate_ = new QCheckBox(tr("raw stream: compensate here (skinManager style)"));
+    ff->addRow(tr("Name server"), [&] {
+        auto* row = new QHBoxLayout;
+        row->addWidget(nameServerHost_, 1);
+        row->addWidget(nameServerPort_);
+        auto* w = new QWidget;
+        w->setLayout(row);
+        return w;
+    }());
+    ff->addRow(tr("Port"), yarpPort_);
+    ff->addRow(tr("Finger"), finger_);
+    ff->addRow(tr("Carrier"), carrier_);
+    ff->addRow(compensate_);
+    ff->addRow(new QLabel(tr("Used with the NXT tapper; its taxels show live in the Live tab.")));
     layout->addWidget(finger);
-    layout->addStretch();
+
+    auto* rawBox = new QGroupBox(tr("Raw protocol log"));
+    auto* rl = new QVBoxLayout(rawBox);
+    rawLog_ = new QPlainTextEdit;
+    rawLog_->setObjectName("rawLog");
+    rawLog_->setReadOnly(true);
+    rawLog_->setMaximumBlockCount(2000);
+    rawLog_->setFont(QFont("monospace", 8));
+    rl->addWidget(rawLog_);
+    layout->addWidget(rawBox, 1);
+    refreshPorts();
 
     connect(session_, &DeviceSession::connectedChanged, this, [this](bool on, const QString& what) {
         connected_ = on;
         connect_->setText(on ? tr("Disconnect") : tr("Connect"));
         stageState_->setText(on ? tr("connected: %1").arg(what) : tr("disconnected"));
         if (!on) tapperState_->setText(tr("disconnected"));
-        limits_->setText(on ? tr("x 0..%1, y 0..%2 mm")
-                                  .arg(scene_.stage.travel_mm.x)
-                                  .arg(scene_.stage.travel_mm.y)
-                            : "-");
+        const DeviceChoice c = choice();
+        const bool yamaha = c.config.stage == RigConfig::StageKind::Yamaha;
+        limits_->setText(!on ? "-"
+                         : yamaha ? tr("x %1..%2, y %3..%4 mm (refused before sending)")
+                                        .arg(c.config.yamaha.softMin.x)
+                                        .arg(c.config.yamaha.softMax.x)
+                                        .arg(c.config.yamaha.softMin.y)
+                                        .arg(c.config.yamaha.softMax.y)
+                                  : tr("x 0..%1, y 0..%2 mm")
+                                        .arg(scene_.stage.travel_mm.x)
+                                        .arg(scene_.stage.travel_mm.y));
         threshold_->setValue(scene_.tap.contactThreshold);
         emit log(on ? tr("devices connected (%1)").arg(what) : tr("devices disconnected"));
     });
@@ -141,8 +219,56 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
         position_->setText(tr("x %1 mm, y %2 mm").arg(x, 0, 'f', 3).arg(y, 0, 'f', 3));
     });
     connect(session_, &DeviceSession::tapperState, tapperState_, &QLabel::setText);
+    connect(session_, &DeviceSession::battery, battery_, &QLabel::setText);
+    connect(session_, &DeviceSession::raw, this,
+            [this](const QString& device, const QString& dir, const QString& text) {
+                rawLog_->appendPlainText(device.leftJustified(9) + " " + dir + " " + text);
+            });
     connect(session_, &DeviceSession::message, this, &DevicesPanel::log);
     connect(session_, &DeviceSession::failed, this, &DevicesPanel::log);
+}
+
+void DevicesPanel::refreshPorts() {
+    const QString current = port_->currentText();
+    port_->clear();
+    for (const QSerialPortInfo& info : QSerialPortInfo::availablePorts())
+        port_->addItem(info.systemLocation());
+    if (!current.isEmpty()) port_->setCurrentText(current);
+    brick_->clear();
+    try {
+        for (const auto& b : nxt::NxtUsbTransport::list())
+            brick_->addItem(QString::fromStdString(b.describe()), QList<QVariant>{b.bus, b.address});
+    } catch (const std::exception& e) {
+        emit log(QString::fromStdString(e.what()));
+    }
+    if (brick_->count() == 0) brick_->addItem(tr("first NXT found on USB"), QList<QVariant>{0, 0});
+}
+
+DeviceChoice DevicesPanel::choice() const {
+    DeviceChoice c;
+    RigConfig& r = c.config;
+    r.stage = stageKind_->currentIndex() == 1 ? RigConfig::StageKind::Yamaha
+                                              : RigConfig::StageKind::Simulated;
+    r.yamaha.serial.portName = port_->currentText().toStdString();
+    r.yamaha.serial.baud = baud_->value();
+    r.yamaha.serial.parity = "OEN"[parity_->currentIndex()];
+    r.yamaha.dialect = dialect_->currentIndex() == 1 ? rcx::Dialect::Rcx340 : rcx::Dialect::Rcx22x;
+    r.yamaha.softMax = scene_.stage.travel_mm;
+    r.tapper = tapperKind_->currentIndex() == 1 ? RigConfig::TapperKind::Nxt
+                                                : RigConfig::TapperKind::Simulated;
+    c.emulatedBench = tapperKind_->currentIndex() == 2;
+    const QList<QVariant> where = brick_->currentData().toList();
+    if (where.size() == 2) {
+        r.usbBus = where[0].toInt();
+        r.usbAddress = where[1].toInt();
+    }
+    r.yarp.nameServerHost = nameServerHost_->text().toStdString();
+    r.yarp.nameServerPort = nameServerPort_->value();
+    r.yarp.port = yarpPort_->text().toStdString();
+    r.yarp.finger = static_cast<yarp::Finger>(12 * finger_->currentIndex());
+    r.yarp.binaryCarrier = carrier_->currentIndex() == 1;
+    r.yarp.compensateRaw = compensate_->isChecked();
+    return c;
 }
 
 }  // namespace activetouch

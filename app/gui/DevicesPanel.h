@@ -10,6 +10,10 @@ class QLabel;
 class QDoubleSpinBox;
 class QComboBox;
 class QPushButton;
+class QLineEdit;
+class QSpinBox;
+class QCheckBox;
+class QPlainTextEdit;
 
 namespace activetouch {
 
@@ -20,6 +24,9 @@ public:
     /// The scene the simulated devices connect to.
     void setScene(const SceneSpec& scene) { scene_ = scene; }
 
+    /// What the pickers say now.
+    DeviceChoice choice() const;
+
 signals:
     void log(const QString& text);
 
@@ -28,7 +35,13 @@ private:
     SceneSpec scene_;
     QLabel *position_, *limits_, *stageState_, *tapperState_, *battery_;
     QDoubleSpinBox *step_, *gotoX_, *gotoY_, *threshold_;
-    QComboBox *port_, *brick_, *source_;
+    void refreshPorts();
+    QComboBox *stageKind_, *port_, *dialect_, *parity_, *tapperKind_, *brick_, *finger_,
+        *carrier_;
+    QSpinBox *baud_, *nameServerPort_;
+    QLineEdit *nameServerHost_, *yarpPort_;
+    QCheckBox* compensate_;
+    QPlainTextEdit* rawLog_;
     QPushButton* connect_;
     bool connected_ = false;
 };

@@ -12,6 +12,8 @@
 #include <QTemporaryDir>
 #include <QToolButton>
 #include <QtTest>
+#include <QComboBox>
+#include <QPlainTextEdit>
 
 #include "app/gui/FollowingTab.h"
 #include "app/gui/LiveView.h"
@@ -250,6 +252,30 @@ private slots:
         QTRY_VERIFY(tapper->text().contains("last tap"));
         QTest::mouseClick(connectButton, Qt::LeftButton);
         QTRY_COMPARE(tapper->text(), QString("disconnected"));
+    }
+
+    void devicePanelsDriveTheRealDriversOnTheEmulatedBench() {
+        // The emulated bench: the Yamaha, NXT and YARP drivers over a pty, the brick emulator and
+        // loopback TCP, in real time.
+        auto* kind = window_->findChild<QComboBox*>("tapperKind");
+        kind->setCurrentIndex(2);
+        QPushButton* connectButton = window_->findChild<QPushButton*>("connectDevices");
+        QTest::mouseClick(connectButton, Qt::LeftButton);
+        QLabel* position = window_->findChild<QLabel*>("stagePosition");
+        QTRY_COMPARE_WITH_TIMEOUT(position->text(), QString("x 0.000 mm, y 0.000 mm"), 10000);
+        QTest::mouseClick(window_->findChild<QPushButton*>("goTo"), Qt::LeftButton);
+        QTRY_COMPARE_WITH_TIMEOUT(position->text(), QString("x 150.000 mm, y 121.000 mm"), 15000);
+        QLabel* tapper = window_->findChild<QLabel*>("tapperState");
+        QTest::mouseClick(window_->findChild<QPushButton*>("testTap"), Qt::LeftButton);
+        QTRY_VERIFY_WITH_TIMEOUT(tapper->text().contains("last tap"), 10000);
+        const QString raw = window_->findChild<QPlainTextEdit*>("rawLog")->toPlainText();
+        QVERIFY(raw.contains("stage     -> @SERVO ON"));
+        QVERIFY(raw.contains("stage     -> @MOVE P, 150.000 121.000 0 0 0 0"));
+        QVERIFY(raw.contains("tapper    -> 00 0D"));  // keep-alive
+        QVERIFY(raw.contains("fingertip <- Welcome extern"));
+        QTest::mouseClick(connectButton, Qt::LeftButton);
+        QTRY_COMPARE(tapper->text(), QString("disconnected"));
+        kind->setCurrentIndex(0);
     }
 
     void cleanupTestCase() {
