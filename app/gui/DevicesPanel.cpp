@@ -1,12 +1,12 @@
 #include "app/gui/DevicesPanel.h"
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QGridLayout>
 #include <QGroupBox>
 #include <QLabel>
-#include <QCheckBox>
 #include <QLineEdit>
 #include <QPlainTextEdit>
 #include <QPushButton>
@@ -203,7 +203,7 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
         if (!on) tapperState_->setText(tr("disconnected"));
         const DeviceChoice c = choice();
         const bool yamaha = c.config.stage == RigConfig::StageKind::Yamaha;
-        limits_->setText(!on ? "-"
+        limits_->setText(!on      ? "-"
                          : yamaha ? tr("x %1..%2, y %3..%4 mm (refused before sending)")
                                         .arg(c.config.yamaha.softMin.x)
                                         .arg(c.config.yamaha.softMax.x)
@@ -237,7 +237,8 @@ void DevicesPanel::refreshPorts() {
     brick_->clear();
     try {
         for (const auto& b : nxt::NxtUsbTransport::list())
-            brick_->addItem(QString::fromStdString(b.describe()), QList<QVariant>{b.bus, b.address});
+            brick_->addItem(QString::fromStdString(b.describe()),
+                            QList<QVariant>{b.bus, b.address});
     } catch (const std::exception& e) {
         emit log(QString::fromStdString(e.what()));
     }

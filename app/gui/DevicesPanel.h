@@ -36,8 +36,7 @@ private:
     QLabel *position_, *limits_, *stageState_, *tapperState_, *battery_;
     QDoubleSpinBox *step_, *gotoX_, *gotoY_, *threshold_;
     void refreshPorts();
-    QComboBox *stageKind_, *port_, *dialect_, *parity_, *tapperKind_, *brick_, *finger_,
-        *carrier_;
+    QComboBox *stageKind_, *port_, *dialect_, *parity_, *tapperKind_, *brick_, *finger_, *carrier_;
     QSpinBox *baud_, *nameServerPort_;
     QLineEdit *nameServerHost_, *yarpPort_;
     QCheckBox* compensate_;

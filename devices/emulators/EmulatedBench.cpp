@@ -28,8 +28,12 @@ FakeYarpSettings yarpSettings(const BenchSettings& s) {
 EmulatedBench::EmulatedBench(const SceneSpec& scene,
                              std::shared_ptr<const FingertipContactModel> model,
                              BenchSettings settings)
-    : scene_(scene), object_(scene.object.outline()), model_(std::move(model)), s_(settings),
-      brick_(brickSettings(settings)), rcx_(rcxSettings(scene, settings)),
+    : scene_(scene),
+      object_(scene.object.outline()),
+      model_(std::move(model)),
+      s_(settings),
+      brick_(brickSettings(settings)),
+      rcx_(rcxSettings(scene, settings)),
       yarp_(yarpSettings(settings), [this] { return fingertip(); }) {}
 
 EmulatedBench::~EmulatedBench() {
@@ -69,7 +73,8 @@ rcx::YamahaStageSettings EmulatedBench::stageSettings() const {
     st.dialect = s_.dialect;
     st.timeScale = s_.timeScale;
     st.softMax = scene_.stage.travel_mm;
-    st.speedPercent = std::clamp(static_cast<int>(scene_.stage.speed_mm_s / st.fullSpeed_mm_s * 100.0), 1, 100);
+    st.speedPercent =
+        std::clamp(static_cast<int>(scene_.stage.speed_mm_s / st.fullSpeed_mm_s * 100.0), 1, 100);
     return st;
 }
 

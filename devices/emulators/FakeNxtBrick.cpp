@@ -75,11 +75,19 @@ int FakeNxtBrick::requestsHandled() const {
 
 nxt::Bytes FakeNxtBrick::outputStateReply(std::uint8_t port, std::uint8_t status) {
     const Motor& m = motors_[port];
-    nxt::Bytes r{0x02, nxt::GetOutputState, status, port, static_cast<std::uint8_t>(m.power),
-                 m.mode, m.regulation, static_cast<std::uint8_t>(m.turn), m.runState};
+    nxt::Bytes r{0x02,
+                 nxt::GetOutputState,
+                 status,
+                 port,
+                 static_cast<std::uint8_t>(m.power),
+                 m.mode,
+                 m.regulation,
+                 static_cast<std::uint8_t>(m.turn),
+                 m.runState};
     put32(r, m.limit);
     put32(r, static_cast<std::uint32_t>(static_cast<std::int32_t>(std::lround(m.tacho))));
-    put32(r, static_cast<std::uint32_t>(static_cast<std::int32_t>(std::lround(m.tacho - m.blockStart))));
+    put32(r, static_cast<std::uint32_t>(
+                 static_cast<std::int32_t>(std::lround(m.tacho - m.blockStart))));
     put32(r, static_cast<std::uint32_t>(
                  static_cast<std::int32_t>(std::lround(m.tacho - m.rotationStart))));
     return r;
@@ -110,9 +118,7 @@ std::optional<nxt::Bytes> FakeNxtBrick::handle(const nxt::Bytes& q) {
 
     std::uint8_t status = 0x00;
     nxt::Bytes payload;
-    auto portOk = [&](std::size_t at, std::uint8_t max) {
-        return q.size() > at && q[at] <= max;
-    };
+    auto portOk = [&](std::size_t at, std::uint8_t max) { return q.size() > at && q[at] <= max; };
     switch (op) {
         case nxt::PlayTone:
             if (q.size() != 6) status = 0xED;

@@ -98,8 +98,8 @@ void FakeRcxController::startMotion(Vec2 target, double speed, bool) {
     to_ = target;
     motionStart_ = now;
     const double seconds = distance(from_, to_) / speed / s_.timeScale;
-    motionEnd_ = now + std::chrono::duration_cast<Clock::duration>(
-                           std::chrono::duration<double>(seconds));
+    motionEnd_ =
+        now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
     moving_ = true;
     if (s_.dialect == rcx::Dialect::Rcx340) reply("RUN");
 }
@@ -142,7 +142,8 @@ void FakeRcxController::handle(const std::string& lineIn) {
         reply("OK");
     } else if (u == "ORIGIN") {
         if (!servo_) return reply("NG 18: servo off");
-        const double speed = distance(positionLocked(Clock::now()), {}) / std::max(s_.origin_s, 1e-3);
+        const double speed =
+            distance(positionLocked(Clock::now()), {}) / std::max(s_.origin_s, 1e-3);
         startMotion({0.0, 0.0}, std::max(speed, 1.0), true);
         originDone_ = true;
     } else if (u == "?ORIGIN") {

@@ -50,8 +50,14 @@ struct FakeYarp::Client {
     int fd = -1;
     bool nameServer = false;
     std::string in, out;
-    enum class State { Greeting, Query, Handshake, BinaryName, Reader, Closed } state =
-        State::Greeting;
+    enum class State {
+        Greeting,
+        Query,
+        Handshake,
+        BinaryName,
+        Reader,
+        Closed
+    } state = State::Greeting;
     bool binary = false, reader = false;
     std::chrono::steady_clock::time_point nextFrame;
 };
@@ -140,7 +146,8 @@ std::string FakeYarp::binaryMessage() {
     std::string data;
     put32(data, s_.binaryTag);
     put32(data, static_cast<std::uint32_t>(hand.size()));
-    if (malformed_.exchange(false)) data.resize(data.size() + 5, '\x7f');  // a torn payload
+    if (malformed_.exchange(false))
+        data.resize(data.size() + 5, '\x7f');  // a torn payload
     else
         for (double v : hand) {
             if (s_.binaryFloats) {
@@ -268,18 +275,24 @@ void FakeYarp::loop() {
             if (re & (POLLIN | POLLHUP | POLLERR)) {
                 char buf[4096];
                 const ssize_t n = ::recv(c.fd, buf, sizeof buf, 0);
-                if (n <= 0) c.state = Client::State::Closed;
-                else c.in.append(buf, static_cast<std::size_t>(n));
+                if (n <= 0)
+                    c.state = Client::State::Closed;
+                else
+                    c.in.append(buf, static_cast<std::size_t>(n));
             }
             if (c.state != Client::State::Closed) {
-                if (c.nameServer) serveNameServer(c);
-                else serveData(c);
+                if (c.nameServer)
+                    serveNameServer(c);
+                else
+                    serveData(c);
                 if (c.state == Client::State::Reader) publish(c);
             }
             if (!c.out.empty() && c.state != Client::State::Closed) {
                 const ssize_t n = ::send(c.fd, c.out.data(), c.out.size(), MSG_NOSIGNAL);
-                if (n > 0) c.out.erase(0, static_cast<std::size_t>(n));
-                else if (n < 0 && errno != EAGAIN) c.state = Client::State::Closed;
+                if (n > 0)
+                    c.out.erase(0, static_cast<std::size_t>(n));
+                else if (n < 0 && errno != EAGAIN)
+                    c.state = Client::State::Closed;
             }
         }
         for (std::size_t k = clients_.size(); k-- > 0;) {

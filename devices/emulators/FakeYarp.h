@@ -16,9 +16,9 @@ namespace activetouch::emu {
 struct FakeYarpSettings {
     std::string portName = "/icub/skin/right_hand_comp";
     double rate_hz = 50.0;
-    int fingerOffset = 0;       ///< first index of the fingertip in the hand vector
-    std::string header = "d";   ///< text carrier: "d", "do" or "D"
-    bool envelope = false;      ///< text carrier: "d 17 1234.5" style envelope
+    int fingerOffset = 0;             ///< first index of the fingertip in the hand vector
+    std::string header = "d";         ///< text carrier: "d", "do" or "D"
+    bool envelope = false;            ///< text carrier: "d 17 1234.5" style envelope
     std::uint32_t binaryTag = 0x10A;  ///< binary carrier: 0x10A (YARP <= 3.12) or 0x114 (YARP 4)
     bool binaryFloats = false;        ///< binary carrier: float32 elements (tag 0x10A in YARP 4)
 };

@@ -42,8 +42,8 @@ Reply NxtBrick::call(const Bytes& request) {
         }
         if (log_) log_("->", hexBytes(request));
         transport_->write(request);
-        if (!expectsReply(request)) return Reply{request.size() > 1 ? request[1] : std::uint8_t(0),
-                                                 0, {}};
+        if (!expectsReply(request))
+            return Reply{request.size() > 1 ? request[1] : std::uint8_t(0), 0, {}};
         const Bytes reply = transport_->read(replyTimeoutMs_);
         if (log_) log_("<-", hexBytes(reply));
         try {

@@ -106,22 +106,22 @@ TapRecord NxtTapper::tap() {
     std::vector<double> frame(static_cast<std::size_t>(K));
 
     const auto limitDeg = static_cast<std::uint32_t>(std::lround(tap_.stroke_mm * s_.degreesPerMm));
-    const int power = std::clamp(
-        static_cast<int>(std::lround(tap_.descentSpeed_mm_s * s_.degreesPerMm /
-                                     s_.fullPowerDegreesPerSecond * 100.0)),
-        1, 100);
+    const int power =
+        std::clamp(static_cast<int>(std::lround(tap_.descentSpeed_mm_s * s_.degreesPerMm /
+                                                s_.fullPowerDegreesPerSecond * 100.0)),
+                   1, 100);
     const double hold_s = tap_.contactTime_s / s_.timeScale;
     // Worst case: a full stroke down and back at the commanded speeds, the hold and the window,
     // three times over and two seconds to spare. Nothing waits longer.
     const double deadline_s =
-        3.0 * (2.0 * tap_.stroke_mm / tap_.descentSpeed_mm_s + tap_.contactTime_s +
-               tap_.window_s()) /
+        3.0 *
+            (2.0 * tap_.stroke_mm / tap_.descentSpeed_mm_s + tap_.contactTime_s + tap_.window_s()) /
             s_.timeScale +
         2.0;
 
     try {
-        if (sleepMs_ > 0 && (clock_.now_s() - lastKeepAlive_s_) * 1000.0 / s_.timeScale >
-                                sleepMs_ / 2.0) {
+        if (sleepMs_ > 0 &&
+            (clock_.now_s() - lastKeepAlive_s_) * 1000.0 / s_.timeScale > sleepMs_ / 2.0) {
             sleepMs_ = brick_.keepAlive();
             lastKeepAlive_s_ = clock_.now_s();
         }
@@ -188,9 +188,9 @@ TapRecord NxtTapper::tap() {
             }
             if (phase_ == Phase::Holding && Clock::now() >= holdUntil) {
                 if (tacho > s_.retractToleranceDeg)
-                    brick_.call(setOutputState(s_.motorPort, -s_.returnPower,
-                                               MotorOn | Brake | Regulated, RegulationSpeed, 0,
-                                               RunRunning, static_cast<std::uint32_t>(tacho), true));
+                    brick_.call(setOutputState(
+                        s_.motorPort, -s_.returnPower, MotorOn | Brake | Regulated, RegulationSpeed,
+                        0, RunRunning, static_cast<std::uint32_t>(tacho), true));
                 setPhase(Phase::Returning);
             }
             if (phase_ == Phase::Returning && tacho <= s_.retractToleranceDeg) {

@@ -23,10 +23,10 @@ struct NxtTapperSettings {
     /// Motor speed at power 100 under speed regulation, degrees per second (unverified).
     double fullPowerDegreesPerSecond = 900.0;
     int returnPower = 60;
-    int pollPeriodMs = 10;            ///< GETOUTPUTSTATE while the motor moves
-    int retractToleranceDeg = 8;      ///< how close to the retract angle counts as retracted
-    int frameTimeoutMs = 500;         ///< a fingertip stream quiet this long has stalled
-    double timeScale = 1.0;           ///< robot seconds per wall second (emulated benches)
+    int pollPeriodMs = 10;        ///< GETOUTPUTSTATE while the motor moves
+    int retractToleranceDeg = 8;  ///< how close to the retract angle counts as retracted
+    int frameTimeoutMs = 500;     ///< a fingertip stream quiet this long has stalled
+    double timeScale = 1.0;       ///< robot seconds per wall second (emulated benches)
 };
 
 class NxtTapper final : public Tapper {

@@ -100,8 +100,9 @@ NxtUsbTransport::NxtUsbTransport(int bus, int address) {
     if (!chosen) {
         libusb_free_device_list(devices, 1);
         if (sawBootLoader)
-            throw RigError("NXT: the brick on USB is in firmware-update mode (SAM-BA boot loader, "
-                           "03EB:6124), not running the LEGO firmware; flash or reboot it first");
+            throw RigError(
+                "NXT: the brick on USB is in firmware-update mode (SAM-BA boot loader, "
+                "03EB:6124), not running the LEGO firmware; flash or reboot it first");
         throw RigError(bus ? "NXT: no brick at USB bus " + std::to_string(bus) + " device " +
                                  std::to_string(address) + "; refresh the list"
                            : "NXT: no brick (0694:0002) on USB; plug it in and switch it on");
@@ -118,7 +119,8 @@ NxtUsbTransport::NxtUsbTransport(int bus, int address) {
         libusb_close(handle_);
         handle_ = nullptr;
         throw RigError("NXT: " + step + " failed on " + info_.describe() + " (" + usbError(code) +
-                       ")" + (code == LIBUSB_ERROR_BUSY ? "; another program holds the brick" : ""));
+                       ")" +
+                       (code == LIBUSB_ERROR_BUSY ? "; another program holds the brick" : ""));
     };
     r = libusb_detach_kernel_driver(handle_, 0);
     if (r != 0 && r != LIBUSB_ERROR_NOT_FOUND && r != LIBUSB_ERROR_NOT_SUPPORTED)
@@ -130,7 +132,8 @@ NxtUsbTransport::NxtUsbTransport(int bus, int address) {
     if ((r = libusb_claim_interface(handle_, 0)) != 0) fail("claiming interface 0", r);
     unsigned char serial[64] = {};
     libusb_device_descriptor desc{};
-    if (libusb_get_device_descriptor(libusb_get_device(handle_), &desc) == 0 && desc.iSerialNumber &&
+    if (libusb_get_device_descriptor(libusb_get_device(handle_), &desc) == 0 &&
+        desc.iSerialNumber &&
         libusb_get_string_descriptor_ascii(handle_, desc.iSerialNumber, serial, sizeof serial) > 0)
         info_.serial = reinterpret_cast<const char*>(serial);
     ctx_ = c.release();
@@ -150,8 +153,9 @@ void NxtUsbTransport::write(const Bytes& telegram) {
                              "NXT: a telegram of " + std::to_string(telegram.size()) +
                                  " bytes does not fit a 64-byte USB packet");
     int done = 0;
-    const int r = libusb_bulk_transfer(handle_, kBulkOut, const_cast<unsigned char*>(telegram.data()),
-                                       static_cast<int>(telegram.size()), &done, kWriteTimeoutMs);
+    const int r =
+        libusb_bulk_transfer(handle_, kBulkOut, const_cast<unsigned char*>(telegram.data()),
+                             static_cast<int>(telegram.size()), &done, kWriteTimeoutMs);
     if (r != 0) throw transferError(r, "request sent", describe());
     if (done != static_cast<int>(telegram.size()))
         throw TransportError(TransportError::Kind::Failed,

@@ -49,7 +49,7 @@ void SerialLineChannel::open(const SerialSettings& settings) {
                 const std::string why = port->errorString().toStdString();
                 delete port;
                 done->set_value("serial port " + settings_.portName + " cannot be opened (" + why +
-                               "); check the name and that you may use it (group dialout)");
+                                "); check the name and that you may use it (group dialout)");
                 return;
             }
             QObject::connect(port, &QSerialPort::readyRead, context_,
@@ -59,8 +59,7 @@ void SerialLineChannel::open(const SerialSettings& settings) {
                                  if (e == QSerialPort::ResourceError ||
                                      e == QSerialPort::PermissionError ||
                                      e == QSerialPort::DeviceNotFoundError ||
-                                     e == QSerialPort::ReadError ||
-                                     e == QSerialPort::WriteError) {
+                                     e == QSerialPort::ReadError || e == QSerialPort::WriteError) {
                                      failed("serial port " + settings_.portName + " vanished (" +
                                             port->errorString().toStdString() +
                                             "); check the cable and connect again");

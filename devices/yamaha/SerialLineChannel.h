@@ -16,10 +16,10 @@ class QSerialPort;
 namespace activetouch::rcx {
 
 struct SerialSettings {
-    std::string portName;   ///< /dev/ttyUSB0, /dev/ttyS0, a pseudo-terminal...
+    std::string portName;  ///< /dev/ttyUSB0, /dev/ttyS0, a pseudo-terminal...
     int baud = 9600;
     int dataBits = 8;
-    char parity = 'O';      ///< 'N', 'E' or 'O'
+    char parity = 'O';  ///< 'N', 'E' or 'O'
     int stopBits = 1;
     bool hardwareFlowControl = false;
 };
@@ -49,7 +49,7 @@ private:
 
     SerialSettings settings_;
     QThread thread_;
-    QObject* context_ = nullptr;  ///< lives in thread_
+    QObject* context_ = nullptr;   ///< lives in thread_
     QSerialPort* port_ = nullptr;  ///< lives in thread_
     mutable std::mutex mutex_;
     std::condition_variable cv_;

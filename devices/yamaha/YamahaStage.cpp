@@ -19,13 +19,16 @@ std::string mm(Vec2 p) {
 std::string printable(const std::string& s) {
     std::string o;
     for (char c : s) {
-        if (c == '\r') o += "\\r";
-        else if (c == '\n') o += "\\n";
+        if (c == '\r')
+            o += "\\r";
+        else if (c == '\n')
+            o += "\\n";
         else if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) {
             char b[8];
             std::snprintf(b, sizeof b, "\\x%02X", static_cast<unsigned char>(c));
             o += b;
-        } else o += c;
+        } else
+            o += c;
     }
     return o;
 }
@@ -36,8 +39,9 @@ YamahaStage::YamahaStage(YamahaStageSettings settings, RawLog log)
     : s_(std::move(settings)), log_(std::move(log)) {
     if (s_.speedPercent < 1 || s_.speedPercent > 100 || !(s_.fullSpeed_mm_s > 0) ||
         !(s_.timeScale > 0) || !(s_.softMin.x < s_.softMax.x) || !(s_.softMin.y < s_.softMax.y))
-        throw RigError("Yamaha stage: settings out of range (speed 1..100 %, positive full speed, "
-                       "soft limits with min below max)");
+        throw RigError(
+            "Yamaha stage: settings out of range (speed 1..100 %, positive full speed, "
+            "soft limits with min below max)");
 }
 
 YamahaStage::~YamahaStage() {
@@ -63,8 +67,9 @@ std::optional<Reply> YamahaStage::await(const std::string& what, int timeoutMs, 
             case Reply::Kind::Error:
                 throw RigError("Yamaha stage: " + describeError(r, what));
             case Reply::Kind::Other:
-                if (log_) log_("!!", "ignored a line the controller should not send: '" +
-                                         printable(*line) + "'");
+                if (log_)
+                    log_("!!", "ignored a line the controller should not send: '" +
+                                   printable(*line) + "'");
                 continue;
             case Reply::Kind::Welcome:
                 continue;
@@ -117,8 +122,7 @@ void YamahaStage::home() {
 }
 
 bool YamahaStage::withinSoftLimits(Vec2 p) const {
-    return p.x >= s_.softMin.x && p.y >= s_.softMin.y && p.x <= s_.softMax.x &&
-           p.y <= s_.softMax.y;
+    return p.x >= s_.softMin.x && p.y >= s_.softMin.y && p.x <= s_.softMax.x && p.y <= s_.softMax.y;
 }
 
 Vec2 YamahaStage::position() const {
@@ -150,9 +154,9 @@ int YamahaStage::motionTimeoutMs(double distance) const {
 void YamahaStage::moveTo(Vec2 target) {
     if (!withinSoftLimits(target))
         throw RigError("Yamaha stage: target " + mm(target) + " is outside the soft limits x " +
-                       std::to_string(s_.softMin.x) + ".." + std::to_string(s_.softMax.x) +
-                       ", y " + std::to_string(s_.softMin.y) + ".." +
-                       std::to_string(s_.softMax.y) + " mm; nothing was sent");
+                       std::to_string(s_.softMin.x) + ".." + std::to_string(s_.softMax.x) + ", y " +
+                       std::to_string(s_.softMin.y) + ".." + std::to_string(s_.softMax.y) +
+                       " mm; nothing was sent");
     const Vec2 from = position();
     const int timeout = motionTimeoutMs(distance(from, target));
     const auto deadline = Clock::now() + std::chrono::milliseconds(timeout);
@@ -166,10 +170,11 @@ void YamahaStage::moveTo(Vec2 target) {
                            std::to_string(s_.replyTimeoutMs + timeout) + " ms");
         if (ack->kind == Reply::Kind::Running && s_.dialect == Dialect::Rcx340) {
             // Accepted; END says the motion finished.
-            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                                  deadline - Clock::now())
-                                  .count();
-            const auto end = endSeen_ ? ack : await(line, static_cast<int>(std::max<long long>(left, 1)), true);
+            const auto left =
+                std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now())
+                    .count();
+            const auto end =
+                endSeen_ ? ack : await(line, static_cast<int>(std::max<long long>(left, 1)), true);
             if (!end && log_)
                 log_("!!", "END did not come for the move to " + mm(target) +
                                "; confirming arrival from the position");
@@ -179,9 +184,8 @@ void YamahaStage::moveTo(Vec2 target) {
             const Vec2 p = queryPosition();
             if (distance(p, target) <= s_.arrivalTolerance_mm) return;
             if (Clock::now() > deadline)
-                throw RigError("Yamaha stage: the stage is at " + mm(p) + ", not at " +
-                               mm(target) + ", " + std::to_string(timeout) +
-                               " ms after the move was sent");
+                throw RigError("Yamaha stage: the stage is at " + mm(p) + ", not at " + mm(target) +
+                               ", " + std::to_string(timeout) + " ms after the move was sent");
             std::this_thread::sleep_for(std::chrono::milliseconds(s_.pollPeriodMs));
         }
     } catch (const RigError& e) {

@@ -42,7 +42,9 @@ std::int32_t int32At(const QByteArray& b, int at) {
 }  // namespace
 
 YarpFingertip::YarpFingertip(YarpFingertipSettings settings, RawLog log)
-    : s_(std::move(settings)), log_(std::move(log)), latest_(kFingertipTaxels, 0.0),
+    : s_(std::move(settings)),
+      log_(std::move(log)),
+      latest_(kFingertipTaxels, 0.0),
       compensation_(kFingertipTaxels) {}
 
 YarpFingertip::~YarpFingertip() {
@@ -92,7 +94,9 @@ void YarpFingertip::run(std::promise<std::string>* ready) {
     auto say = [&](const std::string& dir, const std::string& text) {
         if (log_) log_(dir, text);
     };
-    const auto deadline = [&] { return Clock::now() + std::chrono::milliseconds(s_.connectTimeoutMs); };
+    const auto deadline = [&] {
+        return Clock::now() + std::chrono::milliseconds(s_.connectTimeoutMs);
+    };
     QByteArray buffer;
     Registration reg;
     {
@@ -168,8 +172,9 @@ void YarpFingertip::run(std::promise<std::string>* ready) {
         data.write(QByteArray::fromStdString(dataGreeting()));
         const auto welcome = readLine(data, buffer, deadline());
         if (!welcome || welcome->rfind("Welcome", 0) != 0) {
-            ready->set_value("YARP: " + s_.port + " did not welcome the connection; is it a "
-                                                  "YARP port speaking the text carrier?");
+            ready->set_value("YARP: " + s_.port +
+                             " did not welcome the connection; is it a "
+                             "YARP port speaking the text carrier?");
             return;
         }
         say("<-", *welcome);
@@ -224,8 +229,10 @@ void YarpFingertip::run(std::promise<std::string>* ready) {
             const auto noWait = Clock::now();
             while (auto line = readLine(data, buffer, noWait)) {
                 if (wantHeader) {
-                    if (isMessageHeader(*line)) wantHeader = false;
-                    else bad("a line where a message header belongs: '" + line->substr(0, 40) + "'");
+                    if (isMessageHeader(*line))
+                        wantHeader = false;
+                    else
+                        bad("a line where a message header belongs: '" + line->substr(0, 40) + "'");
                     continue;
                 }
                 wantHeader = true;
@@ -259,8 +266,7 @@ void YarpFingertip::deliver(const std::vector<double>& hand) {
     if (history_.size() > kHistory) history_.pop_front();
     lastFrame_ = Clock::now();
     badInRow_ = 0;
-    if (log_ && seq_ % 50 == 1)
-        log_("<-", "frame " + std::to_string(seq_) + " (one in 50 shown)");
+    if (log_ && seq_ % 50 == 1) log_("<-", "frame " + std::to_string(seq_) + " (one in 50 shown)");
     cv_.notify_all();
 }
 

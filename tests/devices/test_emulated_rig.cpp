@@ -180,8 +180,7 @@ private slots:
         } catch (const RigError& err) {
             const std::string m = err.what();
             QVERIFY2(m.find(says.toStdString()) != std::string::npos, m.c_str());
-            if (returned)
-                QVERIFY2(m.find("braked and returned") != std::string::npos, m.c_str());
+            if (returned) QVERIFY2(m.find("braked and returned") != std::string::npos, m.c_str());
         }
         if (returned) {
             QVERIFY(e.retracted());
@@ -201,16 +200,14 @@ private slots:
         e.assemble();
         Rig rig = e.rig->rig();
         const Polygon outline = e.spec.scene.object.outline();
-        const TrialSetup setup = trialSetupFor(trained_, FollowingMode::Active, e.spec.following,
-                                               outline, std::nullopt);
+        const TrialSetup setup =
+            trialSetupFor(trained_, FollowingMode::Active, e.spec.following, outline, std::nullopt);
         int taps = 0;
-        const TrialResult r = runTrial(rig, trained_.classifier, trained_.classes, outline, setup,
-                                       [&](const FollowedTap&) {
-                                           if (++taps == 4)
-                                               e.bench->brick().injectFault(
-                                                   FakeNxtBrick::Fault::NoReply);
-                                           return true;
-                                       });
+        const TrialResult r = runTrial(
+            rig, trained_.classifier, trained_.classes, outline, setup, [&](const FollowedTap&) {
+                if (++taps == 4) e.bench->brick().injectFault(FakeNxtBrick::Fault::NoReply);
+                return true;
+            });
         QCOMPARE(int(r.end), int(TrialEnd::DeviceError));
         QCOMPARE(int(r.taps.size()), 4);
         QVERIFY2(r.detail.find("NXT") != std::string::npos, r.detail.c_str());
@@ -238,16 +235,14 @@ private slots:
         e.assemble();
         Rig rig = e.rig->rig();
         const Polygon outline = e.spec.scene.object.outline();
-        const TrialSetup setup = trialSetupFor(trained_, FollowingMode::Active, e.spec.following,
-                                               outline, std::nullopt);
+        const TrialSetup setup =
+            trialSetupFor(trained_, FollowingMode::Active, e.spec.following, outline, std::nullopt);
         int taps = 0;
-        const TrialResult r = runTrial(rig, trained_.classifier, trained_.classes, outline, setup,
-                                       [&](const FollowedTap&) {
-                                           if (++taps == 3)
-                                               e.bench->rcx().injectFault(
-                                                   emu::FakeRcxController::Fault::Ng);
-                                           return true;
-                                       });
+        const TrialResult r = runTrial(
+            rig, trained_.classifier, trained_.classes, outline, setup, [&](const FollowedTap&) {
+                if (++taps == 3) e.bench->rcx().injectFault(emu::FakeRcxController::Fault::Ng);
+                return true;
+            });
         QCOMPARE(int(r.end), int(TrialEnd::DeviceError));
         QCOMPARE(int(r.taps.size()), 3);
         QVERIFY2(r.detail.find("emergency stop") != std::string::npos, r.detail.c_str());
@@ -285,7 +280,8 @@ private slots:
         const auto t0 = std::chrono::steady_clock::now();
         e.rig.reset();  // what closing the window does
         tapping.join();
-        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         qInfo("closed mid-tap in %.3f s (%s)", s, ended.c_str());
         QVERIFY(s < 2.0);
         QVERIFY(!e.bench->brick().motorRunning(0));

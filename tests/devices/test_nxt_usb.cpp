@@ -80,7 +80,8 @@ struct MockedBrick {
         }
         switch (request) {
             case USBDEVFS_GET_CAPABILITIES: {
-                UMockdevIoctlData* d = umockdev_ioctl_data_resolve(arg, 0, sizeof(guint32), nullptr);
+                UMockdevIoctlData* d =
+                    umockdev_ioctl_data_resolve(arg, 0, sizeof(guint32), nullptr);
                 *reinterpret_cast<guint32*>(d->data) =
                     USBDEVFS_CAP_BULK_CONTINUATION | USBDEVFS_CAP_NO_PACKET_SIZE_LIM;
                 umockdev_ioctl_data_unref(d);
@@ -103,9 +104,9 @@ struct MockedBrick {
                 UMockdevIoctlData* urbData =
                     umockdev_ioctl_data_resolve(arg, 0, sizeof(usbdevfs_urb), nullptr);
                 auto* urb = reinterpret_cast<usbdevfs_urb*>(urbData->data);
-                UMockdevIoctlData* buffer = umockdev_ioctl_data_resolve(
-                    urbData, G_STRUCT_OFFSET(usbdevfs_urb, buffer),
-                    static_cast<gsize>(urb->buffer_length), nullptr);
+                UMockdevIoctlData* buffer =
+                    umockdev_ioctl_data_resolve(urbData, G_STRUCT_OFFSET(usbdevfs_urb, buffer),
+                                                static_cast<gsize>(urb->buffer_length), nullptr);
                 umockdev_ioctl_data_unref(buffer);  // held by its parent
                 ++submitted;
                 if (urb->type == USBDEVFS_URB_TYPE_BULK && urb->endpoint == 0x01) {
@@ -141,7 +142,8 @@ struct MockedBrick {
                 }
                 UMockdevIoctlData* urbData = done.front();
                 done.pop_front();
-                UMockdevIoctlData* ptr = umockdev_ioctl_data_resolve(arg, 0, sizeof(gpointer), nullptr);
+                UMockdevIoctlData* ptr =
+                    umockdev_ioctl_data_resolve(arg, 0, sizeof(gpointer), nullptr);
                 umockdev_ioctl_data_set_ptr(ptr, 0, urbData);
                 umockdev_ioctl_data_unref(ptr);
                 umockdev_ioctl_data_unref(urbData);
@@ -183,14 +185,15 @@ struct Testbed {
     void addDevice(int devnum, const char* descriptors, bool emulate) {
         const QString node = QString("/dev/bus/usb/001/%1").arg(devnum, 3, 10, QChar('0'));
         if (emulate)
-            QVERIFY(umockdev_testbed_attach_ioctl(bed, node.toUtf8().constData(), handler,
-                                                  nullptr));
-        const QString text = QString("P: /devices/usb1/1-%1\n"
-                                     "N: bus/usb/001/%2\n"
-                                     "E: SUBSYSTEM=usb\nE: DRIVER=usb\nE: BUSNUM=001\n"
-                                     "E: DEVNUM=%2\nE: DEVNAME=%3\nE: DEVTYPE=usb_device\n"
-                                     "A: bConfigurationValue=1\\n\nA: busnum=1\\n\n"
-                                     "A: devnum=%1\\n\nA: speed=12\\n\nH: descriptors=%4\n")
+            QVERIFY(
+                umockdev_testbed_attach_ioctl(bed, node.toUtf8().constData(), handler, nullptr));
+        const QString text = QString(
+                                 "P: /devices/usb1/1-%1\n"
+                                 "N: bus/usb/001/%2\n"
+                                 "E: SUBSYSTEM=usb\nE: DRIVER=usb\nE: BUSNUM=001\n"
+                                 "E: DEVNUM=%2\nE: DEVNAME=%3\nE: DEVTYPE=usb_device\n"
+                                 "A: bConfigurationValue=1\\n\nA: busnum=1\\n\n"
+                                 "A: devnum=%1\\n\nA: speed=12\\n\nH: descriptors=%4\n")
                                  .arg(devnum)
                                  .arg(devnum, 3, 10, QChar('0'))
                                  .arg(node)
@@ -225,8 +228,8 @@ private slots:
         QCOMPARE(int(brick.batteryMillivolts()), 8150);
         QCOMPARE(brick.keepAlive(), std::uint32_t(600000));
         brick.call(playTone(440, 100, false));  // no reply: nothing is read
-        brick.call(setOutputState(0, 50, MotorOn | Regulated, RegulationSpeed, 0, RunRunning, 90,
-                                  true));
+        brick.call(
+            setOutputState(0, 50, MotorOn | Regulated, RegulationSpeed, 0, RunRunning, 90, true));
         QTest::qWait(300);
         const OutputState s = brick.outputState(0);
         QVERIFY2(s.rotationCount >= 90 && s.rotationCount < 100,

@@ -137,9 +137,9 @@ private slots:
             QFAIL("a vanished port was not reported");
         } catch (const RigError& e) {
             const std::string m = e.what();
-            QVERIFY2(m.find("serial port " + b.controller.portName() + " vanished") !=
-                         std::string::npos,
-                     m.c_str());
+            QVERIFY2(
+                m.find("serial port " + b.controller.portName() + " vanished") != std::string::npos,
+                m.c_str());
             QVERIFY(m.find("could not be sent a stop") != std::string::npos);
         }
         QVERIFY_THROWS_EXCEPTION(RigError, b.stage->moveTo({10.0, 10.0}));

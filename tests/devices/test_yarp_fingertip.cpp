@@ -55,8 +55,9 @@ private slots:
         FakeYarp yarp(s, ramp);
         yarp.start();
         std::vector<std::string> log;
-        YarpFingertip tip(clientFor(yarp, s),
-                          [&](const std::string& d, const std::string& t) { log.push_back(d + t); });
+        YarpFingertip tip(clientFor(yarp, s), [&](const std::string& d, const std::string& t) {
+            log.push_back(d + t);
+        });
         tip.connect();
         double frame[12];
         std::uint64_t seq = 0;
@@ -234,7 +235,8 @@ private slots:
             for (int i = 0; i < 100; ++i) tip.waitFrame(tip.framesReceived(), 100, frame);
             QFAIL("a stream of wrong-size vectors did not fail the sensor");
         } catch (const RigError& e) {
-            QVERIFY2(std::string(e.what()).find("could not be read") != std::string::npos, e.what());
+            QVERIFY2(std::string(e.what()).find("could not be read") != std::string::npos,
+                     e.what());
         }
     }
 
