@@ -25,7 +25,7 @@ struct Bench {
         s.dialect = dialect;
         s.timeScale = 10.0;
         s.speedPercent = 20;
-        s.replyTimeoutMs = 500;
+        s.replyTimeoutMs = 2000;  // the default: a loaded machine may be slow to answer
         stage = std::make_unique<YamahaStage>(
             s, [this](const std::string& d, const std::string& t) { log.push_back(d + " " + t); });
     }
