@@ -121,10 +121,17 @@ private slots:
         Rig rig = e.rig->rig();
         const double t0 = rig.clock.now_s();
         const auto f0 = e.rig->fingertip()->framesReceived();
-        std::this_thread::sleep_for(std::chrono::milliseconds(300));
-        const double rate = (e.rig->fingertip()->framesReceived() - f0) / (rig.clock.now_s() - t0);
-        qInfo("fingertip frames: %.1f per robot second (the skin streams at 50 Hz)", rate);
-        QVERIFY(rate > 40.0 && rate < 60.0);
+        const auto s0 = e.bench->yarp().framesSent();
+        std::this_thread::sleep_for(std::chrono::milliseconds(400));
+        const auto received = e.rig->fingertip()->framesReceived() - f0;
+        const auto sent = e.bench->yarp().framesSent() - s0;
+        const double rate = received / (rig.clock.now_s() - t0);
+        qInfo("fingertip frames: %.1f per robot second (the skin streams at 50 Hz); %d sent, %d "
+              "received",
+              rate, int(sent), int(received));
+        // A busy machine may delay the publisher; the reader must still keep up with it.
+        QVERIFY(rate > 30.0 && rate < 60.0);
+        QVERIFY(received + 3 >= sent);
     }
 
     void aShortActiveTrialFollowsTheEdge() {
