@@ -110,13 +110,18 @@ void FakeYarp::setWrongSize(int values) {
     alwaysWrongSize_ = values;
 }
 
-std::string FakeYarp::textMessage() {
+std::vector<double> FakeYarp::handVector() {
     std::vector<double> hand(192, 0.0);
     const std::vector<double> tip = source_();
     for (std::size_t i = 0; i < tip.size() && i < 12; ++i)
         hand[static_cast<std::size_t>(s_.fingerOffset) + i] = tip[i];
     if (const int n = wrongSize_.exchange(0)) hand.resize(static_cast<std::size_t>(n), 0.0);
     if (const int n = alwaysWrongSize_.load()) hand.resize(static_cast<std::size_t>(n), 0.0);
+    return hand;
+}
+
+std::string FakeYarp::textMessage() {
+    const std::vector<double> hand = handVector();
     std::ostringstream o;
     o << s_.header;
     if (s_.envelope) o << ' ' << count_ << ' ' << count_ / s_.rate_hz;
@@ -132,12 +137,7 @@ std::string FakeYarp::textMessage() {
 }
 
 std::string FakeYarp::binaryMessage() {
-    std::vector<double> hand(192, 0.0);
-    const std::vector<double> tip = source_();
-    for (std::size_t i = 0; i < tip.size() && i < 12; ++i)
-        hand[static_cast<std::size_t>(s_.fingerOffset) + i] = tip[i];
-    if (const int n = wrongSize_.exchange(0)) hand.resize(static_cast<std::size_t>(n), 0.0);
-    if (const int n = alwaysWrongSize_.load()) hand.resize(static_cast<std::size_t>(n), 0.0);
+    const std::vector<double> hand = handVector();
     std::string command;  // the port command: a one-element list holding "~d"... as YARP frames it
     put32(command, 2);
     command += "~d";

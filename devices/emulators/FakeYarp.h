@@ -52,6 +52,7 @@ private:
     void serveNameServer(Client& c);
     void serveData(Client& c);
     void publish(Client& c);
+    std::vector<double> handVector();  ///< 192 values with the fingertip's, or a faulty size
     std::string textMessage();
     std::string binaryMessage();
 

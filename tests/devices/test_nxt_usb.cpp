@@ -52,6 +52,17 @@ struct MockedBrick {
         urb->status = 0;
     }
 
+    /// Answers a reap with `urbData` (and lets go of it).
+    static gboolean reaped(UMockdevIoctlClient* client, UMockdevIoctlData* arg,
+                           UMockdevIoctlData* urbData) {
+        UMockdevIoctlData* ptr = umockdev_ioctl_data_resolve(arg, 0, sizeof(gpointer), nullptr);
+        umockdev_ioctl_data_set_ptr(ptr, 0, urbData);
+        umockdev_ioctl_data_unref(ptr);
+        umockdev_ioctl_data_unref(urbData);
+        umockdev_ioctl_client_complete(client, 0, 0);
+        return TRUE;
+    }
+
     gboolean handle(UMockdevIoctlClient* client) {
         std::lock_guard lock(mutex);
         const gulong request = umockdev_ioctl_client_get_request(client);
@@ -67,13 +78,7 @@ struct MockedBrick {
                 auto* urb = reinterpret_cast<usbdevfs_urb*>(urbData->data);
                 urb->status = -ESHUTDOWN;
                 urb->actual_length = 0;
-                UMockdevIoctlData* ptr =
-                    umockdev_ioctl_data_resolve(arg, 0, sizeof(gpointer), nullptr);
-                umockdev_ioctl_data_set_ptr(ptr, 0, urbData);
-                umockdev_ioctl_data_unref(ptr);
-                umockdev_ioctl_data_unref(urbData);
-                umockdev_ioctl_client_complete(client, 0, 0);
-                return TRUE;
+                return reaped(client, arg, urbData);
             }
             umockdev_ioctl_client_complete(client, -1, ENODEV);
             return TRUE;
@@ -142,13 +147,7 @@ struct MockedBrick {
                 }
                 UMockdevIoctlData* urbData = done.front();
                 done.pop_front();
-                UMockdevIoctlData* ptr =
-                    umockdev_ioctl_data_resolve(arg, 0, sizeof(gpointer), nullptr);
-                umockdev_ioctl_data_set_ptr(ptr, 0, urbData);
-                umockdev_ioctl_data_unref(ptr);
-                umockdev_ioctl_data_unref(urbData);
-                umockdev_ioctl_client_complete(client, 0, 0);
-                return TRUE;
+                return reaped(client, arg, urbData);
             }
             case USBDEVFS_DISCARDURB: {
                 const gulong addr = reinterpret_cast<gulong>(*reinterpret_cast<void**>(arg->data));
