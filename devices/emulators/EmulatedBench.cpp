@@ -69,7 +69,7 @@ nxt::NxtTapperSettings EmulatedBench::tapperSettings() const {
 
 rcx::YamahaStageSettings EmulatedBench::stageSettings() const {
     rcx::YamahaStageSettings st;
-    st.serial.portName = const_cast<FakeRcxController&>(rcx_).portName();
+    st.serial.portName = rcx_.portName();
     st.dialect = s_.dialect;
     st.timeScale = s_.timeScale;
     st.softMax = scene_.stage.travel_mm;
@@ -80,7 +80,7 @@ rcx::YamahaStageSettings EmulatedBench::stageSettings() const {
 
 yarp::YarpFingertipSettings EmulatedBench::fingertipSettings() const {
     yarp::YarpFingertipSettings y;
-    y.nameServerPort = const_cast<FakeYarp&>(yarp_).nameServerPort();
+    y.nameServerPort = yarp_.nameServerPort();
     y.port = s_.yarp.portName;
     y.finger = static_cast<yarp::Finger>(s_.yarp.fingerOffset);
     y.binaryCarrier = false;

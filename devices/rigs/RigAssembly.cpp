@@ -74,9 +74,8 @@ AssembledRig::AssembledRig(const SceneSpec& scene,
             parts_->simStage = std::make_unique<SimulatedStage>(*parts_->world);
         }
         Stage& stage = yamaha_ ? static_cast<Stage&>(*yamaha_) : *parts_->simStage;
-        if (allSimulated)
-            parts_->clock = nullptr;  // the world's own clock
-        else
+        // A fully simulated rig keeps the world's own clock.
+        if (!allSimulated)
             parts_->clock = std::make_unique<MixedClock>(config.timeScale, parts_->world.get());
         if (config.tapper == RigConfig::TapperKind::Nxt) {
             yarpTip_ = std::make_unique<yarp::YarpFingertip>(config.yarp, logFor("fingertip"));

@@ -42,10 +42,7 @@ std::int32_t int32At(const QByteArray& b, int at) {
 }  // namespace
 
 YarpFingertip::YarpFingertip(YarpFingertipSettings settings, RawLog log)
-    : s_(std::move(settings)),
-      log_(std::move(log)),
-      latest_(kFingertipTaxels, 0.0),
-      compensation_(kFingertipTaxels) {}
+    : s_(std::move(settings)), log_(std::move(log)), compensation_(kFingertipTaxels) {}
 
 YarpFingertip::~YarpFingertip() {
     disconnect();
@@ -260,7 +257,6 @@ void YarpFingertip::deliver(const std::vector<double>& hand) {
         tip = compensation_.compensate(tip);
     }
     std::lock_guard lock(mutex_);
-    latest_ = tip;
     ++seq_;
     history_.push_back(std::move(tip));
     if (history_.size() > kHistory) history_.pop_front();
@@ -284,7 +280,10 @@ void YarpFingertip::bad(const std::string& problem) {
 
 void YarpFingertip::latestFrame(double* out) const {
     std::lock_guard lock(mutex_);
-    std::copy(latest_.begin(), latest_.end(), out);
+    if (history_.empty())
+        std::fill(out, out + kFingertipTaxels, 0.0);
+    else
+        std::copy(history_.back().begin(), history_.back().end(), out);
 }
 
 std::uint64_t YarpFingertip::waitFrame(std::uint64_t after, int timeoutMs, double* out) {

@@ -70,7 +70,6 @@ private:
     std::atomic<bool> running_{false}, stop_{false};
     mutable std::mutex mutex_;
     std::condition_variable cv_;
-    std::vector<double> latest_;
     static constexpr std::size_t kHistory = 256;
     std::deque<std::vector<double>> history_;  ///< the last frames, newest last
     std::uint64_t seq_ = 0;

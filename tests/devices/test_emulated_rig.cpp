@@ -5,6 +5,7 @@
 // a safe state with every finished tap kept.
 #include <QtTest>
 #include <chrono>
+#include <functional>
 #include <thread>
 
 #include "app/run/ExperimentRun.h"
@@ -81,6 +82,21 @@ class TestEmulatedRig : public QObject {
     Q_OBJECT
     RunResult trained_;
 
+    /// An active trial on the rectangle that calls `inject` after `afterTaps` taps.
+    TrialResult trialWithFaultAfter(Emulated& e, int afterTaps,
+                                    const std::function<void()>& inject) {
+        Rig rig = e.rig->rig();
+        const Polygon outline = e.spec.scene.object.outline();
+        const TrialSetup setup =
+            trialSetupFor(trained_, FollowingMode::Active, e.spec.following, outline, std::nullopt);
+        int taps = 0;
+        return runTrial(rig, trained_.classifier, trained_.classes, outline, setup,
+                        [&](const FollowedTap&) {
+                            if (++taps == afterTaps) inject();
+                            return true;
+                        });
+    }
+
 private slots:
     void initTestCase() {
         // The classifier comes from the simulated rig; the trial then runs on the emulated one.
@@ -126,9 +142,10 @@ private slots:
         const auto received = e.rig->fingertip()->framesReceived() - f0;
         const auto sent = e.bench->yarp().framesSent() - s0;
         const double rate = received / (rig.clock.now_s() - t0);
-        qInfo("fingertip frames: %.1f per robot second (the skin streams at 50 Hz); %d sent, %d "
-              "received",
-              rate, int(sent), int(received));
+        qInfo(
+            "fingertip frames: %.1f per robot second (the skin streams at 50 Hz); %d sent, %d "
+            "received",
+            rate, int(sent), int(received));
         // A busy machine may delay the publisher; the reader must still keep up with it.
         QVERIFY(rate > 30.0 && rate < 60.0);
         QVERIFY(received + 3 >= sent);
@@ -205,16 +222,8 @@ private slots:
     void aDeviceFaultInATrialKeepsEveryFinishedTap() {
         Emulated e;
         e.assemble();
-        Rig rig = e.rig->rig();
-        const Polygon outline = e.spec.scene.object.outline();
-        const TrialSetup setup =
-            trialSetupFor(trained_, FollowingMode::Active, e.spec.following, outline, std::nullopt);
-        int taps = 0;
-        const TrialResult r = runTrial(
-            rig, trained_.classifier, trained_.classes, outline, setup, [&](const FollowedTap&) {
-                if (++taps == 4) e.bench->brick().injectFault(FakeNxtBrick::Fault::NoReply);
-                return true;
-            });
+        const TrialResult r = trialWithFaultAfter(
+            e, 4, [&] { e.bench->brick().injectFault(FakeNxtBrick::Fault::NoReply); });
         QCOMPARE(int(r.end), int(TrialEnd::DeviceError));
         QCOMPARE(int(r.taps.size()), 4);
         QVERIFY2(r.detail.find("NXT") != std::string::npos, r.detail.c_str());
@@ -240,16 +249,8 @@ private slots:
     void aStageFaultInATrialEndsItWithItsReason() {
         Emulated e;
         e.assemble();
-        Rig rig = e.rig->rig();
-        const Polygon outline = e.spec.scene.object.outline();
-        const TrialSetup setup =
-            trialSetupFor(trained_, FollowingMode::Active, e.spec.following, outline, std::nullopt);
-        int taps = 0;
-        const TrialResult r = runTrial(
-            rig, trained_.classifier, trained_.classes, outline, setup, [&](const FollowedTap&) {
-                if (++taps == 3) e.bench->rcx().injectFault(emu::FakeRcxController::Fault::Ng);
-                return true;
-            });
+        const TrialResult r = trialWithFaultAfter(
+            e, 3, [&] { e.bench->rcx().injectFault(emu::FakeRcxController::Fault::Ng); });
         QCOMPARE(int(r.end), int(TrialEnd::DeviceError));
         QCOMPARE(int(r.taps.size()), 3);
         QVERIFY2(r.detail.find("emergency stop") != std::string::npos, r.detail.c_str());

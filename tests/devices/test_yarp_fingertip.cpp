@@ -30,6 +30,24 @@ YarpFingertipSettings clientFor(const FakeYarp& yarp, const FakeYarpSettings& s)
     return c;
 }
 
+/// An emulated publisher of ramp() at `rate_hz` with a client connected to it.
+struct Connected {
+    FakeYarpSettings settings;
+    FakeYarp yarp;
+    YarpFingertip tip;
+    explicit Connected(double rate_hz)
+        : settings(withRate(rate_hz)),
+          yarp(settings, ramp),
+          tip((yarp.start(), clientFor(yarp, settings))) {
+        tip.connect();
+    }
+    static FakeYarpSettings withRate(double rate_hz) {
+        FakeYarpSettings s;
+        s.rate_hz = rate_hz;
+        return s;
+    }
+};
+
 }  // namespace
 
 class TestYarpFingertip : public QObject {
@@ -181,12 +199,8 @@ private slots:
     }
 
     void aStalledStreamTimesOutAndRecovers() {
-        FakeYarpSettings s;
-        s.rate_hz = 200;
-        FakeYarp yarp(s, ramp);
-        yarp.start();
-        YarpFingertip tip(clientFor(yarp, s));
-        tip.connect();
+        Connected c(200);
+        auto& [s, yarp, tip] = c;
         double frame[12];
         std::uint64_t seq = tip.waitFrame(0, 1000, frame);
         QVERIFY(seq > 0);
@@ -200,12 +214,8 @@ private slots:
     }
 
     void malformedLinesAndWrongSizesAreSkippedAndCounted() {
-        FakeYarpSettings s;
-        s.rate_hz = 200;
-        FakeYarp yarp(s, ramp);
-        yarp.start();
-        YarpFingertip tip(clientFor(yarp, s));
-        tip.connect();
+        Connected c(200);
+        auto& [s, yarp, tip] = c;
         double frame[12];
         std::uint64_t seq = tip.waitFrame(0, 1000, frame);
         yarp.injectMalformedLine();
