@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
@@ -34,7 +35,36 @@ std::FILE* openTable(const fs::path& path) {
     return f;
 }
 
+bool sameOutline(const Polygon& a, const Polygon& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (distance(a.vertex(i), b.vertex(i)) > 1e-6) return false;
+    return true;
+}
+
 }  // namespace
+
+void checkRunnableOn(const ExperimentSpec& spec, const ConnectedRig& connected) {
+    const Polygon mounted = connected.object.outline();
+    const std::string fix =
+        "; mount that object and describe it in the scene, or run this on the simulated rig "
+        "(disconnect the devices)";
+    if (!sameOutline(spec.scene.object.outline(), mounted))
+        throw InputError(spec.name, "/scene/object",
+                         "the scene's " + spec.scene.object.shape +
+                             " is not the object on the connected rig (" + connected.object.shape +
+                             ")" + fix);
+    for (const TrialSpec& t : spec.trials)
+        if (!sameOutline(t.object.outline(), mounted))
+            throw InputError(spec.name, t.place,
+                             "trial '" + t.label + "' is on a " + t.object.shape +
+                                 " at another place than the object on the connected rig (" +
+                                 connected.object.shape + ")" + fix);
+    if (spec.sweeps.any())
+        throw InputError(spec.name, "/sweeps",
+                         "sweeps run on simulated rigs only; run this experiment with the devices "
+                         "disconnected, or remove its sweeps");
+}
 
 TrialSetup trialSetupFor(const RunResult& trained, FollowingMode mode,
                          const FollowingSettings& settings, const Polygon& outline,
@@ -72,19 +102,23 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
     int trialIndex = 0;
     for (const TrialSpec& ts : spec.trials) {
         for (int repeat = 0; repeat < ts.repeats; ++repeat, ++trialIndex) {
-            // Each trial gets its own world on the trial's object, with its own noise.
-            SceneSpec scene = spec.scene;
-            scene.object = ts.object;
-            scene.seed =
-                RandomStream::derived(spec.scene.seed, "trial:" + std::to_string(trialIndex))
-                    .next() >>
-                1;
-            SimulatedRig simulated(scene, model);
-            Rig rig = simulated.rig();
+            // On the simulated rig each trial gets its own world on the trial's object, with its
+            // own noise; a connected rig has the one object mounted.
+            std::optional<SimulatedRig> simulated;
+            if (!options.connected) {
+                SceneSpec scene = spec.scene;
+                scene.object = ts.object;
+                scene.seed =
+                    RandomStream::derived(spec.scene.seed, "trial:" + std::to_string(trialIndex))
+                        .next() >>
+                    1;
+                simulated.emplace(scene, model);
+            }
+            Rig rig = options.connected ? options.connected->rig : simulated->rig();
             TrialRun run;
             run.label = ts.label;
             run.trial = ++counters[ts.label + "/" + modeName(ts.mode)];
-            run.outline = simulated.world().object();
+            run.outline = simulated ? simulated->world().object() : ts.object.outline();
             const TrialSetup setup =
                 trialSetupFor(result, ts.mode, spec.following, run.outline, ts.start);
             run.start = setup.start;
@@ -109,7 +143,7 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
                              return !(options.cancel && options.cancel->load());
                          });
             result.robotTime_s += run.result.robotTime_s;
-            result.tapsSimulated += simulated.world().tapsSimulated();
+            if (simulated) result.tapsSimulated += simulated->world().tapsSimulated();
             result.trials.push_back(std::move(run));
             if (result.trials.back().result.end == TrialEnd::DeviceError) {
                 result.failure = result.trials.back().result.detail;
@@ -162,9 +196,16 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     const ExperimentSpec& spec = result.spec;
 
     auto model = std::make_shared<const FingertipContactModel>(spec.scene.fingertip);
-    SimulatedRig simulated(spec.scene, model);
-    Rig rig = simulated.rig();
-    result.activeEffects = simulated.world().activeEffects();
+    if (options.connected) checkRunnableOn(spec, *options.connected);
+    std::optional<SimulatedRig> simulated;
+    if (!options.connected) simulated.emplace(spec.scene, model);
+    Rig rig = options.connected ? options.connected->rig : simulated->rig();
+    const double robotStart_s = rig.clock.now_s();
+    if (simulated) {
+        result.activeEffects = simulated->world().activeEffects();
+    } else {
+        result.rig = options.connected->description;
+    }
     result.classes = spec.classes;
     result.classes.regions =
         computeClassRegions(*model, spec.classes, spec.scene.tap, spec.scene.strokeLimitDepth());
@@ -191,11 +232,11 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
         if (options.progress) options.progress(progress);
         return !(options.cancel && options.cancel->load());
     };
-    result.taps =
-        collectTrainingTaps(rig, simulated.world().object(), result.classes, spec.training,
-                            RandomStream::derived(spec.scene.seed, "protocol:placement"), onTap);
-    result.robotTime_s = simulated.world().now_s();
-    result.tapsSimulated = simulated.world().tapsSimulated();
+    result.taps = collectTrainingTaps(
+        rig, simulated ? simulated->world().object() : spec.scene.object.outline(), result.classes,
+        spec.training, RandomStream::derived(spec.scene.seed, "protocol:placement"), onTap);
+    result.robotTime_s = rig.clock.now_s() - robotStart_s;
+    if (simulated) result.tapsSimulated = simulated->world().tapsSimulated();
     if (static_cast<int>(result.taps.size()) < spec.plannedTaps()) {
         result.cancelled = true;
         result.runWall_s =
@@ -262,6 +303,8 @@ RunResult runFollowing(const RunResult& trained, const ExperimentSpec& specIn,
     result.failure.clear();
     result.robotTime_s = 0.0;
     result.tapsSimulated = 0;
+    result.rig = options.connected ? options.connected->description : "simulated";
+    if (options.connected) checkRunnableOn(result.spec, *options.connected);
     if (!options.outDir.empty()) ensureDirectory(fs::path(options.outDir) / "data");
     auto model = std::make_shared<const FingertipContactModel>(result.spec.scene.fingertip);
     RunProgress progress;
@@ -467,6 +510,7 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
     j["run_finished"] = !r.cancelled && r.failure.empty();
     j["scene"] = sceneToJson(r.spec.scene);
     j["effects_active"] = r.activeEffects;
+    j["rig"] = r.rig;
     Json regions = Json::array();
     for (int c = 0; c < cs.classCount(); ++c) regions.push_back(regionName(cs.regionOf(c)));
     j["classes"] = {{"orientations_deg", cs.orientationsDeg},

@@ -1,7 +1,7 @@
 #pragma once
-// Running an experiment end to end on the simulated rig and writing its artefacts
-// (DESIGN.md §4): summary.json, data/*.csv (taps appended as they are taken), and the tables
-// behind every figure. Figures are drawn by app/figures from the same result.
+// Running an experiment end to end, on the simulated rig or on a connected one, and writing its
+// artefacts (DESIGN.md §4): summary.json, data/*.csv (taps appended as they are taken), and the
+// tables behind every figure. Figures are drawn by app/figures from the same result.
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -14,6 +14,7 @@
 #include "core/control/ContourFollower.h"
 #include "core/experiment/Experiment.h"
 #include "core/recognition/PathHistogram.h"
+#include "core/rig/Rig.h"
 #include "core/validation/OfflineValidation.h"
 #include "core/validation/TrainingProtocol.h"
 
@@ -35,9 +36,18 @@ struct TrialRun {
     Recognition recognition;
 };
 
+/// A connected rig (real devices, or any mix of real and simulated) to take every tap on instead
+/// of the simulated rig. It holds one object: the one `object` describes.
+struct ConnectedRig {
+    Rig rig;
+    ObjectSpec object;
+    std::string description;  ///< "stage: Yamaha RCX on /dev/ttyUSB0; tapper: ..."
+};
+
 struct RunResult {
-    ExperimentSpec spec;  ///< with the seed actually used
-    ClassSet classes;     ///< with the region map
+    ExperimentSpec spec;            ///< with the seed actually used
+    std::string rig = "simulated";  ///< where the taps were taken
+    ClassSet classes;               ///< with the region map
     std::vector<std::string> activeEffects;
     std::vector<CollectedTap> taps;  ///< every tap, in order
     HistogramClassifier classifier;
@@ -65,7 +75,14 @@ struct RunOptions {
     /// the thread that runs the experiment.
     std::function<void(const TapRecord&, const std::string& what)> tapTaken;
     const std::atomic<bool>* cancel = nullptr;
+    /// Take the taps on this rig instead of simulated ones (not owned; must outlive the run).
+    const ConnectedRig* connected = nullptr;
 };
+
+/// Refuses, before any tap, what cannot run on `connected`: a scene or trial whose object is not
+/// the one mounted there, or a sweep (sweeps replay on simulated rigs). Throws InputError naming
+/// the trial and what to do.
+void checkRunnableOn(const ExperimentSpec& spec, const ConnectedRig& connected);
 
 /// Runs the experiment's steps: training and validation taps (appended to <outDir>/data/taps.csv
 /// as they are taken), then the contour-following trials (appended to

@@ -1,5 +1,8 @@
 #include "devices/emulators/EmulatedBench.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace activetouch::emu {
 namespace {
 
@@ -34,7 +37,20 @@ EmulatedBench::EmulatedBench(const SceneSpec& scene,
       s_(settings),
       brick_(brickSettings(settings)),
       rcx_(rcxSettings(scene, settings)),
-      yarp_(yarpSettings(settings), [this] { return fingertip(); }) {}
+      yarp_(yarpSettings(settings), [this] { return fingertip(); }),
+      noise_(RandomStream::derived(scene.seed, "bench:taxel_noise")) {
+    for (const EffectSpec& e : scene.effects) {
+        if (e.name == "taxel_noise") noiseSigma_ = e.parameters.at("sigma_counts").get<double>();
+        if (e.name == "adc_quantisation") adcMax_ = e.parameters.at("max_counts").get<double>();
+    }
+}
+
+std::vector<std::string> EmulatedBench::frameEffects() const {
+    std::vector<std::string> names;
+    if (noiseSigma_ > 0.0) names.push_back("taxel_noise");
+    if (adcMax_) names.push_back("adc_quantisation");
+    return names;
+}
 
 EmulatedBench::~EmulatedBench() {
     yarp_.stop();
@@ -50,13 +66,20 @@ std::vector<double> EmulatedBench::fingertip() {
     std::vector<double> out(static_cast<std::size_t>(model_->taxelCount()), 0.0);
     const double clearance = scene_.tap.retractHeight_mm - scene_.object.height_mm;
     const double depth = brick_.rotationDegrees(0) / s_.degreesPerMm - clearance;
-    if (depth <= 0.0) return out;
-    const Vec2 pose = rcx_.position();
-    if (!contact_ || distance(pose, contactPose_) > 1e-6) {
-        contact_.emplace(model_->contactAt(object_, pose));
-        contactPose_ = pose;
+    std::lock_guard lock(frameMutex_);
+    if (depth > 0.0) {
+        const Vec2 pose = rcx_.position();
+        if (!contact_ || distance(pose, contactPose_) > 1e-6) {
+            contact_.emplace(model_->contactAt(object_, pose));
+            contactPose_ = pose;
+        }
+        contact_->taxelPressures(depth, out.data());
     }
-    contact_->taxelPressures(depth, out.data());
+    // The frame effects, in the simulated rig's order: noise, then the converter.
+    if (noiseSigma_ > 0.0)
+        for (double& v : out) v = std::max(0.0, v + noiseSigma_ * noise_.normal());
+    if (adcMax_)
+        for (double& v : out) v = std::clamp(std::round(v), 0.0, *adcMax_);
     return out;
 }
 

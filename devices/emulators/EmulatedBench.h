@@ -1,12 +1,16 @@
 #pragma once
 // The emulated bench: an RCX controller on a pty carries the fingertip over the scene's object, an
 // NXT brick's motor A lowers it, and a YARP publisher streams what the contact physics says the
-// taxels feel at that pose and depth. The real drivers connect to it exactly as to the real rig;
-// only the effects of the physics itself are present (no noise, no drift). It can run faster than
-// real time (timeScale), and the drivers are told so.
+// taxels feel at that pose and depth. The real drivers connect to it exactly as to the real rig.
+// Of the scene's effects, those a frame carries are applied to every frame published when the
+// scene lists them: taxel_noise and adc_quantisation; the rest (drift, the pad's memory, stage
+// error, ...) belong to the simulated rig. It can run faster than real time (timeScale), and the
+// drivers are told so.
 #include <memory>
+#include <mutex>
 #include <optional>
 
+#include "core/common/Random.h"
 #include "core/fingertip/FingertipContactModel.h"
 #include "core/scene/Scene.h"
 #include "devices/emulators/FakeNxtBrick.h"
@@ -37,8 +41,10 @@ public:
     FakeRcxController& rcx() { return rcx_; }
     FakeYarp& yarp() { return yarp_; }
 
-    /// What the taxels feel now, counts.
+    /// What the taxels read now, counts (with the scene's frame effects).
     std::vector<double> fingertip();
+    /// The scene's effects this bench applies to its frames.
+    std::vector<std::string> frameEffects() const;
 
     /// Driver settings that match this bench (ports, gearing, time scale).
     nxt::NxtTapperSettings tapperSettings() const;
@@ -56,6 +62,10 @@ private:
     FakeYarp yarp_;
     std::optional<FingertipContactModel::Contact> contact_;
     Vec2 contactPose_;
+    std::mutex frameMutex_;
+    double noiseSigma_ = 0.0;       ///< taxel_noise, counts (0: not listed)
+    std::optional<double> adcMax_;  ///< adc_quantisation's top of range
+    RandomStream noise_;
 };
 
 }  // namespace activetouch::emu

@@ -168,7 +168,9 @@ TapRecord NxtTapper::tap() {
                 double total = 0.0;
                 for (double v : frame) total += v;
                 if (phase_ == Phase::Descending) {
-                    if (!contactTacho && total > tap_.noiseFloor) {
+                    // Contact onset, for the stop depth: a tenth of the threshold is well above
+                    // what the skin's noise sums to over the untouched taxels.
+                    if (!contactTacho && total >= 0.1 * tap_.contactThreshold) {
                         poll();
                         contactTacho = tacho;
                     }
