@@ -19,10 +19,59 @@ void DeviceSession::interrupt() {
     if (auto* s = rig_->yamaha()) s->stop();
 }
 
+bool DeviceSession::connected() const {
+    std::lock_guard lock(rigMutex_);
+    return rig_ != nullptr;
+}
+
 bool DeviceSession::ready() {
-    if (rig_) return true;
-    emit failed(tr("The devices are not connected; press Connect first."));
-    return false;
+    std::lock_guard lock(rigMutex_);
+    if (!rig_) {
+        emit failed(tr("The devices are not connected; press Connect first."));
+        return false;
+    }
+    if (*lent_) {
+        emit failed(tr("A run is using the devices; cancel it or wait for it to finish."));
+        return false;
+    }
+    busy_ = true;
+    return true;
+}
+
+void DeviceSession::done() {
+    std::lock_guard lock(rigMutex_);
+    busy_ = false;
+}
+
+std::shared_ptr<const ConnectedRig> DeviceSession::lend(QString* why) {
+    std::lock_guard lock(rigMutex_);
+    QString reason;
+    if (!rig_)
+        reason = tr("no devices are connected");
+    else if (*lent_)
+        reason = tr("another run is using the devices");
+    else if (busy_)
+        reason =
+            tr("the devices are busy with a command from the Devices panel; try again when "
+               "it has finished");
+    if (!reason.isEmpty()) {
+        if (why) *why = reason;
+        return {};
+    }
+    *lent_ = true;
+    // The lease keeps the rig alive until the run lets go, even if the session goes first.
+    struct Lease {
+        std::shared_ptr<AssembledRig> rig;
+        ConnectedRig connected;
+    };
+    QString what = QString::fromStdString(rig_->config().describe());
+    if (choice_.emulatedBench) what = tr("emulated bench: ") + what;
+    auto* lease = new Lease{rig_, ConnectedRig{rig_->rig(), scene_.object, what.toStdString()}};
+    return std::shared_ptr<const ConnectedRig>(&lease->connected,
+                                               [lease, lent = lent_](const ConnectedRig*) {
+                                                   delete lease;
+                                                   *lent = false;
+                                               });
 }
 
 void DeviceSession::reassemble() {
@@ -57,6 +106,10 @@ void DeviceSession::reassemble() {
 }
 
 void DeviceSession::connectDevices(const SceneSpec& scene, const DeviceChoice& choice) {
+    if (*lent_) {
+        emit failed(tr("A run is using the devices; cancel it before connecting others."));
+        return;
+    }
     disconnectDevices();
     try {
         scene_ = scene;
@@ -81,6 +134,10 @@ void DeviceSession::connectDevices(const SceneSpec& scene, const DeviceChoice& c
 }
 
 void DeviceSession::disconnectDevices() {
+    if (*lent_) {
+        emit failed(tr("A run is using the devices; cancel it before disconnecting."));
+        return;
+    }
     const bool was = rig_ != nullptr;
     {
         std::lock_guard lock(rigMutex_);
@@ -91,7 +148,7 @@ void DeviceSession::disconnectDevices() {
 }
 
 void DeviceSession::readBattery() {
-    if (!rig_) return;
+    if (!ready()) return;
     if (auto* brick = rig_->brick()) {
         try {
             emit battery(tr("%1 V").arg(brick->batteryMillivolts() / 1000.0, 0, 'f', 2));
@@ -101,10 +158,10 @@ void DeviceSession::readBattery() {
     } else {
         emit battery(tr("- (no battery on the simulated tapper)"));
     }
+    done();
 }
 
 void DeviceSession::move(Vec2 target) {
-    if (!ready()) return;
     try {
         rig_->rig().stage.moveTo(target);
         const Vec2 p = rig_->rig().stage.position();
@@ -123,18 +180,22 @@ void DeviceSession::home() {
         } catch (const RigError& e) {
             emit failed(QString::fromStdString(e.what()));
         }
-        return;
+    } else {
+        move({0.0, 0.0});
     }
-    move({0.0, 0.0});
+    done();
 }
 
 void DeviceSession::jog(double dx, double dy) {
     if (!ready()) return;
     move(rig_->rig().stage.position() + Vec2{dx, dy});
+    done();
 }
 
 void DeviceSession::goTo(double x, double y) {
+    if (!ready()) return;
     move({x, y});
+    done();
 }
 
 void DeviceSession::testTap() {
@@ -158,9 +219,14 @@ void DeviceSession::testTap() {
         emit tapperState(tr("stopped after a fault"));
         emit failed(QString::fromStdString(e.what()));
     }
+    done();
 }
 
 void DeviceSession::setContactThreshold(double counts) {
+    if (*lent_) {
+        emit failed(tr("A run is using the devices; change the threshold when it has finished."));
+        return;
+    }
     scene_.tap.contactThreshold = counts;
     if (rig_) {
         if (auto* t = rig_->nxtTapper()) {

@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "app/gui/LiveFeed.h"
+#include "app/run/ExperimentRun.h"
 #include "core/scene/Scene.h"
 #include "devices/rigs/RigAssembly.h"
 
@@ -34,6 +35,13 @@ public:
     /// Thread-safe: stops a tap or move in progress at once (closing the window).
     void interrupt();
 
+    /// Thread-safe: lends the connected rig to a run. Empty if nothing is connected, or if the
+    /// devices are busy (a panel command, another run), with the reason in `why`. While lent, the
+    /// panels' commands are refused; the run gives the rig back by dropping the lease.
+    std::shared_ptr<const ConnectedRig> lend(QString* why);
+    /// Thread-safe: whether devices are connected.
+    bool connected() const;
+
 public slots:
     void connectDevices(const activetouch::SceneSpec& scene,
                         const activetouch::DeviceChoice& choice);
@@ -56,15 +64,20 @@ signals:
     void raw(const QString& device, const QString& direction, const QString& text);
 
 private:
+    /// Claims the devices for one panel command; false (and says why) if not connected or lent.
     bool ready();
+    /// Gives the devices back after a panel command.
+    void done();
     void move(Vec2 target);
     void reassemble();
     LiveFeed& live_;
     SceneSpec scene_;
     DeviceChoice choice_;
     std::unique_ptr<emu::EmulatedBench> bench_;
-    std::unique_ptr<AssembledRig> rig_;
-    std::mutex rigMutex_;  ///< guards rig_ against interrupt() from the GUI thread
+    std::shared_ptr<AssembledRig> rig_;
+    mutable std::mutex rigMutex_;  ///< guards rig_, busy_ and lent_ against the GUI thread
+    bool busy_ = false;            ///< a panel command is running
+    std::shared_ptr<std::atomic<bool>> lent_ = std::make_shared<std::atomic<bool>>(false);
 };
 
 /// Owns the device thread and the session in it.

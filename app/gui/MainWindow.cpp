@@ -275,12 +275,27 @@ bool MainWindow::startRun(RunController::What what) {
     const QString dir = QDir(outputBase_)
                             .filePath(QString::fromStdString(spec.name) + "-" +
                                       QDateTime::currentDateTime().toString("yyyyMMdd-hhmmss-zzz"));
-    if (!runs_.start(spec, dir, what, static_cast<Pace>(pace_->currentIndex()), last_))
+    // With devices connected, the run takes its taps on them; otherwise on the simulated rig.
+    std::shared_ptr<const ConnectedRig> connected;
+    if (devices_.session()->connected()) {
+        QString why;
+        connected = devices_.session()->lend(&why);
+        if (!connected) {
+            showError(tr("The run cannot use the connected devices: %1.").arg(why));
+            return false;
+        }
+    }
+    if (!runs_.start(spec, dir, what, static_cast<Pace>(pace_->currentIndex()), last_, connected))
         return false;
     lastOutDir_ = dir;
     progress_->setRange(0, plannedTapEstimate(spec));
     progress_->setValue(0);
-    log(tr("run started: %1, writing %2").arg(QString::fromStdString(spec.name), dir));
+    log(tr("run started: %1 on %2, writing %3")
+            .arg(QString::fromStdString(spec.name),
+                 connected ? tr("the connected rig (%1)")
+                                 .arg(QString::fromStdString(connected->description))
+                           : tr("the simulated rig"),
+                 dir));
     updateActions();
     return true;
 }
@@ -379,7 +394,10 @@ void MainWindow::updateActions() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-    // A run in flight stops within a tap; never wait long on it.
+    // A run in flight stops at once: the devices drop the tap or move in progress (a run on the
+    // connected rig ends its trial there, keeping every finished tap); never wait long on it.
+    runs_.cancel();
+    devices_.session()->interrupt();
     runs_.stopAndWait(2000);
     QSettings settings;
     settings.setValue("geometry", saveGeometry());

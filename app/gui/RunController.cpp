@@ -27,7 +27,8 @@ bool RunController::stopAndWait(int ms) {
 }
 
 bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, What what, Pace pace,
-                          std::shared_ptr<const RunResult> trained) {
+                          std::shared_ptr<const RunResult> trained,
+                          std::shared_ptr<const ConnectedRig> connected) {
     if (thread_) {
         emit failed(tr("A run is already going; cancel it or wait for it to finish."));
         return false;
@@ -38,12 +39,22 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
     }
     ExperimentSpec spec = specIn;
     if (what == What::TrainingOnly) spec.trials.clear();
+    if (connected) {
+        try {
+            checkRunnableOn(spec, *connected);
+        } catch (const std::exception& e) {
+            emit failed(tr("This run cannot take place on the connected rig: %1").arg(e.what()));
+            return false;
+        }
+        pace = Pace::Fastest;  // real devices keep their own time
+    }
     cancel_ = false;
-    thread_ = QThread::create([this, spec, outDir, what, pace, trained] {
+    thread_ = QThread::create([this, spec, outDir, what, pace, trained, connected]() mutable {
         const auto started = std::chrono::steady_clock::now();
         RunOptions options;
         options.outDir = outDir.toStdString();
         options.cancel = &cancel_;
+        options.connected = connected.get();
         options.progress = [this, started](const RunProgress& p) {
             const double elapsed =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -76,8 +87,10 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
             const double wall =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
             writeSummary(*result, options.outDir, wall, 0.0);
+            connected.reset();  // the devices are free again before anyone hears of the end
             emit finished(result, outDir);
         } catch (const std::exception& e) {
+            connected.reset();
             emit failed(tr("The run stopped: %1. Every tap taken so far is in %2/data.")
                             .arg(QString::fromStdString(e.what()), outDir));
         }

@@ -26,10 +26,13 @@ public:
 
     enum class What { Everything, TrainingOnly, FollowingOnly };
 
-    /// Starts a run writing into `outDir`; false (and failed()) if one is already running or
-    /// FollowingOnly has no trained classifier to use.
+    /// Starts a run writing into `outDir`, on the simulated rig or on `connected` (held until the
+    /// run ends; the pace is then the devices' own); false (and failed()) if one is already
+    /// running, FollowingOnly has no trained classifier to use, or the experiment cannot run on
+    /// the connected rig.
     bool start(const ExperimentSpec& spec, const QString& outDir, What what, Pace pace,
-               std::shared_ptr<const RunResult> trained = {});
+               std::shared_ptr<const RunResult> trained = {},
+               std::shared_ptr<const ConnectedRig> connected = {});
     void cancel();
     bool running() const { return thread_ != nullptr; }
     /// Asks a running run to stop and waits at most `ms` for it; true if it stopped.

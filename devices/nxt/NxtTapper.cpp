@@ -96,7 +96,7 @@ std::string NxtTapper::safeStop() noexcept {
 }
 
 TapRecord NxtTapper::tap() {
-    abort_ = false;
+    if (abort_) throw RigError("NXT tapper: stopped (the application is closing); no further taps");
     const int K = sensor_.taxelCount();
     const int T = tap_.samples;
     TapRecord record;

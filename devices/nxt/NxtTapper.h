@@ -49,7 +49,8 @@ public:
     const TapSpec& tapSpec() const { return tap_; }
     /// Motor state for panels ("retracted", "descending", ...); read from any thread.
     std::string state() const;
-    /// Asks a tap in progress to stop at the next frame (the tap then throws RigError).
+    /// Stops a tap in progress at the next frame (the tap then throws RigError) and refuses every
+    /// later one: for closing, from any thread.
     void abort() { abort_ = true; }
 
 private:

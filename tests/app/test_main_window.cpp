@@ -2,9 +2,15 @@
 // watch the progress reach the end; cancel half-way and find every finished tap kept; toggle an
 // effect and see the next run use it; export every figure in every format; open bad files and
 // keep the session; drive the simulated devices from their panel.
+#include <QComboBox>
+#include <QElapsedTimer>
 #include <QGroupBox>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QLabel>
 #include <QMessageBox>
+#include <QPlainTextEdit>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QStandardPaths>
@@ -12,8 +18,6 @@
 #include <QTemporaryDir>
 #include <QToolButton>
 #include <QtTest>
-#include <QComboBox>
-#include <QPlainTextEdit>
 
 #include "app/gui/FollowingTab.h"
 #include "app/gui/LiveView.h"
@@ -39,6 +43,17 @@ void click(QMainWindow& w, const char* actionName) {
             return;
         }
     QFAIL("no button for the action");
+}
+
+QJsonObject readJson(const QString& path) {
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly)) return {};
+    return QJsonDocument::fromJson(f.readAll()).object();
+}
+
+void writeJson(const QString& path, const QJsonObject& j) {
+    QFile f(path);
+    if (f.open(QIODevice::WriteOnly | QIODevice::Truncate)) f.write(QJsonDocument(j).toJson());
 }
 
 int linesIn(const QString& path) {
@@ -278,7 +293,76 @@ private slots:
         kind->setCurrentIndex(0);
     }
 
+    void runsTakeTheirTapsOnTheConnectedDevices() {
+        // A short following experiment: one active trial on the mounted rectangle.
+        QJsonObject j = readJson(source("experiments/paper.json"));
+        j["scene"] = source("experiments/scenes/paper_rectangle.json");
+        QJsonObject following = j["following"].toObject();
+        QJsonArray trials;
+        QJsonObject trial = following["trials"].toArray().at(1).toObject();  // active rectangle
+        trial["repeats"] = 1;
+        trials.append(trial);
+        following["trials"] = trials;
+        following["tap_cap_perimeters"] = 0.1;  // the smallest allowed: about 10 taps
+        j["following"] = following;
+        j.remove("recognition");
+        const QString path = dir_.filePath("short_following.json");
+        writeJson(path, j);
+        QVERIFY(window_->openExperiment(path));
+        QVERIFY(window_->lastRun());  // trained on the simulated rig by the first test
+
+        auto* kind = window_->findChild<QComboBox*>("tapperKind");
+        kind->setCurrentIndex(2);  // the emulated bench, in real time
+        QPushButton* connectButton = window_->findChild<QPushButton*>("connectDevices");
+        QTest::mouseClick(connectButton, Qt::LeftButton);
+        QLabel* position = window_->findChild<QLabel*>("stagePosition");
+        QTRY_COMPARE_WITH_TIMEOUT(position->text(), QString("x 0.000 mm, y 0.000 mm"), 10000);
+
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QVERIFY(window_->startRun(RunController::What::FollowingOnly));
+        // While the run has the devices, the panels' commands are refused with the reason.
+        QTest::mouseClick(window_->findChild<QPushButton*>("testTap"), Qt::LeftButton);
+        auto* log = window_->findChild<QPlainTextEdit*>("log");
+        QTRY_VERIFY(log->toPlainText().contains("A run is using the devices"));
+        QVERIFY(ended.wait(60000));
+        QCOMPARE(ended.takeFirst().at(0).toBool(), true);
+        QTRY_VERIFY(!window_->running());
+        const auto run = window_->lastRun();
+        QVERIFY(QString::fromStdString(run->rig).startsWith("emulated bench: stage: Yamaha"));
+        QCOMPARE(int(run->trials.size()), 1);
+        const TrialResult& t = run->trials[0].result;
+        qInfo("following on the emulated bench from the window: %d taps, %s, %.1f robot s",
+              int(t.taps.size()), trialEndName(t.end), t.robotTime_s);
+        QVERIFY2(t.end != TrialEnd::DeviceError, t.detail.c_str());
+        QVERIFY(t.taps.size() >= 3);
+        QCOMPARE(run->tapsSimulated, std::uint64_t(0));
+        // The taps went through the drivers: one stage move per tap, in the raw log.
+        const QString raw = window_->findChild<QPlainTextEdit*>("rawLog")->toPlainText();
+        QVERIFY(raw.count("-> @MOVE P") >= int(t.taps.size()));
+        QCOMPARE(linesIn(window_->lastRunDirectory() + "/data/following_taps.csv"),
+                 int(t.taps.size()) * 50 + 1);
+    }
+
+    void closingTheWindowMidTapReturnsWithinTwoSeconds() {
+        // The devices are still connected from the previous test; a run is tapping on them.
+        QVERIFY(window_->startRun(RunController::What::FollowingOnly));
+        const QString out = window_->lastRunDirectory();
+        QTest::qWait(2500);  // the first tap is done, the second under way
+        QVERIFY(window_->running());
+        QElapsedTimer closing;
+        closing.start();
+        window_->close();
+        window_.reset();
+        const qint64 ms = closing.elapsed();
+        qInfo("closed mid-run in %lld ms", ms);
+        QVERIFY(ms < 2000);
+        // Every tap finished before the close is in the recording, whole.
+        const int lines = linesIn(out + "/data/following_taps.csv");
+        QVERIFY2(lines >= 51 && (lines - 1) % 50 == 0, qPrintable(QString::number(lines)));
+    }
+
     void cleanupTestCase() {
+        if (!window_) return;
         window_->close();
         window_.reset();
     }

@@ -3,6 +3,10 @@
 // QTcpSocket on loopback. Connect, home, tap with reflex stop, move, 50 Hz frames, a short active
 // contour-following trial, mixed rigs, and the devices' faults ending in a safe state with every
 // finished tap kept. Runs under umockdev-wrapper (see tests/CMakeLists.txt).
+// clang-format off
+#include "support/MockedUsbBrick.h"  // first: GLib before Qt
+// clang-format on
+
 #include <QtTest>
 #include <chrono>
 #include <functional>
@@ -13,7 +17,6 @@
 #include "devices/emulators/EmulatedBench.h"
 #include "devices/rigs/RigAssembly.h"
 #include "devices/simulated/SimulatedWorld.h"
-#include "support/MockedUsbBrick.h"  // first: GLib before Qt
 #include "support/Paths.h"
 
 using namespace activetouch;

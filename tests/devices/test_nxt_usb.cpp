@@ -1,12 +1,15 @@
 // The NXT's libusb path against a mocked USB device (umockdev, see support/MockedUsbBrick.h):
 // listing, opening, telegrams both ways, timeouts, faults, unplug and the boot loader.
 // Runs under umockdev-wrapper (see tests/CMakeLists.txt).
+// clang-format off
+#include "support/MockedUsbBrick.h"  // first: GLib before Qt
+// clang-format on
+
 #include <QtTest>
 #include <chrono>
 
 #include "devices/nxt/NxtBrick.h"
 #include "devices/nxt/NxtUsbTransport.h"
-#include "support/MockedUsbBrick.h"  // first: GLib before Qt
 
 using namespace activetouch;
 using namespace activetouch::nxt;
