@@ -10,13 +10,34 @@
 // Ties break to the lowest class index. Samples outside the trained range clamp to the end bins;
 // a taxel that never varied in training maps every sample to bin 0 (class-independent, so it
 // never sways a decision); NaN maps to bin 0, +inf to the last bin.
+#include <cstddef>
 #include <cstdint>
+#include <new>
 #include <string>
 #include <vector>
 
 #include "core/tap/Tap.h"
 
 namespace activetouch {
+
+/// Allocates on cache-line boundaries, so that table rows whose length is a multiple of 8
+/// doubles never straddle a line.
+template <class T>
+struct CacheLineAllocator {
+    using value_type = T;
+    static constexpr std::align_val_t kAlignment{64};
+    CacheLineAllocator() = default;
+    template <class U>
+    CacheLineAllocator(const CacheLineAllocator<U>&) {}
+    T* allocate(std::size_t n) {
+        return static_cast<T*>(::operator new(n * sizeof(T), kAlignment));
+    }
+    void deallocate(T* p, std::size_t) { ::operator delete(p, kAlignment); }
+    template <class U>
+    bool operator==(const CacheLineAllocator<U>&) const {
+        return true;
+    }
+};
 
 struct ClassifierSettings {
     int bins = 100;  ///< B (paper: 100)
@@ -76,7 +97,7 @@ private:
         scale_;  // per taxel; scale_ = bins / (max - min), 0 if degenerate
     std::vector<double> minTiled_, scaleTiled_;  // the same, repeated over a block of frames
     std::vector<std::uint32_t> cellBaseTiled_;   // taxel * bins, likewise
-    std::vector<double> logTable_;               // [taxel][bin][class]
+    std::vector<double, CacheLineAllocator<double>> logTable_;  // [taxel][bin][class]
 };
 
 /// Relative width of a tie: scores this close to the maximum are equal for the decision. Sums
