@@ -55,11 +55,13 @@ ExperimentSpec loadChecked(const std::string& path, bool requireExperiment) {
     const Json j = readJsonFile(path);
     ExperimentSpec spec;
     if (looksLikeExperiment(j)) {
-        spec = parseExperiment(j, path, fs::path(path).parent_path().string());
+        spec =
+            parseExperiment(readExperimentFile(path), path, fs::path(path).parent_path().string());
     } else if (requireExperiment) {
-        throw InputError(path, "/",
-                         "this is not an experiment file (it has no 'scene'); 'run' takes an "
-                         "experiment such as experiments/paper.json");
+        throw InputError(
+            path, "/",
+            "this is not an experiment file (it has neither 'scene' nor 'extends'); 'run' takes an "
+            "experiment such as experiments/paper.json");
     } else {
         spec.scene = parseScene(j, path, "", fs::path(path).parent_path().string());
     }

@@ -208,11 +208,12 @@ void MainWindow::showError(const QString& message) {
 
 bool MainWindow::openExperiment(const QString& path) {
     try {
-        const Json j = readJsonFile(path.toStdString());
-        if (!looksLikeExperiment(j))
-            throw InputError(path.toStdString(), "/",
-                             "this is not an experiment file (it has no 'scene'); open an "
-                             "experiment such as experiments/paper.json");
+        if (!looksLikeExperiment(readJsonFile(path.toStdString())))
+            throw InputError(
+                path.toStdString(), "/",
+                "this is not an experiment file (it has neither 'scene' nor 'extends'); open an "
+                "experiment such as experiments/paper.json");
+        const Json j = readExperimentFile(path.toStdString());
         ExperimentSpec spec =
             parseExperiment(j, path.toStdString(), QFileInfo(path).path().toStdString());
         validateEffects(spec.scene, FingertipContactModel(spec.scene.fingertip));

@@ -1,5 +1,6 @@
 #include "core/experiment/Experiment.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
@@ -10,7 +11,7 @@ namespace activetouch {
 namespace fs = std::filesystem;
 
 bool looksLikeExperiment(const Json& json) {
-    return json.is_object() && json.contains("scene");
+    return json.is_object() && (json.contains("scene") || json.contains("extends"));
 }
 
 int ExperimentSpec::plannedTaps() const {
@@ -272,13 +273,77 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
     return e;
 }
 
-ExperimentSpec loadExperiment(const std::string& path) {
-    const Json j = readJsonFile(path);
+namespace {
+
+// RFC 7386 merge patch: objects merge key by key, null removes a key, anything else replaces.
+void mergePatch(Json& target, const Json& patch) {
+    if (!patch.is_object() || !target.is_object()) {
+        target = patch;
+        return;
+    }
+    for (auto it = patch.begin(); it != patch.end(); ++it) {
+        if (it.value().is_null())
+            target.erase(it.key());
+        else if (target.contains(it.key()))
+            mergePatch(target[it.key()], it.value());
+        else
+            target[it.key()] = it.value();
+    }
+}
+
+// The experiment at `path` with every "extends" resolved: the base experiment's document, with
+// its scene path made absolute, patched by this one's keys. `chain` holds the files on the way,
+// to refuse a circle.
+Json resolvedExperiment(const std::string& path, std::vector<std::string>& chain) {
+    const std::string canonical = fs::weakly_canonical(fs::path(path)).string();
+    if (std::find(chain.begin(), chain.end(), canonical) != chain.end()) {
+        std::string circle;
+        for (const auto& c : chain) circle += fs::path(c).filename().string() + " -> ";
+        throw InputError(chain.back(), "/extends",
+                         "experiments extend each other in a circle (" + circle +
+                             fs::path(canonical).filename().string() +
+                             "); let one of them name its settings instead");
+    }
+    Json j = readJsonFile(path);
     if (!looksLikeExperiment(j))
         throw InputError(path, "/",
-                         "this is not an experiment file (it has no 'scene'); run an experiment, "
-                         "or use 'check' for a scene");
-    return parseExperiment(j, path, fs::path(path).parent_path().string());
+                         "this is not an experiment file (it has neither 'scene' nor 'extends'); "
+                         "run an experiment, or use 'check' for a scene");
+    const fs::path directory = fs::path(path).parent_path();
+    if (j.contains("scene") && j["scene"].is_string()) {
+        const fs::path scene(j["scene"].get<std::string>());
+        if (scene.is_relative())
+            j["scene"] = fs::absolute(directory / scene).lexically_normal().string();
+    }
+    if (!j.contains("extends")) return j;
+    const Json& extends = j["extends"];
+    if (!extends.is_string() || extends.get<std::string>().empty())
+        throw InputError(path, "/extends",
+                         "expected the path of the experiment file this one builds on, e.g. "
+                         "\"paper.json\"");
+    fs::path basePath(extends.get<std::string>());
+    if (basePath.is_relative()) basePath = directory / basePath;
+    if (!fs::exists(basePath))
+        throw InputError(path, "/extends",
+                         "the experiment it extends, '" + basePath.string() +
+                             "', does not exist; give its path relative to this file");
+    chain.push_back(canonical);
+    Json merged = resolvedExperiment(basePath.string(), chain);
+    chain.pop_back();
+    j.erase("extends");
+    mergePatch(merged, j);
+    return merged;
+}
+
+}  // namespace
+
+Json readExperimentFile(const std::string& path) {
+    std::vector<std::string> chain;
+    return resolvedExperiment(path, chain);
+}
+
+ExperimentSpec loadExperiment(const std::string& path) {
+    return parseExperiment(readExperimentFile(path), path, fs::path(path).parent_path().string());
 }
 
 }  // namespace activetouch

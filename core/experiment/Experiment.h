@@ -69,7 +69,14 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
                                const std::string& baseDirectory);
 ExperimentSpec loadExperiment(const std::string& path);
 
-/// Whether a JSON file is an experiment (has "scene") or a bare scene.
+/// An experiment file's document with "extends" resolved: a file may name the experiment it
+/// builds on ("extends": path relative to it) and give only what differs; its keys patch the
+/// base's (RFC 7386 merge patch: objects merge key by key, null removes a key, lists and values
+/// replace). A scene path is taken relative to the file that names it. Throws InputError for a
+/// file that is no experiment, a missing base or a circle of extends.
+Json readExperimentFile(const std::string& path);
+
+/// Whether a JSON file is an experiment (has "scene" or "extends") or a bare scene.
 bool looksLikeExperiment(const Json& json);
 
 }  // namespace activetouch

@@ -50,6 +50,64 @@ private slots:
         QCOMPARE(e.classifier.bins, 100);
     }
 
+    void anExperimentExtendsAnotherWithOnlyWhatDiffers() {
+        write("good.json", kGoodScene);
+        QDir(dir_.path()).mkdir("variants");
+        write("base.json", R"({"name": "base", "scene": "good.json", "seed": 4,
+            "classifier": {"bins": 60, "smoothing": 0.05},
+            "training": {"data_sets": 3, "training_sets": [1]},
+            "following": {"follow_step_mm": 3, "trials": [
+                {"mode": "active", "object": {"shape": "rectangle", "offset_mm": [150, 150]}}]}})");
+        // In another folder: the base and the scene are still found relative to their own files.
+        const std::string path = write("variants/finer.json", R"({"extends": "../base.json",
+            "name": "finer", "classifier": {"bins": 120},
+            "training": {"training_sets": [1, 2]}, "following": {"trials": null}})");
+        const ExperimentSpec e = loadExperiment(path);
+        QCOMPARE(e.name, std::string("finer"));
+        QCOMPARE(e.classifier.bins, 120);                  // replaced
+        QCOMPARE(e.classifier.smoothing, 0.05);            // kept from the base
+        QCOMPARE(int(e.scene.seed), 4);                    // kept from the base
+        QCOMPARE(e.training.dataSets, 3);                  // objects merge key by key
+        QCOMPARE(int(e.training.trainingSets.size()), 2);  // lists replace
+        QCOMPARE(e.following.followStep_mm, 3.0);
+        QVERIFY(e.trials.empty());  // null removes
+        QCOMPARE(e.scene.object.outline().area(), 48.0 * 58.0);
+
+        const ExperimentSpec shipped =
+            loadExperiment(test::sourcePath("experiments/paper_sequential.json"));
+        const ExperimentSpec paper = loadExperiment(test::sourcePath("experiments/paper.json"));
+        QCOMPARE(shipped.following.beliefThreshold, 0.99999999);
+        QCOMPARE(shipped.trials.size(), paper.trials.size());
+        QCOMPARE(shipped.scene.effects.size(), paper.scene.effects.size());
+    }
+
+    void badExtendsIsNamed_data() {
+        QTest::addColumn<QString>("file");
+        QTest::addColumn<QString>("problem");
+        QTest::newRow("missing base") << R"({"extends": "nowhere.json", "name": "x"})"
+                                      << "nowhere.json', does not exist";
+        QTest::newRow("not a path") << R"({"extends": 3, "name": "x"})"
+                                    << "expected the path of the experiment file";
+        QTest::newRow("extends itself") << R"({"extends": "experiment.json", "name": "x"})"
+                                        << "in a circle (experiment.json -> experiment.json)";
+        QTest::newRow("base is a scene") << R"({"extends": "good.json", "name": "x"})"
+                                         << "neither 'scene' nor 'extends'";
+    }
+    void badExtendsIsNamed() {
+        QFETCH(QString, file);
+        QFETCH(QString, problem);
+        write("good.json", kGoodScene);
+        const std::string path = write("experiment.json", file.toStdString());
+        try {
+            loadExperiment(path);
+            QFAIL("the experiment was accepted");
+        } catch (const InputError& e) {
+            QVERIFY2(QString(e.what()).contains(problem), e.what());
+            QVERIFY2(QString(e.what()).contains("/extends") || problem.contains("neither"),
+                     e.what());
+        }
+    }
+
     void badSceneNamesFilePlaceAndProblem_data() {
         QTest::addColumn<QString>("text");
         QTest::addColumn<QString>("place");
