@@ -81,33 +81,6 @@ private slots:
         QCOMPARE(shipped.scene.effects.size(), paper.scene.effects.size());
     }
 
-    void badExtendsIsNamed_data() {
-        QTest::addColumn<QString>("file");
-        QTest::addColumn<QString>("problem");
-        QTest::newRow("missing base") << R"({"extends": "nowhere.json", "name": "x"})"
-                                      << "nowhere.json', does not exist";
-        QTest::newRow("not a path") << R"({"extends": 3, "name": "x"})"
-                                    << "expected the path of the experiment file";
-        QTest::newRow("extends itself") << R"({"extends": "experiment.json", "name": "x"})"
-                                        << "in a circle (experiment.json -> experiment.json)";
-        QTest::newRow("base is a scene") << R"({"extends": "good.json", "name": "x"})"
-                                         << "neither 'scene' nor 'extends'";
-    }
-    void badExtendsIsNamed() {
-        QFETCH(QString, file);
-        QFETCH(QString, problem);
-        write("good.json", kGoodScene);
-        const std::string path = write("experiment.json", file.toStdString());
-        try {
-            loadExperiment(path);
-            QFAIL("the experiment was accepted");
-        } catch (const InputError& e) {
-            QVERIFY2(QString(e.what()).contains(problem), e.what());
-            QVERIFY2(QString(e.what()).contains("/extends") || problem.contains("neither"),
-                     e.what());
-        }
-    }
-
     void badSceneNamesFilePlaceAndProblem_data() {
         QTest::addColumn<QString>("text");
         QTest::addColumn<QString>("place");
@@ -209,6 +182,16 @@ private slots:
             << "no edge facing";
         QTest::newRow("no name") << R"({"scene": "good.json"})"
                                  << "missing required text 'name'";
+        QTest::newRow("extends a missing base") << R"({"extends": "nowhere.json", "name": "x"})"
+                                                << "at /extends: the experiment it extends";
+        QTest::newRow("extends with no path") << R"({"extends": 3, "name": "x"})"
+                                              << "at /extends: expected the path";
+        QTest::newRow("extends itself")
+            << R"({"extends": "experiment.json", "name": "x"})"
+            << "at /extends: experiments extend each other in a circle (experiment.json -> "
+               "experiment.json)";
+        QTest::newRow("extends a scene") << R"({"extends": "good.json", "name": "x"})"
+                                         << "neither 'scene' nor 'extends'";
         const QString trials =
             R"("following": {"trials": [{"object": {"shape": "rectangle", "offset_mm": [150, 150]}}]}, )";
         QTest::newRow("sweep: empty thresholds")
