@@ -85,8 +85,12 @@ std::optional<Reply> YamahaStage::await(const std::string& what, int timeoutMs, 
 
 void YamahaStage::expectOk(const std::string& line, int timeoutMs) {
     send(line);
+    // One deadline for the whole exchange: a controller repeating RUN cannot hold us forever.
+    const auto deadline = Clock::now() + std::chrono::milliseconds(timeoutMs);
     for (;;) {
-        const auto r = await(line, timeoutMs, true);
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+        const auto r = left > 0 ? await(line, static_cast<int>(left), true) : std::nullopt;
         if (!r)
             throw RigError("Yamaha stage: no answer to '" + printable(line) + "' within " +
                            std::to_string(timeoutMs) + " ms; check the cable, the port settings (" +
