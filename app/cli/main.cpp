@@ -55,8 +55,7 @@ ExperimentSpec loadChecked(const std::string& path, bool requireExperiment) {
     const Json j = readJsonFile(path);
     ExperimentSpec spec;
     if (looksLikeExperiment(j)) {
-        spec =
-            parseExperiment(readExperimentFile(path), path, fs::path(path).parent_path().string());
+        spec = loadExperiment(path);
     } else if (requireExperiment) {
         throw InputError(
             path, "/",

@@ -208,11 +208,6 @@ void MainWindow::showError(const QString& message) {
 
 bool MainWindow::openExperiment(const QString& path) {
     try {
-        if (!looksLikeExperiment(readJsonFile(path.toStdString())))
-            throw InputError(
-                path.toStdString(), "/",
-                "this is not an experiment file (it has neither 'scene' nor 'extends'); open an "
-                "experiment such as experiments/paper.json");
         const Json j = readExperimentFile(path.toStdString());
         ExperimentSpec spec =
             parseExperiment(j, path.toStdString(), QFileInfo(path).path().toStdString());

@@ -308,7 +308,7 @@ Json resolvedExperiment(const std::string& path, std::vector<std::string>& chain
     if (!looksLikeExperiment(j))
         throw InputError(path, "/",
                          "this is not an experiment file (it has neither 'scene' nor 'extends'); "
-                         "run an experiment, or use 'check' for a scene");
+                         "give an experiment such as experiments/paper.json");
     const fs::path directory = fs::path(path).parent_path();
     if (j.contains("scene") && j["scene"].is_string()) {
         const fs::path scene(j["scene"].get<std::string>());
