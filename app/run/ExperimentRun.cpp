@@ -157,7 +157,7 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
     }
     if (!spec.recognition.enabled) return;
     // Templates: where a perfect follower would tap on each distinct object, at the centre of the
-    // valid range, every follow step.
+    // valid range, every follow step, averaged over where along the outline it starts.
     const double centre = 0.5 * (result.validOffsets.low + result.validOffsets.high);
     for (const TrialRun& run : result.trials) {
         bool seen = false;
@@ -165,8 +165,8 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
         if (seen) continue;
         ShapeTemplate t;
         t.shape = run.label;
-        t.raw = pathHistogram(idealFollowingPath(run.outline, centre, spec.following.followStep_mm),
-                              spec.recognition.bins);
+        t.raw = idealFollowingHistogram(run.outline, centre, spec.following.followStep_mm,
+                                        spec.recognition.bins);
         t.smooth = smoothed(t.raw, spec.recognition.smoothingSigmaBins);
         result.templates.push_back(t);
     }

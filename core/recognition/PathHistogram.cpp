@@ -67,12 +67,13 @@ double histogramDistance(const PathHistogram& a, const PathHistogram& b) {
     return std::sqrt(sum);
 }
 
-std::vector<Vec2> idealFollowingPath(const Polygon& outline, double offset_mm, double step_mm) {
+std::vector<Vec2> idealFollowingPath(const Polygon& outline, double offset_mm, double step_mm,
+                                     double startAt_mm) {
     const std::vector<Vec2> ring = outline.offsetOutline(offset_mm);
     std::vector<Vec2> path;
     if (!(step_mm > 0)) return path;
     // Walk the offset ring edge by edge, dropping a point every step_mm of arc length.
-    double nextAt = 0.0, start = 0.0;
+    double nextAt = std::fmod(std::max(0.0, startAt_mm), step_mm), start = 0.0;
     for (std::size_t e = 0; e < ring.size(); ++e) {
         const Vec2 a = ring[e], b = ring[(e + 1) % ring.size()];
         const double len = distance(a, b);
@@ -83,6 +84,18 @@ std::vector<Vec2> idealFollowingPath(const Polygon& outline, double offset_mm, d
         start += len;
     }
     return path;
+}
+
+PathHistogram idealFollowingHistogram(const Polygon& outline, double offset_mm, double step_mm,
+                                      int bins, int phases) {
+    phases = std::max(1, phases);
+    PathHistogram mean = pathHistogram({}, bins);
+    for (int k = 0; k < phases; ++k) {
+        const PathHistogram h =
+            pathHistogram(idealFollowingPath(outline, offset_mm, step_mm, k * step_mm / phases), bins);
+        for (std::size_t i = 0; i < mean.cells.size(); ++i) mean.cells[i] += h.cells[i] / phases;
+    }
+    return mean;
 }
 
 Recognition recognise(const std::vector<Vec2>& path, const std::vector<ShapeTemplate>& templates,

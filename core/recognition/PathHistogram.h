@@ -2,8 +2,8 @@
 // Shape recognition from a traced path (paper §3.4, Figure 9): a 20 x 20 histogram of tap
 // locations, coordinates normalised to [0, 1] over the path's own bounding box, counts normalised
 // to sum 1; templates from where a perfect edge following would tap (the outline offset outward
-// to the centre of the valid range, sampled every follow step); the smallest Euclidean distance
-// wins. The raw histogram is brittle (a path 1-2 mm off lands one bin away), so a smoothed
+// to the centre of the valid range, sampled every follow step, averaged over where along the
+// outline the following starts); the smallest Euclidean distance wins. The raw histogram is brittle (a path 1-2 mm off lands one bin away), so a smoothed
 // histogram (Gaussian, sigma in bins) is offered beside it and both are reported.
 #include <map>
 #include <string>
@@ -30,8 +30,16 @@ PathHistogram smoothed(const PathHistogram& h, double sigmaBins);
 double histogramDistance(const PathHistogram& a, const PathHistogram& b);
 
 /// Where a perfect follower would tap: the outline offset outward by `offset_mm`, sampled every
-/// `step_mm` along its length.
-std::vector<Vec2> idealFollowingPath(const Polygon& outline, double offset_mm, double step_mm);
+/// `step_mm` along its length, the first tap `startAt_mm` along it from its first vertex.
+std::vector<Vec2> idealFollowingPath(const Polygon& outline, double offset_mm, double step_mm,
+                                     double startAt_mm = 0.0);
+
+/// A shape's template: the histogram of a perfect follower's taps averaged over `phases` start
+/// points spread evenly over one step. A real trial starts wherever it is placed, so its taps fall
+/// at any phase along the outline; one fixed phase would make the template depend on which vertex
+/// the outline lists first, and on a 4-6 mm bin that moves whole taps between bins.
+PathHistogram idealFollowingHistogram(const Polygon& outline, double offset_mm, double step_mm,
+                                      int bins = 20, int phases = 8);
 
 struct ShapeTemplate {
     std::string shape;

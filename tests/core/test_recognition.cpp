@@ -14,7 +14,7 @@ std::vector<ShapeTemplate> libraryTemplates(double sigma) {
     std::vector<ShapeTemplate> t;
     for (const auto& n : libraryShapeNames()) {
         const Polygon p = libraryShape(n, defaultShapeSize(n));
-        const PathHistogram raw = pathHistogram(idealFollowingPath(p, 0.0, 2.0));
+        const PathHistogram raw = idealFollowingHistogram(p, 0.0, 2.0);
         t.push_back({n, raw, smoothed(raw, sigma)});
     }
     return t;
@@ -29,17 +29,40 @@ double total(const PathHistogram& h) {
 class TestRecognition : public QObject {
     Q_OBJECT
 private slots:
-    void idealPathsAreTheirOwnTemplates() {
+    void idealPathsAreRecognisedFromAnyStart() {
+        // A perfect follower starting anywhere along the outline: nearest its own template by
+        // both rules, with every template's distance reported.
         const auto templates = libraryTemplates(1.0);
         for (const auto& n : libraryShapeNames()) {
             const Polygon p = libraryShape(n, defaultShapeSize(n));
-            const Recognition r = recognise(idealFollowingPath(p, 0.0, 2.0), templates, 1.0);
-            QCOMPARE(r.predicted, n);
-            QCOMPARE(r.predictedSmoothed, n);
-            QCOMPARE(r.distances.at(n), 0.0);
-            QCOMPARE(int(r.distances.size()), 4);  // every template's distance is reported
-            QCOMPARE(int(r.smoothedDistances.size()), 4);
+            for (double startAt : {0.0, 0.3, 0.75, 1.0, 1.6}) {
+                const Recognition r =
+                    recognise(idealFollowingPath(p, 0.0, 2.0, startAt), templates, 1.0);
+                QCOMPARE(r.predicted, n);
+                QCOMPARE(r.predictedSmoothed, n);
+                QCOMPARE(int(r.distances.size()), 4);
+                QCOMPARE(int(r.smoothedDistances.size()), 4);
+            }
         }
+    }
+
+    void templateIsTheMeanOverStartPoints() {
+        // The template does not depend on which vertex the outline lists first: a 47 x 57
+        // rectangle listed from its lower left and from its lower right (offset 2 mm outward, the
+        // two are 51 mm of ring apart, 25.5 steps) gives the same template, where one fixed start
+        // point gives two.
+        const std::vector<Vec2> v{{0, 0}, {47, 0}, {47, 57}, {0, 57}};
+        const Polygon a(v), b({v[1], v[2], v[3], v[0]});
+        const PathHistogram ta = idealFollowingHistogram(a, 2.0, 2.0),
+                            tb = idealFollowingHistogram(b, 2.0, 2.0);
+        QVERIFY(histogramDistance(ta, tb) < 1e-12);
+        QVERIFY(histogramDistance(pathHistogram(idealFollowingPath(a, 2.0, 2.0)),
+                                  pathHistogram(idealFollowingPath(b, 2.0, 2.0))) > 0.01);
+        QVERIFY(std::abs(total(ta) - 1.0) < 1e-12);
+        // One start point is the plain perfect path.
+        QCOMPARE(histogramDistance(idealFollowingHistogram(a, 2.0, 2.0, 20, 1),
+                                   pathHistogram(idealFollowingPath(a, 2.0, 2.0))),
+                 0.0);
     }
 
     void translationAndScaleDoNotMatter() {
@@ -114,6 +137,10 @@ private slots:
         QCOMPARE(int(path.size()), 24);
         QCOMPARE(path.front().x, -1.0);
         QCOMPARE(path.front().y, -1.0);
+        const auto later = idealFollowingPath(sq, 1.0, 2.0, 0.5);  // starts half a millimetre on
+        QCOMPARE(int(later.size()), 24);
+        QCOMPARE(later.front().x, -0.5);
+        QCOMPARE(later.front().y, -1.0);
     }
 };
 
