@@ -91,8 +91,8 @@ PathHistogram idealFollowingHistogram(const Polygon& outline, double offset_mm, 
     phases = std::max(1, phases);
     PathHistogram mean = pathHistogram({}, bins);
     for (int k = 0; k < phases; ++k) {
-        const PathHistogram h =
-            pathHistogram(idealFollowingPath(outline, offset_mm, step_mm, k * step_mm / phases), bins);
+        const PathHistogram h = pathHistogram(
+            idealFollowingPath(outline, offset_mm, step_mm, k * step_mm / phases), bins);
         for (std::size_t i = 0; i < mean.cells.size(); ++i) mean.cells[i] += h.cells[i] / phases;
     }
     return mean;
