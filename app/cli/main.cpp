@@ -1,5 +1,6 @@
 // activetouch-cli: the headless runner (DESIGN.md §4).
 //   activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--no-figures]
+//   activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>]
 //   activetouch-cli check <file.json>
 // Exit codes: 0 ok, 1 the run failed, 2 bad input.
 #include <QApplication>
@@ -15,6 +16,7 @@
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/run/ExperimentRun.h"
+#include "app/run/SeedRates.h"
 #include "core/experiment/Experiment.h"
 #include "core/io/TapCsv.h"
 #include "core/rig/Rig.h"
@@ -36,6 +38,12 @@ void printHelp() {
         "      <dir>/data/*.csv (every tap, appended as it is taken; every table behind a figure)\n"
         "      and <dir>/figures/*.{png,pdf,svg}. --out defaults to results/<experiment name>.\n"
         "      --seed overrides the experiment's seed (one seed = one whole run).\n"
+        "  activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>]\n"
+        "      Runs the experiment once per seed A..B (each a whole run: its own data sets,\n"
+        "      training, valid range and trials) and reports the rates with 95 %% intervals:\n"
+        "      passive trials lost, active trials completed, active paths recognised by both\n"
+        "      rules. Writes <dir>/rates.csv (a row per seed, appended as each finishes) and\n"
+        "      <dir>/rates.json. --out defaults to results/<experiment name>_seeds.\n"
         "  activetouch-cli check <file.json | taps.csv>\n"
         "      Validates an experiment, a scene or a tap recording and says what is wrong, if "
         "anything.\n"
@@ -85,6 +93,13 @@ double writeFigures(const RunResult& result, const fs::path& out, int argc, char
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+std::optional<std::uint64_t> parseSeed(const std::string& v) {
+    char* end = nullptr;
+    const long long n = std::strtoll(v.c_str(), &end, 10);
+    if (v.empty() || *end != '\0' || n < 0 || n > 2147483647LL) return std::nullopt;
+    return static_cast<std::uint64_t>(n);
+}
+
 int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
     std::string experimentPath, outDir;
     std::optional<std::uint64_t> seed;
@@ -97,12 +112,10 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
         } else if (a == "--seed") {
             if (i + 1 >= args.size()) return usageError("--seed needs a whole number");
             const std::string& v = args[++i];
-            char* end = nullptr;
-            const long long n = std::strtoll(v.c_str(), &end, 10);
-            if (v.empty() || *end != '\0' || n < 0 || n > 2147483647LL)
+            seed = parseSeed(v);
+            if (!seed)
                 return usageError("--seed '" + v +
                                   "' is not a whole number between 0 and 2147483647");
-            seed = static_cast<std::uint64_t>(n);
         } else if (a == "--no-figures") {
             figures = false;
         } else if (!a.empty() && a[0] == '-') {
@@ -186,6 +199,84 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
     }
 }
 
+void printRate(const char* what, const Rate& r) {
+    std::printf("%-34s %4d / %-4d %5.1f %%  (95 %% interval %5.1f-%5.1f %%)\n", what, r.count,
+                r.total, 100.0 * r.fraction(), 100.0 * r.low(), 100.0 * r.high());
+}
+
+int commandSeeds(const std::vector<std::string>& args) {
+    std::string experimentPath, outDir;
+    std::optional<std::uint64_t> from, to;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--out") {
+            if (i + 1 >= args.size()) return usageError("--out needs a folder");
+            outDir = args[++i];
+        } else if (a == "--from" || a == "--to") {
+            if (i + 1 >= args.size()) return usageError(a + " needs a whole number");
+            const std::string& v = args[++i];
+            const auto n = parseSeed(v);
+            if (!n)
+                return usageError(a + " '" + v +
+                                  "' is not a whole number between 0 and 2147483647");
+            (a == "--from" ? from : to) = n;
+        } else if (!a.empty() && a[0] == '-') {
+            return usageError("unknown option '" + a + "'");
+        } else if (experimentPath.empty()) {
+            experimentPath = a;
+        } else {
+            return usageError("unexpected argument '" + a + "'");
+        }
+    }
+    if (experimentPath.empty())
+        return usageError("seeds needs an experiment file, e.g. experiments/paper.json");
+    if (!from || !to) return usageError("seeds needs --from and --to, e.g. --from 1 --to 10");
+    if (*from > *to)
+        return usageError("--from " + std::to_string(*from) + " is after --to " +
+                          std::to_string(*to) + "; give the first seed first");
+    ExperimentSpec spec;
+    try {
+        spec = loadChecked(experimentPath, true);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    }
+    if (outDir.empty()) outDir = (fs::path("results") / (spec.name + "_seeds")).string();
+    try {
+        const auto start = std::chrono::steady_clock::now();
+        const SeedRates rates = runSeeds(spec, *from, *to, outDir, [](const SeedOutcome& o) {
+            std::printf(
+                "seed %llu: passive lost %d/%d, active completed %d/%d, recognised %d (smoothed "
+                "%d)\n",
+                static_cast<unsigned long long>(o.seed), o.passiveLost, o.passiveTrials,
+                o.activeCompleted, o.activeTrials, o.recognisedRaw, o.recognisedSmoothed);
+            for (const auto& f : o.failures) std::printf("    %s\n", f.c_str());
+            std::fflush(stdout);
+            return true;
+        });
+        std::printf("\n%s over %zu seeds (%llu-%llu):\n", spec.name.c_str(), rates.seeds.size(),
+                    static_cast<unsigned long long>(*from), static_cast<unsigned long long>(*to));
+        printRate("passive trials lost", rates.passiveLost());
+        printRate("active trials completed", rates.activeCompleted());
+        printRate("recognised, paper's rule", rates.recognisedRaw());
+        printRate("recognised, smoothed histograms", rates.recognisedSmoothed());
+        std::printf("completed active trial: %.0f taps, %.0f s robot time; whole run %.0f s\n",
+                    rates.tapsPerCompletedTrial(), rates.robotTimePerCompletedTrial_s(),
+                    rates.robotTimePerRun_s());
+        std::printf("wall time %.1f s; results in %s\n",
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                    outDir.c_str());
+        return kOk;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "run failed: %s\nThe seeds finished so far are in %s/rates.csv.\n",
+                     e.what(), outDir.c_str());
+        return kRunFailed;
+    }
+}
+
 int commandCheck(const std::vector<std::string>& args) {
     if (args.size() != 1) return usageError("check takes exactly one file");
     if (args[0].size() > 4 && args[0].substr(args[0].size() - 4) == ".csv") {
@@ -231,6 +322,7 @@ int main(int argc, char** argv) {
         return kOk;
     }
     if (command == "run") return commandRun(args, argc, argv);
+    if (command == "seeds") return commandSeeds(args);
     if (command == "check") return commandCheck(args);
-    return usageError("unknown command '" + command + "'; use run or check");
+    return usageError("unknown command '" + command + "'; use run, seeds or check");
 }

@@ -299,6 +299,71 @@ private slots:
             qPrintable(v.err));
     }
 
+    void seedsReportsRatesOverWholeRuns() {
+        // Three whole runs: a row per seed, totals with 95 % intervals, and each seed's outcome
+        // the same as that seed's own run.
+        const QString out = dir_.filePath("rates");
+        const Outcome o = runCli(
+            {"seeds", source("experiments/paper.json"), "--from", "2", "--to", "4", "--out", out});
+        QCOMPARE(o.exitCode, 0);
+        QVERIFY2(o.out.contains("active trials completed"), qPrintable(o.out));
+        QFile csv(out + "/rates.csv");
+        QVERIFY(csv.open(QIODevice::ReadOnly));
+        const QStringList rows = QString(csv.readAll()).trimmed().split('\n');
+        QCOMPARE(rows.size(), 4);  // header + seeds 2, 3, 4
+        QVERIFY(rows[0].startsWith("seed,passive_trials,passive_lost,active_trials,"));
+        int completed = 0;
+        for (int i = 1; i < rows.size(); ++i) {
+            const QStringList c = rows[i].split(',');
+            QCOMPARE(c[0].toInt(), i + 1);
+            QCOMPARE(c[3].toInt(), 8);
+            completed += c[4].toInt();
+        }
+        QFile js(out + "/rates.json");
+        QVERIFY(js.open(QIODevice::ReadOnly));
+        const QJsonObject r = QJsonDocument::fromJson(js.readAll()).object();
+        QCOMPARE(r["runs"].toInt(), 3);
+        const QJsonObject active = r["active_completed"].toObject();
+        QCOMPARE(active["total"].toInt(), 24);
+        QCOMPARE(active["count"].toInt(), completed);
+        const QJsonArray ci = active["ci95"].toArray();
+        QVERIFY(ci[0].toDouble() <= active["rate"].toDouble());
+        QVERIFY(ci[1].toDouble() >= active["rate"].toDouble());
+        QVERIFY(ci[1].toDouble() - ci[0].toDouble() > 0.05);  // 24 trials cannot pin a rate down
+        QCOMPARE(r["passive_lost"].toObject()["total"].toInt(), 6);
+
+        const QString single = dir_.filePath("seed3");
+        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", single, "--seed", "3",
+                         "--no-figures"})
+                     .exitCode,
+                 0);
+        QFile summary(single + "/summary.json");
+        QVERIFY(summary.open(QIODevice::ReadOnly));
+        int singleCompleted = 0;
+        const QJsonArray following =
+            QJsonDocument::fromJson(summary.readAll()).object()["following"].toArray();
+        for (const auto& t : following)
+            singleCompleted +=
+                t.toObject()["mode"].toString() == "active" && t.toObject()["completed"].toBool();
+        QCOMPARE(rows[2].split(',')[4].toInt(), singleCompleted);
+    }
+
+    void seedsRefusesABadRange() {
+        const QString out = dir_.filePath("badrange");
+        const Outcome back = runCli(
+            {"seeds", source("experiments/paper.json"), "--from", "3", "--to", "1", "--out", out});
+        QCOMPARE(back.exitCode, 2);
+        QVERIFY2(back.err.contains("--from 3 is after --to 1"), qPrintable(back.err));
+        const Outcome missing =
+            runCli({"seeds", source("experiments/paper.json"), "--from", "1", "--out", out});
+        QCOMPARE(missing.exitCode, 2);
+        QVERIFY2(missing.err.contains("--from and --to"), qPrintable(missing.err));
+        const Outcome word = runCli({"seeds", source("experiments/paper.json"), "--from", "one",
+                                     "--to", "2", "--out", out});
+        QCOMPARE(word.exitCode, 2);
+        QVERIFY(!QFile::exists(out + "/rates.csv"));
+    }
+
     void usageErrors() {
         QCOMPARE(runCli({}).exitCode, 2);
         QCOMPARE(runCli({"fly"}).exitCode, 2);

@@ -1,63 +1,57 @@
 // The paper's outcomes, emerging from the simulated rig over ten whole runs (each seed its own
 // data sets, training, valid range and trials): passive following loses the rectangle at its
-// corners, active following completes the four shapes, recognition names the active paths; with
-// sequential perception in the loop (experiments/paper_sequential.json) active following completes
-// every trial of the ten runs, at a cost in taps and robot time.
+// corners, active following completes the four shapes, recognition names the active paths. Two
+// variants and what they cost: sequential perception in the loop (experiments/
+// paper_sequential.json) pays taps without completing measurably more, and five training taps per
+// class (experiments/paper_five_training_taps.json) pays training time and completes more
+// (over seeds 1-100: 96.5 %, 96.8 % and 99.0 %; `activetouch-cli seeds` prints them).
 #include <QtTest>
 
 #include "app/run/ExperimentRun.h"
+#include "app/run/SeedRates.h"
 #include "support/Paths.h"
 
 using namespace activetouch;
 
 class TestPaperReproduction : public QObject {
     Q_OBJECT
-    std::vector<RunResult> runs_, sequentialRuns_;
+    std::vector<RunResult> runs_;
+    SeedRates rates_, sequential_, fiveTaps_;
 
-    struct ActiveTotals {
-        int trials = 0, completed = 0, taps = 0;
-        double robotTime_s = 0.0;  ///< taps and robot time of the completed trials
-        int recognisedRaw = 0, recognisedSmoothed = 0;  ///< completed paths named rightly
-        QStringList failures;  ///< "seed N shape trial T: why" of the others
-    };
-    static ActiveTotals activeTotals(const std::vector<RunResult>& runs) {
-        ActiveTotals a;
-        for (const auto& run : runs)
-            for (const auto& t : run.trials) {
-                if (t.result.mode != FollowingMode::Active) continue;
-                ++a.trials;
-                if (!t.result.completed()) {
-                    a.failures << QString("seed %1 %2 trial %3: %4")
-                                      .arg(run.spec.scene.seed)
-                                      .arg(QString::fromStdString(t.label))
-                                      .arg(t.trial)
-                                      .arg(QString::fromStdString(t.result.detail));
-                    continue;
-                }
-                ++a.completed;
-                a.recognisedRaw += t.recognised && t.recognition.predicted == t.label;
-                a.recognisedSmoothed += t.recognised && t.recognition.predictedSmoothed == t.label;
-                a.taps += int(t.result.taps.size());
-                a.robotTime_s += t.result.robotTime_s;
-            }
-        return a;
+    static std::vector<RunResult> runSeeds1To10(const char* experiment) {
+        const ExperimentSpec spec = loadExperiment(test::sourcePath(experiment));
+        std::vector<RunResult> runs;
+        for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+            RunOptions options;
+            options.seed = seed;
+            runs.push_back(runExperiment(spec, options));
+        }
+        return runs;
+    }
+    static SeedRates ratesOf(const std::vector<RunResult>& runs) {
+        SeedRates r;
+        for (const auto& run : runs) r.seeds.push_back(seedOutcome(run));
+        return r;
+    }
+    static void report(const char* what, const SeedRates& r) {
+        const Rate a = r.activeCompleted(), raw = r.recognisedRaw(), sm = r.recognisedSmoothed(),
+                   p = r.passiveLost();
+        qInfo(
+            "%s: active %d of %d completed, passive %d of %d lost, recognised %d (smoothed %d) of "
+            "%d; %.0f taps and %.0f s robot time per completed trial, %.0f s per whole run",
+            what, a.count, a.total, p.count, p.total, raw.count, sm.count, raw.total,
+            r.tapsPerCompletedTrial(), r.robotTimePerCompletedTrial_s(), r.robotTimePerRun_s());
+        for (const auto& s : r.seeds)
+            for (const auto& f : s.failures)
+                qInfo("  seed %llu %s", static_cast<unsigned long long>(s.seed), f.c_str());
     }
 
 private slots:
     void initTestCase() {
-        const ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
-        for (std::uint64_t seed = 1; seed <= 10; ++seed) {
-            RunOptions options;
-            options.seed = seed;
-            runs_.push_back(runExperiment(spec, options));
-        }
-        const ExperimentSpec sequential =
-            loadExperiment(test::sourcePath("experiments/paper_sequential.json"));
-        for (std::uint64_t seed = 1; seed <= 10; ++seed) {
-            RunOptions options;
-            options.seed = seed;
-            sequentialRuns_.push_back(runExperiment(sequential, options));
-        }
+        runs_ = runSeeds1To10("experiments/paper.json");
+        rates_ = ratesOf(runs_);
+        sequential_ = ratesOf(runSeeds1To10("experiments/paper_sequential.json"));
+        fiveTaps_ = ratesOf(runSeeds1To10("experiments/paper_five_training_taps.json"));
     }
 
     void passiveLosesTheRectangleAtItsCorners() {
@@ -90,17 +84,16 @@ private slots:
     }
 
     void activeCompletesTheFourShapes() {
-        const ActiveTotals a = activeTotals(runs_);
+        const Rate a = rates_.activeCompleted();
         for (const auto& run : runs_)
             for (const auto& t : run.trials)
                 if (t.result.mode == FollowingMode::Active && t.result.completed()) {
                     QVERIFY(t.result.coverage > 0.9);
                     QVERIFY(t.result.meanContourDistance_mm < 2.0);
                 }
-        qInfo("active: %d of %d trials completed", a.completed, a.trials);
-        for (const auto& f : a.failures) qInfo("  %s", qPrintable(f));
-        QCOMPARE(a.trials, 80);
-        QVERIFY(a.completed >= 72);  // at least 90 % over ten whole runs
+        report("paper", rates_);
+        QCOMPARE(a.total, 80);
+        QVERIFY(a.count >= 72);  // at least 90 % over ten whole runs
         for (const auto& t : runs_.front().trials)
             if (t.result.mode == FollowingMode::Active)
                 QVERIFY2(t.result.completed(), t.result.detail.c_str());
@@ -110,32 +103,37 @@ private slots:
         for (const auto& run : runs_)
             for (const auto& t : run.trials)
                 if (t.recognised) QCOMPARE(int(t.recognition.distances.size()), 4);
-        const ActiveTotals a = activeTotals(runs_);
+        const Rate raw = rates_.recognisedRaw(), smoothed = rates_.recognisedSmoothed();
         qInfo("recognition of completed active paths: paper's rule %d of %d, smoothed %d of %d",
-              a.recognisedRaw, a.completed, a.recognisedSmoothed, a.completed);
-        QCOMPARE(a.recognisedSmoothed, a.completed);
-        QVERIFY(a.recognisedRaw >= a.completed * 9 / 10);
+              raw.count, raw.total, smoothed.count, smoothed.total);
+        QCOMPARE(smoothed.count, smoothed.total);
+        QVERIFY(raw.count >= raw.total * 9 / 10);
         QCOMPARE(runs_.front().recognitionAccuracy, 1.0);
         QCOMPARE(runs_.front().recognitionAccuracySmoothed, 1.0);
     }
 
-    void sequentialPerceptionCompletesEveryActiveTrialAtACostInTime() {
-        const ActiveTotals single = activeTotals(runs_), sequential = activeTotals(sequentialRuns_);
-        const double perTrial = sequential.robotTime_s / std::max(1, sequential.completed),
-                     singlePerTrial = single.robotTime_s / std::max(1, single.completed);
-        qInfo(
-            "sequential: %d of %d active trials completed, %.0f taps and %.0f s robot time per "
-            "trial (single tap: %d of %d, %.0f taps, %.0f s)",
-            sequential.completed, sequential.trials,
-            double(sequential.taps) / std::max(1, sequential.completed), perTrial, single.completed,
-            single.trials, double(single.taps) / std::max(1, single.completed), singlePerTrial);
-        qInfo("sequential: recognition smoothed %d of %d, paper's rule %d of %d",
-              sequential.recognisedSmoothed, sequential.completed, sequential.recognisedRaw,
-              sequential.completed);
-        QVERIFY2(sequential.failures.isEmpty(), qPrintable(sequential.failures.join("; ")));
-        QCOMPARE(sequential.trials, 80);
-        QCOMPARE(sequential.recognisedSmoothed, 80);
-        QVERIFY(perTrial > singlePerTrial);  // the evidence is paid for in taps
+    void sequentialPerceptionPaysInTaps() {
+        // Tapping again until the belief is sure costs taps at every uncertain place; the
+        // misreadings that lose trials near corners are the same tap after tap there, so it does
+        // not complete measurably more (seeds 1-100: 96.8 % against 96.5 %).
+        report("sequential", sequential_);
+        const Rate a = sequential_.activeCompleted();
+        QCOMPARE(a.total, 80);
+        QVERIFY(a.count >= 72);
+        QCOMPARE(sequential_.recognisedSmoothed().count, a.count);
+        QVERIFY(sequential_.tapsPerCompletedTrial() > rates_.tapsPerCompletedTrial());
+        QVERIFY(sequential_.robotTimePerCompletedTrial_s() > rates_.robotTimePerCompletedTrial_s());
+    }
+
+    void moreTrainingTapsPayInTrainingTime() {
+        // Five training taps per class widen the likelihood histograms past one tap's noise:
+        // fewer misreadings near corners, at five times the training taps.
+        report("five training taps", fiveTaps_);
+        const Rate a = fiveTaps_.activeCompleted();
+        QCOMPARE(a.total, 80);
+        QVERIFY(a.count >= rates_.activeCompleted().count);
+        QCOMPARE(fiveTaps_.recognisedSmoothed().count, a.count);
+        QVERIFY(fiveTaps_.robotTimePerRun_s() > 1.5 * rates_.robotTimePerRun_s());
     }
 };
 

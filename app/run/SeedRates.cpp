@@ -1,0 +1,204 @@
+#include "app/run/SeedRates.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+namespace activetouch {
+
+namespace fs = std::filesystem;
+
+SeedOutcome seedOutcome(const RunResult& run) {
+    SeedOutcome o;
+    o.seed = run.spec.scene.seed;
+    o.runRobotTime_s = run.robotTime_s;
+    o.angleError_deg = run.validation.angleError_deg;
+    o.positionError_mm = run.validation.positionError_mm;
+    for (const TrialRun& t : run.trials) {
+        if (t.result.mode == FollowingMode::Passive) {
+            ++o.passiveTrials;
+            o.passiveLost += !t.result.completed();
+            continue;
+        }
+        ++o.activeTrials;
+        if (!t.result.completed()) {
+            o.failures.push_back(t.label + " trial " + std::to_string(t.trial) + ": " +
+                                 t.result.detail);
+            continue;
+        }
+        ++o.activeCompleted;
+        o.recognisedRaw += t.recognised && t.recognition.predicted == t.label;
+        o.recognisedSmoothed += t.recognised && t.recognition.predictedSmoothed == t.label;
+        o.completedTaps += static_cast<int>(t.result.taps.size());
+        o.completedRobotTime_s += t.result.robotTime_s;
+    }
+    return o;
+}
+
+namespace {
+// Wilson score interval at 95 %.
+constexpr double kZ = 1.959963984540054;
+double wilsonCentre(const Rate& r) {
+    const double n = r.total, p = r.fraction(), z2 = kZ * kZ;
+    return (p + z2 / (2 * n)) / (1 + z2 / n);
+}
+double wilsonHalfWidth(const Rate& r) {
+    const double n = r.total, p = r.fraction(), z2 = kZ * kZ;
+    return kZ * std::sqrt(p * (1 - p) / n + z2 / (4 * n * n)) / (1 + z2 / n);
+}
+
+template <typename F>
+Rate sum(const std::vector<SeedOutcome>& seeds, F f) {
+    Rate r;
+    for (const auto& s : seeds) {
+        const auto [count, total] = f(s);
+        r.count += count;
+        r.total += total;
+    }
+    return r;
+}
+
+Json rateJson(const Rate& r) {
+    return {{"count", r.count},
+            {"total", r.total},
+            {"rate", r.fraction()},
+            {"ci95", {r.low(), r.high()}}};
+}
+}  // namespace
+
+double Rate::low() const {
+    return total > 0 ? std::max(0.0, wilsonCentre(*this) - wilsonHalfWidth(*this)) : 0.0;
+}
+double Rate::high() const {
+    return total > 0 ? std::min(1.0, wilsonCentre(*this) + wilsonHalfWidth(*this)) : 1.0;
+}
+
+Rate SeedRates::passiveLost() const {
+    return sum(seeds, [](const SeedOutcome& s) {
+        return std::pair{s.passiveLost, s.passiveTrials};
+    });
+}
+Rate SeedRates::activeCompleted() const {
+    return sum(seeds, [](const SeedOutcome& s) {
+        return std::pair{s.activeCompleted, s.activeTrials};
+    });
+}
+Rate SeedRates::recognisedRaw() const {
+    return sum(seeds, [](const SeedOutcome& s) {
+        return std::pair{s.recognisedRaw, s.activeCompleted};
+    });
+}
+Rate SeedRates::recognisedSmoothed() const {
+    return sum(seeds, [](const SeedOutcome& s) {
+        return std::pair{s.recognisedSmoothed, s.activeCompleted};
+    });
+}
+double SeedRates::tapsPerCompletedTrial() const {
+    double taps = 0;
+    for (const auto& s : seeds) taps += s.completedTaps;
+    const int n = activeCompleted().count;
+    return n > 0 ? taps / n : 0.0;
+}
+double SeedRates::robotTimePerCompletedTrial_s() const {
+    double t = 0;
+    for (const auto& s : seeds) t += s.completedRobotTime_s;
+    const int n = activeCompleted().count;
+    return n > 0 ? t / n : 0.0;
+}
+double SeedRates::robotTimePerRun_s() const {
+    double t = 0;
+    for (const auto& s : seeds) t += s.runRobotTime_s;
+    return seeds.empty() ? 0.0 : t / static_cast<double>(seeds.size());
+}
+
+Json seedRatesJson(const SeedRates& r) {
+    Json seeds = Json::array();
+    for (const auto& s : r.seeds)
+        seeds.push_back({{"seed", s.seed},
+                         {"passive_trials", s.passiveTrials},
+                         {"passive_lost", s.passiveLost},
+                         {"active_trials", s.activeTrials},
+                         {"active_completed", s.activeCompleted},
+                         {"recognised_raw", s.recognisedRaw},
+                         {"recognised_smoothed", s.recognisedSmoothed},
+                         {"validation_angle_error_deg", s.angleError_deg},
+                         {"validation_position_error_mm", s.positionError_mm},
+                         {"run_robot_time_s", s.runRobotTime_s},
+                         {"active_failures", s.failures}});
+    return {{"seeds", seeds},
+            {"runs", r.seeds.size()},
+            {"passive_lost", rateJson(r.passiveLost())},
+            {"active_completed", rateJson(r.activeCompleted())},
+            {"recognised_raw", rateJson(r.recognisedRaw())},
+            {"recognised_smoothed", rateJson(r.recognisedSmoothed())},
+            {"taps_per_completed_trial", r.tapsPerCompletedTrial()},
+            {"robot_time_per_completed_trial_s", r.robotTimePerCompletedTrial_s()},
+            {"robot_time_per_run_s", r.robotTimePerRun_s()},
+            {"intervals", "Wilson score, 95 %"}};
+}
+
+SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
+                   const std::string& outDir,
+                   const std::function<bool(const SeedOutcome&)>& seedDone) {
+    SeedRates rates;
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(nullptr, &std::fclose);
+    if (!outDir.empty()) {
+        std::error_code ec;
+        fs::create_directories(outDir, ec);
+        if (ec)
+            throw InputError(
+                outDir, "",
+                "cannot create the output folder (" + ec.message() + "); choose a writable --out");
+        fs::remove(fs::path(outDir) / "rates.json", ec);  // never mistaken for this run's
+        const std::string path = (fs::path(outDir) / "rates.csv").string();
+        file.reset(std::fopen(path.c_str(), "w"));
+        if (!file)
+            throw InputError(path, "",
+                             "cannot write the file; check the output folder is writable");
+        std::fprintf(file.get(),
+                     "seed,passive_trials,passive_lost,active_trials,active_completed,"
+                     "recognised_raw,recognised_smoothed,completed_taps,completed_robot_time_s,"
+                     "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
+                     "active_failures\n");
+        std::fflush(file.get());
+    }
+    for (std::uint64_t seed = first; seed <= last; ++seed) {
+        RunOptions options;
+        options.seed = seed;
+        const SeedOutcome o = seedOutcome(runExperiment(spec, options));
+        rates.seeds.push_back(o);
+        if (file) {
+            std::string failures;
+            for (const auto& f : o.failures) failures += (failures.empty() ? "" : "; ") + f;
+            for (std::size_t i = failures.find('"'); i != std::string::npos;
+                 i = failures.find('"', i + 2))
+                failures.insert(i, 1, '"');
+            std::fprintf(file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,\"%s\"\n",
+                         static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
+                         o.activeTrials, o.activeCompleted, o.recognisedRaw, o.recognisedSmoothed,
+                         o.completedTaps, o.completedRobotTime_s, o.runRobotTime_s,
+                         o.angleError_deg, o.positionError_mm, failures.c_str());
+            std::fflush(file.get());
+        }
+        if (seedDone && !seedDone(o)) break;
+        if (seed == last) break;  // last may be the largest seed
+    }
+    if (file) {
+        file.reset();
+        const fs::path final = fs::path(outDir) / "rates.json",
+                       temp = fs::path(outDir) / "rates.json.partial";
+        {
+            std::ofstream out(temp);
+            if (!out)
+                throw InputError(temp.string(), "",
+                                 "cannot write the rates; check the output folder is writable");
+            out << seedRatesJson(rates).dump(2) << '\n';
+        }
+        fs::rename(temp, final);
+    }
+    return rates;
+}
+
+}  // namespace activetouch

@@ -1,0 +1,57 @@
+#pragma once
+// Outcome rates over many seeds (DESIGN.md §2: one seed is a whole run, its own data sets,
+// training, valid range and trials). A single training draw can make a setting look much better
+// or worse than it is, so the paper's claims are reported as rates with their 95 % intervals.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "app/run/ExperimentRun.h"
+
+namespace activetouch {
+
+/// One whole run's outcome.
+struct SeedOutcome {
+    std::uint64_t seed = 0;
+    int passiveTrials = 0, passiveLost = 0;
+    int activeTrials = 0, activeCompleted = 0;
+    int recognisedRaw = 0, recognisedSmoothed = 0;        ///< completed active paths named rightly
+    int completedTaps = 0;                                ///< taps of the completed active trials
+    double completedRobotTime_s = 0.0;                    ///< their robot time
+    double runRobotTime_s = 0.0;                          ///< the whole run, training included
+    double angleError_deg = 0.0, positionError_mm = 0.0;  ///< offline validation
+    std::vector<std::string> failures;  ///< "cross trial 2: lost: ..." for each active trial lost
+};
+
+SeedOutcome seedOutcome(const RunResult& run);
+
+/// A count out of a total with its Wilson score 95 % interval.
+struct Rate {
+    int count = 0, total = 0;
+    double fraction() const { return total > 0 ? double(count) / total : 0.0; }
+    double low() const;
+    double high() const;
+};
+
+struct SeedRates {
+    std::vector<SeedOutcome> seeds;
+    Rate passiveLost() const;
+    Rate activeCompleted() const;
+    Rate recognisedRaw() const;       ///< of completed active paths
+    Rate recognisedSmoothed() const;  ///< of completed active paths
+    double tapsPerCompletedTrial() const;
+    double robotTimePerCompletedTrial_s() const;
+    double robotTimePerRun_s() const;
+};
+
+/// Runs `spec` once per seed from `first` to `last` (no per-run artefacts). With `outDir`, each
+/// seed's row is appended to <outDir>/rates.csv as it finishes and <outDir>/rates.json is written
+/// at the end. `seedDone` sees each outcome; returning false stops after that seed.
+SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
+                   const std::string& outDir,
+                   const std::function<bool(const SeedOutcome&)>& seedDone = {});
+
+Json seedRatesJson(const SeedRates& rates);
+
+}  // namespace activetouch
