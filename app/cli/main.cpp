@@ -200,6 +200,10 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
 }
 
 void printRate(const char* what, const Rate& r) {
+    if (r.total == 0) {
+        std::printf("%-34s none in this experiment\n", what);
+        return;
+    }
     std::printf("%-34s %4d / %-4d %5.1f %%  (95 %% interval %5.1f-%5.1f %%)\n", what, r.count,
                 r.total, 100.0 * r.fraction(), 100.0 * r.low(), 100.0 * r.high());
 }

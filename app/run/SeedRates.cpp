@@ -61,6 +61,7 @@ Rate sum(const std::vector<SeedOutcome>& seeds, F f) {
 }
 
 Json rateJson(const Rate& r) {
+    if (r.total == 0) return {{"count", 0}, {"total", 0}, {"rate", nullptr}, {"ci95", nullptr}};
     return {{"count", r.count},
             {"total", r.total},
             {"rate", r.fraction()},
