@@ -4,10 +4,12 @@
 //   activetouch-cli check <file.json>
 // Exit codes: 0 ok, 1 the run failed, 2 bad input.
 #include <QApplication>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -100,34 +102,59 @@ std::optional<std::uint64_t> parseSeed(const std::string& v) {
     return static_cast<std::uint64_t>(n);
 }
 
-int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
+/// The arguments of run and seeds: one experiment file, --out, the seed options that command
+/// takes (each a whole number) and --no-figures where allowed. An error is the message to print.
+struct RunArguments {
     std::string experimentPath, outDir;
-    std::optional<std::uint64_t> seed;
+    std::map<std::string, std::uint64_t> seeds;  ///< "--seed", "--from", "--to" as given
     bool figures = true;
+    std::string error;
+};
+
+RunArguments parseRunArguments(const std::vector<std::string>& args, const char* command,
+                               const std::vector<std::string>& seedOptions, bool figuresOption) {
+    RunArguments r;
+    auto fail = [&](const std::string& message) {
+        r.error = message;
+        return r;
+    };
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
+        const bool seedOption =
+            std::find(seedOptions.begin(), seedOptions.end(), a) != seedOptions.end();
         if (a == "--out") {
-            if (i + 1 >= args.size()) return usageError("--out needs a folder");
-            outDir = args[++i];
-        } else if (a == "--seed") {
-            if (i + 1 >= args.size()) return usageError("--seed needs a whole number");
+            if (i + 1 >= args.size()) return fail("--out needs a folder");
+            r.outDir = args[++i];
+        } else if (seedOption) {
+            if (i + 1 >= args.size()) return fail(a + " needs a whole number");
             const std::string& v = args[++i];
-            seed = parseSeed(v);
-            if (!seed)
-                return usageError("--seed '" + v +
-                                  "' is not a whole number between 0 and 2147483647");
-        } else if (a == "--no-figures") {
-            figures = false;
+            const auto n = parseSeed(v);
+            if (!n) return fail(a + " '" + v + "' is not a whole number between 0 and 2147483647");
+            r.seeds[a] = *n;
+        } else if (a == "--no-figures" && figuresOption) {
+            r.figures = false;
         } else if (!a.empty() && a[0] == '-') {
-            return usageError("unknown option '" + a + "'");
-        } else if (experimentPath.empty()) {
-            experimentPath = a;
+            return fail("unknown option '" + a + "'");
+        } else if (r.experimentPath.empty()) {
+            r.experimentPath = a;
         } else {
-            return usageError("unexpected argument '" + a + "'");
+            return fail("unexpected argument '" + a + "'");
         }
     }
-    if (experimentPath.empty())
-        return usageError("run needs an experiment file, e.g. experiments/paper.json");
+    if (r.experimentPath.empty())
+        return fail(std::string(command) +
+                    " needs an experiment file, e.g. experiments/paper.json");
+    return r;
+}
+
+int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
+    const RunArguments parsed = parseRunArguments(args, "run", {"--seed"}, true);
+    if (!parsed.error.empty()) return usageError(parsed.error);
+    const std::string& experimentPath = parsed.experimentPath;
+    std::string outDir = parsed.outDir;
+    std::optional<std::uint64_t> seed;
+    if (parsed.seeds.count("--seed")) seed = parsed.seeds.at("--seed");
+    const bool figures = parsed.figures;
 
     const auto start = std::chrono::steady_clock::now();
     ExperimentSpec spec;
@@ -209,31 +236,13 @@ void printRate(const char* what, const Rate& r) {
 }
 
 int commandSeeds(const std::vector<std::string>& args) {
-    std::string experimentPath, outDir;
+    const RunArguments parsed = parseRunArguments(args, "seeds", {"--from", "--to"}, false);
+    if (!parsed.error.empty()) return usageError(parsed.error);
+    const std::string& experimentPath = parsed.experimentPath;
+    std::string outDir = parsed.outDir;
     std::optional<std::uint64_t> from, to;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--out") {
-            if (i + 1 >= args.size()) return usageError("--out needs a folder");
-            outDir = args[++i];
-        } else if (a == "--from" || a == "--to") {
-            if (i + 1 >= args.size()) return usageError(a + " needs a whole number");
-            const std::string& v = args[++i];
-            const auto n = parseSeed(v);
-            if (!n)
-                return usageError(a + " '" + v +
-                                  "' is not a whole number between 0 and 2147483647");
-            (a == "--from" ? from : to) = n;
-        } else if (!a.empty() && a[0] == '-') {
-            return usageError("unknown option '" + a + "'");
-        } else if (experimentPath.empty()) {
-            experimentPath = a;
-        } else {
-            return usageError("unexpected argument '" + a + "'");
-        }
-    }
-    if (experimentPath.empty())
-        return usageError("seeds needs an experiment file, e.g. experiments/paper.json");
+    if (parsed.seeds.count("--from")) from = parsed.seeds.at("--from");
+    if (parsed.seeds.count("--to")) to = parsed.seeds.at("--to");
     if (!from || !to) return usageError("seeds needs --from and --to, e.g. --from 1 --to 10");
     if (*from > *to)
         return usageError("--from " + std::to_string(*from) + " is after --to " +

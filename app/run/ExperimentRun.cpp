@@ -3,11 +3,11 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
 
+#include "app/run/OutputFiles.h"
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
 #include "core/validation/ClassRegions.h"
@@ -17,23 +17,6 @@ namespace activetouch {
 namespace fs = std::filesystem;
 
 namespace {
-
-void ensureDirectory(const fs::path& dir) {
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec)
-        throw InputError(
-            dir.string(), "",
-            "cannot create the output folder (" + ec.message() + "); choose a writable --out");
-}
-
-std::FILE* openTable(const fs::path& path) {
-    std::FILE* f = std::fopen(path.string().c_str(), "w");
-    if (!f)
-        throw InputError(path.string(), "",
-                         "cannot write the file; check the output folder is writable");
-    return f;
-}
 
 bool sameOutline(const Polygon& a, const Polygon& b) {
     if (a.size() != b.size()) return false;
@@ -212,7 +195,7 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
 
     std::unique_ptr<TapCsvWriter> recording;
     if (!options.outDir.empty()) {
-        ensureDirectory(fs::path(options.outDir) / "data");
+        ensureOutputDirectory((fs::path(options.outDir) / "data").string());
         recording = std::make_unique<TapCsvWriter>(
             (fs::path(options.outDir) / "data" / "taps.csv").string(), model->taxelCount());
     }
@@ -305,7 +288,8 @@ RunResult runFollowing(const RunResult& trained, const ExperimentSpec& specIn,
     result.tapsSimulated = 0;
     result.rig = options.connected ? options.connected->description : "simulated";
     if (options.connected) checkRunnableOn(result.spec, *options.connected);
-    if (!options.outDir.empty()) ensureDirectory(fs::path(options.outDir) / "data");
+    if (!options.outDir.empty())
+        ensureOutputDirectory((fs::path(options.outDir) / "data").string());
     auto model = std::make_shared<const FingertipContactModel>(result.spec.scene.fingertip);
     RunProgress progress;
     progress.tapsPlanned = plannedTapEstimate(result.spec) - result.spec.plannedTaps();
@@ -317,10 +301,10 @@ RunResult runFollowing(const RunResult& trained, const ExperimentSpec& specIn,
 
 void writeRunTables(const RunResult& r, const std::string& outDir) {
     const fs::path data = fs::path(outDir) / "data";
-    ensureDirectory(data);
+    ensureOutputDirectory(data.string());
     const ClassSet& cs = r.classes;
 
-    std::FILE* f = openTable(data / "class_regions.csv");
+    std::FILE* f = openOutputTable((data / "class_regions.csv").string());
     std::fprintf(f, "class,orientation_deg,orientation,position,offset_mm,region\n");
     for (int c = 0; c < cs.classCount(); ++c)
         std::fprintf(f, "%d,%g,%s,%d,%g,%s\n", c, cs.orientationDegOf(c),
@@ -328,7 +312,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
                      cs.offsetOf(cs.positionOf(c)), regionName(cs.regionOf(c)));
     std::fclose(f);
     if (!r.validation.byClass.empty()) {
-        f = openTable(data / "validation_by_class.csv");
+        f = openOutputTable((data / "validation_by_class.csv").string());
         std::fprintf(f,
                      "orientation_deg,orientation,position,region,test_taps,angle_error_deg,"
                      "position_error_mm,correct_fraction\n");
@@ -340,7 +324,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
         }
         std::fclose(f);
 
-        f = openTable(data / "validation_by_position.csv");
+        f = openOutputTable((data / "validation_by_position.csv").string());
         std::fprintf(f,
                      "position,offset_mm,angle_error_deg_mean,angle_error_deg_std,position_error_"
                      "mm_mean,position_error_mm_std,in_valid_range\n");
@@ -354,7 +338,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
         }
         std::fclose(f);
 
-        f = openTable(data / "test_percepts.csv");
+        f = openOutputTable((data / "test_percepts.csv").string());
         std::fprintf(f,
                      "set,true_class,true_orientation_deg,true_position,true_offset_mm,perceived_"
                      "class,shape_class,perceived_orientation_deg,perceived_position,posterior\n");
@@ -369,7 +353,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
         std::fclose(f);
     }
     if (!r.trials.empty()) {
-        f = openTable(data / "following_trials.csv");
+        f = openOutputTable((data / "following_trials.csv").string());
         std::fprintf(f,
                      "shape,mode,trial,completed,end,taps,robot_time_s,coverage,mean_contour_"
                      "distance_mm,max_contour_distance_mm,progress_mm,start_x_mm,start_y_mm\n");
@@ -381,7 +365,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
                          t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
                          t.result.progress_mm, t.start.x, t.start.y);
         std::fclose(f);
-        f = openTable(data / "following_paths.csv");
+        f = openOutputTable((data / "following_paths.csv").string());
         std::fprintf(f,
                      "shape,mode,trial,tap,x_mm,y_mm,shape_class,orientation_deg,position,rule,"
                      "move_x_mm,move_y_mm,progress_mm,contour_distance_mm\n");
@@ -398,7 +382,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
             }
         }
         std::fclose(f);
-        f = openTable(data / "outlines.csv");
+        f = openOutputTable((data / "outlines.csv").string());
         std::fprintf(f, "shape,vertex,x_mm,y_mm\n");
         std::map<std::string, bool> written;
         for (const auto& t : r.trials) {
@@ -411,7 +395,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
         std::fclose(f);
     }
     if (!r.templates.empty()) {
-        f = openTable(data / "recognition.csv");
+        f = openOutputTable((data / "recognition.csv").string());
         std::fprintf(f, "shape,trial,predicted,predicted_smoothed");
         for (const auto& t : r.templates) std::fprintf(f, ",distance_%s", t.shape.c_str());
         for (const auto& t : r.templates) std::fprintf(f, ",smoothed_distance_%s", t.shape.c_str());
@@ -427,7 +411,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
             std::fputc('\n', f);
         }
         std::fclose(f);
-        f = openTable(data / "path_histograms.csv");
+        f = openOutputTable((data / "path_histograms.csv").string());
         std::fprintf(f, "kind,shape,trial,smoothed,ix,iy,value\n");
         auto dump = [&](const char* kind, const std::string& shape, int trial, bool smooth,
                         const PathHistogram& h) {
@@ -450,7 +434,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
 
     const SweepResults& sw = r.sweeps;
     if (!sw.perception.empty()) {
-        f = openTable(data / "sweep_perception.csv");
+        f = openOutputTable((data / "sweep_perception.csv").string());
         std::fprintf(f,
                      "belief_threshold,mean_taps_per_decision,angle_error_deg,position_error_mm,"
                      "correct_fraction\n");
@@ -460,7 +444,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
         std::fclose(f);
     }
     if (!sw.following.empty()) {
-        f = openTable(data / "sweep_following.csv");
+        f = openOutputTable((data / "sweep_following.csv").string());
         std::fprintf(f,
                      "mode,follow_step_mm,reposition_step_mm,belief_threshold,trials,completed,"
                      "completion_rate,mean_contour_distance_mm,"
@@ -475,7 +459,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
         std::fclose(f);
     }
     if (!sw.compute.empty()) {
-        f = openTable(data / "sweep_compute.csv");
+        f = openOutputTable((data / "sweep_compute.csv").string());
         std::fprintf(f,
                      "bins,samples_per_tap,angle_error_deg,position_error_mm,microseconds_per_"
                      "decision,paper_setting\n");
@@ -487,7 +471,7 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
     }
 
     if (r.validation.confusion.empty()) return;
-    f = openTable(data / "confusion.csv");
+    f = openOutputTable((data / "confusion.csv").string());
     std::fprintf(f, "true_class");
     for (int c = 0; c < cs.classCount(); ++c) std::fprintf(f, ",perceived_%d", c);
     std::fputc('\n', f);
@@ -649,16 +633,8 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
 }
 
 void writeSummary(const RunResult& r, const std::string& outDir, double wall_s, double figures_s) {
-    const fs::path final = fs::path(outDir) / "summary.json";
-    const fs::path temp = fs::path(outDir) / "summary.json.partial";
-    {
-        std::ofstream out(temp);
-        if (!out)
-            throw InputError(temp.string(), "",
-                             "cannot write the summary; check the output folder is writable");
-        out << summaryJson(r, wall_s, figures_s).dump(2) << '\n';
-    }
-    fs::rename(temp, final);
+    writeJsonAtomically((fs::path(outDir) / "summary.json").string(),
+                        summaryJson(r, wall_s, figures_s));
 }
 
 }  // namespace activetouch

@@ -3,8 +3,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
+
+#include "app/run/OutputFiles.h"
 
 namespace activetouch {
 
@@ -146,18 +147,10 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
     SeedRates rates;
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(nullptr, &std::fclose);
     if (!outDir.empty()) {
+        ensureOutputDirectory(outDir);
         std::error_code ec;
-        fs::create_directories(outDir, ec);
-        if (ec)
-            throw InputError(
-                outDir, "",
-                "cannot create the output folder (" + ec.message() + "); choose a writable --out");
         fs::remove(fs::path(outDir) / "rates.json", ec);  // never mistaken for this run's
-        const std::string path = (fs::path(outDir) / "rates.csv").string();
-        file.reset(std::fopen(path.c_str(), "w"));
-        if (!file)
-            throw InputError(path, "",
-                             "cannot write the file; check the output folder is writable");
+        file.reset(openOutputTable((fs::path(outDir) / "rates.csv").string()));
         std::fprintf(file.get(),
                      "seed,passive_trials,passive_lost,active_trials,active_completed,"
                      "recognised_raw,recognised_smoothed,completed_taps,completed_robot_time_s,"
@@ -188,16 +181,7 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
     }
     if (file) {
         file.reset();
-        const fs::path final = fs::path(outDir) / "rates.json",
-                       temp = fs::path(outDir) / "rates.json.partial";
-        {
-            std::ofstream out(temp);
-            if (!out)
-                throw InputError(temp.string(), "",
-                                 "cannot write the rates; check the output folder is writable");
-            out << seedRatesJson(rates).dump(2) << '\n';
-        }
-        fs::rename(temp, final);
+        writeJsonAtomically((fs::path(outDir) / "rates.json").string(), seedRatesJson(rates));
     }
     return rates;
 }
