@@ -79,6 +79,17 @@ ExperimentSpec loadChecked(const std::string& path, bool requireExperiment) {
     return spec;
 }
 
+/// The experiment a run or seeds command takes, checked; on bad input the message is printed and
+/// nothing is returned.
+std::optional<ExperimentSpec> loadForRun(const std::string& path) {
+    try {
+        return loadChecked(path, true);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return std::nullopt;
+    }
+}
+
 void setUpHeadlessDisplay() {
     const char* display = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
@@ -157,13 +168,9 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
     const bool figures = parsed.figures;
 
     const auto start = std::chrono::steady_clock::now();
-    ExperimentSpec spec;
-    try {
-        spec = loadChecked(experimentPath, true);
-    } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return kBadInput;
-    }
+    const auto loaded = loadForRun(experimentPath);
+    if (!loaded) return kBadInput;
+    const ExperimentSpec& spec = *loaded;
     if (outDir.empty()) outDir = (fs::path("results") / spec.name).string();
     const fs::path out(outDir);
     // A stale summary must never be mistaken for this run's.
@@ -247,13 +254,9 @@ int commandSeeds(const std::vector<std::string>& args) {
     if (*from > *to)
         return usageError("--from " + std::to_string(*from) + " is after --to " +
                           std::to_string(*to) + "; give the first seed first");
-    ExperimentSpec spec;
-    try {
-        spec = loadChecked(experimentPath, true);
-    } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return kBadInput;
-    }
+    const auto loaded = loadForRun(experimentPath);
+    if (!loaded) return kBadInput;
+    const ExperimentSpec& spec = *loaded;
     if (outDir.empty()) outDir = (fs::path("results") / (spec.name + "_seeds")).string();
     try {
         const auto start = std::chrono::steady_clock::now();

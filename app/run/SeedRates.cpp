@@ -50,13 +50,12 @@ double wilsonHalfWidth(const Rate& r) {
     return kZ * std::sqrt(p * (1 - p) / n + z2 / (4 * n * n)) / (1 + z2 / n);
 }
 
-template <typename F>
-Rate sum(const std::vector<SeedOutcome>& seeds, F f) {
+Rate tally(const std::vector<SeedOutcome>& seeds, int SeedOutcome::*count,
+           int SeedOutcome::*total) {
     Rate r;
     for (const auto& s : seeds) {
-        const auto [count, total] = f(s);
-        r.count += count;
-        r.total += total;
+        r.count += s.*count;
+        r.total += s.*total;
     }
     return r;
 }
@@ -78,24 +77,16 @@ double Rate::high() const {
 }
 
 Rate SeedRates::passiveLost() const {
-    return sum(seeds, [](const SeedOutcome& s) {
-        return std::pair{s.passiveLost, s.passiveTrials};
-    });
+    return tally(seeds, &SeedOutcome::passiveLost, &SeedOutcome::passiveTrials);
 }
 Rate SeedRates::activeCompleted() const {
-    return sum(seeds, [](const SeedOutcome& s) {
-        return std::pair{s.activeCompleted, s.activeTrials};
-    });
+    return tally(seeds, &SeedOutcome::activeCompleted, &SeedOutcome::activeTrials);
 }
 Rate SeedRates::recognisedRaw() const {
-    return sum(seeds, [](const SeedOutcome& s) {
-        return std::pair{s.recognisedRaw, s.activeCompleted};
-    });
+    return tally(seeds, &SeedOutcome::recognisedRaw, &SeedOutcome::activeCompleted);
 }
 Rate SeedRates::recognisedSmoothed() const {
-    return sum(seeds, [](const SeedOutcome& s) {
-        return std::pair{s.recognisedSmoothed, s.activeCompleted};
-    });
+    return tally(seeds, &SeedOutcome::recognisedSmoothed, &SeedOutcome::activeCompleted);
 }
 double SeedRates::tapsPerCompletedTrial() const {
     double taps = 0;
