@@ -1,6 +1,6 @@
 // activetouch-cli: the headless runner (DESIGN.md §4).
 //   activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--no-figures]
-//   activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>]
+//   activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>] [--no-figures]
 //   activetouch-cli check <file.json>
 // Exit codes: 0 ok, 1 the run failed, 2 bad input.
 #include <QApplication>
@@ -17,6 +17,7 @@
 
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
+#include "app/figures/SeedFigures.h"
 #include "app/run/ExperimentRun.h"
 #include "app/run/SeedRates.h"
 #include "core/experiment/Experiment.h"
@@ -40,12 +41,14 @@ void printHelp() {
         "      <dir>/data/*.csv (every tap, appended as it is taken; every table behind a figure)\n"
         "      and <dir>/figures/*.{png,pdf,svg}. --out defaults to results/<experiment name>.\n"
         "      --seed overrides the experiment's seed (one seed = one whole run).\n"
-        "  activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>]\n"
+        "  activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>] [--no-figures]\n"
         "      Runs the experiment once per seed A..B (each a whole run: its own data sets,\n"
         "      training, valid range and trials) and reports the rates with 95 %% intervals:\n"
         "      passive trials lost, active trials completed, active paths recognised by both\n"
-        "      rules. Writes <dir>/rates.csv (a row per seed, appended as each finishes) and\n"
-        "      <dir>/rates.json. --out defaults to results/<experiment name>_seeds.\n"
+        "      rules. Writes <dir>/rates.csv (a row per seed, appended as each finishes),\n"
+        "      <dir>/rates.json and <dir>/figures/seed_rates.{png,pdf,svg} (each seed's outcome\n"
+        "      and the rates so far with their intervals). --out defaults to\n"
+        "      results/<experiment name>_seeds.\n"
         "  activetouch-cli check <file.json | taps.csv>\n"
         "      Validates an experiment, a scene or a tap recording and says what is wrong, if "
         "anything.\n"
@@ -98,11 +101,14 @@ void setUpHeadlessDisplay() {
         setenv("QT_QPA_PLATFORM", "offscreen", 1);
 }
 
-double writeFigures(const RunResult& result, const fs::path& out, int argc, char** argv) {
+/// Draws figures with `write` under a QApplication (offscreen without a display); returns the
+/// seconds it took.
+template <typename Write>
+double drawFigures(int argc, char** argv, Write write) {
     const auto start = std::chrono::steady_clock::now();
     setUpHeadlessDisplay();
     QApplication app(argc, argv);
-    writeRunFigures(result, QString::fromStdString(out.string()));
+    write();
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -185,7 +191,9 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
         result = runExperiment(spec, options);
         writeRunTables(result, outDir);
         double figures_s = 0.0;
-        if (figures) figures_s = writeFigures(result, out, argc, argv);
+        if (figures)
+            figures_s = drawFigures(
+                argc, argv, [&] { writeRunFigures(result, QString::fromStdString(out.string())); });
         const double wall =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         writeSummary(result, outDir, wall, figures_s);
@@ -233,17 +241,8 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
     }
 }
 
-void printRate(const char* what, const Rate& r) {
-    if (r.total == 0) {
-        std::printf("%-34s none in this experiment\n", what);
-        return;
-    }
-    std::printf("%-34s %4d / %-4d %5.1f %%  (95 %% interval %5.1f-%5.1f %%)\n", what, r.count,
-                r.total, 100.0 * r.fraction(), 100.0 * r.low(), 100.0 * r.high());
-}
-
-int commandSeeds(const std::vector<std::string>& args) {
-    const RunArguments parsed = parseRunArguments(args, "seeds", {"--from", "--to"}, false);
+int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
+    const RunArguments parsed = parseRunArguments(args, "seeds", {"--from", "--to"}, true);
     if (!parsed.error.empty()) return usageError(parsed.error);
     const std::string& experimentPath = parsed.experimentPath;
     std::string outDir = parsed.outDir;
@@ -272,16 +271,16 @@ int commandSeeds(const std::vector<std::string>& args) {
         });
         std::printf("\n%s over %zu seeds (%llu-%llu):\n", spec.name.c_str(), rates.seeds.size(),
                     static_cast<unsigned long long>(*from), static_cast<unsigned long long>(*to));
-        printRate("passive trials lost", rates.passiveLost());
-        printRate("active trials completed", rates.activeCompleted());
-        printRate("recognised, paper's rule", rates.recognisedRaw());
-        printRate("recognised, smoothed histograms", rates.recognisedSmoothed());
-        std::printf("completed active trial: %.0f taps, %.0f s robot time; whole run %.0f s\n",
-                    rates.tapsPerCompletedTrial(), rates.robotTimePerCompletedTrial_s(),
-                    rates.robotTimePerRun_s());
-        std::printf("wall time %.1f s; results in %s\n",
+        for (const std::string& line : describeRates(rates)) std::printf("%s\n", line.c_str());
+        double figures_s = 0.0;
+        if (parsed.figures)
+            figures_s = drawFigures(argc, argv, [&] {
+                writeSeedFigures(rates, QString::fromStdString(spec.name),
+                                 QString::fromStdString(outDir));
+            });
+        std::printf("wall time %.1f s (figures %.1f s); results in %s\n",
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                    outDir.c_str());
+                    figures_s, outDir.c_str());
         return kOk;
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
@@ -338,7 +337,7 @@ int main(int argc, char** argv) {
         return kOk;
     }
     if (command == "run") return commandRun(args, argc, argv);
-    if (command == "seeds") return commandSeeds(args);
+    if (command == "seeds") return commandSeeds(args, argc, argv);
     if (command == "check") return commandCheck(args);
     return usageError("unknown command '" + command + "'; use run, seeds or check");
 }

@@ -49,4 +49,43 @@ void setPanelTitle(QCPAxisRect* rect, const QString& text) {
     top->setLabel(text);
 }
 
+QColor seriesColour(int i) {
+    static const QColor palette[] = {
+        QColor(31, 119, 180),  QColor(255, 127, 14), QColor(44, 160, 44),   QColor(214, 39, 40),
+        QColor(148, 103, 189), QColor(140, 86, 75),  QColor(227, 119, 194), QColor(127, 127, 127)};
+    return palette[i % 8];
+}
+
+QCPAxisRect* addTitledPanel(QCPLayoutGrid* grid, int column, const QString& title,
+                            const QString& xLabel, const QString& yLabel) {
+    auto* rect = new QCPAxisRect(grid->parentPlot());
+    grid->addElement(0, column, rect);
+    setPanelTitle(rect, title);
+    rect->axis(QCPAxis::atBottom)->setLabel(xLabel);
+    rect->axis(QCPAxis::atLeft)->setLabel(yLabel);
+    return rect;
+}
+
+QCPLegend* addLegend(QCPAxisRect* rect) {
+    auto* legend = new QCPLegend;
+    rect->insetLayout()->addElement(legend, Qt::AlignTop | Qt::AlignRight);
+    legend->setLayer("legend");
+    legend->setFont(QFont("Sans", 8));
+    legend->setBrush(QColor(255, 255, 255, 220));
+    return legend;
+}
+
+QCPGraph* addSeries(QCPAxisRect* rect, QCPLegend* legend, const QString& name,
+                    const QVector<double>& x, const QVector<double>& y, QColor colour, bool lines) {
+    auto* g =
+        rect->parentPlot()->addGraph(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+    g->setData(x, y);
+    g->setName(name);
+    g->setPen(lines ? QPen(colour, 1.8) : QPen(Qt::NoPen));
+    g->setLineStyle(lines ? QCPGraph::lsLine : QCPGraph::lsNone);
+    g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, colour, colour, 6));
+    if (legend) legend->addItem(new QCPPlottableLegendItem(legend, g));
+    return g;
+}
+
 }  // namespace activetouch

@@ -1,7 +1,9 @@
 #pragma once
 // The layout every figure shares: one column of rows, row 0 the title, each further row a grid of
 // panels; panels titled on their top axis.
+#include <QColor>
 #include <QString>
+#include <QVector>
 #include <vector>
 
 #include "core/geometry/Vec2.h"
@@ -11,6 +13,8 @@ class QCPAxisRect;
 class QCPLayoutGrid;
 class QCPCurve;
 class QCPAxis;
+class QCPGraph;
+class QCPLegend;
 
 namespace activetouch {
 
@@ -25,5 +29,21 @@ QCPCurve* addPolyline(QCPAxis* x, QCPAxis* y, const std::vector<Vec2>& points, b
 
 /// Writes `text` as the panel's title on its top axis.
 void setPanelTitle(QCPAxisRect* rect, const QString& text);
+
+/// The colour of the i-th series in a panel (a palette of 8, repeating).
+QColor seriesColour(int i);
+
+/// Adds a panel at `column` of `grid`'s first row, titled, with axis labels.
+QCPAxisRect* addTitledPanel(QCPLayoutGrid* grid, int column, const QString& title,
+                            const QString& xLabel, const QString& yLabel);
+
+/// A legend inside the panel's top right corner.
+QCPLegend* addLegend(QCPAxisRect* rect);
+
+/// A graph of (x, y) in the panel: points joined by lines unless `lines` is false; listed in
+/// `legend` if one is given.
+QCPGraph* addSeries(QCPAxisRect* rect, QCPLegend* legend, const QString& name,
+                    const QVector<double>& x, const QVector<double>& y, QColor colour,
+                    bool lines = true);
 
 }  // namespace activetouch

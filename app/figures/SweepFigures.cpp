@@ -10,48 +10,8 @@
 namespace activetouch {
 namespace {
 
-QColor seriesColour(int i) {
-    static const QColor palette[] = {
-        QColor(31, 119, 180),  QColor(255, 127, 14), QColor(44, 160, 44),   QColor(214, 39, 40),
-        QColor(148, 103, 189), QColor(140, 86, 75),  QColor(227, 119, 194), QColor(127, 127, 127)};
-    return palette[i % 8];
-}
-
-QCPAxisRect* panel(QCPLayoutGrid* grid, int column, const QString& title, const QString& x,
-                   const QString& y) {
-    auto* rect = new QCPAxisRect(grid->parentPlot());
-    grid->addElement(0, column, rect);
-    setPanelTitle(rect, title);
-    rect->axis(QCPAxis::atBottom)->setLabel(x);
-    rect->axis(QCPAxis::atLeft)->setLabel(y);
-    return rect;
-}
-
-QCPLegend* legendIn(QCPAxisRect* rect) {
-    auto* legend = new QCPLegend;
-    rect->insetLayout()->addElement(legend, Qt::AlignTop | Qt::AlignRight);
-    legend->setLayer("legend");
-    legend->setFont(QFont("Sans", 8));
-    legend->setBrush(QColor(255, 255, 255, 220));
-    return legend;
-}
-
-QCPGraph* series(QCPAxisRect* rect, QCPLegend* legend, const QString& name,
-                 const QVector<double>& x, const QVector<double>& y, QColor colour,
-                 bool lines = true) {
-    auto* g =
-        rect->parentPlot()->addGraph(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
-    g->setData(x, y);
-    g->setName(name);
-    g->setPen(lines ? QPen(colour, 1.8) : QPen(Qt::NoPen));
-    g->setLineStyle(lines ? QCPGraph::lsLine : QCPGraph::lsNone);
-    g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, colour, colour, 6));
-    if (legend) legend->addItem(new QCPPlottableLegendItem(legend, g));
-    return g;
-}
-
 void markPaper(QCPAxisRect* rect, QCPLegend* legend, double x, double y, const QString& what) {
-    auto* g = series(rect, legend, what, {x}, {y}, Qt::black, false);
+    auto* g = addSeries(rect, legend, what, {x}, {y}, Qt::black, false);
     g->setScatterStyle(
         QCPScatterStyle(QCPScatterStyle::ssStar, QPen(Qt::black, 2), Qt::NoBrush, 14));
 }
@@ -98,12 +58,13 @@ bool buildPerceptionSweepFigure(QCustomPlot& plot, const RunResult& r) {
         angle << row.angleError_deg;
         position << row.positionError_mm;
     }
-    auto* a = panel(grid, 0, "angle error", "mean taps per decision", "angle error (deg)");
-    auto* p = panel(grid, 1, "position error", "mean taps per decision", "position error (mm)");
-    auto* la = legendIn(a);
-    auto* lp = legendIn(p);
-    series(a, la, "belief thresholds", taps, angle, seriesColour(0));
-    series(p, lp, "belief thresholds", taps, position, seriesColour(0));
+    auto* a = addTitledPanel(grid, 0, "angle error", "mean taps per decision", "angle error (deg)");
+    auto* p =
+        addTitledPanel(grid, 1, "position error", "mean taps per decision", "position error (mm)");
+    auto* la = addLegend(a);
+    auto* lp = addLegend(p);
+    addSeries(a, la, "belief thresholds", taps, angle, seriesColour(0));
+    addSeries(p, lp, "belief thresholds", taps, position, seriesColour(0));
     markPaper(a, la, 1.0, r.validation.angleError_deg, "paper: single tap (validation)");
     markPaper(p, lp, 1.0, r.validation.positionError_mm, "paper: single tap (validation)");
     for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -122,16 +83,16 @@ bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& r) {
         "Accuracy costs time (b): contour following against step lengths and belief threshold");
     if (rows.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    auto* completion = panel(grid, 0, "completion (single-tap decisions)", "follow step (mm)",
-                             "trials completed (%)");
-    auto* time = panel(grid, 1, "robot time per completed trial (single tap)", "follow step (mm)",
-                       "robot time per completion (s)");
-    auto* trade =
-        panel(grid, 2, "every active setting: time against path error",
-              "mean distance of taps to the contour (mm)", "robot time per completion (s)");
-    auto* lc = legendIn(completion);
-    auto* lt = legendIn(time);
-    auto* lx = legendIn(trade);
+    auto* completion = addTitledPanel(grid, 0, "completion (single-tap decisions)",
+                                      "follow step (mm)", "trials completed (%)");
+    auto* time = addTitledPanel(grid, 1, "robot time per completed trial (single tap)",
+                                "follow step (mm)", "robot time per completion (s)");
+    auto* trade = addTitledPanel(grid, 2, "every active setting: time against path error",
+                                 "mean distance of taps to the contour (mm)",
+                                 "robot time per completion (s)");
+    auto* lc = addLegend(completion);
+    auto* lt = addLegend(time);
+    auto* lx = addLegend(trade);
     std::map<std::pair<int, double>,
              std::pair<QVector<double>, std::pair<QVector<double>, QVector<double>>>>
         lines;
@@ -149,8 +110,8 @@ bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& r) {
         const QString name = key.first == int(FollowingMode::Active)
                                  ? QString("active, reposition %1 mm").arg(key.second)
                                  : QString("passive");
-        series(completion, lc, name, l.first, l.second.first, seriesColour(i));
-        series(time, lt, name, l.first, l.second.second, seriesColour(i));
+        addSeries(completion, lc, name, l.first, l.second.first, seriesColour(i));
+        addSeries(time, lt, name, l.first, l.second.second, seriesColour(i));
         ++i;
     }
     std::map<double, std::pair<QVector<double>, QVector<double>>> byThreshold;
@@ -162,10 +123,10 @@ bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& r) {
     }
     i = 0;
     for (const auto& [threshold, pts] : byThreshold)
-        series(trade, lx,
-               threshold == 0.0 ? QString("single tap")
-                                : QString("belief threshold %1").arg(threshold, 0, 'g', 12),
-               pts.first, pts.second, seriesColour(i++), false);
+        addSeries(trade, lx,
+                  threshold == 0.0 ? QString("single tap")
+                                   : QString("belief threshold %1").arg(threshold, 0, 'g', 12),
+                  pts.first, pts.second, seriesColour(i++), false);
     for (const auto& row : rows)
         if (row.paperSetting && row.mode == FollowingMode::Active) {
             markPaper(completion, lc, row.followStep_mm, 100.0 * row.completed / row.trials,
@@ -191,10 +152,12 @@ bool buildComputeSweepFigure(QCustomPlot& plot, const RunResult& r) {
                 "(labels: histogram bins)");
     if (rows.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    auto* a = panel(grid, 0, "angle error", "microseconds per decision", "angle error (deg)");
-    auto* p = panel(grid, 1, "position error", "microseconds per decision", "position error (mm)");
-    auto* la = legendIn(a);
-    auto* lp = legendIn(p);
+    auto* a =
+        addTitledPanel(grid, 0, "angle error", "microseconds per decision", "angle error (deg)");
+    auto* p = addTitledPanel(grid, 1, "position error", "microseconds per decision",
+                             "position error (mm)");
+    auto* la = addLegend(a);
+    auto* lp = addLegend(p);
     std::map<int, std::vector<const ComputeSweepRow*>> bySamples;
     for (const auto& row : rows) bySamples[row.samples].push_back(&row);
     int i = 0;
@@ -209,8 +172,8 @@ bool buildComputeSweepFigure(QCustomPlot& plot, const RunResult& r) {
             pointLabel(p, row->microsecondsPerDecision, row->positionError_mm,
                        QString::number(row->bins));
         }
-        series(a, la, QString("%1 samples per tap").arg(samples), us, angle, seriesColour(i));
-        series(p, lp, QString("%1 samples per tap").arg(samples), us, position, seriesColour(i));
+        addSeries(a, la, QString("%1 samples per tap").arg(samples), us, angle, seriesColour(i));
+        addSeries(p, lp, QString("%1 samples per tap").arg(samples), us, position, seriesColour(i));
         ++i;
     }
     for (const auto& row : rows)

@@ -24,6 +24,7 @@
 #include <QVBoxLayout>
 
 #include "app/figures/FollowingFigures.h"
+#include "app/figures/SeedFigures.h"
 #include "app/figures/SweepFigures.h"
 #include "app/figures/ValidationFigures.h"
 #include "app/gui/DevicesPanel.h"
@@ -31,6 +32,7 @@
 #include "app/gui/LiveView.h"
 #include "app/gui/PlotPanel.h"
 #include "app/gui/ScenePanel.h"
+#include "app/gui/SeedsTab.h"
 #include "devices/simulated/SimulatedWorld.h"
 #include "qcustomplot.h"
 
@@ -75,6 +77,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     sweeps->setToolTip(
         tr("Run an experiment with sweeps, such as experiments/accuracy_vs_time.json"));
     tabs_->addTab(sweeps, tr("Accuracy vs time"));
+    seeds_ = new SeedsTab;
+    tabs_->addTab(seeds_, tr("Rates over seeds"));
+    connect(seeds_, &SeedsTab::runRequested, this,
+            [this](std::uint64_t first, std::uint64_t last) { startSeeds(first, last); });
     setCentralWidget(tabs_);
     for (PlotPanel* p : plotPanels()) {
         connect(p, &PlotPanel::exported, this, &MainWindow::log);
@@ -151,11 +157,18 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
             [this](int done, int planned, const QString& step, double left) {
                 progress_->setRange(0, std::max(planned, done));
                 progress_->setValue(done);
-                progress_->setFormat(tr("%1 taps, about %2 s left").arg(done).arg(left, 0, 'f', 0));
+                progress_->setFormat((countingSeeds_ ? tr("%1 of %2 seeds, about %3 s left")
+                                                     : tr("%1 of about %2 taps, about %3 s left"))
+                                         .arg(done)
+                                         .arg(planned)
+                                         .arg(left, 0, 'f', 0));
                 status_->setText(step);
             });
     connect(&runs_, &RunController::finished, this, &MainWindow::showRun);
+    connect(&runs_, &RunController::seedFinished, seeds_, &SeedsTab::addSeed);
+    connect(&runs_, &RunController::seedsFinished, this, &MainWindow::showSeeds);
     connect(&runs_, &RunController::failed, this, [this](const QString& m) {
+        seeds_->interrupted();
         showError(m);
         emit runEnded(false);
     });
@@ -185,7 +198,8 @@ QList<PlotPanel*> MainWindow::plotPanels() const {
             recognition_,
             sweepPerception_,
             sweepFollowing_,
-            sweepCompute_};
+            sweepCompute_,
+            seeds_->ratesPanel()};
 }
 
 void MainWindow::setPace(Pace pace) {
@@ -283,6 +297,7 @@ bool MainWindow::startRun(RunController::What what) {
     }
     if (!runs_.start(spec, dir, what, static_cast<Pace>(pace_->currentIndex()), last_, connected))
         return false;
+    countingSeeds_ = false;
     lastOutDir_ = dir;
     progress_->setRange(0, plannedTapEstimate(spec));
     progress_->setValue(0);
@@ -294,6 +309,64 @@ bool MainWindow::startRun(RunController::What what) {
                  dir));
     updateActions();
     return true;
+}
+
+bool MainWindow::startSeeds(std::uint64_t first, std::uint64_t last) {
+    if (experimentPath_.isEmpty()) {
+        showError(tr("Open an experiment first."));
+        return false;
+    }
+    ExperimentSpec spec;
+    try {
+        spec = experimentAsShown();
+    } catch (const std::exception& e) {
+        showError(tr("The scene as shown cannot run: %1").arg(e.what()));
+        return false;
+    }
+    const QString name = QString::fromStdString(spec.name);
+    const QString dir = QDir(outputBase_)
+                            .filePath(name + "_seeds-" +
+                                      QDateTime::currentDateTime().toString("yyyyMMdd-hhmmss-zzz"));
+    if (!runs_.startSeeds(spec, first, last, dir)) return false;
+    countingSeeds_ = true;
+    lastSeedsDir_ = dir;
+    seeds_->begin(name);
+    tabs_->setCurrentWidget(seeds_);
+    progress_->setRange(0, static_cast<int>(last - first + 1));
+    progress_->setValue(0);
+    log(tr("seeds run started: %1, seeds %2-%3, each a whole run on the simulated rig, writing %4")
+            .arg(name)
+            .arg(first)
+            .arg(last)
+            .arg(dir));
+    updateActions();
+    return true;
+}
+
+void MainWindow::showSeeds(std::shared_ptr<const SeedRates> rates, const QString& dir,
+                           bool cancelled) {
+    seeds_->finish(*rates, dir, cancelled);
+    QString figures;
+    try {
+        const QStringList files = writeSeedFigures(*rates, seeds_->experiment(), dir);
+        if (!files.isEmpty()) figures = tr("; figure %1").arg(files.first());
+    } catch (const std::exception& e) {
+        showError(tr("Could not write the seeds figure: %1").arg(e.what()));
+    }
+    const QString state = cancelled ? tr("cancelled") : tr("finished");
+    progress_->setFormat(tr("seeds %1: %2").arg(state).arg(rates->seeds.size()));
+    status_->setText(tr("seeds %1, results in %2").arg(state, dir));
+    const Rate completed = rates->activeCompleted(), lost = rates->passiveLost();
+    log(tr("seeds run %1 after %2 seeds: active completed %3/%4, passive lost %5/%6; rates.csv "
+           "and rates.json in %7%8")
+            .arg(state)
+            .arg(rates->seeds.size())
+            .arg(completed.count)
+            .arg(completed.total)
+            .arg(lost.count)
+            .arg(lost.total)
+            .arg(dir, figures));
+    emit runEnded(!cancelled);
 }
 
 void MainWindow::cancelRun() {
@@ -386,6 +459,7 @@ void MainWindow::updateActions() {
     runTraining_->setEnabled(!busy && ready);
     runFollowing_->setEnabled(!busy && ready && last_ && last_->classifier.trained());
     cancel_->setEnabled(busy);
+    seeds_->setRunnable(!busy && ready);
     exportAll_->setEnabled(!busy && last_ != nullptr);
 }
 

@@ -25,6 +25,7 @@ class FollowingTab;
 class LiveView;
 class PlotPanel;
 class ScenePanel;
+class SeedsTab;
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
@@ -40,6 +41,9 @@ public:
     /// Throws InputError if the panel does not describe a valid scene.
     ExperimentSpec experimentAsShown() const;
     bool startRun(RunController::What what);
+    /// Runs the experiment as shown once per seed from `first` to `last` on the simulated rig
+    /// (the "Rates over seeds" tab), writing into a new folder under the output base.
+    bool startSeeds(std::uint64_t first, std::uint64_t last);
     void cancelRun();
     /// Writes every figure of the last run into `dir`/figures; returns the files.
     QStringList exportAllFigures(const QString& dir);
@@ -49,11 +53,13 @@ public:
     const QString& experimentPath() const { return experimentPath_; }
     std::shared_ptr<const RunResult> lastRun() const { return last_; }
     QString lastRunDirectory() const { return lastOutDir_; }
+    QString lastSeedsDirectory() const { return lastSeedsDir_; }
     bool running() const { return runs_.running(); }
     QProgressBar* progressBar() const { return progress_; }
     ScenePanel* scenePanel() const { return scene_; }
     LiveView* liveView() const { return live_; }
     FollowingTab* followingTab() const { return following_; }
+    SeedsTab* seedsTab() const { return seeds_; }
     QTabWidget* tabs() const { return tabs_; }
     /// Every plot in the window, for export.
     QList<PlotPanel*> plotPanels() const;
@@ -69,6 +75,7 @@ private:
     void showError(const QString& message);
     void log(const QString& text);
     void showRun(std::shared_ptr<const RunResult> result, const QString& dir);
+    void showSeeds(std::shared_ptr<const SeedRates> rates, const QString& dir, bool cancelled);
     void updateActions();
 
     LiveFeed feed_;
@@ -80,11 +87,14 @@ private:
     QString outputBase_;
     std::shared_ptr<const RunResult> last_;
     QString lastOutDir_;
+    QString lastSeedsDir_;
+    bool countingSeeds_ = false;  ///< the run going counts seeds, not taps
 
     QTabWidget* tabs_;
     LiveView* live_;
     PlotPanel *taps_, *errors_, *recognition_, *sweepPerception_, *sweepFollowing_, *sweepCompute_;
     FollowingTab* following_;
+    SeedsTab* seeds_;
     QTableWidget* confusion_;
     ScenePanel* scene_;
     DevicesPanel* devicesPanel_;

@@ -10,6 +10,8 @@ namespace activetouch {
 
 RunController::RunController(LiveFeed& live, QObject* parent) : QObject(parent), live_(live) {
     qRegisterMetaType<std::shared_ptr<const RunResult>>();
+    qRegisterMetaType<std::shared_ptr<const SeedRates>>();
+    qRegisterMetaType<SeedOutcome>();
 }
 
 RunController::~RunController() {
@@ -48,8 +50,7 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
         }
         pace = Pace::Fastest;  // real devices keep their own time
     }
-    cancel_ = false;
-    thread_ = QThread::create([this, spec, outDir, what, pace, trained, connected]() mutable {
+    launch(outDir, [this, spec, outDir, what, pace, trained, connected]() mutable {
         const auto started = std::chrono::steady_clock::now();
         RunOptions options;
         options.outDir = outDir.toStdString();
@@ -95,6 +96,53 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
                             .arg(QString::fromStdString(e.what()), outDir));
         }
     });
+    return true;
+}
+
+bool RunController::startSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
+                               const QString& outDir) {
+    if (thread_) {
+        emit failed(tr("A run is already going; cancel it or wait for it to finish."));
+        return false;
+    }
+    if (first > last) {
+        emit failed(tr("The first seed (%1) is after the last (%2); give the first seed first.")
+                        .arg(first)
+                        .arg(last));
+        return false;
+    }
+    launch(outDir, [this, spec, first, last, outDir] {
+        const auto started = std::chrono::steady_clock::now();
+        const int planned = static_cast<int>(last - first + 1);
+        int done = 0;
+        try {
+            auto rates = std::make_shared<SeedRates>(
+                runSeeds(spec, first, last, outDir.toStdString(), [&](const SeedOutcome& o) {
+                    ++done;
+                    emit seedFinished(o);
+                    const double elapsed =
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - started)
+                            .count();
+                    emit progress(done, planned,
+                                  tr("seed %1 of %2-%3 finished").arg(o.seed).arg(first).arg(last),
+                                  elapsed / done * (planned - done));
+                    return !cancel_;
+                }));
+            const bool cancelled = static_cast<int>(rates->seeds.size()) < planned;
+            emit seedsFinished(rates, outDir, cancelled);
+        } catch (const std::exception& e) {
+            emit failed(tr("The seeds run stopped: %1. The seeds finished so far are in "
+                           "%2/rates.csv.")
+                            .arg(QString::fromStdString(e.what()), outDir));
+        }
+    });
+    return true;
+}
+
+template <typename Work>
+void RunController::launch(const QString& outDir, Work work) {
+    cancel_ = false;
+    thread_ = QThread::create(std::move(work));
     connect(thread_, &QThread::finished, this, [this] {
         thread_->deleteLater();
         thread_ = nullptr;
@@ -102,7 +150,6 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
     });
     QDir().mkpath(outDir);
     thread_->start();
-    return true;
 }
 
 }  // namespace activetouch

@@ -9,6 +9,7 @@
 
 #include "app/gui/LiveFeed.h"
 #include "app/run/ExperimentRun.h"
+#include "app/run/SeedRates.h"
 
 namespace activetouch {
 
@@ -33,6 +34,12 @@ public:
     bool start(const ExperimentSpec& spec, const QString& outDir, What what, Pace pace,
                std::shared_ptr<const RunResult> trained = {},
                std::shared_ptr<const ConnectedRig> connected = {});
+    /// Starts running `spec` once per seed from `first` to `last` on the simulated rig, each a
+    /// whole run, writing <outDir>/rates.csv seed by seed and rates.json at the end; cancel
+    /// stops after the seed in flight and keeps every finished seed. False (and failed()) if a
+    /// run is already going or the range is backwards.
+    bool startSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
+                    const QString& outDir);
     void cancel();
     bool running() const { return thread_ != nullptr; }
     /// Asks a running run to stop and waits at most `ms` for it; true if it stopped.
@@ -42,10 +49,19 @@ signals:
     void progress(int tapsDone, int tapsPlanned, const QString& step, double secondsLeft);
     void finished(std::shared_ptr<const activetouch::RunResult> result, const QString& outDir);
     void failed(const QString& message);
+    /// A seed of a seeds run has finished.
+    void seedFinished(const activetouch::SeedOutcome& outcome);
+    /// A seeds run has ended, with every seed finished (all planned unless cancelled).
+    void seedsFinished(std::shared_ptr<const activetouch::SeedRates> rates, const QString& outDir,
+                       bool cancelled);
     /// The worker has ended (after finished or failed): a new run may start.
     void idle();
 
 private:
+    /// Runs `work` on a new worker thread; idle() when it ends.
+    template <typename Work>
+    void launch(const QString& outDir, Work work);
+
     LiveFeed& live_;
     QThread* thread_ = nullptr;
     std::atomic<bool> cancel_{false};
@@ -54,3 +70,5 @@ private:
 }  // namespace activetouch
 
 Q_DECLARE_METATYPE(std::shared_ptr<const activetouch::RunResult>)
+Q_DECLARE_METATYPE(std::shared_ptr<const activetouch::SeedRates>)
+Q_DECLARE_METATYPE(activetouch::SeedOutcome)

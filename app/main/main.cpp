@@ -1,7 +1,7 @@
 // activetouch: the workbench window.
 //   activetouch [experiment.json]
-//   activetouch --screenshots <dir> [experiment.json]   run the experiment, save a PNG of each tab,
-//   quit
+//   activetouch --screenshots <dir> [experiment.json]   run the experiment, then over seeds 1-10,
+//   save a PNG of each tab, quit
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QDir>
@@ -20,9 +20,10 @@ int main(int argc, char** argv) {
     parser.setApplicationDescription(
         "ActiveTouch Workbench: active tactile perception experiments on a simulated or real rig.");
     parser.addHelpOption();
-    QCommandLineOption shots(
-        "screenshots", "Run the experiment, save a screenshot of each tab into <dir>, and quit.",
-        "dir");
+    QCommandLineOption shots("screenshots",
+                             "Run the experiment, then over seeds 1-10, save a screenshot of each "
+                             "tab into <dir>, and quit.",
+                             "dir");
     parser.addOption(shots);
     parser.addPositionalArgument(
         "experiment",
@@ -38,13 +39,19 @@ int main(int argc, char** argv) {
     window.show();
     if (!parser.isSet(shots)) return app.exec();
 
-    // Screenshot mode: a whole run, then each tab as a person sees it.
+    // Screenshot mode: a whole run and a run over seeds 1-10, then each tab as a person sees it.
     const QString dir = parser.value(shots);
     QDir().mkpath(dir);
     window.setOutputBase(QDir(dir).filePath("runs"));
     window.setPace(Pace::Fastest);
-    int status = 0;
+    int status = 0, runsEnded = 0;
     QObject::connect(&window, &MainWindow::runEnded, &window, [&](bool completed) {
+        if (++runsEnded == 1 && completed) {
+            QTimer::singleShot(200, &window, [&] {
+                if (!window.startSeeds(1, 10)) app.exit(1);
+            });
+            return;
+        }
         QTimer::singleShot(500, &window, [&, completed] {
             for (int i = 0; i < window.tabs()->count(); ++i) {
                 window.tabs()->setCurrentIndex(i);

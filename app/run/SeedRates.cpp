@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <utility>
 
 #include "app/run/OutputFiles.h"
 
@@ -130,6 +131,33 @@ Json seedRatesJson(const SeedRates& r) {
             {"robot_time_per_completed_trial_s", r.robotTimePerCompletedTrial_s()},
             {"robot_time_per_run_s", r.robotTimePerRun_s()},
             {"intervals", "Wilson score, 95 %"}};
+}
+
+std::vector<std::string> describeRates(const SeedRates& r) {
+    std::vector<std::string> lines;
+    char buf[200];
+    for (const auto& [what, rate] :
+         {std::pair<const char*, Rate>{"passive trials lost", r.passiveLost()},
+          {"active trials completed", r.activeCompleted()},
+          {"recognised, paper's rule", r.recognisedRaw()},
+          {"recognised, smoothed histograms", r.recognisedSmoothed()}}) {
+        if (rate.total == 0)
+            std::snprintf(buf, sizeof buf, "%-34s none in this experiment", what);
+        else
+            std::snprintf(buf, sizeof buf,
+                          "%-34s %4d / %-4d %5.1f %%  (95 %% interval %5.1f-%5.1f %%)", what,
+                          rate.count, rate.total, 100.0 * rate.fraction(), 100.0 * rate.low(),
+                          100.0 * rate.high());
+        lines.push_back(buf);
+    }
+    if (r.activeCompleted().count > 0) {
+        std::snprintf(buf, sizeof buf,
+                      "completed active trial: %.0f taps, %.0f s robot time; whole run %.0f s",
+                      r.tapsPerCompletedTrial(), r.robotTimePerCompletedTrial_s(),
+                      r.robotTimePerRun_s());
+        lines.push_back(buf);
+    }
+    return lines;
 }
 
 SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,

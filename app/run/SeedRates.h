@@ -54,4 +54,9 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
 
 Json seedRatesJson(const SeedRates& rates);
 
+/// The rates as lines of text, one per rate ("<what>  count / total  p %  (95 % interval lo-hi
+/// %)", or that there are none), then what a completed active trial and a whole run cost in taps
+/// and robot time.
+std::vector<std::string> describeRates(const SeedRates& rates);
+
 }  // namespace activetouch

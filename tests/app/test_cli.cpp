@@ -331,6 +331,15 @@ private slots:
         QVERIFY(ci[1].toDouble() >= active["rate"].toDouble());
         QVERIFY(ci[1].toDouble() - ci[0].toDouble() > 0.05);  // 24 trials cannot pin a rate down
         QCOMPARE(r["passive_lost"].toObject()["total"].toInt(), 6);
+        // The figure: each seed's outcome and the rates so far, as a paper would print it.
+        for (const char* ext : {"png", "pdf", "svg"})
+            QVERIFY2(QFileInfo(out + "/figures/seed_rates." + ext).size() > 0, ext);
+        QFile png(out + "/figures/seed_rates.png");
+        QVERIFY(png.open(QIODevice::ReadOnly));
+        const QByteArray head = png.read(24);
+        QVERIFY(head.startsWith("\x89PNG"));
+        const auto byte = [&](int i) { return quint32(quint8(head[i])); };
+        QCOMPARE(byte(16) << 24 | byte(17) << 16 | byte(18) << 8 | byte(19), 2000u);  // width
 
         const QString single = dir_.filePath("seed3");
         QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", single, "--seed", "3",
@@ -362,6 +371,15 @@ private slots:
                                      "--to", "2", "--out", out});
         QCOMPARE(word.exitCode, 2);
         QVERIFY(!QFile::exists(out + "/rates.csv"));
+    }
+
+    void seedsWithoutFiguresWritesOnlyTheTables() {
+        const QString out = dir_.filePath("rates_nofig");
+        const Outcome o = runCli({"seeds", source("experiments/paper.json"), "--from", "5", "--to",
+                                  "5", "--out", out, "--no-figures"});
+        QCOMPARE(o.exitCode, 0);
+        QVERIFY(QFile::exists(out + "/rates.csv") && QFile::exists(out + "/rates.json"));
+        QVERIFY(!QFile::exists(out + "/figures/seed_rates.png"));
     }
 
     void usageErrors() {

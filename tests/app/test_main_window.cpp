@@ -1,7 +1,8 @@
 // The workbench window driven as a person drives it, offscreen: run the paper experiment and
 // watch the progress reach the end; cancel half-way and find every finished tap kept; toggle an
 // effect and see the next run use it; export every figure in every format; open bad files and
-// keep the session; drive the simulated devices from their panel.
+// keep the session; drive the simulated devices from their panel; run the experiment over a range
+// of seeds and cancel such a run, keeping every finished seed.
 #include <QComboBox>
 #include <QElapsedTimer>
 #include <QGroupBox>
@@ -13,6 +14,7 @@
 #include <QPlainTextEdit>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QSpinBox>
 #include <QStandardPaths>
 #include <QStyleOptionGroupBox>
 #include <QTemporaryDir>
@@ -24,6 +26,7 @@
 #include "app/gui/MainWindow.h"
 #include "app/gui/PlotPanel.h"
 #include "app/gui/ScenePanel.h"
+#include "app/gui/SeedsTab.h"
 #include "qcustomplot.h"
 #include "support/Paths.h"
 
@@ -79,6 +82,11 @@ void clickCheckBox(QGroupBox* box) {
     QTest::mouseClick(box, Qt::LeftButton, Qt::NoModifier, r.center());
 }
 
+/// Whether a single run fills the panel (sweeps and seeds have their own runs).
+bool filledByARun(const PlotPanel* p) {
+    return !p->name().startsWith("sweep") && p->name() != "seed_rates";
+}
+
 void closeErrorDialogs(QWidget& w) {
     for (QMessageBox* box : w.findChildren<QMessageBox*>("errorDialog")) box->close();
 }
@@ -117,8 +125,7 @@ private slots:
         QVERIFY(QFile::exists(window_->lastRunDirectory() + "/summary.json"));
         // The tabs show the run: traces, error maps, paths, histograms, a replay.
         for (PlotPanel* p : window_->plotPanels())
-            if (!p->name().startsWith("sweep"))
-                QVERIFY2(p->plot().plottableCount() > 0, qPrintable(p->name()));
+            if (filledByARun(p)) QVERIFY2(p->plot().plottableCount() > 0, qPrintable(p->name()));
         window_->followingTab()->replay(3, 10);
         QVERIFY(window_->followingTab()->replayText().contains("Rule '"));
         QVERIFY(window_->liveView()->framesDrawn() > 0);
@@ -139,8 +146,7 @@ private slots:
             QImage image(base + ".png");
             QCOMPARE(image.width(), 1200);
             p->exportCsv(base + ".csv");
-            if (!p->name().startsWith("sweep"))
-                QVERIFY2(linesIn(base + ".csv") > 1, qPrintable(p->name()));
+            if (filledByARun(p)) QVERIFY2(linesIn(base + ".csv") > 1, qPrintable(p->name()));
         }
         const QStringList all = window_->exportAllFigures(dir_.filePath("all"));
         QVERIFY(all.size() >= 6);
@@ -217,6 +223,68 @@ private slots:
                 QVERIFY2(p->plot().plottableCount() > 0, qPrintable(p->name()));
         QTRY_VERIFY(!window_->running());
         QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+    }
+
+    void ratesOverSeedsRunFromTheWindow() {
+        SeedsTab* tab = window_->seedsTab();
+        auto* first = tab->findChild<QSpinBox*>("firstSeed");
+        auto* last = tab->findChild<QSpinBox*>("lastSeed");
+        auto* run = tab->findChild<QPushButton*>("runSeeds");
+        QVERIFY(first && last && run);
+        first->setValue(3);
+        last->setValue(1);  // a range cannot be given backwards
+        QCOMPARE(first->value(), 1);
+        first->setValue(2);
+        last->setValue(4);
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QTest::mouseClick(run, Qt::LeftButton);
+        QVERIFY(window_->running());
+        QVERIFY(!run->isEnabled());
+        QVERIFY(ended.wait(120000));
+        QCOMPARE(ended.takeFirst().at(0).toBool(), true);
+        QTRY_VERIFY(!window_->running());
+        QVERIFY(run->isEnabled());
+
+        // Each row is that seed's whole run, as the headless runner computes it.
+        const SeedRates direct = runSeeds(window_->experimentAsShown(), 2, 4, "");
+        QTableWidget* table = tab->table();
+        QCOMPARE(table->rowCount(), 3);
+        for (int i = 0; i < 3; ++i) {
+            const SeedOutcome& o = direct.seeds[std::size_t(i)];
+            QCOMPARE(table->item(i, 0)->text(), QString::number(2 + i));
+            QCOMPARE(table->item(i, 1)->text(),
+                     QString("%1 / %2").arg(o.passiveLost).arg(o.passiveTrials));
+            QCOMPARE(table->item(i, 2)->text(),
+                     QString("%1 / %2").arg(o.activeCompleted).arg(o.activeTrials));
+        }
+        for (const Rate& r : {direct.activeCompleted(), direct.passiveLost()})
+            QVERIFY2(tab->summaryText().contains(QString("%1 / %2").arg(r.count).arg(r.total)),
+                     qPrintable(tab->summaryText()));
+        QVERIFY(tab->summaryText().contains("finished, 3 seeds"));
+        QVERIFY(tab->ratesPanel()->plot().plottableCount() > 0);
+        // The files: a row per seed, the rates, the figure.
+        const QString dir = window_->lastSeedsDirectory();
+        QCOMPARE(linesIn(dir + "/rates.csv"), 4);
+        QCOMPARE(readJson(dir + "/rates.json")["runs"].toInt(), 3);
+        QVERIFY(QFileInfo(dir + "/figures/seed_rates.png").size() > 0);
+    }
+
+    void cancellingSeedsKeepsEveryFinishedSeed() {
+        SeedsTab* tab = window_->seedsTab();
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QVERIFY(window_->startSeeds(1, 1000));
+        QTRY_VERIFY_WITH_TIMEOUT(tab->table()->rowCount() >= 2, 60000);
+        click(*window_, "cancel");
+        QVERIFY(ended.wait(30000));
+        QCOMPARE(ended.takeFirst().at(0).toBool(), false);
+        QTRY_VERIFY(!window_->running());
+        const int rows = tab->table()->rowCount();
+        QVERIFY(rows >= 2 && rows < 1000);
+        const QString dir = window_->lastSeedsDirectory();
+        QCOMPARE(linesIn(dir + "/rates.csv"), 1 + rows);
+        QCOMPARE(readJson(dir + "/rates.json")["runs"].toInt(), rows);
+        QVERIFY(tab->summaryText().contains(QString("cancelled after %1 seeds").arg(rows)));
+        QVERIFY(window_->progressBar()->format().startsWith("seeds cancelled"));
     }
 
     void badFilesShowTheProblemAndKeepTheSession_data() {

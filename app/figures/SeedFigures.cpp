@@ -1,0 +1,119 @@
+#include "app/figures/SeedFigures.h"
+
+#include <QDir>
+#include <stdexcept>
+
+#include "app/figures/FigureExport.h"
+#include "app/figures/FigureLayout.h"
+#include "app/run/SeedRates.h"
+#include "qcustomplot.h"
+
+namespace activetouch {
+namespace {
+
+/// A running rate: its value and 95 % band after each seed, in percent.
+struct RunningRate {
+    QVector<double> x, rate, low, high;
+};
+
+template <typename RateOf>
+RunningRate running(const SeedRates& all, RateOf rateOf) {
+    RunningRate r;
+    SeedRates sofar;
+    for (const SeedOutcome& s : all.seeds) {
+        sofar.seeds.push_back(s);
+        const Rate rate = rateOf(sofar);
+        if (rate.total == 0) continue;
+        r.x << double(sofar.seeds.size());
+        r.rate << 100.0 * rate.fraction();
+        r.low << 100.0 * rate.low();
+        r.high << 100.0 * rate.high();
+    }
+    return r;
+}
+
+void addBand(QCPAxisRect* rect, QCPLegend* legend, const QString& name, const RunningRate& r,
+             QColor colour) {
+    if (r.x.isEmpty()) return;
+    QColor fill = colour;
+    fill.setAlpha(40);
+    QCPGraph* low = addSeries(rect, nullptr, name + " (95 % low)", r.x, r.low, colour);
+    QCPGraph* high = addSeries(rect, nullptr, name + " (95 % high)", r.x, r.high, colour);
+    for (QCPGraph* g : {low, high}) {
+        g->setPen(Qt::NoPen);
+        g->setScatterStyle(QCPScatterStyle::ssNone);
+    }
+    high->setBrush(fill);
+    high->setChannelFillGraph(low);
+    QCPGraph* line = addSeries(rect, legend, name, r.x, r.rate, colour);
+    line->setScatterStyle(r.x.size() > 30 ? QCPScatterStyle(QCPScatterStyle::ssNone)
+                                          : QCPScatterStyle(QCPScatterStyle::ssCircle, 5));
+}
+
+}  // namespace
+
+bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QString& experiment) {
+    const int n = static_cast<int>(rates.seeds.size());
+    const QString range =
+        n == 0 ? QString()
+               : QString("seeds %1-%2").arg(rates.seeds.front().seed).arg(rates.seeds.back().seed);
+    startFigure(plot, QString("%1: rates over %2").arg(experiment, range));
+    if (n == 0) return false;
+    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
+    auto* each = addTitledPanel(grid, 0, "each seed", "seed", "share of the seed's trials (%)");
+    auto* sofar = addTitledPanel(grid, 1, "rates over the seeds run so far, 95 % intervals",
+                                 "seeds run", "rate (%)");
+    grid->setColumnStretchFactor(0, 1.0);
+    grid->setColumnStretchFactor(1, 1.4);
+
+    QVector<double> seed, completed, lost;
+    QVector<double> passiveSeed;
+    for (const SeedOutcome& s : rates.seeds) {
+        if (s.activeTrials > 0) {
+            seed << double(s.seed);
+            completed << 100.0 * s.activeCompleted / s.activeTrials;
+        }
+        if (s.passiveTrials > 0) {
+            passiveSeed << double(s.seed);
+            lost << 100.0 * s.passiveLost / s.passiveTrials;
+        }
+    }
+    auto* le = addLegend(each);
+    le->setVisible(true);
+    each->insetLayout()->setInsetAlignment(0, Qt::AlignBottom | Qt::AlignLeft);
+    if (!seed.isEmpty())
+        addSeries(each, le, "active completed", seed, completed, seriesColour(0), false);
+    if (!passiveSeed.isEmpty())
+        addSeries(each, le, "passive lost", passiveSeed, lost, seriesColour(3), false)
+            ->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCross, seriesColour(3), 7));
+    const double first = double(rates.seeds.front().seed), last = double(rates.seeds.back().seed);
+    each->axis(QCPAxis::atBottom)->setRange(first - 0.5, last + 0.5);
+    each->axis(QCPAxis::atLeft)->setRange(-5.0, 105.0);
+
+    auto* ls = addLegend(sofar);
+    sofar->insetLayout()->setInsetAlignment(0, Qt::AlignBottom | Qt::AlignRight);
+    const auto completedRate = [](const SeedRates& r) { return r.activeCompleted(); };
+    const auto lostRate = [](const SeedRates& r) { return r.passiveLost(); };
+    const auto rawRate = [](const SeedRates& r) { return r.recognisedRaw(); };
+    const auto smoothedRate = [](const SeedRates& r) { return r.recognisedSmoothed(); };
+    addBand(sofar, ls, "active completed", running(rates, completedRate), seriesColour(0));
+    addBand(sofar, ls, "passive lost", running(rates, lostRate), seriesColour(3));
+    addBand(sofar, ls, "recognised, paper's rule", running(rates, rawRate), seriesColour(2));
+    addBand(sofar, ls, "recognised, smoothed", running(rates, smoothedRate), seriesColour(4));
+    sofar->axis(QCPAxis::atBottom)->setRange(0.5, n + 0.5);
+    sofar->axis(QCPAxis::atLeft)->setRange(0.0, 102.0);
+    return true;
+}
+
+QStringList writeSeedFigures(const SeedRates& rates, const QString& experiment,
+                             const QString& outDir) {
+    const QString dir = outDir + "/figures";
+    if (!QDir().mkpath(dir))
+        throw std::runtime_error("cannot create " + dir.toStdString() +
+                                 "; check the output folder is writable");
+    QCustomPlot plot;
+    if (!buildSeedRatesFigure(plot, rates, experiment)) return {};
+    return exportFigure(plot, dir + "/seed_rates", {"png", "pdf", "svg"}, {2000, 900, 150});
+}
+
+}  // namespace activetouch

@@ -1,0 +1,23 @@
+#pragma once
+// Outcome rates over many seeds (one seed = one whole run): each seed's outcome, and the rates
+// over the seeds run so far with their 95 % intervals, so a reader sees how much a claim rests on.
+#include <QString>
+#include <QStringList>
+
+class QCustomPlot;
+
+namespace activetouch {
+
+struct SeedRates;
+
+/// Left: per seed, the share of its active trials completed and of its passive trials lost.
+/// Right: the running rates (active completed, passive lost, recognised by both rules) against
+/// the number of seeds, each with its Wilson 95 % band. False if there are no seeds.
+bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QString& experiment);
+
+/// Writes <outDir>/figures/seed_rates.{png,pdf,svg}; returns the files. Throws std::runtime_error
+/// naming what could not be written.
+QStringList writeSeedFigures(const SeedRates& rates, const QString& experiment,
+                             const QString& outDir);
+
+}  // namespace activetouch

@@ -1,0 +1,169 @@
+#include "app/gui/SeedsTab.h"
+
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QSplitter>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+#include "app/figures/SeedFigures.h"
+#include "app/gui/PlotPanel.h"
+#include "qcustomplot.h"
+
+namespace activetouch {
+
+namespace {
+constexpr int kMaxSeed = 2147483647;
+
+QTableWidgetItem* cell(const QString& text) {
+    auto* item = new QTableWidgetItem(text);
+    item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+    return item;
+}
+}  // namespace
+
+SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed_rates")) {
+    auto* layout = new QVBoxLayout(this);
+    auto* controls = new QHBoxLayout;
+    first_ = new QSpinBox;
+    last_ = new QSpinBox;
+    first_->setObjectName("firstSeed");
+    last_->setObjectName("lastSeed");
+    for (QSpinBox* s : {first_, last_}) s->setRange(0, kMaxSeed);
+    setRange(1, 10);
+    // The range can never be given backwards.
+    connect(first_, &QSpinBox::valueChanged, this, [this](int v) {
+        if (last_->value() < v) last_->setValue(v);
+    });
+    connect(last_, &QSpinBox::valueChanged, this, [this](int v) {
+        if (first_->value() > v) first_->setValue(v);
+    });
+    run_ = new QPushButton(tr("Run over seeds"));
+    run_->setObjectName("runSeeds");
+    connect(run_, &QPushButton::clicked, this,
+            [this] { emit runRequested(firstSeed(), lastSeed()); });
+    controls->addWidget(new QLabel(tr("Seeds from")));
+    controls->addWidget(first_);
+    controls->addWidget(new QLabel(tr("to")));
+    controls->addWidget(last_);
+    controls->addWidget(run_);
+    auto* about = new QLabel(
+        tr("Each seed is a whole run on the simulated rig: its own data sets, training, valid "
+           "range and trials. The rates, with their 95 % intervals, are what a claim rests on."));
+    about->setWordWrap(true);
+    controls->addWidget(about, 1);
+    layout->addLayout(controls);
+
+    auto* split = new QSplitter(Qt::Horizontal);
+    auto* left = new QWidget;
+    auto* ll = new QVBoxLayout(left);
+    ll->setContentsMargins(0, 0, 0, 0);
+    summary_ = new QLabel(tr("Run the experiment over a range of seeds to see its rates."));
+    summary_->setObjectName("seedsSummary");
+    summary_->setFont(QFont("Monospace", 9));
+    summary_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    ll->addWidget(summary_);
+    table_ = new QTableWidget(0, 7);
+    table_->setHorizontalHeaderLabels(
+        {tr("seed"), tr("passive\nlost"), tr("active\ncompleted"), tr("recognised\n(paper's rule)"),
+         tr("recognised\n(smoothed)"), tr("angle error\n(deg)"), tr("active trials lost")});
+    for (int c = 0; c < 6; ++c)
+        table_->horizontalHeader()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
+    table_->horizontalHeader()->setSectionResizeMode(6, QHeaderView::Stretch);
+    table_->setWordWrap(false);
+    table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    table_->setSelectionBehavior(QAbstractItemView::SelectRows);
+    table_->verticalHeader()->setVisible(false);
+    ll->addWidget(table_, 1);
+    split->addWidget(left);
+    split->addWidget(plot_);
+    split->setStretchFactor(0, 2);
+    split->setStretchFactor(1, 3);
+    split->setSizes({560, 840});
+    layout->addWidget(split, 1);
+}
+
+std::uint64_t SeedsTab::firstSeed() const {
+    return static_cast<std::uint64_t>(first_->value());
+}
+std::uint64_t SeedsTab::lastSeed() const {
+    return static_cast<std::uint64_t>(last_->value());
+}
+void SeedsTab::setRange(std::uint64_t first, std::uint64_t last) {
+    last_->setValue(static_cast<int>(std::min<std::uint64_t>(last, kMaxSeed)));
+    first_->setValue(static_cast<int>(std::min<std::uint64_t>(first, kMaxSeed)));
+}
+void SeedsTab::setRunnable(bool runnable) {
+    run_->setEnabled(runnable);
+}
+
+void SeedsTab::begin(const QString& experiment) {
+    experiment_ = experiment;
+    rates_ = {};
+    running_ = true;
+    table_->setRowCount(0);
+    buildSeedRatesFigure(plot_->plot(), rates_, experiment_);
+    plot_->requestReplot();
+    showSummary(tr("running"));
+}
+
+void SeedsTab::addSeed(const SeedOutcome& o) {
+    rates_.seeds.push_back(o);
+    const int row = table_->rowCount();
+    table_->insertRow(row);
+    auto fraction = [](int count, int total) {
+        return total > 0 ? QString("%1 / %2").arg(count).arg(total) : QString("-");
+    };
+    QStringList lost;
+    for (const auto& f : o.failures) lost << QString::fromStdString(f);
+    table_->setItem(row, 0, cell(QString::number(o.seed)));
+    table_->setItem(row, 1, cell(fraction(o.passiveLost, o.passiveTrials)));
+    table_->setItem(row, 2, cell(fraction(o.activeCompleted, o.activeTrials)));
+    table_->setItem(row, 3, cell(fraction(o.recognisedRaw, o.activeCompleted)));
+    table_->setItem(row, 4, cell(fraction(o.recognisedSmoothed, o.activeCompleted)));
+    table_->setItem(row, 5, cell(QString::number(o.angleError_deg, 'f', 2)));
+    auto* failures = new QTableWidgetItem(lost.join("; "));
+    failures->setToolTip(lost.join("\n"));
+    table_->setItem(row, 6, failures);
+    if (o.activeCompleted < o.activeTrials)
+        for (int c = 0; c < table_->columnCount(); ++c)
+            table_->item(row, c)->setBackground(QColor(255, 235, 230));
+    table_->scrollToBottom();
+    buildSeedRatesFigure(plot_->plot(), rates_, experiment_);
+    plot_->requestReplot();
+    showSummary(tr("running"));
+}
+
+void SeedsTab::finish(const SeedRates& rates, const QString& dir, bool cancelled) {
+    if (rates.seeds.size() != rates_.seeds.size()) {  // rows missed: show the run's own record
+        begin(experiment_);
+        for (const auto& o : rates.seeds) addSeed(o);
+    }
+    running_ = false;
+    buildSeedRatesFigure(plot_->plot(), rates_, experiment_);
+    plot_->requestReplot();
+    showSummary((cancelled ? tr("cancelled after %1 seeds") : tr("finished, %1 seeds"))
+                    .arg(rates_.seeds.size()) +
+                tr("; results in %1").arg(dir));
+}
+
+void SeedsTab::interrupted() {
+    if (!running_) return;
+    running_ = false;
+    showSummary(tr("stopped after %1 seeds (see the log)").arg(rates_.seeds.size()));
+}
+
+QString SeedsTab::summaryText() const {
+    return summary_->text();
+}
+
+void SeedsTab::showSummary(const QString& state) {
+    QStringList lines{QString("%1 - %2").arg(experiment_, state)};
+    for (const std::string& line : describeRates(rates_)) lines << QString::fromStdString(line);
+    summary_->setText(lines.join('\n'));
+}
+
+}  // namespace activetouch

@@ -1,0 +1,61 @@
+#pragma once
+// The rates-over-seeds tab: runs the experiment once per seed (each a whole run on the simulated
+// rig: its own data sets, training, valid range and trials) and shows each seed's outcome as it
+// finishes, the rates with their 95 % intervals, and how they settle as seeds accumulate.
+#include <QWidget>
+#include <cstdint>
+#include <memory>
+
+#include "app/run/SeedRates.h"
+
+class QLabel;
+class QPushButton;
+class QSpinBox;
+class QTableWidget;
+
+namespace activetouch {
+
+class PlotPanel;
+
+class SeedsTab : public QWidget {
+    Q_OBJECT
+public:
+    explicit SeedsTab(QWidget* parent = nullptr);
+
+    std::uint64_t firstSeed() const;
+    std::uint64_t lastSeed() const;
+    void setRange(std::uint64_t first, std::uint64_t last);
+    /// Enables the run button (an experiment is open and nothing is running).
+    void setRunnable(bool runnable);
+
+    /// Empties the table and plot for a new seeds run of `experiment`.
+    void begin(const QString& experiment);
+    /// Adds a finished seed: a table row, the summary and the plot follow.
+    void addSeed(const SeedOutcome& outcome);
+    /// The run has ended with `rates` (every finished seed); `dir` holds its files.
+    void finish(const SeedRates& rates, const QString& dir, bool cancelled);
+    /// The run stopped on an error: the seeds shown are all there will be.
+    void interrupted();
+
+    const QString& experiment() const { return experiment_; }
+    PlotPanel* ratesPanel() const { return plot_; }
+    QTableWidget* table() const { return table_; }
+    QString summaryText() const;
+
+signals:
+    void runRequested(std::uint64_t first, std::uint64_t last);
+
+private:
+    void showSummary(const QString& state);
+
+    QString experiment_;
+    bool running_ = false;
+    SeedRates rates_;
+    QSpinBox *first_, *last_;
+    QPushButton* run_;
+    QTableWidget* table_;
+    QLabel* summary_;
+    PlotPanel* plot_;
+};
+
+}  // namespace activetouch
