@@ -96,10 +96,13 @@ bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QStri
     const auto lostRate = [](const SeedRates& r) { return r.passiveLost(); };
     const auto rawRate = [](const SeedRates& r) { return r.recognisedRaw(); };
     const auto smoothedRate = [](const SeedRates& r) { return r.recognisedSmoothed(); };
+    const auto wholeRate = [](const SeedRates& r) { return r.paperResult(); };
     addBand(sofar, ls, "active completed", running(rates, completedRate), seriesColour(0));
     addBand(sofar, ls, "passive lost", running(rates, lostRate), seriesColour(3));
     addBand(sofar, ls, "recognised, paper's rule", running(rates, rawRate), seriesColour(2));
     addBand(sofar, ls, "recognised, smoothed", running(rates, smoothedRate), seriesColour(4));
+    addBand(sofar, ls, "runs with the paper's result whole", running(rates, wholeRate),
+            seriesColour(7));
     sofar->axis(QCPAxis::atBottom)->setRange(0.5, n + 0.5);
     sofar->axis(QCPAxis::atLeft)->setRange(0.0, 102.0);
     return true;

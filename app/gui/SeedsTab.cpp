@@ -66,13 +66,14 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     summary_->setFont(QFont("Monospace", 9));
     summary_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     ll->addWidget(summary_);
-    table_ = new QTableWidget(0, 7);
-    table_->setHorizontalHeaderLabels(
-        {tr("seed"), tr("passive\nlost"), tr("active\ncompleted"), tr("recognised\n(paper's rule)"),
-         tr("recognised\n(smoothed)"), tr("angle error\n(deg)"), tr("active trials lost")});
-    for (int c = 0; c < 6; ++c)
+    table_ = new QTableWidget(0, 8);
+    table_->setHorizontalHeaderLabels({tr("seed"), tr("passive\nlost"), tr("active\ncompleted"),
+                                       tr("recognised\n(paper's rule)"),
+                                       tr("recognised\n(smoothed)"), tr("angle error\n(deg)"),
+                                       tr("paper's result\nwhole"), tr("active trials lost")});
+    for (int c = 0; c < 7; ++c)
         table_->horizontalHeader()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
-    table_->horizontalHeader()->setSectionResizeMode(6, QHeaderView::Stretch);
+    table_->horizontalHeader()->setSectionResizeMode(7, QHeaderView::Stretch);
     table_->setWordWrap(false);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     table_->setSelectionBehavior(QAbstractItemView::SelectRows);
@@ -127,7 +128,8 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     table_->setItem(row, 5, cell(QString::number(o.angleError_deg, 'f', 2)));
     auto* failures = new QTableWidgetItem(lost.join("; "));
     failures->setToolTip(lost.join("\n"));
-    table_->setItem(row, 6, failures);
+    table_->setItem(row, 6, cell(o.paperResult() ? tr("yes") : tr("no")));
+    table_->setItem(row, 7, failures);
     if (o.activeCompleted < o.activeTrials)
         for (int c = 0; c < table_->columnCount(); ++c)
             table_->item(row, c)->setBackground(QColor(255, 235, 230));

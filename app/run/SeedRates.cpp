@@ -89,6 +89,12 @@ Rate SeedRates::recognisedRaw() const {
 Rate SeedRates::recognisedSmoothed() const {
     return tally(seeds, &SeedOutcome::recognisedSmoothed, &SeedOutcome::activeCompleted);
 }
+Rate SeedRates::paperResult() const {
+    Rate r;
+    r.total = static_cast<int>(seeds.size());
+    for (const auto& s : seeds) r.count += s.paperResult();
+    return r;
+}
 double SeedRates::tapsPerCompletedTrial() const {
     double taps = 0;
     for (const auto& s : seeds) taps += s.completedTaps;
@@ -120,6 +126,7 @@ Json seedRatesJson(const SeedRates& r) {
                          {"validation_angle_error_deg", s.angleError_deg},
                          {"validation_position_error_mm", s.positionError_mm},
                          {"run_robot_time_s", s.runRobotTime_s},
+                         {"paper_result", s.paperResult()},
                          {"active_failures", s.failures}});
     return {{"seeds", seeds},
             {"runs", r.seeds.size()},
@@ -127,6 +134,7 @@ Json seedRatesJson(const SeedRates& r) {
             {"active_completed", rateJson(r.activeCompleted())},
             {"recognised_raw", rateJson(r.recognisedRaw())},
             {"recognised_smoothed", rateJson(r.recognisedSmoothed())},
+            {"paper_result", rateJson(r.paperResult())},
             {"taps_per_completed_trial", r.tapsPerCompletedTrial()},
             {"robot_time_per_completed_trial_s", r.robotTimePerCompletedTrial_s()},
             {"robot_time_per_run_s", r.robotTimePerRun_s()},
@@ -140,7 +148,8 @@ std::vector<std::string> describeRates(const SeedRates& r) {
          {std::pair<const char*, Rate>{"passive trials lost", r.passiveLost()},
           {"active trials completed", r.activeCompleted()},
           {"recognised, paper's rule", r.recognisedRaw()},
-          {"recognised, smoothed histograms", r.recognisedSmoothed()}}) {
+          {"recognised, smoothed histograms", r.recognisedSmoothed()},
+          {"runs with the paper's result whole", r.paperResult()}}) {
         if (rate.total == 0)
             std::snprintf(buf, sizeof buf, "%-34s none in this experiment", what);
         else
@@ -174,7 +183,7 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
                      "seed,passive_trials,passive_lost,active_trials,active_completed,"
                      "recognised_raw,recognised_smoothed,completed_taps,completed_robot_time_s,"
                      "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
-                     "active_failures\n");
+                     "paper_result,active_failures\n");
         std::fflush(file.get());
     }
     for (std::uint64_t seed = first; seed <= last; ++seed) {
@@ -188,11 +197,12 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
             for (std::size_t i = failures.find('"'); i != std::string::npos;
                  i = failures.find('"', i + 2))
                 failures.insert(i, 1, '"');
-            std::fprintf(file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,\"%s\"\n",
+            std::fprintf(file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%d,\"%s\"\n",
                          static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
                          o.activeTrials, o.activeCompleted, o.recognisedRaw, o.recognisedSmoothed,
                          o.completedTaps, o.completedRobotTime_s, o.runRobotTime_s,
-                         o.angleError_deg, o.positionError_mm, failures.c_str());
+                         o.angleError_deg, o.positionError_mm, int(o.paperResult()),
+                         failures.c_str());
             std::fflush(file.get());
         }
         if (seedDone && !seedDone(o)) break;

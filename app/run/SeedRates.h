@@ -22,6 +22,13 @@ struct SeedOutcome {
     double runRobotTime_s = 0.0;                          ///< the whole run, training included
     double angleError_deg = 0.0, positionError_mm = 0.0;  ///< offline validation
     std::vector<std::string> failures;  ///< "cross trial 2: lost: ..." for each active trial lost
+
+    /// The paper's result whole in this run: every passive trial lost, every active trial
+    /// completed and every active path recognised by the paper's rule.
+    bool paperResult() const {
+        return passiveLost == passiveTrials && activeCompleted == activeTrials &&
+               recognisedRaw == activeCompleted;
+    }
 };
 
 SeedOutcome seedOutcome(const RunResult& run);
@@ -40,6 +47,7 @@ struct SeedRates {
     Rate activeCompleted() const;
     Rate recognisedRaw() const;       ///< of completed active paths
     Rate recognisedSmoothed() const;  ///< of completed active paths
+    Rate paperResult() const;         ///< of runs: SeedOutcome::paperResult
     double tapsPerCompletedTrial() const;
     double robotTimePerCompletedTrial_s() const;
     double robotTimePerRun_s() const;

@@ -312,12 +312,16 @@ private slots:
         const QStringList rows = QString(csv.readAll()).trimmed().split('\n');
         QCOMPARE(rows.size(), 4);  // header + seeds 2, 3, 4
         QVERIFY(rows[0].startsWith("seed,passive_trials,passive_lost,active_trials,"));
-        int completed = 0;
+        int completed = 0, whole = 0;
         for (int i = 1; i < rows.size(); ++i) {
             const QStringList c = rows[i].split(',');
             QCOMPARE(c[0].toInt(), i + 1);
             QCOMPARE(c[3].toInt(), 8);
             completed += c[4].toInt();
+            // The paper's result whole: all passive lost, all active completed and recognised.
+            const bool paper = c[2] == c[1] && c[4] == c[3] && c[5] == c[4];
+            QCOMPARE(c[12].toInt(), int(paper));
+            whole += paper;
         }
         QFile js(out + "/rates.json");
         QVERIFY(js.open(QIODevice::ReadOnly));
@@ -331,6 +335,9 @@ private slots:
         QVERIFY(ci[1].toDouble() >= active["rate"].toDouble());
         QVERIFY(ci[1].toDouble() - ci[0].toDouble() > 0.05);  // 24 trials cannot pin a rate down
         QCOMPARE(r["passive_lost"].toObject()["total"].toInt(), 6);
+        QCOMPARE(r["paper_result"].toObject()["count"].toInt(), whole);
+        QCOMPARE(r["paper_result"].toObject()["total"].toInt(), 3);
+        QVERIFY2(o.out.contains("runs with the paper's result whole"), qPrintable(o.out));
         // The figure: each seed's outcome and the rates so far, as a paper would print it.
         for (const char* ext : {"png", "pdf", "svg"})
             QVERIFY2(QFileInfo(out + "/figures/seed_rates." + ext).size() > 0, ext);

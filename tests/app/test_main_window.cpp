@@ -256,6 +256,7 @@ private slots:
                      QString("%1 / %2").arg(o.passiveLost).arg(o.passiveTrials));
             QCOMPARE(table->item(i, 2)->text(),
                      QString("%1 / %2").arg(o.activeCompleted).arg(o.activeTrials));
+            QCOMPARE(table->item(i, 6)->text(), QString(o.paperResult() ? "yes" : "no"));
         }
         for (const Rate& r : {direct.activeCompleted(), direct.passiveLost()})
             QVERIFY2(tab->summaryText().contains(QString("%1 / %2").arg(r.count).arg(r.total)),
