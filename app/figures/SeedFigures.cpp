@@ -16,18 +16,18 @@ struct RunningRate {
     QVector<double> x, rate, low, high;
 };
 
-template <typename RateOf>
-RunningRate running(const SeedRates& all, RateOf rateOf) {
+RunningRate running(const SeedRates& all, Rate (*part)(const SeedOutcome&)) {
     RunningRate r;
-    SeedRates sofar;
+    Rate sofar;
     for (const SeedOutcome& s : all.seeds) {
-        sofar.seeds.push_back(s);
-        const Rate rate = rateOf(sofar);
-        if (rate.total == 0) continue;
-        r.x << double(sofar.seeds.size());
-        r.rate << 100.0 * rate.fraction();
-        r.low << 100.0 * rate.low();
-        r.high << 100.0 * rate.high();
+        const Rate p = part(s);
+        sofar.count += p.count;
+        sofar.total += p.total;
+        if (sofar.total == 0) continue;
+        r.x << double(&s - all.seeds.data() + 1);
+        r.rate << 100.0 * sofar.fraction();
+        r.low << 100.0 * sofar.low();
+        r.high << 100.0 * sofar.high();
     }
     return r;
 }
@@ -92,16 +92,13 @@ bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QStri
 
     auto* ls = addLegend(sofar);
     sofar->insetLayout()->setInsetAlignment(0, Qt::AlignBottom | Qt::AlignRight);
-    const auto completedRate = [](const SeedRates& r) { return r.activeCompleted(); };
-    const auto lostRate = [](const SeedRates& r) { return r.passiveLost(); };
-    const auto rawRate = [](const SeedRates& r) { return r.recognisedRaw(); };
-    const auto smoothedRate = [](const SeedRates& r) { return r.recognisedSmoothed(); };
-    const auto wholeRate = [](const SeedRates& r) { return r.paperResult(); };
-    addBand(sofar, ls, "active completed", running(rates, completedRate), seriesColour(0));
-    addBand(sofar, ls, "passive lost", running(rates, lostRate), seriesColour(3));
-    addBand(sofar, ls, "recognised, paper's rule", running(rates, rawRate), seriesColour(2));
-    addBand(sofar, ls, "recognised, smoothed", running(rates, smoothedRate), seriesColour(4));
-    addBand(sofar, ls, "runs with the paper's result whole", running(rates, wholeRate),
+    addBand(sofar, ls, "active completed", running(rates, activeCompletedIn), seriesColour(0));
+    addBand(sofar, ls, "passive lost", running(rates, passiveLostIn), seriesColour(3));
+    addBand(sofar, ls, "recognised, paper's rule", running(rates, recognisedRawIn),
+            seriesColour(2));
+    addBand(sofar, ls, "recognised, smoothed", running(rates, recognisedSmoothedIn),
+            seriesColour(4));
+    addBand(sofar, ls, "runs with the paper's result whole", running(rates, paperResultIn),
             seriesColour(7));
     sofar->axis(QCPAxis::atBottom)->setRange(0.5, n + 0.5);
     sofar->axis(QCPAxis::atLeft)->setRange(0.0, 102.0);

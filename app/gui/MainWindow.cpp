@@ -270,21 +270,29 @@ bool MainWindow::saveExperiment(const QString& path) {
     }
 }
 
-bool MainWindow::startRun(RunController::What what) {
+std::optional<ExperimentSpec> MainWindow::experimentToRun() {
     if (experimentPath_.isEmpty()) {
         showError(tr("Open an experiment first."));
-        return false;
+        return std::nullopt;
     }
-    ExperimentSpec spec;
     try {
-        spec = experimentAsShown();
+        return experimentAsShown();
     } catch (const std::exception& e) {
         showError(tr("The scene as shown cannot run: %1").arg(e.what()));
-        return false;
+        return std::nullopt;
     }
-    const QString dir = QDir(outputBase_)
-                            .filePath(QString::fromStdString(spec.name) + "-" +
-                                      QDateTime::currentDateTime().toString("yyyyMMdd-hhmmss-zzz"));
+}
+
+QString MainWindow::newRunDirectory(const QString& stem) const {
+    return QDir(outputBase_)
+        .filePath(stem + "-" + QDateTime::currentDateTime().toString("yyyyMMdd-hhmmss-zzz"));
+}
+
+bool MainWindow::startRun(RunController::What what) {
+    const auto toRun = experimentToRun();
+    if (!toRun) return false;
+    const ExperimentSpec& spec = *toRun;
+    const QString dir = newRunDirectory(QString::fromStdString(spec.name));
     // With devices connected, the run takes its taps on them; otherwise on the simulated rig.
     std::shared_ptr<const ConnectedRig> connected;
     if (devices_.session()->connected()) {
@@ -312,21 +320,11 @@ bool MainWindow::startRun(RunController::What what) {
 }
 
 bool MainWindow::startSeeds(std::uint64_t first, std::uint64_t last) {
-    if (experimentPath_.isEmpty()) {
-        showError(tr("Open an experiment first."));
-        return false;
-    }
-    ExperimentSpec spec;
-    try {
-        spec = experimentAsShown();
-    } catch (const std::exception& e) {
-        showError(tr("The scene as shown cannot run: %1").arg(e.what()));
-        return false;
-    }
+    const auto toRun = experimentToRun();
+    if (!toRun) return false;
+    const ExperimentSpec& spec = *toRun;
     const QString name = QString::fromStdString(spec.name);
-    const QString dir = QDir(outputBase_)
-                            .filePath(name + "_seeds-" +
-                                      QDateTime::currentDateTime().toString("yyyyMMdd-hhmmss-zzz"));
+    const QString dir = newRunDirectory(name + "_seeds");
     if (!runs_.startSeeds(spec, first, last, dir)) return false;
     countingSeeds_ = true;
     lastSeedsDir_ = dir;
@@ -345,7 +343,7 @@ bool MainWindow::startSeeds(std::uint64_t first, std::uint64_t last) {
 
 void MainWindow::showSeeds(std::shared_ptr<const SeedRates> rates, const QString& dir,
                            bool cancelled) {
-    seeds_->finish(*rates, dir, cancelled);
+    seeds_->finish(dir, cancelled);
     QString figures;
     try {
         const QStringList files = writeSeedFigures(*rates, seeds_->experiment(), dir);

@@ -4,6 +4,7 @@
 // cancel and a clear final state; every plot exportable. Layout and settings persist.
 #include <QMainWindow>
 #include <memory>
+#include <optional>
 
 #include "app/gui/DeviceSession.h"
 #include "app/gui/LiveFeed.h"
@@ -73,6 +74,10 @@ protected:
 
 private:
     void showError(const QString& message);
+    /// The experiment as shown, if one is open and it can run; otherwise says why.
+    std::optional<ExperimentSpec> experimentToRun();
+    /// A new folder under the output base for a run: <stem>-<date and time>.
+    QString newRunDirectory(const QString& stem) const;
     void log(const QString& text);
     void showRun(std::shared_ptr<const RunResult> result, const QString& dir);
     void showSeeds(std::shared_ptr<const SeedRates> rates, const QString& dir, bool cancelled);

@@ -139,14 +139,8 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     showSummary(tr("running"));
 }
 
-void SeedsTab::finish(const SeedRates& rates, const QString& dir, bool cancelled) {
-    if (rates.seeds.size() != rates_.seeds.size()) {  // rows missed: show the run's own record
-        begin(experiment_);
-        for (const auto& o : rates.seeds) addSeed(o);
-    }
+void SeedsTab::finish(const QString& dir, bool cancelled) {
     running_ = false;
-    buildSeedRatesFigure(plot_->plot(), rates_, experiment_);
-    plot_->requestReplot();
     showSummary((cancelled ? tr("cancelled after %1 seeds") : tr("finished, %1 seeds"))
                     .arg(rates_.seeds.size()) +
                 tr("; results in %1").arg(dir));

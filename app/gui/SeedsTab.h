@@ -32,8 +32,8 @@ public:
     void begin(const QString& experiment);
     /// Adds a finished seed: a table row, the summary and the plot follow.
     void addSeed(const SeedOutcome& outcome);
-    /// The run has ended with `rates` (every finished seed); `dir` holds its files.
-    void finish(const SeedRates& rates, const QString& dir, bool cancelled);
+    /// The run has ended (every finished seed has been added); `dir` holds its files.
+    void finish(const QString& dir, bool cancelled);
     /// The run stopped on an error: the seeds shown are all there will be.
     void interrupted();
 

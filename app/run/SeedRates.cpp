@@ -51,12 +51,12 @@ double wilsonHalfWidth(const Rate& r) {
     return kZ * std::sqrt(p * (1 - p) / n + z2 / (4 * n * n)) / (1 + z2 / n);
 }
 
-Rate tally(const std::vector<SeedOutcome>& seeds, int SeedOutcome::*count,
-           int SeedOutcome::*total) {
+Rate sumOver(const std::vector<SeedOutcome>& seeds, Rate (*part)(const SeedOutcome&)) {
     Rate r;
     for (const auto& s : seeds) {
-        r.count += s.*count;
-        r.total += s.*total;
+        const Rate p = part(s);
+        r.count += p.count;
+        r.total += p.total;
     }
     return r;
 }
@@ -77,23 +77,36 @@ double Rate::high() const {
     return total > 0 ? std::min(1.0, wilsonCentre(*this) + wilsonHalfWidth(*this)) : 1.0;
 }
 
+Rate passiveLostIn(const SeedOutcome& s) {
+    return {s.passiveLost, s.passiveTrials};
+}
+Rate activeCompletedIn(const SeedOutcome& s) {
+    return {s.activeCompleted, s.activeTrials};
+}
+Rate recognisedRawIn(const SeedOutcome& s) {
+    return {s.recognisedRaw, s.activeCompleted};
+}
+Rate recognisedSmoothedIn(const SeedOutcome& s) {
+    return {s.recognisedSmoothed, s.activeCompleted};
+}
+Rate paperResultIn(const SeedOutcome& s) {
+    return {s.paperResult() ? 1 : 0, 1};
+}
+
 Rate SeedRates::passiveLost() const {
-    return tally(seeds, &SeedOutcome::passiveLost, &SeedOutcome::passiveTrials);
+    return sumOver(seeds, passiveLostIn);
 }
 Rate SeedRates::activeCompleted() const {
-    return tally(seeds, &SeedOutcome::activeCompleted, &SeedOutcome::activeTrials);
+    return sumOver(seeds, activeCompletedIn);
 }
 Rate SeedRates::recognisedRaw() const {
-    return tally(seeds, &SeedOutcome::recognisedRaw, &SeedOutcome::activeCompleted);
+    return sumOver(seeds, recognisedRawIn);
 }
 Rate SeedRates::recognisedSmoothed() const {
-    return tally(seeds, &SeedOutcome::recognisedSmoothed, &SeedOutcome::activeCompleted);
+    return sumOver(seeds, recognisedSmoothedIn);
 }
 Rate SeedRates::paperResult() const {
-    Rate r;
-    r.total = static_cast<int>(seeds.size());
-    for (const auto& s : seeds) r.count += s.paperResult();
-    return r;
+    return sumOver(seeds, paperResultIn);
 }
 double SeedRates::tapsPerCompletedTrial() const {
     double taps = 0;

@@ -41,6 +41,13 @@ struct Rate {
     double high() const;
 };
 
+/// One run's part in each rate: its count and its total, which SeedRates sums over runs.
+Rate passiveLostIn(const SeedOutcome& run);
+Rate activeCompletedIn(const SeedOutcome& run);
+Rate recognisedRawIn(const SeedOutcome& run);       ///< of its completed active paths
+Rate recognisedSmoothedIn(const SeedOutcome& run);  ///< of its completed active paths
+Rate paperResultIn(const SeedOutcome& run);         ///< 1 of 1 or 0 of 1
+
 struct SeedRates {
     std::vector<SeedOutcome> seeds;
     Rate passiveLost() const;
