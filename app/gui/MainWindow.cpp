@@ -22,6 +22,8 @@
 #include <QTableWidget>
 #include <QToolBar>
 #include <QVBoxLayout>
+#include <algorithm>
+#include <climits>
 
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
@@ -330,7 +332,7 @@ bool MainWindow::startSeeds(std::uint64_t first, std::uint64_t last) {
     lastSeedsDir_ = dir;
     seeds_->begin(name);
     tabs_->setCurrentWidget(seeds_);
-    progress_->setRange(0, static_cast<int>(last - first + 1));
+    progress_->setRange(0, static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX)));
     progress_->setValue(0);
     log(tr("seeds run started: %1, seeds %2-%3, each a whole run on the simulated rig, writing %4")
             .arg(name)

@@ -1,7 +1,9 @@
 #include "app/gui/RunController.h"
 
 #include <QDir>
+#include <algorithm>
 #include <chrono>
+#include <climits>
 #include <thread>
 
 #include "app/figures/FollowingFigures.h"
@@ -113,7 +115,7 @@ bool RunController::startSeeds(const ExperimentSpec& spec, std::uint64_t first, 
     }
     launch(outDir, [this, spec, first, last, outDir] {
         const auto started = std::chrono::steady_clock::now();
-        const int planned = static_cast<int>(last - first + 1);
+        const int planned = static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX));
         int done = 0;
         try {
             auto rates = std::make_shared<SeedRates>(
@@ -128,7 +130,7 @@ bool RunController::startSeeds(const ExperimentSpec& spec, std::uint64_t first, 
                                   elapsed / done * (planned - done));
                     return !cancel_;
                 }));
-            const bool cancelled = static_cast<int>(rates->seeds.size()) < planned;
+            const bool cancelled = rates->seeds.size() < last - first + 1;
             emit seedsFinished(rates, outDir, cancelled);
         } catch (const std::exception& e) {
             emit failed(tr("The seeds run stopped: %1. The seeds finished so far are in "
