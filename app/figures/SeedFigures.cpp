@@ -19,12 +19,14 @@ struct RunningRate {
 RunningRate running(const SeedRates& all, Rate (*part)(const SeedOutcome&)) {
     RunningRate r;
     Rate sofar;
+    int runs = 0;
     for (const SeedOutcome& s : all.seeds) {
         const Rate p = part(s);
+        ++runs;
         sofar.count += p.count;
         sofar.total += p.total;
         if (sofar.total == 0) continue;
-        r.x << double(&s - all.seeds.data() + 1);
+        r.x << double(runs);
         r.rate << 100.0 * sofar.fraction();
         r.low << 100.0 * sofar.low();
         r.high << 100.0 * sofar.high();

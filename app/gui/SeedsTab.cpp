@@ -33,7 +33,8 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     first_->setObjectName("firstSeed");
     last_->setObjectName("lastSeed");
     for (QSpinBox* s : {first_, last_}) s->setRange(0, kMaxSeed);
-    setRange(1, 10);
+    first_->setValue(1);
+    last_->setValue(10);
     // The range can never be given backwards.
     connect(first_, &QSpinBox::valueChanged, this, [this](int v) {
         if (last_->value() < v) last_->setValue(v);
@@ -92,10 +93,6 @@ std::uint64_t SeedsTab::firstSeed() const {
 }
 std::uint64_t SeedsTab::lastSeed() const {
     return static_cast<std::uint64_t>(last_->value());
-}
-void SeedsTab::setRange(std::uint64_t first, std::uint64_t last) {
-    last_->setValue(static_cast<int>(std::min<std::uint64_t>(last, kMaxSeed)));
-    first_->setValue(static_cast<int>(std::min<std::uint64_t>(first, kMaxSeed)));
 }
 void SeedsTab::setRunnable(bool runnable) {
     run_->setEnabled(runnable);

@@ -24,7 +24,6 @@ public:
 
     std::uint64_t firstSeed() const;
     std::uint64_t lastSeed() const;
-    void setRange(std::uint64_t first, std::uint64_t last);
     /// Enables the run button (an experiment is open and nothing is running).
     void setRunnable(bool runnable);
 

@@ -3,8 +3,9 @@
 // locations, coordinates normalised to [0, 1] over the path's own bounding box, counts normalised
 // to sum 1; templates from where a perfect edge following would tap (the outline offset outward
 // to the centre of the valid range, sampled every follow step, averaged over where along the
-// outline the following starts); the smallest Euclidean distance wins. The raw histogram is brittle (a path 1-2 mm off lands one bin away), so a smoothed
-// histogram (Gaussian, sigma in bins) is offered beside it and both are reported.
+// outline the following starts); the smallest Euclidean distance wins. The raw histogram is
+// brittle (a path 1-2 mm off lands one bin away), so a smoothed histogram (Gaussian, sigma in
+// bins) is offered beside it and both are reported.
 #include <map>
 #include <string>
 #include <vector>
