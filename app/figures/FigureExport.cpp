@@ -2,29 +2,56 @@
 
 #include <QFileInfo>
 #include <QSvgGenerator>
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "qcustomplot.h"
 
 namespace activetouch {
 
-void applyEqualAspect(QCustomPlot& plot) {
+void setEqualAspectRanges(QCPAxisRect* rect, const QCPRange& x, const QCPRange& y) {
+    rect->setProperty("equalAspectX", QPointF(x.lower, x.upper));
+    rect->setProperty("equalAspectY", QPointF(y.lower, y.upper));
+    rect->axis(QCPAxis::atBottom)->setRange(x);
+    rect->axis(QCPAxis::atLeft)->setRange(y);
+}
+
+bool fitEqualAspect(QCustomPlot& plot) {
     bool changed = false;
     for (QCPAxisRect* rect : plot.axisRects()) {
-        if (!rect->property("equalAspect").toBool()) continue;
-        QCPAxis* x = rect->axis(QCPAxis::atBottom);
-        QCPAxis* y = rect->axis(QCPAxis::atLeft);
+        const QVariant wantX = rect->property("equalAspectX"),
+                       wantY = rect->property("equalAspectY");
+        if (!wantX.isValid() || !wantY.isValid()) continue;
         if (rect->width() <= 0 || rect->height() <= 0) continue;
-        // Keep both data ranges visible: scale the axis that would otherwise be stretched.
-        const double xPerPixel = x->range().size() / rect->width();
-        const double yPerPixel = y->range().size() / rect->height();
-        if (xPerPixel >= yPerPixel)
-            y->setScaleRatio(x, 1.0);
-        else
-            x->setScaleRatio(y, 1.0);
+        // Keep both ranges asked for visible: widen the one that would otherwise be stretched.
+        QCPRange x(wantX.toPointF().x(), wantX.toPointF().y());
+        QCPRange y(wantY.toPointF().x(), wantY.toPointF().y());
+        const double xPerPixel = x.size() / rect->width(), yPerPixel = y.size() / rect->height();
+        if (xPerPixel >= yPerPixel) {
+            const double half = 0.5 * xPerPixel * rect->height();
+            y = QCPRange(y.center() - half, y.center() + half);
+        } else {
+            const double half = 0.5 * yPerPixel * rect->width();
+            x = QCPRange(x.center() - half, x.center() + half);
+        }
+        QCPAxis* xAxis = rect->axis(QCPAxis::atBottom);
+        QCPAxis* yAxis = rect->axis(QCPAxis::atLeft);
+        auto same = [](const QCPRange& a, const QCPRange& b) {
+            const double tolerance = 1e-9 * std::max(1.0, a.size());
+            return std::abs(a.lower - b.lower) <= tolerance &&
+                   std::abs(a.upper - b.upper) <= tolerance;
+        };
+        if (same(xAxis->range(), x) && same(yAxis->range(), y)) continue;
+        xAxis->setRange(x);
+        yAxis->setRange(y);
         changed = true;
     }
-    if (changed) plot.replot(QCustomPlot::rpImmediateRefresh);
+    return changed;
+}
+
+void applyEqualAspect(QCustomPlot& plot) {
+    if (fitEqualAspect(plot)) plot.replot(QCustomPlot::rpImmediateRefresh);
 }
 
 QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats,

@@ -5,6 +5,8 @@
 #include <QStringList>
 
 class QCustomPlot;
+class QCPAxisRect;
+class QCPRange;
 
 namespace activetouch {
 
@@ -14,8 +16,16 @@ struct FigureSize {
     int dpi = 150;
 };
 
-/// Gives every axis rect marked with the property "equalAspect" one millimetre per pixel on both
-/// axes (widening the range of the axis with room to spare). Call after the plot has its size.
+/// Shows `x` and `y` in `rect` at one unit per pixel on both axes from then on: applyEqualAspect
+/// widens one of these ranges to fit the rect's shape, always starting again from them.
+void setEqualAspectRanges(QCPAxisRect* rect, const QCPRange& x, const QCPRange& y);
+
+/// Gives every axis rect set up by setEqualAspectRanges equal scales on both axes for its current
+/// size, widening the axis with room to spare from the ranges asked for (so repeated resizes never
+/// accumulate). Returns whether any range changed; does not replot.
+bool fitEqualAspect(QCustomPlot& plot);
+
+/// fitEqualAspect, then an immediate replot if anything changed. Call after the plot has its size.
 void applyEqualAspect(QCustomPlot& plot);
 
 /// Saves `plot` as `<basePath>.<format>` for each format in `formats` (png, pdf, svg).

@@ -49,6 +49,12 @@ void setPanelTitle(QCPAxisRect* rect, const QString& text) {
     top->setLabel(text);
 }
 
+QCPColorGradient heatGradient() {
+    QCPColorGradient gradient(QCPColorGradient::gpThermal);
+    gradient.setColorStopAt(1.0, QColor(255, 225, 40));
+    return gradient;
+}
+
 QColor seriesColour(int i) {
     static const QColor palette[] = {
         QColor(31, 119, 180),  QColor(255, 127, 14), QColor(44, 160, 44),   QColor(214, 39, 40),

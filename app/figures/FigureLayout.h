@@ -15,6 +15,7 @@ class QCPCurve;
 class QCPAxis;
 class QCPGraph;
 class QCPLegend;
+class QCPColorGradient;
 
 namespace activetouch {
 
@@ -29,6 +30,10 @@ QCPCurve* addPolyline(QCPAxis* x, QCPAxis* y, const std::vector<Vec2>& points, b
 
 /// Writes `text` as the panel's title on its top axis.
 void setPanelTitle(QCPAxisRect* rect, const QString& text);
+
+/// The heatmaps' colour gradient: thermal from black, ending in yellow rather than white, so that
+/// a cell at or above the top of a fixed scale never looks like the white background.
+QCPColorGradient heatGradient();
 
 /// The colour of the i-th series in a panel (a palette of 8, repeating).
 QColor seriesColour(int i);

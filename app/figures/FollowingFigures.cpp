@@ -43,7 +43,6 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
     for (std::size_t i = 0; i < labels.size(); ++i) {
         auto* rect = new QCPAxisRect(&plot);
         panels->addElement(static_cast<int>(i) / columns, static_cast<int>(i) % columns, rect);
-        rect->setProperty("equalAspect", true);
         rect->axis(QCPAxis::atBottom)->setLabel("x (mm)");
         rect->axis(QCPAxis::atLeft)->setLabel("y (mm)");
         setPanelTitle(rect, QString::fromStdString(labels[i]));
@@ -85,8 +84,8 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
         }
         // Room above the paths for the legend.
         const double margin = 8.0;
-        rect->axis(QCPAxis::atBottom)->setRange(lo.x - margin, hi.x + margin);
-        rect->axis(QCPAxis::atLeft)->setRange(lo.y - margin, hi.y + margin + 0.35 * (hi.y - lo.y));
+        setEqualAspectRanges(rect, QCPRange(lo.x - margin, hi.x + margin),
+                             QCPRange(lo.y - margin, hi.y + margin + 0.35 * (hi.y - lo.y)));
     }
     return true;
 }
@@ -109,10 +108,9 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
     scale->setType(QCPAxis::atRight);
     scale->axis()->setLabel("fraction of taps per bin");
     scale->setDataRange(QCPRange(0, 0.05));
-    scale->setGradient(QCPColorGradient(QCPColorGradient::gpThermal));
+    scale->setGradient(heatGradient());
     auto heat = [&](QCPAxisRect* rect, const PathHistogram& h, const QString& title) {
         setPanelTitle(rect, title);
-        rect->setProperty("equalAspect", true);
         rect->axis(QCPAxis::atBottom)->setLabel("x bin");
         rect->axis(QCPAxis::atLeft)->setLabel("y bin");
         auto* map = new QCPColorMap(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
@@ -122,8 +120,7 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
             for (int ix = 0; ix < h.bins; ++ix) map->data()->setCell(ix, iy, h.at(ix, iy));
         map->setInterpolate(false);
         map->setColorScale(scale);
-        rect->axis(QCPAxis::atBottom)->setRange(0, h.bins);
-        rect->axis(QCPAxis::atLeft)->setRange(0, h.bins);
+        setEqualAspectRanges(rect, QCPRange(0, h.bins), QCPRange(0, h.bins));
     };
     int row = 0;
     for (const auto& [shape, trials] : byShape) {
@@ -138,9 +135,10 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
             grid->addElement(row, 1 + static_cast<int>(k), pr);
             const auto& rec = trials[k]->recognition;
             heat(pr, rec.raw,
-                 QString("ACF%1 -> %2 (smoothed: %3)")
+                 QString("ACF%1%2 -> %3 (smoothed: %4)")
                      .arg(trials[k]->trial)
-                     .arg(QString::fromStdString(rec.predicted),
+                     .arg(trials[k]->result.end == TrialEnd::Completed ? "" : " (incomplete)",
+                          QString::fromStdString(rec.predicted),
                           QString::fromStdString(rec.predictedSmoothed)));
         }
         // Distances to every template, one bar group per trial.

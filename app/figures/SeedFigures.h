@@ -12,7 +12,8 @@ struct SeedRates;
 
 /// Left: per seed, the share of its active trials completed and of its passive trials lost.
 /// Right: the running rates (active completed, passive lost, recognised by both rules, runs with
-/// the paper's result whole) against the number of seeds, each with its Wilson 95 % band. False if there are no seeds.
+/// the paper's result whole) against the number of seeds, each with its Wilson 95 % band. False if
+/// there are no seeds.
 bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QString& experiment);
 
 /// Writes <outDir>/figures/seed_rates.{png,pdf,svg}; returns the files. Throws std::runtime_error

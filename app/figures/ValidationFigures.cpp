@@ -162,7 +162,7 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         scale->setType(QCPAxis::atRight);
         scale->axis()->setLabel(heats[h].unit);
         map->setColorScale(scale);
-        map->setGradient(QCPColorGradient(QCPColorGradient::gpThermal));
+        map->setGradient(heatGradient());
         map->setDataRange(QCPRange(0, heats[h].max));  // fixed scale: runs compare by eye
         auto* margins = new QCPMarginGroup(&plot);
         rect->setMarginGroup(QCP::msBottom | QCP::msTop, margins);

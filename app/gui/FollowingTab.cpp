@@ -134,9 +134,8 @@ void FollowingTab::replay(int index, int tap) {
     p.xAxis->setLabel(tr("x (mm)"));
     p.yAxis->setLabel(tr("y (mm)"));
     const Vec2 lo = t.outline.boundingBoxMin(), hi = t.outline.boundingBoxMax();
-    p.xAxis->setRange(lo.x - 12, hi.x + 12);
-    p.yAxis->setRange(lo.y - 12, hi.y + 12);
-    p.axisRect()->setProperty("equalAspect", true);
+    setEqualAspectRanges(p.axisRect(), QCPRange(lo.x - 12, hi.x + 12),
+                         QCPRange(lo.y - 12, hi.y + 12));
     p.replot();
     applyEqualAspect(p);
     const Rule& rule = ruleFor(f.decision.rule);

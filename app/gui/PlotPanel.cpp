@@ -33,16 +33,20 @@ PlotPanel::PlotPanel(const QString& name, QWidget* parent)
         plot_->replot(QCustomPlot::rpQueuedReplot);
     });
     replotTimer_.start();
+    // Equal-aspect panels follow the plot's size: once a layout shows a panel's shape has changed,
+    // its ranges are refitted and the plot drawn again with them. New tick labels can move the
+    // margins and so the shape again; a few rounds settle it, and more are never asked for.
+    connect(plot_, &QCustomPlot::afterLayout, this, [this] {
+        if (!fitEqualAspect(*plot_)) {
+            refits_ = 0;
+            return;
+        }
+        if (++refits_ <= 3) plot_->replot(QCustomPlot::rpQueuedReplot);
+    });
 }
 
 void PlotPanel::requestReplot() {
     dirty_ = true;
-}
-
-void PlotPanel::resizeEvent(QResizeEvent* event) {
-    QWidget::resizeEvent(event);
-    plot_->replot(QCustomPlot::rpImmediateRefresh);
-    applyEqualAspect(*plot_);
 }
 
 QStringList PlotPanel::exportTo(const QString& basePath, const QStringList& formats,

@@ -34,9 +34,6 @@ signals:
     void exported(const QString& what);
     void failed(const QString& message);
 
-protected:
-    void resizeEvent(QResizeEvent* event) override;
-
 private:
     void showMenu(const QPoint& where);
     void exportWithDialog();
@@ -44,6 +41,7 @@ private:
     QCustomPlot* plot_;
     QTimer replotTimer_;
     bool dirty_ = false;
+    int refits_ = 0;  ///< equal-aspect refits in a row
 };
 
 }  // namespace activetouch

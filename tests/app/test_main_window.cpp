@@ -2,7 +2,8 @@
 // watch the progress reach the end; cancel half-way and find every finished tap kept; toggle an
 // effect and see the next run use it; export every figure in every format; open bad files and
 // keep the session; drive the simulated devices from their panel; run the experiment over a range
-// of seeds and cancel such a run, keeping every finished seed.
+// of seeds and cancel such a run, keeping every finished seed; resize the window and find paths
+// and histograms still drawn at one scale on both axes.
 #include <QComboBox>
 #include <QElapsedTimer>
 #include <QGroupBox>
@@ -17,6 +18,7 @@
 #include <QSpinBox>
 #include <QStandardPaths>
 #include <QStyleOptionGroupBox>
+#include <QTabWidget>
 #include <QTemporaryDir>
 #include <QToolButton>
 #include <QtTest>
@@ -87,6 +89,45 @@ bool filledByARun(const PlotPanel* p) {
     return !p->name().startsWith("sweep") && p->name() != "seed_rates";
 }
 
+/// Brings the tab holding `w` to the front, as a person clicking its tabs would.
+void showTab(QWidget* w) {
+    for (; w && w->parentWidget(); w = w->parentWidget())
+        if (auto* tabs = qobject_cast<QTabWidget*>(w->parentWidget()->parentWidget()))
+            if (tabs->indexOf(w) >= 0) tabs->setCurrentWidget(w);
+}
+
+void showAt(PlotPanel* panel, QSize size) {
+    panel->window()->resize(size);
+    QCoreApplication::processEvents();
+    panel->plot().replot(QCustomPlot::rpImmediateRefresh);
+    QCoreApplication::processEvents();
+}
+
+/// Every equal-aspect panel of `panel`: one unit per pixel on both axes, the ranges asked for
+/// inside the view, one of them exactly; its ranges into `views` by panel index.
+void checkEqualAspect(PlotPanel* panel, QMap<int, QPair<QCPRange, QCPRange>>& views) {
+    const QList<QCPAxisRect*> rects = panel->plot().axisRects();
+    for (int i = 0; i < rects.size(); ++i) {
+        QCPAxisRect* rect = rects[i];
+        const QVariant wantX = rect->property("equalAspectX");
+        if (!wantX.isValid()) continue;
+        const QString what = QString("%1 panel %2").arg(panel->name()).arg(i);
+        QVERIFY2(rect->width() > 20 && rect->height() > 20, qPrintable(what));
+        const QPointF wx = wantX.toPointF(), wy = rect->property("equalAspectY").toPointF();
+        const QCPRange x = rect->axis(QCPAxis::atBottom)->range();
+        const QCPRange y = rect->axis(QCPAxis::atLeft)->range();
+        const double ratio = (x.size() / rect->width()) / (y.size() / rect->height());
+        QVERIFY2(std::abs(ratio - 1.0) < 0.02,
+                 qPrintable(what + QString(": x/y scale %1").arg(ratio)));
+        QVERIFY2(x.lower <= wx.x() + 1e-9 && x.upper >= wx.y() - 1e-9, qPrintable(what));
+        QVERIFY2(y.lower <= wy.x() + 1e-9 && y.upper >= wy.y() - 1e-9, qPrintable(what));
+        QVERIFY2(std::abs(x.size() - (wx.y() - wx.x())) < 1e-6 ||
+                     std::abs(y.size() - (wy.y() - wy.x())) < 1e-6,
+                 qPrintable(what + ": both axes widened"));
+        views[i] = {x, y};
+    }
+}
+
 void closeErrorDialogs(QWidget& w) {
     for (QMessageBox* box : w.findChildren<QMessageBox*>("errorDialog")) box->close();
 }
@@ -151,6 +192,42 @@ private slots:
         const QStringList all = window_->exportAllFigures(dir_.filePath("all"));
         QVERIFY(all.size() >= 6);
         for (const QString& f : all) QVERIFY(QFileInfo(f).size() > 0);
+    }
+
+    void pathsAndHistogramsKeepEqualAspectThroughResizes() {
+        // Outlines and path histograms are drawn one unit per pixel on both axes, whatever shape
+        // the window takes, and going back to a size gives back the same view.
+        const QSize start = window_->size();
+        for (const QString name : {"figure8_active_paths", "figure9_recognition"}) {
+            PlotPanel* panel = nullptr;
+            for (PlotPanel* p : window_->plotPanels())
+                if (p->name() == name) panel = p;
+            QVERIFY2(panel, qPrintable(name));
+            showTab(panel);
+            QMap<int, QPair<QCPRange, QCPRange>> first, again;
+            showAt(panel, start);
+            checkEqualAspect(panel, first);
+            if (QTest::currentTestFailed()) return;
+            QVERIFY2(first.size() >= 4, qPrintable(name));
+            for (QSize size : {QSize(1900, 700), QSize(900, 1100), QSize(1300, 900)}) {
+                showAt(panel, size);
+                QMap<int, QPair<QCPRange, QCPRange>> views;
+                checkEqualAspect(panel, views);
+                if (QTest::currentTestFailed()) return;
+            }
+            showAt(panel, start);
+            checkEqualAspect(panel, again);
+            if (QTest::currentTestFailed()) return;
+            QCOMPARE(again.keys(), first.keys());
+            for (int k : first.keys()) {
+                const QString what = QString("%1 panel %2").arg(name).arg(k);
+                QVERIFY2(std::abs(again[k].first.lower - first[k].first.lower) < 1e-6 &&
+                             std::abs(again[k].first.upper - first[k].first.upper) < 1e-6 &&
+                             std::abs(again[k].second.lower - first[k].second.lower) < 1e-6 &&
+                             std::abs(again[k].second.upper - first[k].second.upper) < 1e-6,
+                         qPrintable(what));
+            }
+        }
     }
 
     void cancelHalfWayKeepsTheFinishedTaps() {
