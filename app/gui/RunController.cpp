@@ -17,7 +17,10 @@ RunController::RunController(LiveFeed& live, QObject* parent) : QObject(parent),
 }
 
 RunController::~RunController() {
-    stopAndWait(2000);
+    if (!thread_) return;
+    // Once finished, the thread is ours to delete: its finished slot will not run after this.
+    // One still inside a tap after 2 s is left to end with the process, never destroyed running.
+    if (stopAndWait(2000)) delete thread_;
 }
 
 void RunController::cancel() {

@@ -33,6 +33,9 @@ struct RigConfig {
     std::string describe() const;
 };
 
+/// Every device's raw traffic ("stage", "tapper" or "fingertip", the direction, the text). It is
+/// called from whichever thread talks to that device (the fingertip's reader, the stage's serial
+/// thread, the caller's), so it must be safe to call from several threads at once.
 using DeviceLog = std::function<void(const std::string& device, const std::string& direction,
                                      const std::string& text)>;
 

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <thread>
 
 #include "app/run/ExperimentRun.h"
@@ -25,12 +26,30 @@ using activetouch::emu::FakeNxtBrick;
 
 namespace {
 
+/// The devices' raw traffic, as the Devices dock shows it. Each device logs from its own thread.
+struct TrafficLog {
+    void add(std::string line) {
+        const std::lock_guard lock(mutex_);
+        lines_.push_back(std::move(line));
+    }
+    bool hasLineStartingWith(const std::string& prefix) const {
+        const std::lock_guard lock(mutex_);
+        for (const auto& l : lines_)
+            if (l.rfind(prefix, 0) == 0) return true;
+        return false;
+    }
+
+private:
+    mutable std::mutex mutex_;
+    std::vector<std::string> lines_;
+};
+
 struct Emulated {
     ExperimentSpec spec;
     std::shared_ptr<const FingertipContactModel> model;
     std::unique_ptr<EmulatedBench> bench;
     std::unique_ptr<test::usb::Testbed> usb;  // the bench's brick on a mocked USB bus
-    std::vector<std::string> log;             // before the rig: the rig logs while it shuts down
+    TrafficLog log;                           // before the rig: the rig logs while it shuts down
     std::unique_ptr<AssembledRig> rig;
     explicit Emulated(double timeScale = 10.0) {
         spec = loadExperiment(test::sourcePath("experiments/paper.json"));
@@ -58,10 +77,10 @@ struct Emulated {
         rig = std::make_unique<AssembledRig>(
             spec.scene, model, config(),
             [this](const std::string& dev, const std::string& d, const std::string& t) {
-                log.push_back(dev + " " + d + " " + t);
+                log.add(dev + " " + d + " " + t);
             });
         rig->brick()->setRawLog([this](const std::string& d, const std::string& t) {
-            log.push_back("tapper " + d + " " + t);
+            log.add("tapper " + d + " " + t);
         });
     }
     /// A point on the rectangle's lower edge, 9 mm in: where the paper's trials start.
@@ -143,6 +162,9 @@ private slots:
         QVERIFY(e.retracted());
         QVERIFY(on.cycleTime_s > 0.5 && off.startTime_s > on.startTime_s);
         QVERIFY(e.usb->mocked.submitted > 20);  // every poll of the tap went over bulk URBs
+        // Every device's traffic reaches the raw protocol log.
+        for (const char* device : {"stage ", "tapper ", "fingertip "})
+            QVERIFY2(e.log.hasLineStartingWith(device), device);
     }
 
     void framesArriveAt50HzOfRobotTime() {
