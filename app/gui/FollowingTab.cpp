@@ -76,10 +76,7 @@ void FollowingTab::showRun(std::shared_ptr<const RunResult> result) {
                     tr("Active contour following (ACF)"));
     buildPathFigure(passive_->plot(), r, FollowingMode::Passive,
                     tr("Passive contour following (PCF)"));
-    for (auto* p : {active_, passive_}) {
-        p->plot().replot();
-        applyEqualAspect(p->plot());
-    }
+    for (auto* p : {active_, passive_}) p->plot().replot();
     table_->setRowCount(static_cast<int>(r.trials.size()));
     const QSignalBlocker block(trial_);
     trial_->clear();
@@ -137,7 +134,6 @@ void FollowingTab::replay(int index, int tap) {
     setEqualAspectRanges(p.axisRect(), QCPRange(lo.x - 12, hi.x + 12),
                          QCPRange(lo.y - 12, hi.y + 12));
     p.replot();
-    applyEqualAspect(p);
     const Rule& rule = ruleFor(f.decision.rule);
     step_->setText(tr("Tap %1 of %2 at (%3, %4) mm: perceived %5, position %6 (posterior %7). Rule "
                       "'%8': when %9, then %10. "

@@ -385,10 +385,7 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
     if (!r.validation.byClass.empty()) buildErrorFigure(errors_->plot(), r);
     for (auto* p : {taps_, errors_}) p->plot().replot();
     following_->showRun(result);
-    if (buildRecognitionFigure(recognition_->plot(), r)) {
-        recognition_->plot().replot();
-        applyEqualAspect(recognition_->plot());
-    }
+    if (buildRecognitionFigure(recognition_->plot(), r)) recognition_->plot().replot();
     if (!r.sweeps.empty()) {
         buildPerceptionSweepFigure(sweepPerception_->plot(), r);
         buildFollowingSweepFigure(sweepFollowing_->plot(), r);

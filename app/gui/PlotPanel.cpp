@@ -58,12 +58,11 @@ QStringList PlotPanel::exportTo(const QString& basePath, const QStringList& form
         files = exportFigure(*plot_, basePath, formats, size);
     } catch (...) {
         plot_->resize(shown);
-        applyEqualAspect(*plot_);
+        plot_->replot(QCustomPlot::rpImmediateRefresh);
         throw;
     }
     plot_->resize(shown);
     plot_->replot(QCustomPlot::rpImmediateRefresh);
-    applyEqualAspect(*plot_);
     return files;
 }
 
