@@ -50,17 +50,13 @@ bool fitEqualAspect(QCustomPlot& plot) {
     return changed;
 }
 
-void applyEqualAspect(QCustomPlot& plot) {
-    if (fitEqualAspect(plot)) plot.replot(QCustomPlot::rpImmediateRefresh);
-}
-
 QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats,
                          const FigureSize& size) {
     QStringList written;
     // Lay out once at the target size so that every format sees the same geometry.
     plot.resize(size.width_px, size.height_px);
     plot.replot(QCustomPlot::rpImmediateRefresh);
-    applyEqualAspect(plot);
+    if (fitEqualAspect(plot)) plot.replot(QCustomPlot::rpImmediateRefresh);
     for (const QString& format : formats) {
         const QString file = basePath + "." + format.toLower();
         bool ok = false;

@@ -16,17 +16,14 @@ struct FigureSize {
     int dpi = 150;
 };
 
-/// Shows `x` and `y` in `rect` at one unit per pixel on both axes from then on: applyEqualAspect
+/// Shows `x` and `y` in `rect` at one unit per pixel on both axes from then on: fitEqualAspect
 /// widens one of these ranges to fit the rect's shape, always starting again from them.
 void setEqualAspectRanges(QCPAxisRect* rect, const QCPRange& x, const QCPRange& y);
 
 /// Gives every axis rect set up by setEqualAspectRanges equal scales on both axes for its current
 /// size, widening the axis with room to spare from the ranges asked for (so repeated resizes never
-/// accumulate). Returns whether any range changed; does not replot.
+/// accumulate). Returns whether any range changed; does not replot. Call after a layout.
 bool fitEqualAspect(QCustomPlot& plot);
-
-/// fitEqualAspect, then an immediate replot if anything changed. Call after the plot has its size.
-void applyEqualAspect(QCustomPlot& plot);
 
 /// Saves `plot` as `<basePath>.<format>` for each format in `formats` (png, pdf, svg).
 /// Returns the files written; throws std::runtime_error naming the file that could not be written.
