@@ -95,7 +95,14 @@ std::string NxtTapper::safeStop() noexcept {
     }
 }
 
+bool NxtTapper::abortAndWait(std::chrono::milliseconds bound) {
+    abort();
+    const std::unique_lock idle(inTap_, bound);
+    return idle.owns_lock();
+}
+
 TapRecord NxtTapper::tap() {
+    const std::lock_guard running(inTap_);
     if (abort_) throw RigError("NXT tapper: stopped (the application is closing); no further taps");
     const int K = sensor_.taxelCount();
     const int T = tap_.samples;

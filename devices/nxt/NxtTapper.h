@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <mutex>
 #include <string>
 
 #include "core/rig/Rig.h"
@@ -52,6 +53,10 @@ public:
     /// Stops a tap in progress at the next frame (the tap then throws RigError) and refuses every
     /// later one: for closing, from any thread.
     void abort() { abort_ = true; }
+    /// abort(), then waits at most `bound` for a tap in progress to leave tap() (it stops at its
+    /// next frame and brakes and returns the motor). True once no tap is running: the tapper and
+    /// what it uses may then be destroyed.
+    bool abortAndWait(std::chrono::milliseconds bound);
 
 private:
     enum class Phase { Retracted, Descending, Holding, Returning };
@@ -65,6 +70,7 @@ private:
     NxtTapperSettings s_;
     std::atomic<Phase> phase_{Phase::Retracted};
     std::atomic<bool> abort_{false};
+    std::timed_mutex inTap_;  ///< held while a tap runs
     double lastKeepAlive_s_ = 0.0;
     std::uint32_t sleepMs_ = 0;
 };

@@ -1,5 +1,7 @@
 #include "devices/rigs/RigAssembly.h"
 
+#include <chrono>
+
 #include "devices/nxt/NxtUsbTransport.h"
 #include "devices/simulated/SimulatedWorld.h"
 
@@ -120,10 +122,19 @@ Rig AssembledRig::rig() {
 }
 
 void AssembledRig::shutdown() noexcept {
-    if (nxtTapper_) nxtTapper_->abort();
-    if (nxtTapper_ && brick_ && !brick_->unplugged()) nxtTapper_->safeStop();
+    // A tap in progress stops at its next frame and brakes on its own; nothing it uses may go
+    // before it has left. Every call it makes has its own bound, so 5 s is never reached unless a
+    // device breaks its bound; then the devices are left to the process rather than freed in use.
+    const bool idle = !nxtTapper_ || nxtTapper_->abortAndWait(std::chrono::seconds(5));
+    if (idle && nxtTapper_ && brick_ && !brick_->unplugged()) nxtTapper_->safeStop();
     if (yamaha_) yamaha_->disconnect();
     if (yarpTip_) yarpTip_->disconnect();
+    if (!idle) {
+        (void)nxtTapper_.release();
+        (void)brick_.release();
+        (void)yarpTip_.release();
+        (void)parts_.release();
+    }
 }
 
 }  // namespace activetouch

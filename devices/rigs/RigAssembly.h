@@ -57,8 +57,8 @@ public:
     rcx::YamahaStage* yamaha() { return yamaha_.get(); }
     yarp::YarpFingertip* fingertip() { return yarpTip_.get(); }
     std::optional<std::uint16_t> batteryMillivolts() const { return battery_; }
-    /// Stops what moves (stage ETX, tapper brake and return) and disconnects. Bounded; never
-    /// throws.
+    /// Stops what moves (stage ETX, tapper brake and return) and disconnects, first waiting for a
+    /// tap in progress, from any thread, to stop and leave the tapper. Bounded; never throws.
     void shutdown() noexcept;
 
 private:

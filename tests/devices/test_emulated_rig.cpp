@@ -79,9 +79,6 @@ struct Emulated {
             [this](const std::string& dev, const std::string& d, const std::string& t) {
                 log.add(dev + " " + d + " " + t);
             });
-        rig->brick()->setRawLog([this](const std::string& d, const std::string& t) {
-            log.add("tapper " + d + " " + t);
-        });
     }
     /// A point on the rectangle's lower edge, 9 mm in: where the paper's trials start.
     Vec2 onLowerEdge() const {
