@@ -142,16 +142,23 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
                           QString::fromStdString(rec.predictedSmoothed)));
         }
         // Distances to every template, one bar group per trial.
+        // The legend goes in a row of its own under the bars: inside the panel it would hide the
+        // tallest bars, which are the ones a reader compares.
+        auto* cell = new QCPLayoutGrid;
+        grid->addElement(row, 1 + maxTrials, cell);
         auto* dr = new QCPAxisRect(&plot);
-        grid->addElement(row, 1 + maxTrials, dr);
-        setPanelTitle(dr, "Euclidean distance to each template");
+        cell->addElement(0, 0, dr);
+        setPanelTitle(dr, "Euclidean distance to each template (paper's rule)");
         dr->axis(QCPAxis::atLeft)->setLabel("distance");
         QSharedPointer<QCPAxisTickerText> ticker(new QCPAxisTickerText);
         auto* group = new QCPBarsGroup(&plot);
         auto* barLegend = new QCPLegend;
-        dr->insetLayout()->addElement(barLegend, Qt::AlignTop | Qt::AlignRight);
+        cell->addElement(1, 0, barLegend);
+        cell->setRowStretchFactor(1, 0.001);
         barLegend->setLayer("legend");
-        barLegend->setFont(QFont("Sans", 7));
+        barLegend->setFont(QFont("Sans", 8));
+        barLegend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
+        barLegend->setMargins(QMargins(4, 1, 4, 1));
         double top = 0.0;
         for (std::size_t k = 0; k < trials.size(); ++k) {
             auto* bars = new QCPBars(dr->axis(QCPAxis::atBottom), dr->axis(QCPAxis::atLeft));
@@ -173,7 +180,7 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
         }
         dr->axis(QCPAxis::atBottom)->setTicker(ticker);
         dr->axis(QCPAxis::atBottom)->setRange(0.4, r.templates.size() + 0.6);
-        dr->axis(QCPAxis::atLeft)->setRange(0, top * 1.4);
+        dr->axis(QCPAxis::atLeft)->setRange(0, top * 1.1);
         ++row;
     }
     grid->addElement(0, 2 + maxTrials, scale);

@@ -3,7 +3,7 @@
 // effect and see the next run use it; export every figure in every format; open bad files and
 // keep the session; drive the simulated devices from their panel; run the experiment over a range
 // of seeds and cancel such a run, keeping every finished seed; resize the window and find paths
-// and histograms still drawn at one scale on both axes.
+// and histograms still drawn at one scale on both axes, and no legend hiding a value.
 #include <QComboBox>
 #include <QElapsedTimer>
 #include <QGroupBox>
@@ -128,6 +128,44 @@ void checkEqualAspect(PlotPanel* panel, QMap<int, QPair<QCPRange, QCPRange>>& vi
     }
 }
 
+/// No legend drawn inside a panel of `panel` covers a data point or a bar of that panel: a
+/// reader must see every value, the tallest bars and the paths' extremes above all.
+void checkLegendsClearOfData(PlotPanel* panel) {
+    for (QCPAxisRect* rect : panel->plot().axisRects()) {
+        QList<QRectF> legends;
+        for (QCPLayoutElement* e : rect->insetLayout()->elements(false))
+            if (auto* legend = qobject_cast<QCPLegend*>(e); legend && legend->itemCount() > 0)
+                legends << QRectF(legend->outerRect());
+        if (legends.isEmpty()) continue;
+        const QString what =
+            QString("%1 panel %2").arg(panel->name(), rect->axis(QCPAxis::atTop)->label());
+        for (QCPAbstractPlottable* p : rect->plottables()) {
+            QList<QPointF> points;
+            if (auto* graph = qobject_cast<QCPGraph*>(p)) {
+                for (const auto& d : *graph->data())
+                    points << graph->coordsToPixels(d.key, d.value);
+            } else if (auto* curve = qobject_cast<QCPCurve*>(p)) {
+                for (const auto& d : *curve->data())
+                    points << curve->coordsToPixels(d.key, d.value);
+            } else if (auto* bars = qobject_cast<QCPBars*>(p)) {
+                // A bar is an area: probe the legend's own pixels for it.
+                for (const QRectF& legend : legends)
+                    for (double x = legend.left(); x <= legend.right(); x += 2)
+                        for (double y = legend.top(); y <= legend.bottom(); y += 2)
+                            if (bars->selectTest(QPointF(x, y), false) >= 0)
+                                points << QPointF(x, y);
+            }
+            for (const QPointF& pt : points)
+                for (const QRectF& legend : legends)
+                    QVERIFY2(!legend.contains(pt),
+                             qPrintable(what + QString(": the legend covers %1 at (%2, %3)")
+                                                   .arg(p->name())
+                                                   .arg(pt.x())
+                                                   .arg(pt.y())));
+        }
+    }
+}
+
 void closeErrorDialogs(QWidget& w) {
     for (QMessageBox* box : w.findChildren<QMessageBox*>("errorDialog")) box->close();
 }
@@ -213,6 +251,8 @@ private slots:
                 showAt(panel, size);
                 QMap<int, QPair<QCPRange, QCPRange>> views;
                 checkEqualAspect(panel, views);
+                if (QTest::currentTestFailed()) return;
+                checkLegendsClearOfData(panel);
                 if (QTest::currentTestFailed()) return;
             }
             showAt(panel, start);
@@ -363,6 +403,20 @@ private slots:
         QCOMPARE(readJson(dir + "/rates.json")["runs"].toInt(), rows);
         QVERIFY(tab->summaryText().contains(QString("cancelled after %1 seeds").arg(rows)));
         QVERIFY(window_->progressBar()->format().startsWith("seeds cancelled"));
+    }
+
+    void legendsLeaveEveryValueInSight() {
+        // After a run, a sweep and a seeds run every figure in the window has data: no legend
+        // drawn inside a panel hides a point, a path or a bar of it.
+        int checked = 0;
+        for (PlotPanel* panel : window_->plotPanels()) {
+            showTab(panel);
+            showAt(panel, window_->size());
+            checkLegendsClearOfData(panel);
+            if (QTest::currentTestFailed()) return;
+            checked += panel->plot().plottableCount() > 0;
+        }
+        QVERIFY(checked >= 6);
     }
 
     void badFilesShowTheProblemAndKeepTheSession_data() {
