@@ -58,6 +58,12 @@ FollowingTab::FollowingTab(QWidget* parent)
     rl->addWidget(step_);
     rl->addWidget(replay_, 1);
     lower->addWidget(replayBox);
+    const QString following =
+        tr("Click Run whole protocol, or Run following once the classifier is trained, to follow "
+           "the contours of the experiment's trials.");
+    active_->setEmptyHint(following);
+    passive_->setEmptyHint(following);
+    replay_->setEmptyHint(tr("Pick a trial to replay it tap by tap."));
     lower->setStretchFactor(0, 1);
     lower->setStretchFactor(1, 1);
     views->addTab(lower, tr("Trials and replay"));

@@ -84,6 +84,19 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     connect(seeds_, &SeedsTab::runRequested, this,
             [this](std::uint64_t first, std::uint64_t last) { startSeeds(first, last); });
     setCentralWidget(tabs_);
+    const QString training =
+        tr("Click Run whole protocol, or Run training & validation, to tap the "
+           "training and test sets on the rig and validate the classifier.");
+    taps_->setEmptyHint(training);
+    errors_->setEmptyHint(training);
+    recognition_->setEmptyHint(
+        tr("The active paths are recognised after active following: click Run whole protocol, or "
+           "Run following once the classifier is trained."));
+    for (PlotPanel* p : {sweepPerception_, sweepFollowing_, sweepCompute_})
+        p->setEmptyHint(
+            tr("No sweeps measured yet. Open experiments/accuracy_vs_time.json (or any "
+               "experiment with a \"sweeps\" section) and click Run whole protocol "
+               "to measure what accuracy costs in time."));
     for (PlotPanel* p : plotPanels()) {
         connect(p, &PlotPanel::exported, this, &MainWindow::log);
         connect(p, &PlotPanel::failed, this, &MainWindow::showError);

@@ -19,13 +19,20 @@
 namespace activetouch {
 
 PlotPanel::PlotPanel(const QString& name, QWidget* parent)
-    : QWidget(parent), name_(name), plot_(new QCustomPlot(this)) {
+    : QWidget(parent), name_(name), plot_(new QCustomPlot(this)), hint_(new QLabel(plot_)) {
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addWidget(plot_);
     plot_->setContextMenuPolicy(Qt::CustomContextMenu);
     plot_->setNoAntialiasingOnDrag(true);
     connect(plot_, &QWidget::customContextMenuRequested, this, &PlotPanel::showMenu);
+    hint_->setObjectName("emptyHint");
+    hint_->setAlignment(Qt::AlignCenter);
+    hint_->setWordWrap(true);
+    hint_->setAttribute(Qt::WA_TransparentForMouseEvents);  // the context menu still works
+    hint_->setStyleSheet("QLabel { color: #606060; font-size: 12pt; padding: 40px; }");
+    hint_->hide();
+    connect(plot_, &QCustomPlot::afterReplot, this, &PlotPanel::updateEmptyHint);
     replotTimer_.setInterval(20);  // at most 50 redraws a second, whatever the data rate
     connect(&replotTimer_, &QTimer::timeout, this, [this] {
         if (!dirty_) return;
@@ -43,6 +50,17 @@ PlotPanel::PlotPanel(const QString& name, QWidget* parent)
         }
         if (++refits_ <= 3) plot_->replot(QCustomPlot::rpQueuedReplot);
     });
+}
+
+void PlotPanel::setEmptyHint(const QString& text) {
+    hint_->setText(text);
+    updateEmptyHint();
+}
+
+void PlotPanel::updateEmptyHint() {
+    const bool empty = plot_->plottableCount() == 0 && !hint_->text().isEmpty();
+    if (empty) hint_->setGeometry(plot_->rect());
+    hint_->setHidden(!empty);
 }
 
 void PlotPanel::requestReplot() {

@@ -2,7 +2,8 @@
 // A plot as the workbench shows it: a QCustomPlot with a context menu to export it (PNG, PDF, SVG
 // at a chosen size and DPI), copy it to the clipboard, or export the data behind it as CSV.
 // Replots are coalesced: callers change data and call requestReplot(); a timer draws at most
-// once per frame.
+// once per frame. While a plot has nothing to draw it says, over the empty axes, what fills it.
+#include <QLabel>
 #include <QTimer>
 #include <QWidget>
 
@@ -19,6 +20,11 @@ public:
 
     QCustomPlot& plot() { return *plot_; }
     const QString& name() const { return name_; }
+
+    /// What a person does to fill this plot, shown over it while it has no data.
+    void setEmptyHint(const QString& text);
+    QString emptyHint() const { return hint_->text(); }
+    bool showsEmptyHint() const { return !hint_->isHidden(); }
 
     /// Marks the plot for redrawing at the next frame.
     void requestReplot();
@@ -37,8 +43,10 @@ signals:
 private:
     void showMenu(const QPoint& where);
     void exportWithDialog();
+    void updateEmptyHint();
     QString name_;
     QCustomPlot* plot_;
+    QLabel* hint_;
     QTimer replotTimer_;
     bool dirty_ = false;
     int refits_ = 0;  ///< equal-aspect refits in a row

@@ -82,6 +82,9 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     ll->addWidget(table_, 1);
     split->addWidget(left);
     split->addWidget(plot_);
+    plot_->setEmptyHint(
+        tr("Choose the seeds above and click Run over seeds: each seed adds its "
+           "outcome here, with the rates so far and their intervals."));
     split->setStretchFactor(0, 2);
     split->setStretchFactor(1, 3);
     split->setSizes({560, 840});

@@ -188,6 +188,16 @@ private slots:
     }
 
     void runThePaperExperimentByClicking() {
+        // Before any run, every empty figure says what fills it, naming the button to click.
+        int hinted = 0;
+        for (PlotPanel* p : window_->plotPanels()) {
+            if (p->plot().plottableCount() > 0) continue;  // the live plots draw from the start
+            QVERIFY2(p->showsEmptyHint(), qPrintable(p->name()));
+            QVERIFY2(p->emptyHint().contains("Run") || p->emptyHint().contains("trial"),
+                     qPrintable(p->name()));
+            ++hinted;
+        }
+        QCOMPARE(hinted, window_->plotPanels().size() - 2);
         window_->setPace(Pace::Fastest);
         QSignalSpy ended(window_.get(), &MainWindow::runEnded);
         click(*window_, "runAll");
@@ -204,7 +214,9 @@ private slots:
         QVERIFY(QFile::exists(window_->lastRunDirectory() + "/summary.json"));
         // The tabs show the run: traces, error maps, paths, histograms, a replay.
         for (PlotPanel* p : window_->plotPanels())
-            if (filledByARun(p)) QVERIFY2(p->plot().plottableCount() > 0, qPrintable(p->name()));
+            if (filledByARun(p))
+                QVERIFY2(p->plot().plottableCount() > 0 && !p->showsEmptyHint(),
+                         qPrintable(p->name()));
         window_->followingTab()->replay(3, 10);
         QVERIFY(window_->followingTab()->replayText().contains("Rule '"));
         QVERIFY(window_->liveView()->framesDrawn() > 0);
@@ -327,6 +339,12 @@ private slots:
                     .toUtf8());
         f.close();
         QVERIFY(window_->openExperiment(path));
+        // Until a run measures them, the sweep plots say how to get them.
+        for (PlotPanel* p : window_->plotPanels())
+            if (p->name().startsWith("sweep")) {
+                QVERIFY2(p->showsEmptyHint(), qPrintable(p->name()));
+                QVERIFY(p->emptyHint().contains("accuracy_vs_time.json"));
+            }
         window_->setPace(Pace::Fastest);
         QSignalSpy ended(window_.get(), &MainWindow::runEnded);
         QVERIFY(window_->startRun(RunController::What::Everything));
@@ -337,7 +355,8 @@ private slots:
         QCOMPARE(int(sw.compute.size()), 4);
         for (PlotPanel* p : window_->plotPanels())
             if (p->name().startsWith("sweep"))
-                QVERIFY2(p->plot().plottableCount() > 0, qPrintable(p->name()));
+                QVERIFY2(p->plot().plottableCount() > 0 && !p->showsEmptyHint(),
+                         qPrintable(p->name()));
         QTRY_VERIFY(!window_->running());
         QVERIFY(window_->openExperiment(source("experiments/paper.json")));
     }
