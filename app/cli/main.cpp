@@ -206,6 +206,16 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
             "valid range %d-%d mm\n",
             v.angleError_deg, v.positionError_mm, 100.0 * v.correctFraction, v.validRange.first,
             v.validRange.last);
+        if (const auto& m = result.measuredNoiseFloor)
+            std::printf(
+                "noise floor: %.1f counts (measured from %d taps that touched nothing; "
+                "scene %.1f); classes whose ideal tap stays below it are air\n",
+                result.noiseFloor_counts, m->taps, result.spec.scene.tap.noiseFloor);
+        else
+            std::printf(
+                "noise floor: %.1f counts, the scene's (no class lies wholly in the air to "
+                "measure it from)\n",
+                result.noiseFloor_counts);
         for (const auto& t : result.trials)
             std::printf(
                 "%-7s %-9s trial %d: %-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, "

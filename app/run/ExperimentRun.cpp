@@ -1,5 +1,6 @@
 #include "app/run/ExperimentRun.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -56,7 +57,7 @@ TrialSetup trialSetupFor(const RunResult& trained, FollowingMode mode,
     setup.mode = mode;
     setup.settings = settings;
     setup.valid = trained.validOffsets;
-    setup.noiseFloor = trained.spec.scene.tap.noiseFloor;
+    setup.noiseFloor = trained.noiseFloor_counts;
     setup.start = start ? *start : lowerEdgeStart(outline, trained.validOffsets);
     return setup;
 }
@@ -190,8 +191,10 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
         result.rig = options.connected->description;
     }
     result.classes = spec.classes;
-    result.classes.regions =
-        computeClassRegions(*model, spec.classes, spec.scene.tap, spec.scene.strokeLimitDepth());
+    const auto ideal =
+        idealClassContacts(*model, spec.classes, spec.scene.tap, spec.scene.strokeLimitDepth());
+    result.noiseFloor_counts = spec.scene.tap.noiseFloor;
+    result.classes.regions = classRegions(ideal, result.noiseFloor_counts);
 
     std::unique_ptr<TapCsvWriter> recording;
     if (!options.outDir.empty()) {
@@ -226,6 +229,16 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         return result;
     }
+
+    // The taps that touched nothing give the floor a tap must rise above to count as contact;
+    // classes whose ideal tap stays below it are air.
+    std::vector<ClassTap> all;
+    for (const auto& t : result.taps) all.push_back({t.cls, &t.record.tap});
+    result.measuredNoiseFloor = measureNoiseFloor(ideal, all);
+    if (result.measuredNoiseFloor)
+        result.noiseFloor_counts =
+            std::max(result.noiseFloor_counts, result.measuredNoiseFloor->counts);
+    result.classes.regions = classRegions(ideal, result.noiseFloor_counts);
 
     std::vector<LabelledTap> training;
     std::vector<const CollectedTap*> tests;
@@ -497,6 +510,16 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
     j["rig"] = r.rig;
     Json regions = Json::array();
     for (int c = 0; c < cs.classCount(); ++c) regions.push_back(regionName(cs.regionOf(c)));
+    j["noise_floor"] = {
+        {"counts", r.noiseFloor_counts},
+        {"scene_counts", r.spec.scene.tap.noiseFloor},
+        {"measured_counts",
+         r.measuredNoiseFloor ? Json(r.measuredNoiseFloor->counts) : Json(nullptr)},
+        {"measured_from_taps", r.measuredNoiseFloor ? r.measuredNoiseFloor->taps : 0},
+        {"rule",
+         "95th percentile of the peak reading of the taps at classes whose ideal tap touches "
+         "nothing, never below the scene's noise_floor_counts; classes whose ideal peak pressure "
+         "is below it are air"}};
     j["classes"] = {{"orientations_deg", cs.orientationsDeg},
                     {"positions", cs.positions},
                     {"position_step_mm", cs.positionStep_mm},

@@ -15,6 +15,7 @@
 #include "core/experiment/Experiment.h"
 #include "core/recognition/PathHistogram.h"
 #include "core/rig/Rig.h"
+#include "core/validation/ClassRegions.h"
 #include "core/validation/OfflineValidation.h"
 #include "core/validation/TrainingProtocol.h"
 
@@ -48,6 +49,10 @@ struct RunResult {
     ExperimentSpec spec;            ///< with the seed actually used
     std::string rig = "simulated";  ///< where the taps were taken
     ClassSet classes;               ///< with the region map
+    /// The tap-level noise floor the region map and contact detection use, counts: the measured
+    /// one (ClassRegions.h) where it lies above the scene's `noise_floor_counts`.
+    double noiseFloor_counts = 0.0;
+    std::optional<MeasuredNoiseFloor> measuredNoiseFloor;  ///< nothing: no tap touched nothing
     std::vector<std::string> activeEffects;
     std::vector<CollectedTap> taps;  ///< every tap, in order
     HistogramClassifier classifier;

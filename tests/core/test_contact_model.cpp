@@ -110,6 +110,78 @@ private slots:
         QVERIFY2(differ,
                  "a tilted tip should give different region maps for different orientations");
     }
+
+    void noiseFloorIsMeasuredFromTapsThatTouchedNothing() {
+        ClassSet cs;
+        TapSpec tap;
+        tap.contactThreshold = 250.0;
+        const auto ideal = idealClassContacts(model(), cs, tap, 3.0);
+        const int air = cs.classOf(0, 18), edge = cs.classOf(0, 9);
+        QCOMPARE(ideal[air].peak, 0.0);
+        QVERIFY(ideal[edge].peak > 20.0);
+        // Twenty taps in the air peaking at 1..20 counts, and pressed taps that must not count.
+        std::vector<Tap> taps;
+        for (int peak = 1; peak <= 20; ++peak) {
+            Tap t(50, 12);
+            t.at(peak % 50, peak % 12) = peak;
+            taps.push_back(t);
+        }
+        Tap pressed(50, 12);
+        pressed.at(10, 3) = 240.0;
+        std::vector<ClassTap> labelled;
+        for (const Tap& t : taps) labelled.push_back({air, &t});
+        for (int i = 0; i < 30; ++i) labelled.push_back({edge, &pressed});
+        const auto floor = measureNoiseFloor(ideal, labelled);
+        QVERIFY(floor.has_value());
+        QCOMPARE(floor->taps, 20);
+        QCOMPARE(floor->counts, 19.0);  // nearest-rank 95th percentile of 1..20
+    }
+
+    void noiseFloorNeedsTapsThatTouchedNothing_data() {
+        QTest::addColumn<int>("which");
+        QTest::newRow("no taps") << 0;
+        QTest::newRow("only pressed taps") << 1;
+        QTest::newRow("empty taps and unknown classes") << 2;
+    }
+    void noiseFloorNeedsTapsThatTouchedNothing() {
+        QFETCH(int, which);
+        ClassSet cs;
+        TapSpec tap;
+        tap.contactThreshold = 250.0;
+        const auto ideal = idealClassContacts(model(), cs, tap, 3.0);
+        Tap pressed(50, 12), empty;
+        pressed.at(0, 0) = 100.0;
+        std::vector<ClassTap> labelled;
+        if (which == 1) labelled = {{cs.classOf(0, 9), &pressed}, {cs.classOf(2, 1), &pressed}};
+        if (which == 2)
+            labelled = {{cs.classOf(0, 18), &empty},
+                        {-1, &pressed},
+                        {cs.classCount(), &pressed},
+                        {cs.classOf(0, 18), nullptr}};
+        QVERIFY(!measureNoiseFloor(ideal, labelled).has_value());
+    }
+
+    void classesFainterThanTheNoiseFloorAreAir() {
+        // A class whose ideal tap presses a taxel, but less than the floor, cannot be told from
+        // air: it is air at that floor and an edge below it; the rest of the map stays.
+        ClassSet cs;
+        TapSpec tap;
+        tap.contactThreshold = 250.0;
+        const auto ideal = idealClassContacts(model(), cs, tap, 3.0);
+        int faint = -1;
+        for (int c = 0; c < cs.classCount(); ++c)
+            if (ideal[c].peak > 0.5 && ideal[c].peak < 10.0 && !ideal[c].fullyOnObject &&
+                (faint < 0 || ideal[c].peak < ideal[faint].peak))
+                faint = c;
+        QVERIFY2(faint >= 0, "the tilted tip should graze an edge faintly at some class");
+        const auto below = classRegions(ideal, 0.5 * ideal[faint].peak);
+        const auto above = classRegions(ideal, ideal[faint].peak + 0.01);
+        QCOMPARE(below[faint], Region::Edge);
+        QCOMPARE(above[faint], Region::Air);
+        for (int c = 0; c < cs.classCount(); ++c)
+            if (ideal[c].peak > ideal[faint].peak + 0.01) QCOMPARE(above[c], below[c]);
+        QCOMPARE(classRegions(ideal, tap.noiseFloor), computeClassRegions(model(), cs, tap, 3.0));
+    }
 };
 
 QTEST_APPLESS_MAIN(TestContactModel)
