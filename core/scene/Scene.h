@@ -35,7 +35,9 @@ struct TapSpec {
     double settle_s = 1.5;  ///< pause after the tap window before the next move
     int samples = 50;       ///< T
     double sampleRate_hz = 50.0;
-    double noiseFloor = 1.0;  ///< counts below which a taxel reads as no contact
+    /// Counts below which a taxel reads as no contact: the least floor a run uses; it measures the
+    /// tap-level floor from its own taps in the air (core/validation/ClassRegions.h).
+    double noiseFloor = 1.0;
 
     double window_s() const { return samples / sampleRate_hz; }
     /// Time the worst-case stroke (full stroke down, hold, back up) takes.
