@@ -139,10 +139,11 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         {"A  angle error", maxAngle, true, "angle error (deg)"},
         {"B  position error", maxPosition, false, "position error (mm, top colour = at or above)"}};
     startFigure(plot, QString("Figure 6 - offline validation over %1 test taps: angle error %2 "
-                              "deg, position error %3 mm")
+                              "deg, position error %3 mm; noise floor %4 counts")
                           .arg(r.validation.percepts.size())
                           .arg(r.validation.angleError_deg, 0, 'f', 1)
-                          .arg(r.validation.positionError_mm, 0, 'f', 2));
+                          .arg(r.validation.positionError_mm, 0, 'f', 2)
+                          .arg(r.noiseFloor_counts, 0, 'f', 1));
     QCPLayoutGrid* upper = addFigureRow(plot, 1.0);
     for (int h = 0; h < 2; ++h) {
         auto* rect =
