@@ -1,5 +1,6 @@
 // The ideal fingertip physics: what comes out of geometry alone.
 #include <QtTest>
+#include <limits>
 #include <numeric>
 
 #include "core/fingertip/FingertipContactModel.h"
@@ -142,6 +143,7 @@ private slots:
         QTest::newRow("no taps") << 0;
         QTest::newRow("only pressed taps") << 1;
         QTest::newRow("empty taps and unknown classes") << 2;
+        QTest::newRow("unreadable taps in the air") << 3;
     }
     void noiseFloorNeedsTapsThatTouchedNothing() {
         QFETCH(int, which);
@@ -149,8 +151,9 @@ private slots:
         TapSpec tap;
         tap.contactThreshold = 250.0;
         const auto ideal = idealClassContacts(model(), cs, tap, 3.0);
-        Tap pressed(50, 12), empty;
+        Tap pressed(50, 12), empty, unreadable(50, 12);
         pressed.at(0, 0) = 100.0;
+        for (double& v : unreadable.samples) v = std::numeric_limits<double>::quiet_NaN();
         std::vector<ClassTap> labelled;
         if (which == 1) labelled = {{cs.classOf(0, 9), &pressed}, {cs.classOf(2, 1), &pressed}};
         if (which == 2)
@@ -158,6 +161,8 @@ private slots:
                         {-1, &pressed},
                         {cs.classCount(), &pressed},
                         {cs.classOf(0, 18), nullptr}};
+        if (which == 3)
+            labelled = {{cs.classOf(0, 18), &unreadable}, {cs.classOf(0, 17), &unreadable}};
         QVERIFY(!measureNoiseFloor(ideal, labelled).has_value());
     }
 
