@@ -68,6 +68,11 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
         spec.mode = parseMode(t, "mode", "active");
         spec.object = parseObject(t.object("object"));
         spec.label = t.text("label", spec.object.shape);
+        if (spec.label.empty() || spec.label.find_first_of(",\"\r\n") != std::string::npos)
+            t.fail("label",
+                   "'" + spec.label +
+                       "' cannot name a trial: labels go into the run's CSV files as they are, so "
+                       "give a name without commas, quotes or line breaks");
         spec.repeats = t.integer("repeats", 1, 1000, 1);
         if (const std::string problem = objectPlacementProblem(spec.object, e.scene);
             !problem.empty())

@@ -194,6 +194,10 @@ private slots:
                                          << "neither 'scene' nor 'extends'";
         const QString trials =
             R"("following": {"trials": [{"object": {"shape": "rectangle", "offset_mm": [150, 150]}}]}, )";
+        QTest::newRow("trial label with a comma")
+            << head +
+                   R"("following": {"trials": [{"label": "L, turned", "object": {"shape": "rectangle", "offset_mm": [150, 150]}}]}})"
+            << "at /following/trials/0/label: 'L, turned' cannot name a trial";
         QTest::newRow("sweep: empty thresholds")
             << head + R"("sweeps": {"perception": {"belief_thresholds": []}}})"
             << "non-empty list";
