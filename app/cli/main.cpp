@@ -1,7 +1,7 @@
 // activetouch-cli: the headless runner (DESIGN.md §4).
 //   activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--no-figures]
 //   activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>] [--no-figures]
-//   activetouch-cli check <file.json>
+//   activetouch-cli check <file.json | taps.csv | following_taps.csv>
 // Exit codes: 0 ok, 1 the run failed, 2 bad input.
 #include <QApplication>
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
@@ -21,6 +22,7 @@
 #include "app/run/ExperimentRun.h"
 #include "app/run/SeedRates.h"
 #include "core/experiment/Experiment.h"
+#include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
 #include "core/rig/Rig.h"
 #include "devices/simulated/SimulatedWorld.h"
@@ -49,9 +51,10 @@ void printHelp() {
         "      seed, appended as each finishes), <dir>/rates.json and\n"
         "      <dir>/figures/seed_rates.{png,pdf,svg} (each seed's outcome and the rates so far\n"
         "      with their intervals). --out defaults to results/<experiment name>_seeds.\n"
-        "  activetouch-cli check <file.json | taps.csv>\n"
-        "      Validates an experiment, a scene or a tap recording and says what is wrong, if "
-        "anything.\n"
+        "  activetouch-cli check <file.json | taps.csv | following_taps.csv>\n"
+        "      Validates an experiment, a scene or a recording (training taps, or following\n"
+        "      taps: a run stopped while writing leaves every finished tap whole and the cut\n"
+        "      is reported) and says what is wrong, if anything.\n"
         "  activetouch-cli --help\n\n"
         "Exit codes: 0 ok, 1 the run failed, 2 bad input (the message names the file, the place "
         "and the problem).\n");
@@ -305,8 +308,22 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
 int commandCheck(const std::vector<std::string>& args) {
     if (args.size() != 1) return usageError("check takes exactly one file");
     if (args[0].size() > 4 && args[0].substr(args[0].size() - 4) == ".csv") {
-        // A tap recording (data/taps.csv): every row, column and value checked.
+        // A tap recording (data/taps.csv) or a following recording (data/following_taps.csv),
+        // told apart by their header: every row, column and value checked.
         try {
+            std::ifstream in(args[0]);
+            std::string header;
+            std::getline(in, header);
+            if (header.rfind("shape,mode,trial,", 0) == 0) {
+                const auto c = checkFollowingRecording(args[0]);
+                std::printf("%s: ok (%d taps over %d trials, %d samples each)%s%s\n",
+                            args[0].c_str(), c.taps, c.trials, c.samplesPerTap,
+                            c.cutOff.empty() ? ""
+                                             : "; cut short at the end, as by a run "
+                                               "stopped while writing: ",
+                            c.cutOff.c_str());
+                return kOk;
+            }
             const auto taps = readTapCsv(args[0], ClassSet{});
             std::printf("%s: ok (%zu taps)\n", args[0].c_str(), taps.size());
             return kOk;

@@ -1,19 +1,54 @@
 #include "core/io/FollowingRecording.h"
 
+#include <fstream>
+
 #include "core/common/InputError.h"
+#include "core/io/Csv.h"
 
 namespace activetouch {
+namespace {
+
+const char* kFixedColumns[] = {"shape",
+                               "mode",
+                               "trial",
+                               "tap",
+                               "pose_x_mm",
+                               "pose_y_mm",
+                               "robot_time_s",
+                               "ending",
+                               "contact",
+                               "shape_class",
+                               "orientation_deg",
+                               "position",
+                               "offset_mm",
+                               "posterior",
+                               "rule",
+                               "move_x_mm",
+                               "move_y_mm",
+                               "progress_mm",
+                               "contour_distance_mm",
+                               "sample"};
+constexpr int kFixed = 20;
+enum Column {
+    kShape,
+    kMode,
+    kTrial,
+    kTap,
+    kEnding = 7,
+    kContact,
+    kShapeClass,
+    kRule = 14,
+    kSample = 19
+};
+
+}  // namespace
 
 FollowingRecording::FollowingRecording(const std::string& path, int taxels) : taxels_(taxels) {
     file_ = std::fopen(path.c_str(), "w");
     if (!file_)
         throw InputError(path, "",
                          "cannot create the file; check the output folder exists and is writable");
-    std::fprintf(
-        file_,
-        "shape,mode,trial,tap,pose_x_mm,pose_y_mm,robot_time_s,ending,contact,shape_class,"
-        "orientation_deg,position,"
-        "offset_mm,posterior,rule,move_x_mm,move_y_mm,progress_mm,contour_distance_mm,sample");
+    for (int i = 0; i < kFixed; ++i) std::fprintf(file_, "%s%s", i ? "," : "", kFixedColumns[i]);
     for (int k = 0; k < taxels; ++k) std::fprintf(file_, ",taxel_%d", k);
     std::fputc('\n', file_);
     std::fflush(file_);
@@ -41,6 +76,122 @@ void FollowingRecording::append(const std::string& label, FollowingMode mode, in
         std::fputc('\n', file_);
     }
     std::fflush(file_);
+}
+
+FollowingRecordingContents checkFollowingRecording(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(path, "", "cannot open the file; check the path");
+    std::string line;
+    if (!std::getline(in, line))
+        throw InputError(path, "line 1", "the file is empty; expected a header row");
+    const auto header = splitCsvLine(line);
+    const int taxels = static_cast<int>(header.size()) - kFixed;
+    bool ok = taxels >= 1;
+    for (int i = 0; ok && i < kFixed; ++i)
+        ok = header[static_cast<std::size_t>(i)] == kFixedColumns[i];
+    for (int k = 0; ok && k < taxels; ++k)
+        ok = header[static_cast<std::size_t>(kFixed + k)] == "taxel_" + std::to_string(k);
+    if (!ok)
+        throw InputError(path, "line 1",
+                         "unexpected columns; a following recording starts with shape,mode,trial,"
+                         "tap,... and ends with sample,taxel_0,...,taxel_11");
+
+    FollowingRecordingContents contents;
+    int lineNo = 1;
+    // A line that broke off is only accepted as the file's last: it is held here until then.
+    std::string brokenLine;
+    int brokenAt = 0;
+    // The tap being read: its trial, its index and how many samples came so far.
+    std::string trialKey;
+    int tapIndex = -1, samples = 0;
+    auto at = [&](const char* column) {
+        return "line " + std::to_string(lineNo) + ", column " + column;
+    };
+    auto finishTap = [&]() {
+        if (samples == 0) return;
+        if (contents.samplesPerTap == 0) contents.samplesPerTap = samples;
+        if (samples != contents.samplesPerTap)
+            throw InputError(path, "line " + std::to_string(lineNo - 1),
+                             "the tap above has " + std::to_string(samples) +
+                                 " samples, the first tap " +
+                                 std::to_string(contents.samplesPerTap));
+        ++contents.taps;
+    };
+    while (std::getline(in, line)) {
+        ++lineNo;
+        if (line.empty() || line == "\r") continue;
+        if (brokenAt)
+            throw InputError(path, "line " + std::to_string(brokenAt),
+                             brokenLine + "; only the file's last line may be cut short");
+        const auto f = splitCsvLine(line);
+        if (static_cast<int>(f.size()) != kFixed + taxels) {
+            brokenAt = lineNo;
+            brokenLine = "has " + std::to_string(f.size()) + " fields, the header has " +
+                         std::to_string(kFixed + taxels);
+            continue;
+        }
+        for (int i = 0; i < kFixed + taxels; ++i) {
+            if (i == kShape || i == kMode || i == kEnding || i == kShapeClass || i == kRule)
+                continue;
+            const std::string column =
+                i < kFixed ? kFixedColumns[i] : header[static_cast<std::size_t>(i)];
+            const double v = csvNumber(f[static_cast<std::size_t>(i)], path, lineNo, column);
+            if (i >= kFixed && (v < 0.0 || v > 255.0))
+                throw InputError(path, at(column.c_str()),
+                                 "pressure " + f[static_cast<std::size_t>(i)] +
+                                     " is outside the fingertip's 0..255 counts");
+        }
+        if (f[kMode] != "active" && f[kMode] != "passive")
+            throw InputError(path, at("mode"), "'" + f[kMode] + "' is neither active nor passive");
+        if (f[kEnding] != "reflex" && f[kEnding] != "stroke_limit")
+            throw InputError(path, at("ending"),
+                             "'" + f[kEnding] + "' is neither reflex nor stroke_limit");
+        if (f[kContact] != "0" && f[kContact] != "1")
+            throw InputError(path, at("contact"), "'" + f[kContact] + "' is neither 0 nor 1");
+        bool knownRule = false;
+        for (const auto& r : decisionRules()) knownRule = knownRule || f[kRule] == r.name;
+        if (!knownRule)
+            throw InputError(path, at("rule"),
+                             "'" + f[kRule] + "' is not a rule of the decision table");
+        const std::string key = f[kShape] + "," + f[kMode] + "," + f[kTrial];
+        const int tap = static_cast<int>(csvNumber(f[kTap], path, lineNo, "tap"));
+        const int sample = static_cast<int>(csvNumber(f[kSample], path, lineNo, "sample"));
+        if (sample == 0) {
+            finishTap();
+            const int expected = key == trialKey ? tapIndex + 1 : 0;
+            if (tap != expected)
+                throw InputError(path, at("tap"),
+                                 "tap " + f[kTap] + " follows " +
+                                     (key == trialKey ? "tap " + std::to_string(tapIndex)
+                                                      : std::string("another trial")) +
+                                     "; a trial's taps run 0, 1, 2, ... in order");
+            if (key != trialKey) ++contents.trials;
+            trialKey = key;
+            tapIndex = tap;
+            samples = 0;
+        } else if (key != trialKey || tap != tapIndex || sample != samples) {
+            throw InputError(path, at("sample"),
+                             "sample " + f[kSample] +
+                                 " does not continue the tap above it; each tap's samples run 0, "
+                                 "1, 2, ... in order");
+        }
+        ++samples;
+    }
+    // The last tap: whole, or cut short by a run that stopped while writing it.
+    if (samples > 0 && contents.samplesPerTap > 0 && samples < contents.samplesPerTap) {
+        contents.cutOff = "the last tap (" + trialKey + ", tap " + std::to_string(tapIndex) +
+                          ") has " + std::to_string(samples) + " of " +
+                          std::to_string(contents.samplesPerTap) + " samples";
+        if (tapIndex == 0) --contents.trials;
+    } else {
+        ++lineNo;
+        finishTap();
+    }
+    if (brokenAt)
+        contents.cutOff = (contents.cutOff.empty() ? std::string() : contents.cutOff + "; ") +
+                          "line " + std::to_string(brokenAt) + " is cut off (" + brokenLine + ")";
+    if (contents.taps == 0) throw InputError(path, "line 2", "the file holds no whole tap");
+    return contents;
 }
 
 }  // namespace activetouch

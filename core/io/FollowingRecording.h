@@ -25,4 +25,21 @@ private:
     int taxels_;
 };
 
+/// What a recording holds, as checkFollowingRecording found it.
+struct FollowingRecordingContents {
+    int taps = 0;           ///< whole taps
+    int trials = 0;         ///< (shape, mode, trial) runs with at least one whole tap
+    int samplesPerTap = 0;  ///< of every whole tap
+    /// Empty, or what the end of the file lost: a run stopped while writing a tap leaves the
+    /// finished taps whole and that one tap cut short.
+    std::string cutOff;
+};
+
+/// Reads a recording written by FollowingRecording and checks every row: the columns, numbers
+/// (finite; pressures within 0..255 counts), mode, ending, rule, and that each trial's taps run
+/// 0, 1, 2, ... with their samples 0, 1, 2, ... and as many samples as every other tap. Only the
+/// end of the file may be cut short (reported, not an error). Throws InputError naming the file,
+/// the line, the column and the problem.
+FollowingRecordingContents checkFollowingRecording(const std::string& path);
+
 }  // namespace activetouch

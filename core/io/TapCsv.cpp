@@ -1,10 +1,9 @@
 #include "core/io/TapCsv.h"
 
-#include <charconv>
-#include <cmath>
 #include <fstream>
 
 #include "core/common/InputError.h"
+#include "core/io/Csv.h"
 
 namespace activetouch {
 namespace {
@@ -13,20 +12,6 @@ const char* kFixedColumns[] = {
     "set",       "class",     "orientation_deg", "position", "true_offset_mm",
     "pose_x_mm", "pose_y_mm", "robot_time_s",    "ending",   "sample"};
 constexpr int kFixed = 10;
-
-std::vector<std::string> splitCsv(const std::string& line) {
-    std::vector<std::string> out;
-    std::size_t start = 0;
-    while (true) {
-        const auto comma = line.find(',', start);
-        out.push_back(
-            line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-        if (comma == std::string::npos) break;
-        start = comma + 1;
-    }
-    if (!out.empty() && !out.back().empty() && out.back().back() == '\r') out.back().pop_back();
-    return out;
-}
 
 }  // namespace
 
@@ -64,7 +49,7 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     std::string line;
     if (!std::getline(in, line))
         throw InputError(path, "line 1", "the file is empty; expected a header row");
-    const auto header = splitCsv(line);
+    const auto header = splitCsvLine(line);
     int taxels = static_cast<int>(header.size()) - kFixed;
     bool ok = taxels >= 1;
     for (int i = 0; ok && i < kFixed; ++i)
@@ -82,15 +67,7 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     std::vector<std::vector<double>> samples;
     int lineNo = 1;
     auto number = [&](const std::string& field, const std::string& column) {
-        double v = 0.0;
-        const auto res = std::from_chars(field.data(), field.data() + field.size(), v);
-        if (res.ec != std::errc() || res.ptr != field.data() + field.size())
-            throw InputError(path, "line " + std::to_string(lineNo) + ", column " + column,
-                             "'" + field + "' is not a number");
-        if (!std::isfinite(v))
-            throw InputError(path, "line " + std::to_string(lineNo) + ", column " + column,
-                             "'" + field + "' is not a finite number");
-        return v;
+        return csvNumber(field, path, lineNo, column);
     };
     auto finishTap = [&]() {
         if (taps.empty()) return;
@@ -104,7 +81,7 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     while (std::getline(in, line)) {
         ++lineNo;
         if (line.empty() || line == "\r") continue;
-        const auto f = splitCsv(line);
+        const auto f = splitCsvLine(line);
         if (static_cast<int>(f.size()) != kFixed + taxels)
             throw InputError(path, "line " + std::to_string(lineNo),
                              "has " + std::to_string(f.size()) + " fields, the header has " +

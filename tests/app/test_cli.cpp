@@ -261,6 +261,12 @@ private slots:
             ++rows;
         }
         QVERIFY(complete > 100);
+        // The workbench's own check reads the same: every finished tap whole, the cut reported.
+        const Outcome checked = runCli({"check", recording.fileName()});
+        QCOMPARE(checked.exitCode, 0);
+        QVERIFY2(checked.out.contains(QString("ok (%1 taps").arg(complete)) ||
+                     checked.out.contains(QString("ok (%1 taps").arg(complete - 1)),
+                 qPrintable(checked.out));
     }
 
     void checkReadsTapRecordings() {

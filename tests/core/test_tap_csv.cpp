@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/common/InputError.h"
+#include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
 
 using namespace activetouch;
@@ -49,6 +50,24 @@ class TestTapCsv : public QObject {
         const std::string bad = dir_.filePath("bad.csv").toStdString();
         std::ofstream(bad) << out.str();
         return bad;
+    }
+
+    /// Two trials of a following recording: three taps, then two.
+    std::string writeFollowing() {
+        const std::string path = dir_.filePath("following.csv").toStdString();
+        FollowingRecording w(path, 12);
+        for (int trial = 1; trial <= 2; ++trial)
+            for (int i = 0; i < 4 - trial; ++i) {
+                FollowedTap t;
+                t.record = someTaps()[static_cast<std::size_t>(i % 3)].record;
+                t.percept.region = Region::Edge;
+                t.percept.orientationDeg = 270;
+                t.percept.position = 9;
+                t.decision = {RuleId::FollowInRange, {2.0, 0.0}, {}};
+                t.contact = true;
+                w.append("rectangle", FollowingMode::Active, trial, i, t);
+            }
+        return path;
     }
 
 private slots:
@@ -111,12 +130,84 @@ private slots:
         }
     }
 
+    void followingRecordingsAreCheckedWhole() {
+        const auto c = checkFollowingRecording(writeFollowing());
+        QCOMPARE(c.taps, 5);
+        QCOMPARE(c.trials, 2);
+        QCOMPARE(c.samplesPerTap, 50);
+        QVERIFY(c.cutOff.empty());
+    }
+
+    void followingRecordingCutShortKeepsItsFinishedTaps() {
+        // A run stopped while writing leaves whole taps and a last one cut short, maybe in the
+        // middle of a line: every finished tap is read and the cut is reported.
+        const std::string path = writeFollowing();
+        std::ifstream in(path);
+        const std::string whole((std::istreambuf_iterator<char>(in)), {});
+        const std::size_t fourthTap = 1 + 3 * 50 + 20;  // lines before: header, 3 taps, 20 rows
+        std::size_t at = 0;
+        for (std::size_t n = 0; n < fourthTap; ++n) at = whole.find('\n', at) + 1;
+        const std::string cut = dir_.filePath("cut.csv").toStdString();
+        std::ofstream(cut) << whole.substr(0, at + 30);
+        const auto c = checkFollowingRecording(cut);
+        QCOMPARE(c.taps, 3);
+        QCOMPARE(c.trials, 1);
+        QVERIFY2(QString::fromStdString(c.cutOff).contains("has 20 of 50 samples"),
+                 c.cutOff.c_str());
+        QVERIFY2(QString::fromStdString(c.cutOff).contains("is cut off"), c.cutOff.c_str());
+    }
+
+    void brokenFollowingRecordingsNameTheLineAndProblem_data() {
+        QTest::addColumn<int>("line");
+        QTest::addColumn<QString>("replacement");
+        QTest::addColumn<QString>("problem");
+        const QString row =
+            "rectangle,active,1,0,100,50,0,reflex,1,lower edge,270,9,0,0,follow,"
+            "2,0,0,0,%1,%2,0,0,0,0,0,0,0,0,0,0,0";
+        QTest::newRow("wrong columns") << 1 << "shape,mode,x"
+                                       << "unexpected columns";
+        QTest::newRow("short line inside") << 30 << "rectangle,active,1"
+                                           << "only the file's last line may be cut short";
+        QTest::newRow("not a number") << 3 << row.arg(1).arg("a") << "'a' is not a number";
+        QTest::newRow("NaN") << 3 << row.arg(1).arg("nan") << "not a finite number";
+        QTest::newRow("above 255") << 3 << row.arg(1).arg(300) << "outside the fingertip's";
+        QTest::newRow("sample out of order") << 3 << row.arg(5).arg(0) << "does not continue";
+        QTest::newRow("bad mode") << 2 << QString(row.arg(0).arg(0)).replace(",active,", ",eager,")
+                                  << "neither active";
+        QTest::newRow("bad rule") << 2 << QString(row.arg(0).arg(0)).replace(",follow,", ",wander,")
+                                  << "not a rule of the decision table";
+        QTest::newRow("bad contact")
+            << 2 << QString(row.arg(0).arg(0)).replace(",reflex,1,", ",reflex,2,")
+            << "neither 0 nor 1";
+        QTest::newRow("tap out of order")
+            << 52 << QString(row.arg(0).arg(0)).replace("active,1,0,", "active,1,7,")
+            << "a trial's taps run 0, 1, 2";
+    }
+    void brokenFollowingRecordingsNameTheLineAndProblem() {
+        QFETCH(int, line);
+        QFETCH(QString, replacement);
+        QFETCH(QString, problem);
+        const std::string bad = corrupt(writeFollowing(), line, replacement.toStdString());
+        try {
+            checkFollowingRecording(bad);
+            QFAIL("the broken file was accepted");
+        } catch (const InputError& e) {
+            const QString m = e.what();
+            QVERIFY2(m.contains("bad.csv"), qPrintable(m));
+            QVERIFY2(m.contains(QString("line %1").arg(line)), qPrintable(m));
+            QVERIFY2(m.contains(problem), qPrintable(m));
+        }
+    }
+
     void emptyAndMissingFiles() {
         const std::string empty = dir_.filePath("empty.csv").toStdString();
         std::ofstream(empty).close();
         QVERIFY_THROWS_EXCEPTION(InputError, readTapCsv(empty, classes_));
         QVERIFY_THROWS_EXCEPTION(InputError,
                                  readTapCsv(dir_.filePath("missing.csv").toStdString(), classes_));
+        QVERIFY_THROWS_EXCEPTION(InputError, checkFollowingRecording(empty));
+        QVERIFY_THROWS_EXCEPTION(
+            InputError, checkFollowingRecording(dir_.filePath("missing.csv").toStdString()));
     }
 };
 

@@ -1,0 +1,35 @@
+#include "core/io/Csv.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "core/common/InputError.h"
+
+namespace activetouch {
+
+std::vector<std::string> splitCsvLine(const std::string& line) {
+    std::vector<std::string> out;
+    std::size_t start = 0;
+    while (true) {
+        const auto comma = line.find(',', start);
+        out.push_back(
+            line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    if (!out.empty() && !out.back().empty() && out.back().back() == '\r') out.back().pop_back();
+    return out;
+}
+
+double csvNumber(const std::string& field, const std::string& path, int line,
+                 const std::string& column) {
+    double v = 0.0;
+    const auto res = std::from_chars(field.data(), field.data() + field.size(), v);
+    const std::string place = "line " + std::to_string(line) + ", column " + column;
+    if (res.ec != std::errc() || res.ptr != field.data() + field.size())
+        throw InputError(path, place, "'" + field + "' is not a number");
+    if (!std::isfinite(v)) throw InputError(path, place, "'" + field + "' is not a finite number");
+    return v;
+}
+
+}  // namespace activetouch
