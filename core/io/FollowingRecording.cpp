@@ -1,6 +1,7 @@
 #include "core/io/FollowingRecording.h"
 
 #include <fstream>
+#include <vector>
 
 #include "core/common/InputError.h"
 #include "core/io/Csv.h"
@@ -107,11 +108,12 @@ FollowingRecordingContents checkFollowingRecording(const std::string& path) {
     auto at = [&](const char* column) {
         return "line " + std::to_string(lineNo) + ", column " + column;
     };
+    int lastRow = 0;  // the line of the tap's last sample so far
     auto finishTap = [&]() {
         if (samples == 0) return;
         if (contents.samplesPerTap == 0) contents.samplesPerTap = samples;
         if (samples != contents.samplesPerTap)
-            throw InputError(path, "line " + std::to_string(lineNo - 1),
+            throw InputError(path, "line " + std::to_string(lastRow),
                              "the tap above has " + std::to_string(samples) +
                                  " samples, the first tap " +
                                  std::to_string(contents.samplesPerTap));
@@ -130,13 +132,16 @@ FollowingRecordingContents checkFollowingRecording(const std::string& path) {
                          std::to_string(kFixed + taxels);
             continue;
         }
+        std::vector<double> v(f.size(), 0.0);
         for (int i = 0; i < kFixed + taxels; ++i) {
             if (i == kShape || i == kMode || i == kEnding || i == kShapeClass || i == kRule)
                 continue;
             const std::string column =
                 i < kFixed ? kFixedColumns[i] : header[static_cast<std::size_t>(i)];
-            const double v = csvNumber(f[static_cast<std::size_t>(i)], path, lineNo, column);
-            if (i >= kFixed && (v < 0.0 || v > 255.0))
+            v[static_cast<std::size_t>(i)] =
+                csvNumber(f[static_cast<std::size_t>(i)], path, lineNo, column);
+            if (i >= kFixed &&
+                (v[static_cast<std::size_t>(i)] < 0.0 || v[static_cast<std::size_t>(i)] > 255.0))
                 throw InputError(path, at(column.c_str()),
                                  "pressure " + f[static_cast<std::size_t>(i)] +
                                      " is outside the fingertip's 0..255 counts");
@@ -154,8 +159,7 @@ FollowingRecordingContents checkFollowingRecording(const std::string& path) {
             throw InputError(path, at("rule"),
                              "'" + f[kRule] + "' is not a rule of the decision table");
         const std::string key = f[kShape] + "," + f[kMode] + "," + f[kTrial];
-        const int tap = static_cast<int>(csvNumber(f[kTap], path, lineNo, "tap"));
-        const int sample = static_cast<int>(csvNumber(f[kSample], path, lineNo, "sample"));
+        const int tap = static_cast<int>(v[kTap]), sample = static_cast<int>(v[kSample]);
         if (sample == 0) {
             finishTap();
             const int expected = key == trialKey ? tapIndex + 1 : 0;
@@ -176,6 +180,7 @@ FollowingRecordingContents checkFollowingRecording(const std::string& path) {
                                  "1, 2, ... in order");
         }
         ++samples;
+        lastRow = lineNo;
     }
     // The last tap: whole, or cut short by a run that stopped while writing it.
     if (samples > 0 && contents.samplesPerTap > 0 && samples < contents.samplesPerTap) {
@@ -184,7 +189,6 @@ FollowingRecordingContents checkFollowingRecording(const std::string& path) {
                           std::to_string(contents.samplesPerTap) + " samples";
         if (tapIndex == 0) --contents.trials;
     } else {
-        ++lineNo;
         finishTap();
     }
     if (brokenAt)
