@@ -1,6 +1,7 @@
 #include "core/io/JsonFields.h"
 
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 namespace activetouch {
@@ -72,7 +73,7 @@ void JsonFields::rejectUnknownKeys(std::initializer_list<const char*> known) con
 
 static std::string rangeText(double lo, double hi) {
     std::ostringstream ss;
-    ss << "between " << lo << " and " << hi;
+    ss << std::setprecision(15) << "between " << lo << " and " << hi;
     return ss.str();
 }
 
@@ -100,9 +101,12 @@ int JsonFields::integer(const std::string& key, long lo, long hi) const {
     if (!v.is_number_integer())
         fail(key, "expected a whole number " + rangeText(double(lo), double(hi)) + ", found " +
                       describeJson(v));
-    const long n = v.get<long>();
-    if (n < lo || n > hi)
-        fail(key, "'" + key + "' is " + std::to_string(n) + ", outside the allowed range (" +
+    // A whole number beyond what a long holds arrives as unsigned; it is out of range either way.
+    const bool beyondLong =
+        v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(hi);
+    const long n = beyondLong ? hi : v.get<long>();
+    if (beyondLong || n < lo || n > hi)
+        fail(key, "'" + key + "' is " + describeJson(v) + ", outside the allowed range (" +
                       rangeText(double(lo), double(hi)) + ")");
     return static_cast<int>(n);
 }

@@ -104,6 +104,14 @@ private slots:
         QTest::newRow("wrong type")
             << swap("\"width_mm\": 48", "\"width_mm\": \"wide\"") << "/object/width_mm"
             << "expected a number";
+        // The number as written and the range in full, not as the wrapped value or 2.1e+09.
+        QTest::newRow("seed beyond any whole number")
+            << swap("\"fingertip\"", "\"seed\": 18446744073709551615, \"fingertip\"") << "/seed"
+            << "'seed' is 18446744073709551615, outside the allowed range (between 0 and "
+               "2147483647)";
+        QTest::newRow("negative seed")
+            << swap("\"fingertip\"", "\"seed\": -3, \"fingertip\"") << "/seed"
+            << "'seed' is -3, outside the allowed range";
         QTest::newRow("missing shape") << swap("\"shape\": \"rectangle\",", "") << "/object/shape"
                                        << "missing required text 'shape'";
         QTest::newRow("self-intersecting polygon")
