@@ -81,6 +81,22 @@ QCPLegend* addLegend(QCPAxisRect* rect) {
     return legend;
 }
 
+PanelWithLegend addPanelWithLegendBelow(QCPLayoutGrid* grid, int row, int column, int perLine) {
+    auto* cell = new QCPLayoutGrid;
+    grid->addElement(row, column, cell);
+    auto* rect = new QCPAxisRect(grid->parentPlot());
+    cell->addElement(0, 0, rect);
+    auto* legend = new QCPLegend;
+    cell->addElement(1, 0, legend);
+    cell->setRowStretchFactor(1, 0.001);
+    legend->setLayer("legend");
+    legend->setFont(QFont("Sans", 8));
+    legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
+    legend->setWrap(perLine);
+    legend->setMargins(QMargins(4, 1, 4, 1));
+    return {rect, legend};
+}
+
 QCPGraph* addSeries(QCPAxisRect* rect, QCPLegend* legend, const QString& name,
                     const QVector<double>& x, const QVector<double>& y, QColor colour, bool lines) {
     auto* g =

@@ -45,6 +45,14 @@ QCPAxisRect* addTitledPanel(QCPLayoutGrid* grid, int column, const QString& titl
 /// A legend inside the panel's top right corner.
 QCPLegend* addLegend(QCPAxisRect* rect);
 
+/// A panel with its legend in a row of its own under it, `perLine` entries to a line (0: all on
+/// one line): for panels whose data may fill any corner, where an inside legend would hide some.
+struct PanelWithLegend {
+    QCPAxisRect* rect;
+    QCPLegend* legend;
+};
+PanelWithLegend addPanelWithLegendBelow(QCPLayoutGrid* grid, int row, int column, int perLine);
+
 /// A graph of (x, y) in the panel: points joined by lines unless `lines` is false; listed in
 /// `legend` if one is given.
 QCPGraph* addSeries(QCPAxisRect* rect, QCPLegend* legend, const QString& name,

@@ -120,7 +120,14 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
             for (int ix = 0; ix < h.bins; ++ix) map->data()->setCell(ix, iy, h.at(ix, iy));
         map->setInterpolate(false);
         map->setColorScale(scale);
+        // Square bins: the axes widen beyond the histogram to fit the panel, so ticks are labelled
+        // only where there are bins.
         setEqualAspectRanges(rect, QCPRange(0, h.bins), QCPRange(0, h.bins));
+        QSharedPointer<QCPAxisTickerText> ticks(new QCPAxisTickerText);
+        const int step = std::max(1, h.bins / 4);
+        for (int b = 0; b <= h.bins; b += step) ticks->addTick(b, QString::number(b));
+        rect->axis(QCPAxis::atBottom)->setTicker(ticks);
+        rect->axis(QCPAxis::atLeft)->setTicker(ticks);
     };
     int row = 0;
     for (const auto& [shape, trials] : byShape) {
@@ -134,31 +141,27 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
             auto* pr = new QCPAxisRect(&plot);
             grid->addElement(row, 1 + static_cast<int>(k), pr);
             const auto& rec = trials[k]->recognition;
-            heat(pr, rec.raw,
-                 QString("ACF%1%2 -> %3 (smoothed: %4)")
-                     .arg(trials[k]->trial)
-                     .arg(trials[k]->result.end == TrialEnd::Completed ? "" : " (incomplete)",
-                          QString::fromStdString(rec.predicted),
-                          QString::fromStdString(rec.predictedSmoothed)));
+            // What the paper's rule named; the smoothed rule's name on a line of its own when
+            // the two disagree, so the title stays as narrow as its panel.
+            QString title =
+                QString("ACF%1%2 -> %3")
+                    .arg(trials[k]->trial)
+                    .arg(trials[k]->result.end == TrialEnd::Completed ? "" : " (incomplete)",
+                         QString::fromStdString(rec.predicted));
+            if (rec.predictedSmoothed != rec.predicted)
+                title +=
+                    QString("\nsmoothed: %1").arg(QString::fromStdString(rec.predictedSmoothed));
+            heat(pr, rec.raw, title);
         }
         // Distances to every template, one bar group per trial.
         // The legend goes in a row of its own under the bars: inside the panel it would hide the
         // tallest bars, which are the ones a reader compares.
-        auto* cell = new QCPLayoutGrid;
-        grid->addElement(row, 1 + maxTrials, cell);
-        auto* dr = new QCPAxisRect(&plot);
-        cell->addElement(0, 0, dr);
-        setPanelTitle(dr, "Euclidean distance to each template (paper's rule)");
-        dr->axis(QCPAxis::atLeft)->setLabel("distance");
+        const auto [dr, barLegend] =
+            addPanelWithLegendBelow(grid, row, 1 + maxTrials, /*perLine=*/0);
+        setPanelTitle(dr, "distances (paper's rule)");
+        dr->axis(QCPAxis::atLeft)->setLabel("Euclidean distance");
         QSharedPointer<QCPAxisTickerText> ticker(new QCPAxisTickerText);
         auto* group = new QCPBarsGroup(&plot);
-        auto* barLegend = new QCPLegend;
-        cell->addElement(1, 0, barLegend);
-        cell->setRowStretchFactor(1, 0.001);
-        barLegend->setLayer("legend");
-        barLegend->setFont(QFont("Sans", 8));
-        barLegend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
-        barLegend->setMargins(QMargins(4, 1, 4, 1));
         double top = 0.0;
         for (std::size_t k = 0; k < trials.size(); ++k) {
             auto* bars = new QCPBars(dr->axis(QCPAxis::atBottom), dr->axis(QCPAxis::atLeft));

@@ -54,7 +54,8 @@ void addBand(QCPAxisRect* rect, QCPLegend* legend, const QString& name, const Ru
 
 }  // namespace
 
-bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QString& experiment) {
+bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QString& experiment,
+                          bool stacked) {
     const int n = static_cast<int>(rates.seeds.size());
     const QString range =
         n == 0 ? QString()
@@ -62,11 +63,17 @@ bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QStri
     startFigure(plot, QString("%1: rates over %2").arg(experiment, range));
     if (n == 0) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
+    QCPLayoutGrid* below = stacked ? addFigureRow(plot, 1.4) : grid;
     auto* each = addTitledPanel(grid, 0, "each seed", "seed", "share of the seed's trials (%)");
-    auto* sofar = addTitledPanel(grid, 1, "rates over the seeds run so far, 95 % intervals",
-                                 "seeds run", "rate (%)");
-    grid->setColumnStretchFactor(0, 1.0);
-    grid->setColumnStretchFactor(1, 1.4);
+    // The bands may fill any corner of the rates panel: its legend goes under it.
+    const auto [sofar, ls] = addPanelWithLegendBelow(below, 0, stacked ? 0 : 1, /*perLine=*/3);
+    setPanelTitle(sofar, "rates so far, 95 % intervals");
+    sofar->axis(QCPAxis::atBottom)->setLabel("seeds run");
+    sofar->axis(QCPAxis::atLeft)->setLabel("rate (%)");
+    if (!stacked) {
+        grid->setColumnStretchFactor(0, 1.0);
+        grid->setColumnStretchFactor(1, 1.4);
+    }
 
     QVector<double> seed, completed, lost;
     QVector<double> passiveSeed;
@@ -92,8 +99,6 @@ bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QStri
     each->axis(QCPAxis::atBottom)->setRange(first - 0.5, last + 0.5);
     each->axis(QCPAxis::atLeft)->setRange(-5.0, 105.0);
 
-    auto* ls = addLegend(sofar);
-    sofar->insetLayout()->setInsetAlignment(0, Qt::AlignBottom | Qt::AlignRight);
     addBand(sofar, ls, "active completed", running(rates, activeCompletedIn), seriesColour(0));
     addBand(sofar, ls, "passive lost", running(rates, passiveLostIn), seriesColour(3));
     addBand(sofar, ls, "recognised, paper's rule", running(rates, recognisedRawIn),

@@ -10,11 +10,12 @@ namespace activetouch {
 
 struct SeedRates;
 
-/// Left: per seed, the share of its active trials completed and of its passive trials lost.
-/// Right: the running rates (active completed, passive lost, recognised by both rules, runs with
-/// the paper's result whole) against the number of seeds, each with its Wilson 95 % band. False if
-/// there are no seeds.
-bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QString& experiment);
+/// Left (above if `stacked`): per seed, the share of its active trials completed and of its
+/// passive trials lost. Right (below): the running rates (active completed, passive lost,
+/// recognised by both rules, runs with the paper's result whole) against the number of seeds, each
+/// with its Wilson 95 % band. Stacked suits a panel taller than wide. False if there are no seeds.
+bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QString& experiment,
+                          bool stacked = false);
 
 /// Writes <outDir>/figures/seed_rates.{png,pdf,svg}; returns the files. Throws std::runtime_error
 /// naming what could not be written.

@@ -106,7 +106,7 @@ void SeedsTab::begin(const QString& experiment) {
     rates_ = {};
     running_ = true;
     table_->setRowCount(0);
-    buildSeedRatesFigure(plot_->plot(), rates_, experiment_);
+    buildSeedRatesFigure(plot_->plot(), rates_, experiment_, true);
     plot_->requestReplot();
     showSummary(tr("running"));
 }
@@ -134,7 +134,7 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
         for (int c = 0; c < table_->columnCount(); ++c)
             table_->item(row, c)->setBackground(QColor(255, 235, 230));
     table_->scrollToBottom();
-    buildSeedRatesFigure(plot_->plot(), rates_, experiment_);
+    buildSeedRatesFigure(plot_->plot(), rates_, experiment_, true);
     plot_->requestReplot();
     showSummary(tr("running"));
 }

@@ -6,6 +6,7 @@
 // and histograms still drawn at one scale on both axes, and no legend hiding a value.
 #include <QComboBox>
 #include <QElapsedTimer>
+#include <QFontMetricsF>
 #include <QGroupBox>
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -166,6 +167,40 @@ void checkLegendsClearOfData(PlotPanel* panel) {
     }
 }
 
+// Every panel's title fits over its own panel and its y-axis label beside it: wider, a title runs
+// into the next panel's title or the colour scale beside it, and a label is cut off.
+void checkLabelsFitTheirPanels(PlotPanel* panel) {
+    auto extent = [](const QCPAxis* axis) {
+        return QFontMetricsF(axis->labelFont())
+            .boundingRect(QRectF(), Qt::TextDontClip, axis->label())
+            .width();
+    };
+    for (QCPAxisRect* rect : panel->plot().axisRects()) {
+        const QRect outer = rect->outerRect();
+        const QCPAxis* top = rect->axis(QCPAxis::atTop);
+        if (top->visible() && !top->label().isEmpty()) {
+            const double width = extent(top), centre = rect->rect().center().x();
+            QVERIFY2(
+                centre - width / 2 >= outer.left() - 1 && centre + width / 2 <= outer.right() + 1,
+                qPrintable(QString("%1 panel %2: the title is %3 px wide over a panel of %4 px")
+                               .arg(panel->name(), top->label())
+                               .arg(width, 0, 'f', 0)
+                               .arg(outer.width())));
+        }
+        const QCPAxis* left = rect->axis(QCPAxis::atLeft);
+        if (left->visible() && !left->label().isEmpty()) {
+            const double length = extent(left), centre = rect->rect().center().y();
+            QVERIFY2(
+                centre - length / 2 >= outer.top() - 1 && centre + length / 2 <= outer.bottom() + 1,
+                qPrintable(QString("%1 panel %2: the y label '%3' is %4 px long beside a "
+                                   "panel of %5 px")
+                               .arg(panel->name(), top->label(), left->label())
+                               .arg(length, 0, 'f', 0)
+                               .arg(outer.height())));
+        }
+    }
+}
+
 void closeErrorDialogs(QWidget& w) {
     for (QMessageBox* box : w.findChildren<QMessageBox*>("errorDialog")) box->close();
 }
@@ -265,6 +300,8 @@ private slots:
                 checkEqualAspect(panel, views);
                 if (QTest::currentTestFailed()) return;
                 checkLegendsClearOfData(panel);
+                if (QTest::currentTestFailed()) return;
+                checkLabelsFitTheirPanels(panel);
                 if (QTest::currentTestFailed()) return;
             }
             showAt(panel, start);
@@ -432,6 +469,8 @@ private slots:
             showTab(panel);
             showAt(panel, window_->size());
             checkLegendsClearOfData(panel);
+            if (QTest::currentTestFailed()) return;
+            checkLabelsFitTheirPanels(panel);
             if (QTest::currentTestFailed()) return;
             checked += panel->plot().plottableCount() > 0;
         }
