@@ -1,10 +1,11 @@
 // activetouch: the workbench window.
 //   activetouch [experiment.json]
 //   activetouch --screenshots <dir> [experiment.json]   run the experiment, then over seeds 1-10,
-//   save a PNG of each tab, quit
+//   save a PNG of each tab and of the device panels, quit
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QDir>
+#include <QDockWidget>
 #include <QTabWidget>
 #include <QTimer>
 
@@ -63,6 +64,13 @@ int main(int argc, char** argv) {
                 const QString name =
                     window.tabs()->tabText(i).replace("&&", "and").replace(' ', '_').toLower();
                 window.grab().save(QDir(dir).filePath(QString("%1_%2.png").arg(i + 1).arg(name)));
+            }
+            // The device panels share the left dock with the scene: raise them for one more.
+            if (auto* devices = window.findChild<QDockWidget*>("devicesDock")) {
+                devices->raise();
+                QApplication::processEvents();
+                window.grab().save(
+                    QDir(dir).filePath(QString("%1_devices.png").arg(window.tabs()->count() + 1)));
             }
             status = completed ? 0 : 1;
             app.quit();
