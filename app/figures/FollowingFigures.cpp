@@ -153,18 +153,22 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
                     QString("\nsmoothed: %1").arg(QString::fromStdString(rec.predictedSmoothed));
             heat(pr, rec.raw, title);
         }
-        // Distances to every template, one bar group per trial.
+        // Distances to every template, one bar group per template, bars lying along the
+        // distance axis so that the templates' names stack and never run into each other.
         // The legend goes in a row of its own under the bars: inside the panel it would hide the
-        // tallest bars, which are the ones a reader compares.
+        // longest bars, which are the ones a reader compares.
         const auto [dr, barLegend] =
             addPanelWithLegendBelow(grid, row, 1 + maxTrials, /*perLine=*/0);
         setPanelTitle(dr, "distances (paper's rule)");
-        dr->axis(QCPAxis::atLeft)->setLabel("Euclidean distance");
+        QCPAxis* templateAxis = dr->axis(QCPAxis::atLeft);
+        QCPAxis* distanceAxis = dr->axis(QCPAxis::atBottom);
+        distanceAxis->setLabel("Euclidean distance");
+        distanceAxis->ticker()->setTickCount(3);  // the panel is narrow; labels like 0.025 are wide
         QSharedPointer<QCPAxisTickerText> ticker(new QCPAxisTickerText);
         auto* group = new QCPBarsGroup(&plot);
-        double top = 0.0;
+        double longest = 0.0;
         for (std::size_t k = 0; k < trials.size(); ++k) {
-            auto* bars = new QCPBars(dr->axis(QCPAxis::atBottom), dr->axis(QCPAxis::atLeft));
+            auto* bars = new QCPBars(templateAxis, distanceAxis);
             bars->setBrush(trialColour(trials[k]->trial));
             bars->setPen(Qt::NoPen);
             bars->setWidth(0.35);
@@ -176,14 +180,15 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
             for (const auto& t : r.templates) {
                 keys << ++i;
                 values << trials[k]->recognition.distances.at(t.shape);
-                top = std::max(top, values.back());
+                longest = std::max(longest, values.back());
                 if (k == 0) ticker->addTick(i, QString::fromStdString(t.shape));
             }
             bars->setData(keys, values);
         }
-        dr->axis(QCPAxis::atBottom)->setTicker(ticker);
-        dr->axis(QCPAxis::atBottom)->setRange(0.4, r.templates.size() + 0.6);
-        dr->axis(QCPAxis::atLeft)->setRange(0, top * 1.1);
+        templateAxis->setTicker(ticker);
+        templateAxis->setRange(0.4, r.templates.size() + 0.6);
+        templateAxis->setRangeReversed(true);  // the first template on top, as in the legend
+        distanceAxis->setRange(0, longest * 1.1);
         ++row;
     }
     grid->addElement(0, 2 + maxTrials, scale);

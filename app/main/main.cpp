@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
     QDir().mkpath(dir);
     window.setOutputBase(QDir(dir).filePath("runs"));
     window.setPace(Pace::Fastest);
+    // The scene first, whichever panel the saved layout last showed in the left dock.
+    if (auto* scene = window.findChild<QDockWidget*>("sceneDock")) scene->raise();
     int status = 0, runsEnded = 0;
     QObject::connect(&window, &MainWindow::runEnded, &window, [&](bool completed) {
         if (++runsEnded == 1 && completed) {

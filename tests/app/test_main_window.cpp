@@ -187,6 +187,29 @@ void checkLabelsFitTheirPanels(PlotPanel* panel) {
                                .arg(width, 0, 'f', 0)
                                .arg(outer.width())));
         }
+        // Tick labels never run into each other: the ticker spaces ticks by value, not by the
+        // width of their labels, and named ticks (shapes, orientations) are never thinned out.
+        for (QCPAxis* axis : rect->axes()) {
+            if (!axis->visible() || !axis->tickLabels()) continue;
+            const QFontMetricsF metrics(axis->tickLabelFont());
+            const bool across = axis->orientation() == Qt::Horizontal;
+            const QVector<double> ticks = axis->tickVector();
+            const QVector<QString> labels = axis->tickVectorLabels();
+            QList<QPair<double, double>> spans;  // pixel extent of each visible label
+            for (int t = 0; t < ticks.size() && t < labels.size(); ++t) {
+                if (!axis->range().contains(ticks[t]) || labels[t].isEmpty()) continue;
+                const QRectF box = metrics.boundingRect(QRectF(), Qt::TextDontClip, labels[t]);
+                const double centre = axis->coordToPixel(ticks[t]);
+                const double half = 0.5 * (across ? box.width() : box.height());
+                spans << qMakePair(centre - half, centre + half);
+            }
+            std::sort(spans.begin(), spans.end());
+            for (int t = 1; t < spans.size(); ++t)
+                QVERIFY2(spans[t].first >= spans[t - 1].second,
+                         qPrintable(QString("%1 panel %2: tick labels overlap by %3 px")
+                                        .arg(panel->name(), top->label())
+                                        .arg(spans[t - 1].second - spans[t].first, 0, 'f', 0)));
+        }
         const QCPAxis* left = rect->axis(QCPAxis::atLeft);
         if (left->visible() && !left->label().isEmpty()) {
             const double length = extent(left), centre = rect->rect().center().y();
