@@ -101,7 +101,8 @@ int JsonFields::integer(const std::string& key, long lo, long hi) const {
     if (!v.is_number_integer())
         fail(key, "expected a whole number " + rangeText(double(lo), double(hi)) + ", found " +
                       describeJson(v));
-    // A whole number beyond what a long holds arrives as unsigned; it is out of range either way.
+    // An unsigned value above `hi` may not fit a long (it would wrap): it is out of range as
+    // written. Any other whole number fits.
     const bool beyondLong =
         v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(hi);
     const long n = beyondLong ? hi : v.get<long>();
