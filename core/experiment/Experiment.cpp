@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/common/NumberText.h"
 #include "core/control/ContourFollower.h"
 
 namespace activetouch {
@@ -108,8 +109,8 @@ std::vector<double> sweepRange(const JsonFields& f, const std::string& key, doub
         if (!number || !inside)
             throw InputError(f.source(), f.placeOf(key) + "/" + std::to_string(i),
                              describeJson(x) + " is not " + what + " (" +
-                                 (closed ? "from " : "strictly between ") + std::to_string(lo) +
-                                 (closed ? " to " : " and ") + std::to_string(hi) + ")");
+                                 (closed ? "from " : "strictly between ") + numberText(lo) +
+                                 (closed ? " to " : " and ") + numberText(hi) + ")");
         v.push_back(d);
     }
     return v;

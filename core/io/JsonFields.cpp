@@ -1,8 +1,9 @@
 #include "core/io/JsonFields.h"
 
 #include <fstream>
-#include <iomanip>
 #include <sstream>
+
+#include "core/common/NumberText.h"
 
 namespace activetouch {
 
@@ -72,9 +73,7 @@ void JsonFields::rejectUnknownKeys(std::initializer_list<const char*> known) con
 }
 
 static std::string rangeText(double lo, double hi) {
-    std::ostringstream ss;
-    ss << std::setprecision(15) << "between " << lo << " and " << hi;
-    return ss.str();
+    return "between " + numberText(lo) + " and " + numberText(hi);
 }
 
 double JsonFields::number(const std::string& key, double lo, double hi) const {

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/common/NumberText.h"
+
 #ifndef ACTIVETOUCH_RESOURCE_DIR
 #define ACTIVETOUCH_RESOURCE_DIR "resources"
 #endif
@@ -120,9 +122,9 @@ ObjectSpec parseObject(const JsonFields& f) {
 
 std::string objectPlacementProblem(const ObjectSpec& object, const SceneSpec& scene) {
     if (object.height_mm >= scene.tap.retractHeight_mm)
-        return "the object's top (" + std::to_string(object.height_mm) +
+        return "the object's top (" + numberText(object.height_mm) +
                " mm) is not below the tapper's retract height (" +
-               std::to_string(scene.tap.retractHeight_mm) +
+               numberText(scene.tap.retractHeight_mm) +
                " mm); raise tap.retract_height_mm or use a lower object";
     if (scene.tap.stroke_mm - (scene.tap.retractHeight_mm - object.height_mm) <= 0.0)
         return "the stroke ends above the object's top face, so no tap can touch it; lengthen the "
@@ -130,11 +132,10 @@ std::string objectPlacementProblem(const ObjectSpec& object, const SceneSpec& sc
     const Polygon outline = object.outline();
     const Vec2 lo = outline.boundingBoxMin(), hi = outline.boundingBoxMax();
     if (lo.x < 0 || lo.y < 0 || hi.x > scene.stage.travel_mm.x || hi.y > scene.stage.travel_mm.y)
-        return "the object (x " + std::to_string(lo.x) + ".." + std::to_string(hi.x) + ", y " +
-               std::to_string(lo.y) + ".." + std::to_string(hi.y) +
+        return "the object (x " + numberText(lo.x) + ".." + numberText(hi.x) + ", y " +
+               numberText(lo.y) + ".." + numberText(hi.y) +
                " mm) does not fit inside the stage travel (0.." +
-               std::to_string(scene.stage.travel_mm.x) + ", 0.." +
-               std::to_string(scene.stage.travel_mm.y) +
+               numberText(scene.stage.travel_mm.x) + ", 0.." + numberText(scene.stage.travel_mm.y) +
                " mm); move it with offset_mm or make it smaller";
     return {};
 }
@@ -157,9 +158,9 @@ TapSpec parseTap(const JsonFields& f) {
     t.noiseFloor = f.number("noise_floor_counts", 0.0, 255.0, t.noiseFloor);
     if (t.worstCaseStroke_s() > t.window_s() + 1e-9)
         throw InputError(f.source(), f.pointer(),
-                         "a full stroke (down " + std::to_string(t.stroke_mm) +
-                             " mm, hold, back up) takes " + std::to_string(t.worstCaseStroke_s()) +
-                             " s but the tap window is " + std::to_string(t.window_s()) +
+                         "a full stroke (down " + numberText(t.stroke_mm) +
+                             " mm, hold, back up) takes " + numberText(t.worstCaseStroke_s()) +
+                             " s but the tap window is " + numberText(t.window_s()) +
                              " s; shorten the stroke, speed up the descent or record more samples");
     return t;
 }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/common/NumberText.h"
+
 namespace activetouch {
 
 bool TrainingProtocolSettings::isTrainingSet(int set) const {
@@ -43,7 +45,7 @@ std::vector<EdgeSite> edgeSites(const Polygon& object, const ClassSet& classes) 
         if (bestLength == 0.0)
             throw std::invalid_argument(
                 "the training object has no edge facing " + ClassSet::orientationName(deg) + " (" +
-                std::to_string(deg) + " deg); train on a shape with an edge for every orientation");
+                numberText(deg) + " deg); train on a shape with an edge for every orientation");
         sites.push_back(best);
     }
     return sites;

@@ -197,7 +197,8 @@ private slots:
             << QString(
                    R"({"name": "x", "scene": %1, "following": {"trials": [{"object": {"shape": "rectangle", "width_mm": 700, "height_mm": 50, "offset_mm": [350, 150]}}]}})")
                    .arg(paperScene)
-            << "/following/trials/0/object: the object (x 0.000000..700.000000";
+            << "/following/trials/0/object: the object (x 0..700, y 125..175 mm) does not fit "
+               "inside the stage travel (0..650, 0..300 mm)";
     }
     void badInputExitsTwoAndWritesNothing() {
         QFETCH(QString, file);

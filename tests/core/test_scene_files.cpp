@@ -124,8 +124,10 @@ private slots:
                     "\"shape\": \"polygon\", \"polygon_mm\": [[0,0],[10,0],[20,0]],")
             << "/object/polygon_mm"
             << "no area";
-        QTest::newRow("object off the stage") << swap("[150, 150]", "[640, 150]") << "/object"
-                                              << "does not fit inside the stage travel";
+        QTest::newRow("object off the stage")
+            << swap("[150, 150]", "[640, 150]") << "/object"
+            << "the object (x 616..664, y 121..179 mm) does not fit inside the stage travel "
+               "(0..650, 0..300 mm)";
         QTest::newRow("object above retract height")
             << swap("\"top_height_mm\": 10", "\"top_height_mm\": 20") << "/object/top_height_mm"
             << "retract height";
