@@ -50,13 +50,18 @@ bool fitEqualAspect(QCustomPlot& plot) {
     return changed;
 }
 
+void layOutAt(QCustomPlot& plot, const FigureSize& size) {
+    plot.resize(size.width_px, size.height_px);
+    plot.setViewport(QRect(0, 0, size.width_px, size.height_px));
+    plot.replot(QCustomPlot::rpImmediateRefresh);
+    if (fitEqualAspect(plot)) plot.replot(QCustomPlot::rpImmediateRefresh);
+}
+
 QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats,
                          const FigureSize& size) {
     QStringList written;
     // Lay out once at the target size so that every format sees the same geometry.
-    plot.resize(size.width_px, size.height_px);
-    plot.replot(QCustomPlot::rpImmediateRefresh);
-    if (fitEqualAspect(plot)) plot.replot(QCustomPlot::rpImmediateRefresh);
+    layOutAt(plot, size);
     for (const QString& format : formats) {
         const QString file = basePath + "." + format.toLower();
         bool ok = false;

@@ -25,6 +25,11 @@ void setEqualAspectRanges(QCPAxisRect* rect, const QCPRange& x, const QCPRange& 
 /// accumulate). Returns whether any range changed; does not replot. Call after a layout.
 bool fitEqualAspect(QCustomPlot& plot);
 
+/// Lays `plot` out at `size` as it is written: its viewport at that size (a plot that is not shown
+/// gets no resize event, so resizing it alone leaves the layout at its old size) and its
+/// equal-aspect panels fitted to their shapes there.
+void layOutAt(QCustomPlot& plot, const FigureSize& size);
+
 /// Saves `plot` as `<basePath>.<format>` for each format in `formats` (png, pdf, svg).
 /// Returns the files written; throws std::runtime_error naming the file that could not be written.
 QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats,

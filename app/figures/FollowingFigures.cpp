@@ -22,6 +22,10 @@ QColor trialColour(int trial) {
     return palette[(trial - 1) % 6];
 }
 
+bool validated(const RunResult& r) {
+    return !r.cancelled && !r.validation.percepts.empty();
+}
+
 QCPCurve* polyline(QCPAxisRect* rect, const std::vector<Vec2>& points, bool closed) {
     return addPolyline(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft), points, closed);
 }
@@ -195,34 +199,69 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
     return true;
 }
 
+const std::vector<RunFigure>& runFigures() {
+    // Beyond Figure 5 every figure needs the validation the run may not have reached.
+    static const std::vector<RunFigure> figures{
+        {"figure5_taps",
+         [](QCustomPlot& plot, const RunResult& r) {
+             buildTapFigure(plot, r);
+             return true;
+         },
+         {1600, 1100, 150}},
+        {"figure6_errors",
+         [](QCustomPlot& plot, const RunResult& r) {
+             if (!validated(r)) return false;
+             buildErrorFigure(plot, r);
+             return true;
+         },
+         {1800, 1100, 150}},
+        {"figure7_passive_paths",
+         [](QCustomPlot& plot, const RunResult& r) {
+             return validated(r) && buildPathFigure(plot, r, FollowingMode::Passive,
+                                                    "Figure 7 - passive contour following (PCF)");
+         },
+         {1100, 1000, 150}},
+        {"figure8_active_paths",
+         [](QCustomPlot& plot, const RunResult& r) {
+             return validated(r) && buildPathFigure(plot, r, FollowingMode::Active,
+                                                    "Figure 8 - active contour following (ACF)");
+         },
+         {1600, 1500, 150}},
+        {"figure9_recognition",
+         [](QCustomPlot& plot, const RunResult& r) {
+             return validated(r) && buildRecognitionFigure(plot, r);
+         },
+         {1900, 1700, 150}},
+        {"sweep_a_sequential_perception",
+         [](QCustomPlot& plot, const RunResult& r) {
+             return validated(r) && buildPerceptionSweepFigure(plot, r);
+         },
+         {1600, 800, 150}},
+        {"sweep_b_following",
+         [](QCustomPlot& plot, const RunResult& r) {
+             return validated(r) && buildFollowingSweepFigure(plot, r);
+         },
+         {2100, 800, 150}},
+        {"sweep_c_compute",
+         [](QCustomPlot& plot, const RunResult& r) {
+             return validated(r) && buildComputeSweepFigure(plot, r);
+         },
+         {1600, 800, 150}},
+    };
+    return figures;
+}
+
 QStringList writeRunFigures(const RunResult& result, const QString& outDir) {
     const QString dir = outDir + "/figures";
     if (!QDir().mkpath(dir))
         throw std::runtime_error("cannot create " + dir.toStdString() +
                                  "; check the output folder is writable");
-    const QStringList formats{"png", "pdf", "svg"};
     QStringList written;
     QCustomPlot plot;
-    buildTapFigure(plot, result);
-    written << exportFigure(plot, dir + "/figure5_taps", formats, {1600, 1100, 150});
-    if (result.cancelled || result.validation.percepts.empty()) return written;
-    buildErrorFigure(plot, result);
-    written << exportFigure(plot, dir + "/figure6_errors", formats, {1800, 1100, 150});
-    if (buildPathFigure(plot, result, FollowingMode::Passive,
-                        "Figure 7 - passive contour following (PCF)"))
-        written << exportFigure(plot, dir + "/figure7_passive_paths", formats, {1100, 1000, 150});
-    if (buildPathFigure(plot, result, FollowingMode::Active,
-                        "Figure 8 - active contour following (ACF)"))
-        written << exportFigure(plot, dir + "/figure8_active_paths", formats, {1600, 1500, 150});
-    if (buildRecognitionFigure(plot, result))
-        written << exportFigure(plot, dir + "/figure9_recognition", formats, {1900, 1700, 150});
-    if (buildPerceptionSweepFigure(plot, result))
-        written << exportFigure(plot, dir + "/sweep_a_sequential_perception", formats,
-                                {1600, 800, 150});
-    if (buildFollowingSweepFigure(plot, result))
-        written << exportFigure(plot, dir + "/sweep_b_following", formats, {2100, 800, 150});
-    if (buildComputeSweepFigure(plot, result))
-        written << exportFigure(plot, dir + "/sweep_c_compute", formats, {1600, 800, 150});
+    for (const RunFigure& figure : runFigures())
+        if (figure.build(plot, result))
+            written << exportFigure(plot, dir + "/" + figure.file, {"png", "pdf", "svg"},
+                                    figure.size);
     return written;
 }
 

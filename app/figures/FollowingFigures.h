@@ -4,7 +4,9 @@
 // every match distance).
 #include <QString>
 #include <QStringList>
+#include <vector>
 
+#include "app/figures/FigureExport.h"
 #include "core/control/FollowingSettings.h"
 
 class QCustomPlot;
@@ -17,8 +19,20 @@ struct RunResult;
 bool buildPathFigure(QCustomPlot& plot, const RunResult& result, FollowingMode mode,
                      const QString& title);
 
-/// Writes every figure of a run (5, 6, and 7-9 where the run has them) as PNG, PDF and SVG into
-/// <outDir>/figures. Needs a QApplication. Returns the files written.
+/// One figure a run writes: its file name (without extension), how it is drawn (false: the run
+/// has nothing for it) and the size it is written at.
+struct RunFigure {
+    const char* file;
+    bool (*build)(QCustomPlot& plot, const RunResult& result);
+    FigureSize size;
+};
+
+/// Every figure a run can write, in order: 5, 6, 7-9 and the accuracy-versus-time sweeps. A
+/// cancelled run, or one without a validation, draws only Figure 5.
+const std::vector<RunFigure>& runFigures();
+
+/// Writes each of runFigures() the run has as PNG, PDF and SVG into <outDir>/figures. Needs a
+/// QApplication. Returns the files written.
 QStringList writeRunFigures(const RunResult& result, const QString& outDir);
 
 /// Figure 9: per recognised shape, its template and each trial's path histogram (paper's raw

@@ -64,8 +64,12 @@ bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QStri
     if (n == 0) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
     QCPLayoutGrid* below = stacked ? addFigureRow(plot, 1.4) : grid;
-    auto* each = addTitledPanel(grid, 0, "each seed", "seed", "share of the seed's trials (%)");
-    // The bands may fill any corner of the rates panel: its legend goes under it.
+    // A seed's share may be anything from 0 to 100 % and the bands may fill any corner: both
+    // legends go under their panels.
+    const auto [each, le] = addPanelWithLegendBelow(grid, 0, 0, /*perLine=*/2);
+    setPanelTitle(each, "each seed");
+    each->axis(QCPAxis::atBottom)->setLabel("seed");
+    each->axis(QCPAxis::atLeft)->setLabel("share of the seed's trials (%)");
     const auto [sofar, ls] = addPanelWithLegendBelow(below, 0, stacked ? 0 : 1, /*perLine=*/3);
     setPanelTitle(sofar, "rates so far, 95 % intervals");
     sofar->axis(QCPAxis::atBottom)->setLabel("seeds run");
@@ -87,15 +91,18 @@ bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QStri
             lost << 100.0 * s.passiveLost / s.passiveTrials;
         }
     }
-    auto* le = addLegend(each);
-    le->setVisible(true);
-    each->insetLayout()->setInsetAlignment(0, Qt::AlignBottom | Qt::AlignLeft);
     if (!seed.isEmpty())
         addSeries(each, le, "active completed", seed, completed, seriesColour(0), false);
     if (!passiveSeed.isEmpty())
         addSeries(each, le, "passive lost", passiveSeed, lost, seriesColour(3), false)
             ->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCross, seriesColour(3), 7));
     const double first = double(rates.seeds.front().seed), last = double(rates.seeds.back().seed);
+    // Seeds and counts of seeds are whole numbers: ticks at whole steps only.
+    QSharedPointer<QCPAxisTickerFixed> whole(new QCPAxisTickerFixed);
+    whole->setTickStep(1.0);
+    whole->setScaleStrategy(QCPAxisTickerFixed::ssMultiples);
+    each->axis(QCPAxis::atBottom)->setTicker(whole);
+    sofar->axis(QCPAxis::atBottom)->setTicker(whole);
     each->axis(QCPAxis::atBottom)->setRange(first - 0.5, last + 0.5);
     each->axis(QCPAxis::atLeft)->setRange(-5.0, 105.0);
 
@@ -120,7 +127,7 @@ QStringList writeSeedFigures(const SeedRates& rates, const QString& experiment,
                                  "; check the output folder is writable");
     QCustomPlot plot;
     if (!buildSeedRatesFigure(plot, rates, experiment)) return {};
-    return exportFigure(plot, dir + "/seed_rates", {"png", "pdf", "svg"}, {2000, 900, 150});
+    return exportFigure(plot, dir + "/seed_rates", {"png", "pdf", "svg"}, kSeedFigureSize);
 }
 
 }  // namespace activetouch

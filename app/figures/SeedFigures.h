@@ -4,6 +4,8 @@
 #include <QString>
 #include <QStringList>
 
+#include "app/figures/FigureExport.h"
+
 class QCustomPlot;
 
 namespace activetouch {
@@ -17,8 +19,11 @@ struct SeedRates;
 bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QString& experiment,
                           bool stacked = false);
 
-/// Writes <outDir>/figures/seed_rates.{png,pdf,svg}; returns the files. Throws std::runtime_error
-/// naming what could not be written.
+/// The size seed_rates is written at: wide, the two panels side by side.
+inline constexpr FigureSize kSeedFigureSize{2000, 900, 150};
+
+/// Writes <outDir>/figures/seed_rates.{png,pdf,svg} at kSeedFigureSize; returns the files. Throws
+/// std::runtime_error naming what could not be written.
 QStringList writeSeedFigures(const SeedRates& rates, const QString& experiment,
                              const QString& outDir);
 

@@ -31,6 +31,7 @@
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
 #include "qcustomplot.h"
+#include "support/FigureChecks.h"
 #include "support/Paths.h"
 
 using namespace activetouch;
@@ -102,126 +103,6 @@ void showAt(PlotPanel* panel, QSize size) {
     QCoreApplication::processEvents();
     panel->plot().replot(QCustomPlot::rpImmediateRefresh);
     QCoreApplication::processEvents();
-}
-
-/// Every equal-aspect panel of `panel`: one unit per pixel on both axes, the ranges asked for
-/// inside the view, one of them exactly; its ranges into `views` by panel index.
-void checkEqualAspect(PlotPanel* panel, QMap<int, QPair<QCPRange, QCPRange>>& views) {
-    const QList<QCPAxisRect*> rects = panel->plot().axisRects();
-    for (int i = 0; i < rects.size(); ++i) {
-        QCPAxisRect* rect = rects[i];
-        const QVariant wantX = rect->property("equalAspectX");
-        if (!wantX.isValid()) continue;
-        const QString what = QString("%1 panel %2").arg(panel->name()).arg(i);
-        QVERIFY2(rect->width() > 20 && rect->height() > 20, qPrintable(what));
-        const QPointF wx = wantX.toPointF(), wy = rect->property("equalAspectY").toPointF();
-        const QCPRange x = rect->axis(QCPAxis::atBottom)->range();
-        const QCPRange y = rect->axis(QCPAxis::atLeft)->range();
-        const double ratio = (x.size() / rect->width()) / (y.size() / rect->height());
-        QVERIFY2(std::abs(ratio - 1.0) < 0.02,
-                 qPrintable(what + QString(": x/y scale %1").arg(ratio)));
-        QVERIFY2(x.lower <= wx.x() + 1e-9 && x.upper >= wx.y() - 1e-9, qPrintable(what));
-        QVERIFY2(y.lower <= wy.x() + 1e-9 && y.upper >= wy.y() - 1e-9, qPrintable(what));
-        QVERIFY2(std::abs(x.size() - (wx.y() - wx.x())) < 1e-6 ||
-                     std::abs(y.size() - (wy.y() - wy.x())) < 1e-6,
-                 qPrintable(what + ": both axes widened"));
-        views[i] = {x, y};
-    }
-}
-
-/// No legend drawn inside a panel of `panel` covers a data point or a bar of that panel: a
-/// reader must see every value, the tallest bars and the paths' extremes above all.
-void checkLegendsClearOfData(PlotPanel* panel) {
-    for (QCPAxisRect* rect : panel->plot().axisRects()) {
-        QList<QRectF> legends;
-        for (QCPLayoutElement* e : rect->insetLayout()->elements(false))
-            if (auto* legend = qobject_cast<QCPLegend*>(e); legend && legend->itemCount() > 0)
-                legends << QRectF(legend->outerRect());
-        if (legends.isEmpty()) continue;
-        const QString what =
-            QString("%1 panel %2").arg(panel->name(), rect->axis(QCPAxis::atTop)->label());
-        for (QCPAbstractPlottable* p : rect->plottables()) {
-            QList<QPointF> points;
-            if (auto* graph = qobject_cast<QCPGraph*>(p)) {
-                for (const auto& d : *graph->data())
-                    points << graph->coordsToPixels(d.key, d.value);
-            } else if (auto* curve = qobject_cast<QCPCurve*>(p)) {
-                for (const auto& d : *curve->data())
-                    points << curve->coordsToPixels(d.key, d.value);
-            } else if (auto* bars = qobject_cast<QCPBars*>(p)) {
-                // A bar is an area: probe the legend's own pixels for it.
-                for (const QRectF& legend : legends)
-                    for (double x = legend.left(); x <= legend.right(); x += 2)
-                        for (double y = legend.top(); y <= legend.bottom(); y += 2)
-                            if (bars->selectTest(QPointF(x, y), false) >= 0)
-                                points << QPointF(x, y);
-            }
-            for (const QPointF& pt : points)
-                for (const QRectF& legend : legends)
-                    QVERIFY2(!legend.contains(pt),
-                             qPrintable(what + QString(": the legend covers %1 at (%2, %3)")
-                                                   .arg(p->name())
-                                                   .arg(pt.x())
-                                                   .arg(pt.y())));
-        }
-    }
-}
-
-// Every panel's title fits over its own panel and its y-axis label beside it: wider, a title runs
-// into the next panel's title or the colour scale beside it, and a label is cut off.
-void checkLabelsFitTheirPanels(PlotPanel* panel) {
-    auto extent = [](const QCPAxis* axis) {
-        return QFontMetricsF(axis->labelFont())
-            .boundingRect(QRectF(), Qt::TextDontClip, axis->label())
-            .width();
-    };
-    for (QCPAxisRect* rect : panel->plot().axisRects()) {
-        const QRect outer = rect->outerRect();
-        const QCPAxis* top = rect->axis(QCPAxis::atTop);
-        if (top->visible() && !top->label().isEmpty()) {
-            const double width = extent(top), centre = rect->rect().center().x();
-            QVERIFY2(
-                centre - width / 2 >= outer.left() - 1 && centre + width / 2 <= outer.right() + 1,
-                qPrintable(QString("%1 panel %2: the title is %3 px wide over a panel of %4 px")
-                               .arg(panel->name(), top->label())
-                               .arg(width, 0, 'f', 0)
-                               .arg(outer.width())));
-        }
-        // Tick labels never run into each other: the ticker spaces ticks by value, not by the
-        // width of their labels, and named ticks (shapes, orientations) are never thinned out.
-        for (QCPAxis* axis : rect->axes()) {
-            if (!axis->visible() || !axis->tickLabels()) continue;
-            const QFontMetricsF metrics(axis->tickLabelFont());
-            const bool across = axis->orientation() == Qt::Horizontal;
-            const QVector<double> ticks = axis->tickVector();
-            const QVector<QString> labels = axis->tickVectorLabels();
-            QList<QPair<double, double>> spans;  // pixel extent of each visible label
-            for (int t = 0; t < ticks.size() && t < labels.size(); ++t) {
-                if (!axis->range().contains(ticks[t]) || labels[t].isEmpty()) continue;
-                const QRectF box = metrics.boundingRect(QRectF(), Qt::TextDontClip, labels[t]);
-                const double centre = axis->coordToPixel(ticks[t]);
-                const double half = 0.5 * (across ? box.width() : box.height());
-                spans << qMakePair(centre - half, centre + half);
-            }
-            std::sort(spans.begin(), spans.end());
-            for (int t = 1; t < spans.size(); ++t)
-                QVERIFY2(spans[t].first >= spans[t - 1].second,
-                         qPrintable(QString("%1 panel %2: tick labels overlap by %3 px")
-                                        .arg(panel->name(), top->label())
-                                        .arg(spans[t - 1].second - spans[t].first, 0, 'f', 0)));
-        }
-        const QCPAxis* left = rect->axis(QCPAxis::atLeft);
-        if (left->visible() && !left->label().isEmpty()) {
-            const double length = extent(left), centre = rect->rect().center().y();
-            QVERIFY2(
-                centre - length / 2 >= outer.top() - 1 && centre + length / 2 <= outer.bottom() + 1,
-                qPrintable(QString("%1 panel %2: the y label '%3' is %4 px long beside a "
-                                   "panel of %5 px")
-                               .arg(panel->name(), top->label(), left->label())
-                               .arg(length, 0, 'f', 0)
-                               .arg(outer.height())));
-        }
-    }
 }
 
 void closeErrorDialogs(QWidget& w) {
@@ -314,21 +195,21 @@ private slots:
             showTab(panel);
             QMap<int, QPair<QCPRange, QCPRange>> first, again;
             showAt(panel, start);
-            checkEqualAspect(panel, first);
+            test::checkEqualAspect(panel->plot(), panel->name(), first);
             if (QTest::currentTestFailed()) return;
             QVERIFY2(first.size() >= 4, qPrintable(name));
             for (QSize size : {QSize(1900, 700), QSize(900, 1100), QSize(1300, 900)}) {
                 showAt(panel, size);
                 QMap<int, QPair<QCPRange, QCPRange>> views;
-                checkEqualAspect(panel, views);
+                test::checkEqualAspect(panel->plot(), panel->name(), views);
                 if (QTest::currentTestFailed()) return;
-                checkLegendsClearOfData(panel);
+                test::checkLegendsClearOfData(panel->plot(), panel->name());
                 if (QTest::currentTestFailed()) return;
-                checkLabelsFitTheirPanels(panel);
+                test::checkLabelsFitTheirPanels(panel->plot(), panel->name());
                 if (QTest::currentTestFailed()) return;
             }
             showAt(panel, start);
-            checkEqualAspect(panel, again);
+            test::checkEqualAspect(panel->plot(), panel->name(), again);
             if (QTest::currentTestFailed()) return;
             QCOMPARE(again.keys(), first.keys());
             for (int k : first.keys()) {
@@ -491,9 +372,9 @@ private slots:
         for (PlotPanel* panel : window_->plotPanels()) {
             showTab(panel);
             showAt(panel, window_->size());
-            checkLegendsClearOfData(panel);
+            test::checkLegendsClearOfData(panel->plot(), panel->name());
             if (QTest::currentTestFailed()) return;
-            checkLabelsFitTheirPanels(panel);
+            test::checkLabelsFitTheirPanels(panel->plot(), panel->name());
             if (QTest::currentTestFailed()) return;
             checked += panel->plot().plottableCount() > 0;
         }

@@ -1,0 +1,79 @@
+// The figures a run exports, as a reader of the paper sees them: each laid out at the size it is
+// written at, paths and histograms at equal scales on both axes, no legend over data, every title
+// and axis label inside its panel and no tick labels running into each other.
+#include <QtTest>
+
+#include "app/figures/FigureExport.h"
+#include "app/figures/FollowingFigures.h"
+#include "app/figures/SeedFigures.h"
+#include "app/run/ExperimentRun.h"
+#include "app/run/SeedRates.h"
+#include "qcustomplot.h"
+#include "support/FigureChecks.h"
+#include "support/Paths.h"
+
+using namespace activetouch;
+
+class TestFigures : public QObject {
+    Q_OBJECT
+    std::vector<RunResult> runs_;  // the paper, and the accuracy-versus-time sweeps
+
+private slots:
+    void initTestCase() {
+        for (const char* file : {"experiments/paper.json", "experiments/accuracy_vs_time.json"})
+            runs_.push_back(runExperiment(loadExperiment(test::sourcePath(file)), RunOptions{}));
+    }
+
+    void everyExportedFigureReadsCleanly() {
+        QStringList drawn;
+        for (const RunResult& run : runs_) {
+            for (const RunFigure& figure : runFigures()) {
+                QCustomPlot plot;
+                if (!figure.build(plot, run)) continue;
+                layOutAt(plot, figure.size);
+                const QString name =
+                    QString("%1 (%2)").arg(figure.file, QString::fromStdString(run.spec.name));
+                QMap<int, QPair<QCPRange, QCPRange>> views;
+                test::checkEqualAspect(plot, name, views);
+                if (QTest::currentTestFailed()) return;
+                test::checkLegendsClearOfData(plot, name);
+                if (QTest::currentTestFailed()) return;
+                test::checkLabelsFitTheirPanels(plot, name);
+                if (QTest::currentTestFailed()) return;
+                if (!drawn.contains(figure.file)) drawn << figure.file;
+            }
+        }
+        // Between them the two runs draw every figure there is.
+        QCOMPARE(drawn.size(), static_cast<int>(runFigures().size()));
+    }
+
+    void aCancelledRunDrawsOnlyItsTaps() {
+        RunResult cancelled = runs_.front();
+        cancelled.cancelled = true;
+        QStringList drawn;
+        for (const RunFigure& figure : runFigures()) {
+            QCustomPlot plot;
+            if (figure.build(plot, cancelled)) drawn << figure.file;
+        }
+        QCOMPARE(drawn, QStringList{"figure5_taps"});
+    }
+
+    void theSeedRatesFigureReadsCleanly() {
+        const SeedRates rates =
+            runSeeds(loadExperiment(test::sourcePath("experiments/paper.json")), 1, 3, "");
+        QCOMPARE(rates.seeds.size(), std::size_t(3));
+        for (bool stacked : {false, true}) {
+            QCustomPlot plot;
+            QVERIFY(buildSeedRatesFigure(plot, rates, "paper", stacked));
+            // Side by side at the exported size; stacked in a panel taller than wide.
+            layOutAt(plot, stacked ? FigureSize{600, 900, 150} : kSeedFigureSize);
+            test::checkLegendsClearOfData(plot, "seed_rates");
+            if (QTest::currentTestFailed()) return;
+            test::checkLabelsFitTheirPanels(plot, "seed_rates");
+            if (QTest::currentTestFailed()) return;
+        }
+    }
+};
+
+QTEST_MAIN(TestFigures)
+#include "test_figures.moc"
