@@ -180,20 +180,20 @@ SceneSpec ScenePanel::sceneFromPanel(const SceneSpec& base) const {
 void ScenePanel::loadPolygon() {
     const QString path =
         QFileDialog::getOpenFileName(this, tr("Load a polygon"), QString(), tr("JSON (*.json)"));
-    if (path.isEmpty()) return;
+    if (!path.isEmpty()) loadPolygonFrom(path);
+}
+
+bool ScenePanel::loadPolygonFrom(const QString& path) {
     try {
-        const Json j = readJsonFile(path.toStdString());
-        Json object = j.contains("object") ? j["object"] : j;
-        object["shape"] = "polygon";
-        const ObjectSpec o = parseObject(
-            JsonFields(object, path.toStdString(), j.contains("object") ? "/object" : ""));
-        polygon_ = o.polygon;
-        shape_->setCurrentText("polygon");
-        polygonLabel_->setText(tr("polygon of %1 vertices").arg(polygon_.size()));
-        emit changed();
+        polygon_ = loadPolygonFile(path.toStdString());
     } catch (const InputError& e) {
         emit failed(QString::fromStdString(e.what()));
+        return false;
     }
+    shape_->setCurrentText("polygon");
+    polygonLabel_->setText(tr("polygon of %1 vertices").arg(polygon_.size()));
+    emit changed();
+    return true;
 }
 
 }  // namespace activetouch

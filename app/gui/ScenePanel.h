@@ -26,6 +26,13 @@ public:
     /// the panel's field if what is shown is not a valid scene.
     SceneSpec sceneFromPanel(const SceneSpec& base) const;
 
+    /// Loads the object's polygon from `path` (a list of [x, y] vertices in mm, an object or a
+    /// scene; see loadPolygonFile) and shows it. On bad input emits failed() with the file and
+    /// the problem, keeps what was shown and returns false.
+    bool loadPolygonFrom(const QString& path);
+    /// The polygon last loaded (empty before any).
+    const std::vector<Vec2>& polygon() const { return polygon_; }
+
 signals:
     void changed();
     void failed(const QString& message);

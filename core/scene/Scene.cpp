@@ -86,16 +86,7 @@ ObjectSpec parseObject(const JsonFields& f) {
         if (!f.has("polygon_mm") || !f.raw("polygon_mm").is_array())
             f.fail("polygon_mm",
                    "a polygon object needs 'polygon_mm': a list of [x, y] vertices in mm");
-        const Json& v = f.raw("polygon_mm");
-        for (std::size_t i = 0; i < v.size(); ++i) {
-            if (!v[i].is_array() || v[i].size() != 2 || !v[i][0].is_number() ||
-                !v[i][1].is_number())
-                throw InputError(f.source(), f.placeOf("polygon_mm") + "/" + std::to_string(i),
-                                 "expected a vertex [x, y] in mm, found " + describeJson(v[i]));
-            o.polygon.push_back({v[i][0].get<double>(), v[i][1].get<double>()});
-        }
-        if (auto problem = Polygon::problemWith(o.polygon))
-            f.fail("polygon_mm", "the polygon is not a usable outline: " + *problem);
+        o.polygon = parseVertexList(f.raw("polygon_mm"), f.source(), f.placeOf("polygon_mm"));
     } else {
         bool known = false;
         for (const auto& n : libraryShapeNames()) known = known || n == o.shape;
@@ -118,6 +109,39 @@ ObjectSpec parseObject(const JsonFields& f) {
     o.offset = f.point("offset_mm", o.offset);
     o.height_mm = f.number("top_height_mm", 0.1, 500.0, o.height_mm);
     return o;
+}
+
+std::vector<Vec2> parseVertexList(const Json& v, const std::string& source,
+                                  const std::string& place) {
+    std::vector<Vec2> vertices;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        if (!v[i].is_array() || v[i].size() != 2 || !v[i][0].is_number() || !v[i][1].is_number())
+            throw InputError(source, place + "/" + std::to_string(i),
+                             "expected a vertex [x, y] in mm, found " + describeJson(v[i]));
+        vertices.push_back({v[i][0].get<double>(), v[i][1].get<double>()});
+    }
+    if (auto problem = Polygon::problemWith(vertices))
+        throw InputError(source, place, "the polygon is not a usable outline: " + *problem);
+    return vertices;
+}
+
+std::vector<Vec2> loadPolygonFile(const std::string& path) {
+    const Json j = readJsonFile(path);
+    if (j.is_array()) return parseVertexList(j, path, "");
+    const bool scene = j.is_object() && j.contains("object");
+    Json object = scene ? j["object"] : j;
+    if (!object.is_object())
+        throw InputError(path, scene ? "/object" : "",
+                         "expected a list of [x, y] vertices in mm, an object with 'polygon_mm' "
+                         "or a scene whose object has one; found " +
+                             describeJson(object));
+    if (!object.contains("shape")) object["shape"] = "polygon";
+    const ObjectSpec o = parseObject(JsonFields(object, path, scene ? "/object" : ""));
+    if (o.shape != "polygon")
+        throw InputError(path, scene ? "/object/shape" : "/shape",
+                         "the object is a library shape ('" + o.shape +
+                             "'), not a polygon; choose it in the shape list instead");
+    return o.polygon;
 }
 
 std::string objectPlacementProblem(const ObjectSpec& object, const SceneSpec& scene) {

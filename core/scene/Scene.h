@@ -83,6 +83,16 @@ FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& re
 /// Parses an object description (shape or polygon, pose, top height). Throws InputError.
 ObjectSpec parseObject(const JsonFields& fields);
 
+/// Reads `list`, a list of [x, y] vertices in mm, as an outline. Throws InputError naming
+/// `source` and the vertex at `place` + "/i", or `place`, if it is not a usable outline.
+std::vector<Vec2> parseVertexList(const Json& list, const std::string& source,
+                                  const std::string& place);
+
+/// Reads a polygon file: a list of [x, y] vertices in mm, an object ({"shape": "polygon",
+/// "polygon_mm": [...]}; the shape may be left out) or a scene holding such an object. Returns
+/// the vertices. Throws InputError naming the file and what it should hold.
+std::vector<Vec2> loadPolygonFile(const std::string& path);
+
 /// Why `object` cannot be placed in `scene`'s rig (off the stage, taller than the retract
 /// height), or empty.
 std::string objectPlacementProblem(const ObjectSpec& object, const SceneSpec& scene);

@@ -381,6 +381,40 @@ private slots:
         QVERIFY(checked >= 6);
     }
 
+    void polygonFilesLoadIntoTheScenePanel() {
+        auto* panel = window_->findChild<ScenePanel*>();
+        QVERIFY(panel);
+        const SceneSpec before = window_->experimentAsShown().scene;
+        QSignalSpy failed(panel, &ScenePanel::failed);
+        // Not a polygon: the problem is shown with the file, the shown object stays as it was.
+        const QString bad = dir_.filePath("number.json");
+        QFile b(bad);
+        QVERIFY(b.open(QIODevice::WriteOnly));
+        b.write("42");
+        b.close();
+        QVERIFY(!panel->loadPolygonFrom(bad));
+        QCOMPARE(failed.count(), 1);
+        const QString message = failed.takeFirst().at(0).toString();
+        QVERIFY2(message.startsWith(bad) && message.contains("expected a list of [x, y] vertices"),
+                 qPrintable(message));
+        closeErrorDialogs(*window_);
+        QVERIFY(panel->polygon().empty());
+        QCOMPARE(window_->experimentAsShown().scene.object.shape, before.object.shape);
+        // A bare list of vertices is the object from then on.
+        const QString good = dir_.filePath("square.json");
+        QFile g(good);
+        QVERIFY(g.open(QIODevice::WriteOnly));
+        g.write("[[-20, -20], [20, -20], [20, 20], [-20, 20]]");
+        g.close();
+        QVERIFY(panel->loadPolygonFrom(good));
+        QCOMPARE(failed.count(), 0);
+        const SceneSpec after = window_->experimentAsShown().scene;
+        QCOMPARE(after.object.shape, std::string("polygon"));
+        QCOMPARE(after.object.outline().area(), 40.0 * 40.0);
+        // Back to the paper's scene for the tests that follow.
+        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+    }
+
     void badFilesShowTheProblemAndKeepTheSession_data() {
         QTest::addColumn<QString>("text");
         QTest::addColumn<QString>("problem");

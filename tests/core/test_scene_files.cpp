@@ -163,6 +163,70 @@ private slots:
         }
     }
 
+    void polygonFilesInEveryFormPeopleWriteThem() {
+        const std::vector<Vec2> square{{0, 0}, {30, 0}, {30, 30}, {0, 30}};
+        // A bare list of vertices, an object (its shape may be left out) and a scene all load.
+        QCOMPARE(loadPolygonFile(write("list.json", "[[0,0],[30,0],[30,30],[0,30]]")), square);
+        QCOMPARE(loadPolygonFile(
+                     write("object.json", R"({"polygon_mm": [[0,0],[30,0],[30,30],[0,30]]})")),
+                 square);
+        QCOMPARE(loadPolygonFile(write("scene.json",
+                                       R"({"object": {"shape": "polygon", "polygon_mm":
+                                           [[0,0],[30,0],[30,30],[0,30]], "top_height_mm": 8}})")),
+                 square);
+    }
+
+    void badPolygonFilesNameFilePlaceAndProblem_data() {
+        QTest::addColumn<QString>("text");
+        QTest::addColumn<QString>("place");
+        QTest::addColumn<QString>("problem");
+        QTest::newRow("a number") << "42"
+                                  << ""
+                                  << "expected a list of [x, y] vertices in mm, an object";
+        QTest::newRow("text") << "\"square\""
+                              << ""
+                              << "found \"square\"";
+        QTest::newRow("a bad vertex") << "[[0,0],[30,0],[30],[0,30]]"
+                                      << "at /2"
+                                      << "expected a vertex [x, y] in mm";
+        QTest::newRow("two vertices") << "[[0,0],[30,0]]"
+                                      << ""
+                                      << "not a usable outline";
+        QTest::newRow("empty list") << "[]"
+                                    << ""
+                                    << "not a usable outline";
+        QTest::newRow("self-intersecting") << "[[0,0],[40,40],[40,0],[0,40]]"
+                                           << ""
+                                           << "intersects itself";
+        QTest::newRow("all points equal") << "[[5,5],[5,5],[5,5],[5,5]]"
+                                          << ""
+                                          << "not a usable outline";
+        QTest::newRow("scene with no object object") << R"({"object": 5})"
+                                                     << "at /object"
+                                                     << "found 5";
+        QTest::newRow("a library shape") << R"({"object": {"shape": "rectangle"}})"
+                                         << "at /object/shape"
+                                         << "not a polygon; choose it in the shape list";
+        QTest::newRow("object without vertices") << R"({"top_height_mm": 8})"
+                                                 << "at /polygon_mm"
+                                                 << "needs 'polygon_mm'";
+    }
+    void badPolygonFilesNameFilePlaceAndProblem() {
+        QFETCH(QString, text);
+        QFETCH(QString, place);
+        QFETCH(QString, problem);
+        const std::string path = write("bad_polygon.json", text.toStdString());
+        try {
+            loadPolygonFile(path);
+            QFAIL("the polygon file was accepted");
+        } catch (const InputError& e) {
+            const QString message = e.what();
+            QVERIFY2(message.startsWith(QString::fromStdString(path)), qPrintable(message));
+            QVERIFY2(message.contains(place), qPrintable(message));
+            QVERIFY2(message.contains(problem), qPrintable(message));
+        }
+    }
+
     void missingFileIsNamed() {
         try {
             loadScene(dir_.filePath("nowhere.json").toStdString());
