@@ -5,6 +5,7 @@
 
 #include "core/common/InputError.h"
 #include "core/io/Csv.h"
+#include "core/io/InputFile.h"
 
 namespace activetouch {
 namespace {
@@ -80,8 +81,7 @@ void FollowingRecording::append(const std::string& label, FollowingMode mode, in
 }
 
 FollowingRecordingContents checkFollowingRecording(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path, "", "cannot open the file; check the path");
+    std::ifstream in = openInputFile(path);
     std::string line;
     if (!std::getline(in, line))
         throw InputError(path, "line 1", "the file is empty; expected a header row");

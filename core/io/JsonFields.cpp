@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/common/NumberText.h"
+#include "core/io/InputFile.h"
 
 namespace activetouch {
 
@@ -32,8 +33,7 @@ Json parseJsonText(const std::string& text, const std::string& source) {
 }
 
 Json readJsonFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "", "cannot open the file; check the path and its permissions");
+    std::ifstream in = openInputFile(path, std::ios::binary);
     std::ostringstream ss;
     ss << in.rdbuf();
     return parseJsonText(ss.str(), path);

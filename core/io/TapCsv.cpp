@@ -4,6 +4,7 @@
 
 #include "core/common/InputError.h"
 #include "core/io/Csv.h"
+#include "core/io/InputFile.h"
 
 namespace activetouch {
 namespace {
@@ -44,8 +45,7 @@ void TapCsvWriter::append(const CollectedTap& c, const ClassSet& classes) {
 }
 
 std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& classes) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path, "", "cannot open the file; check the path");
+    std::ifstream in = openInputFile(path);
     std::string line;
     if (!std::getline(in, line))
         throw InputError(path, "line 1", "the file is empty; expected a header row");

@@ -3,8 +3,11 @@
 #include <QTemporaryDir>
 #include <QtTest>
 #include <fstream>
+#include <functional>
 
 #include "core/experiment/Experiment.h"
+#include "core/io/FollowingRecording.h"
+#include "core/io/TapCsv.h"
 #include "support/Paths.h"
 
 using namespace activetouch;
@@ -227,13 +230,31 @@ private slots:
         }
     }
 
-    void missingFileIsNamed() {
-        try {
-            loadScene(dir_.filePath("nowhere.json").toStdString());
-            QFAIL("a missing file was accepted");
-        } catch (const InputError& e) {
-            QVERIFY(QString(e.what()).contains("nowhere.json"));
-            QVERIFY(QString(e.what()).contains("cannot open"));
+    void missingFileOrFolderIsNamed_data() {
+        QTest::addColumn<QString>("path");
+        QTest::addColumn<QString>("problem");
+        QTest::newRow("missing") << dir_.filePath("nowhere.json") << "no such file; check the path";
+        QDir(dir_.path()).mkpath("a_folder.json");
+        QTest::newRow("a folder") << dir_.filePath("a_folder.json")
+                                  << "this is a folder, not a file";
+    }
+    void missingFileOrFolderIsNamed() {
+        // Every reader of a user's file says which: a scene, a polygon, a tap recording and a
+        // following recording.
+        QFETCH(QString, path);
+        QFETCH(QString, problem);
+        const std::string p = path.toStdString();
+        const std::vector<std::function<void()>> readers{
+            [&] { loadScene(p); }, [&] { loadPolygonFile(p); }, [&] { readTapCsv(p, ClassSet{}); },
+            [&] { checkFollowingRecording(p); }};
+        for (const auto& read : readers) {
+            try {
+                read();
+                QFAIL("the file was accepted");
+            } catch (const InputError& e) {
+                QVERIFY2(QString(e.what()).startsWith(path), e.what());
+                QVERIFY2(QString(e.what()).contains(problem), e.what());
+            }
         }
     }
 
