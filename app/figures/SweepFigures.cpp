@@ -42,6 +42,13 @@ void fit(QCPAxisRect* rect) {
     const double dx = std::max(1e-6, x.size()) * 0.08, dy = std::max(1e-6, y.size()) * 0.1;
     rect->axis(QCPAxis::atBottom)->setRange(x.lower - dx, x.upper + dx);
     rect->axis(QCPAxis::atLeft)->setRange(std::max(0.0, y.lower - dy), y.upper + 3 * dy);
+    // Labels at points in the right half read leftwards, so that none runs off the panel.
+    const double middle = rect->axis(QCPAxis::atBottom)->range().center();
+    QCustomPlot* plot = rect->parentPlot();
+    for (int i = 0; i < plot->itemCount(); ++i)
+        if (auto* label = qobject_cast<QCPItemText*>(plot->item(i));
+            label && label->clipAxisRect() == rect && label->position->coords().x() > middle)
+            label->setPositionAlignment(Qt::AlignBottom | Qt::AlignRight);
 }
 
 }  // namespace

@@ -82,6 +82,28 @@ inline void checkLegendsClearOfData(QCustomPlot& plot, const QString& name) {
 // Every panel's title fits over its own panel and its y-axis label beside it: wider, a title runs
 // into the next panel's title or the colour scale beside it, and a label is cut off.
 inline void checkLabelsFitTheirPanels(QCustomPlot& plot, const QString& name) {
+    // Text placed at a point (a threshold, a setting) is not cut off by its panel's edge.
+    for (int i = 0; i < plot.itemCount(); ++i) {
+        auto* text = qobject_cast<QCPItemText*>(plot.item(i));
+        if (!text || !text->visible() || !text->clipToAxisRect() || !text->clipAxisRect()) continue;
+        const QPointF at = text->position->pixelPosition();
+        const QSizeF size = QFontMetricsF(text->font())
+                                .boundingRect(QRectF(), Qt::TextDontClip, text->text())
+                                .size();
+        const Qt::Alignment a = text->positionAlignment();
+        const double left = a & Qt::AlignRight     ? at.x() - size.width()
+                            : a & Qt::AlignHCenter ? at.x() - size.width() / 2
+                                                   : at.x();
+        const double top = a & Qt::AlignBottom    ? at.y() - size.height()
+                           : a & Qt::AlignVCenter ? at.y() - size.height() / 2
+                                                  : at.y();
+        const QRectF box(left, top, size.width(), size.height());
+        const QRectF panel = QRectF(text->clipAxisRect()->rect()).adjusted(-1, -1, 1, 1);
+        QVERIFY2(panel.contains(box),
+                 qPrintable(QString("%1 panel %2: the label '%3' is cut off by the panel's edge")
+                                .arg(name, text->clipAxisRect()->axis(QCPAxis::atTop)->label(),
+                                     text->text())));
+    }
     auto extent = [](const QCPAxis* axis) {
         return QFontMetricsF(axis->labelFont())
             .boundingRect(QRectF(), Qt::TextDontClip, axis->label())
