@@ -26,6 +26,12 @@ bool validated(const RunResult& r) {
     return !r.cancelled && !r.validation.percepts.empty();
 }
 
+/// A figure drawn only once the run has its validation.
+template <bool (*build)(QCustomPlot&, const RunResult&)>
+bool afterValidation(QCustomPlot& plot, const RunResult& r) {
+    return validated(r) && build(plot, r);
+}
+
 QCPCurve* polyline(QCPAxisRect* rect, const std::vector<Vec2>& points, bool closed) {
     return addPolyline(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft), points, closed);
 }
@@ -227,26 +233,12 @@ const std::vector<RunFigure>& runFigures() {
                                                     "Figure 8 - active contour following (ACF)");
          },
          {1600, 1500, 150}},
-        {"figure9_recognition",
-         [](QCustomPlot& plot, const RunResult& r) {
-             return validated(r) && buildRecognitionFigure(plot, r);
-         },
-         {1900, 1700, 150}},
+        {"figure9_recognition", afterValidation<buildRecognitionFigure>, {1900, 1700, 150}},
         {"sweep_a_sequential_perception",
-         [](QCustomPlot& plot, const RunResult& r) {
-             return validated(r) && buildPerceptionSweepFigure(plot, r);
-         },
+         afterValidation<buildPerceptionSweepFigure>,
          {1600, 800, 150}},
-        {"sweep_b_following",
-         [](QCustomPlot& plot, const RunResult& r) {
-             return validated(r) && buildFollowingSweepFigure(plot, r);
-         },
-         {2100, 800, 150}},
-        {"sweep_c_compute",
-         [](QCustomPlot& plot, const RunResult& r) {
-             return validated(r) && buildComputeSweepFigure(plot, r);
-         },
-         {1600, 800, 150}},
+        {"sweep_b_following", afterValidation<buildFollowingSweepFigure>, {2100, 800, 150}},
+        {"sweep_c_compute", afterValidation<buildComputeSweepFigure>, {1600, 800, 150}},
     };
     return figures;
 }

@@ -21,6 +21,21 @@ const char* kGoodScene = R"({
 })";
 }  // namespace
 
+/// `read` refuses its file with an InputError that starts with `path` and names `place` and
+/// `problem`.
+void expectRefusal(const std::function<void()>& read, const QString& path, const QString& place,
+                   const QString& problem) {
+    try {
+        read();
+        QFAIL("the file was accepted");
+    } catch (const InputError& e) {
+        const QString message = e.what();
+        QVERIFY2(message.startsWith(path), qPrintable(message));
+        QVERIFY2(message.contains(place), qPrintable(message));
+        QVERIFY2(message.contains(problem), qPrintable(message));
+    }
+}
+
 class TestSceneFiles : public QObject {
     Q_OBJECT
     QTemporaryDir dir_;
@@ -155,15 +170,7 @@ private slots:
         QFETCH(QString, place);
         QFETCH(QString, problem);
         const std::string path = write("bad.json", text.toStdString());
-        try {
-            loadScene(path);
-            QFAIL("the scene was accepted");
-        } catch (const InputError& e) {
-            const QString message = e.what();
-            QVERIFY2(message.startsWith(QString::fromStdString(path)), qPrintable(message));
-            QVERIFY2(message.contains(place), qPrintable(message));
-            QVERIFY2(message.contains(problem), qPrintable(message));
-        }
+        expectRefusal([&] { loadScene(path); }, QString::fromStdString(path), place, problem);
     }
 
     void polygonFilesInEveryFormPeopleWriteThem() {
@@ -204,9 +211,9 @@ private slots:
         QTest::newRow("all points equal") << "[[5,5],[5,5],[5,5],[5,5]]"
                                           << ""
                                           << "not a usable outline";
-        QTest::newRow("scene with no object object") << R"({"object": 5})"
-                                                     << "at /object"
-                                                     << "found 5";
+        QTest::newRow("scene whose object is a number") << R"({"object": 5})"
+                                                        << "at /object"
+                                                        << "found 5";
         QTest::newRow("a library shape") << R"({"object": {"shape": "rectangle"}})"
                                          << "at /object/shape"
                                          << "not a polygon; choose it in the shape list";
@@ -219,15 +226,7 @@ private slots:
         QFETCH(QString, place);
         QFETCH(QString, problem);
         const std::string path = write("bad_polygon.json", text.toStdString());
-        try {
-            loadPolygonFile(path);
-            QFAIL("the polygon file was accepted");
-        } catch (const InputError& e) {
-            const QString message = e.what();
-            QVERIFY2(message.startsWith(QString::fromStdString(path)), qPrintable(message));
-            QVERIFY2(message.contains(place), qPrintable(message));
-            QVERIFY2(message.contains(problem), qPrintable(message));
-        }
+        expectRefusal([&] { loadPolygonFile(path); }, QString::fromStdString(path), place, problem);
     }
 
     void missingFileOrFolderIsNamed_data() {
@@ -247,15 +246,7 @@ private slots:
         const std::vector<std::function<void()>> readers{
             [&] { loadScene(p); }, [&] { loadPolygonFile(p); }, [&] { readTapCsv(p, ClassSet{}); },
             [&] { checkFollowingRecording(p); }};
-        for (const auto& read : readers) {
-            try {
-                read();
-                QFAIL("the file was accepted");
-            } catch (const InputError& e) {
-                QVERIFY2(QString(e.what()).startsWith(path), e.what());
-                QVERIFY2(QString(e.what()).contains(problem), e.what());
-            }
-        }
+        for (const auto& read : readers) expectRefusal(read, path, "", problem);
     }
 
     void badExperimentSettings_data() {
