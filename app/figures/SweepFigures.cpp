@@ -146,7 +146,11 @@ bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& r) {
             }
         }
     fit(completion);
+    // Room above 100 % for the legend, but no share is ever labelled above 100 %.
     completion->axis(QCPAxis::atLeft)->setRange(0, 130);
+    QSharedPointer<QCPAxisTickerText> percent(new QCPAxisTickerText);
+    for (int v = 0; v <= 100; v += 25) percent->addTick(v, QString::number(v));
+    completion->axis(QCPAxis::atLeft)->setTicker(percent);
     fit(time);
     fit(trade);
     return true;
