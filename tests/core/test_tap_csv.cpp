@@ -2,6 +2,7 @@
 #include <QTemporaryDir>
 #include <QtTest>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "core/common/InputError.h"
@@ -9,6 +10,21 @@
 #include "core/io/TapCsv.h"
 
 using namespace activetouch;
+
+namespace {
+/// `read` refuses the broken file (bad.csv) naming it, `line` and `problem`.
+void expectRefusedAt(const std::function<void()>& read, int line, const QString& problem) {
+    try {
+        read();
+        QFAIL("the broken file was accepted");
+    } catch (const InputError& e) {
+        const QString m = e.what();
+        QVERIFY2(m.contains("bad.csv"), qPrintable(m));
+        QVERIFY2(m.contains(QString("line %1").arg(line)), qPrintable(m));
+        QVERIFY2(m.contains(problem), qPrintable(m));
+    }
+}
+}  // namespace
 
 class TestTapCsv : public QObject {
     Q_OBJECT
@@ -119,15 +135,7 @@ private slots:
         QFETCH(QString, replacement);
         QFETCH(QString, problem);
         const std::string bad = corrupt(writeTaps(), line, replacement.toStdString());
-        try {
-            readTapCsv(bad, classes_);
-            QFAIL("the broken file was accepted");
-        } catch (const InputError& e) {
-            const QString m = e.what();
-            QVERIFY2(m.contains("bad.csv"), qPrintable(m));
-            QVERIFY2(m.contains(QString("line %1").arg(line)), qPrintable(m));
-            QVERIFY2(m.contains(problem), qPrintable(m));
-        }
+        expectRefusedAt([&] { readTapCsv(bad, classes_); }, line, problem);
     }
 
     void followingRecordingsAreCheckedWhole() {
@@ -188,15 +196,7 @@ private slots:
         QFETCH(QString, replacement);
         QFETCH(QString, problem);
         const std::string bad = corrupt(writeFollowing(), line, replacement.toStdString());
-        try {
-            checkFollowingRecording(bad);
-            QFAIL("the broken file was accepted");
-        } catch (const InputError& e) {
-            const QString m = e.what();
-            QVERIFY2(m.contains("bad.csv"), qPrintable(m));
-            QVERIFY2(m.contains(QString("line %1").arg(line)), qPrintable(m));
-            QVERIFY2(m.contains(problem), qPrintable(m));
-        }
+        expectRefusedAt([&] { checkFollowingRecording(bad); }, line, problem);
     }
 
     void emptyAndMissingFiles() {
