@@ -100,15 +100,13 @@ int JsonFields::integer(const std::string& key, long lo, long hi) const {
     if (!v.is_number_integer())
         fail(key, "expected a whole number " + rangeText(double(lo), double(hi)) + ", found " +
                       describeJson(v));
-    // An unsigned value above `hi` may not fit a long (it would wrap): it is out of range as
-    // written. Any other whole number fits.
-    const bool beyondLong =
+    // An unsigned value above `hi` may not fit a long (it would wrap), so it is compared first.
+    const bool aboveAsUnsigned =
         v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(hi);
-    const long n = beyondLong ? hi : v.get<long>();
-    if (beyondLong || n < lo || n > hi)
+    if (aboveAsUnsigned || v.get<long>() < lo || v.get<long>() > hi)
         fail(key, "'" + key + "' is " + describeJson(v) + ", outside the allowed range (" +
                       rangeText(double(lo), double(hi)) + ")");
-    return static_cast<int>(n);
+    return static_cast<int>(v.get<long>());
 }
 
 int JsonFields::integer(const std::string& key, long lo, long hi, int fallback) const {
