@@ -94,6 +94,8 @@ PanelWithLegend addPanelWithLegendBelow(QCPLayoutGrid* grid, int row, int column
     legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
     legend->setWrap(perLine);
     legend->setMargins(QMargins(4, 1, 4, 1));
+    // The legend spans its cell, out to the figure's edge, where a frame would be cut off.
+    legend->setBorderPen(Qt::NoPen);
     return {rect, legend};
 }
 
