@@ -86,6 +86,7 @@ void FollowingTab::showRun(std::shared_ptr<const RunResult> result) {
     table_->setRowCount(static_cast<int>(r.trials.size()));
     const QSignalBlocker block(trial_);
     trial_->clear();
+    int firstLostActive = -1;
     for (std::size_t i = 0; i < r.trials.size(); ++i) {
         const TrialRun& t = r.trials[i];
         const QStringList cells{QString::fromStdString(t.label),
@@ -97,13 +98,35 @@ void FollowingTab::showRun(std::shared_ptr<const RunResult> result) {
                                 QString::number(100 * t.result.coverage, 'f', 0),
                                 QString::number(t.result.meanContourDistance_mm, 'f', 2),
                                 QString::number(t.result.maxContourDistance_mm, 'f', 2)};
-        for (int c = 0; c < cells.size(); ++c)
-            table_->setItem(static_cast<int>(i), c, new QTableWidgetItem(cells[c]));
+        // Active trials are meant to complete: one that did not is marked, and the replay opens
+        // on the first of them.
+        const bool lostActive = t.result.mode == FollowingMode::Active && !t.result.completed();
+        if (lostActive && firstLostActive < 0) firstLostActive = static_cast<int>(i);
+        for (int c = 0; c < cells.size(); ++c) {
+            auto* item = new QTableWidgetItem(cells[c]);
+            if (lostActive) item->setBackground(QColor(255, 235, 230));
+            table_->setItem(static_cast<int>(i), c, item);
+        }
         trial_->addItem(QString("%1 %2 %3")
                             .arg(modeName(t.result.mode), QString::fromStdString(t.label))
                             .arg(t.trial));
     }
-    if (!r.trials.empty()) replay(0, 0);
+    if (firstLostActive >= 0) {
+        // The whole path up to where the trial ended, and the tap it ended on.
+        trial_->setCurrentIndex(firstLostActive);
+        replay(firstLostActive,
+               static_cast<int>(r.trials[std::size_t(firstLostActive)].result.taps.size()) - 1);
+    } else if (!r.trials.empty()) {
+        replay(0, 0);
+    }
+}
+
+int FollowingTab::replayedTrial() const {
+    return trial_->currentIndex();
+}
+
+int FollowingTab::replayedTap() const {
+    return slider_->value();
 }
 
 void FollowingTab::replay(int index, int tap) {

@@ -29,6 +29,9 @@ public:
     /// Replays trial `index` (in the table's order) at tap `tap`.
     void replay(int index, int tap);
     QString replayText() const;
+    /// The trial (in the table's order) and tap the replay shows.
+    int replayedTrial() const;
+    int replayedTap() const;
 
 private:
     std::shared_ptr<const RunResult> result_;

@@ -83,6 +83,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     tabs_->addTab(seeds_, tr("Rates over seeds"));
     connect(seeds_, &SeedsTab::runRequested, this,
             [this](std::uint64_t first, std::uint64_t last) { startSeeds(first, last); });
+    connect(seeds_, &SeedsTab::seedRunRequested, this, &MainWindow::startSeedRun);
     setCentralWidget(tabs_);
     const QString training =
         tr("Click Run whole protocol, or Run training & validation, to tap the "
@@ -306,8 +307,6 @@ QString MainWindow::newRunDirectory(const QString& stem) const {
 bool MainWindow::startRun(RunController::What what) {
     const auto toRun = experimentToRun();
     if (!toRun) return false;
-    const ExperimentSpec& spec = *toRun;
-    const QString dir = newRunDirectory(QString::fromStdString(spec.name));
     // With devices connected, the run takes its taps on them; otherwise on the simulated rig.
     std::shared_ptr<const ConnectedRig> connected;
     if (devices_.session()->connected()) {
@@ -318,14 +317,33 @@ bool MainWindow::startRun(RunController::What what) {
             return false;
         }
     }
+    return launch(*toRun, what, QString::fromStdString(toRun->name), connected);
+}
+
+bool MainWindow::startSeedRun(std::uint64_t seed) {
+    auto toRun = experimentToRun();
+    if (!toRun) return false;
+    // A seed stands for a whole run on the simulated rig, as in the seeds run, whatever devices
+    // are connected.
+    toRun->scene.seed = seed;
+    if (!launch(*toRun, RunController::What::Everything,
+                QString("%1_seed%2").arg(QString::fromStdString(toRun->name)).arg(seed), nullptr))
+        return false;
+    tabs_->setCurrentWidget(following_);
+    return true;
+}
+
+bool MainWindow::launch(const ExperimentSpec& spec, RunController::What what, const QString& stem,
+                        std::shared_ptr<const ConnectedRig> connected) {
+    const QString dir = newRunDirectory(stem);
     if (!runs_.start(spec, dir, what, static_cast<Pace>(pace_->currentIndex()), last_, connected))
         return false;
     countingSeeds_ = false;
     lastOutDir_ = dir;
     progress_->setRange(0, plannedTapEstimate(spec));
     progress_->setValue(0);
-    log(tr("run started: %1 on %2, writing %3")
-            .arg(QString::fromStdString(spec.name),
+    log(tr("run started: %1, seed %2, on %3, writing %4")
+            .arg(QString::fromStdString(spec.name), QString::number(spec.scene.seed),
                  connected ? tr("the connected rig (%1)")
                                  .arg(QString::fromStdString(connected->description))
                            : tr("the simulated rig"),

@@ -45,6 +45,9 @@ public:
     /// Runs the experiment as shown once per seed from `first` to `last` on the simulated rig
     /// (the "Rates over seeds" tab), writing into a new folder under the output base.
     bool startSeeds(std::uint64_t first, std::uint64_t last);
+    /// Runs the experiment as shown with `seed` on the simulated rig: the very run that seed
+    /// stands for in a seeds run, with every artefact, shown in the contour following tab.
+    bool startSeedRun(std::uint64_t seed);
     void cancelRun();
     /// Writes every figure of the last run into `dir`/figures; returns the files.
     QStringList exportAllFigures(const QString& dir);
@@ -76,6 +79,9 @@ private:
     void showError(const QString& message);
     /// The experiment as shown, if one is open and it can run; otherwise says why.
     std::optional<ExperimentSpec> experimentToRun();
+    /// Starts `spec` into a new folder named after `stem`, on `connected` or the simulated rig.
+    bool launch(const ExperimentSpec& spec, RunController::What what, const QString& stem,
+                std::shared_ptr<const ConnectedRig> connected);
     /// A new folder under the output base for a run: <stem>-<date and time>.
     QString newRunDirectory(const QString& stem) const;
     void log(const QString& text);

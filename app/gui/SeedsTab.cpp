@@ -78,8 +78,24 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     table_->setWordWrap(false);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     table_->setSelectionBehavior(QAbstractItemView::SelectRows);
+    table_->setSelectionMode(QAbstractItemView::SingleSelection);
     table_->verticalHeader()->setVisible(false);
     ll->addWidget(table_, 1);
+    runSeed_ = new QPushButton(tr("Run the selected seed"));
+    runSeed_->setObjectName("runSelectedSeed");
+    runSeed_->setToolTip(
+        tr("Runs that seed once more as a whole run (the same run, tap for tap) and shows its "
+           "trials in the Contour following tab, opening the replay on its first lost active "
+           "trial. Double-clicking a row does the same."));
+    ll->addWidget(runSeed_, 0, Qt::AlignLeft);
+    connect(runSeed_, &QPushButton::clicked, this, [this] {
+        if (const auto seed = selectedSeed()) emit seedRunRequested(*seed);
+    });
+    connect(table_, &QTableWidget::cellDoubleClicked, this, [this](int row, int) {
+        if (!runnable_ || !table_->item(row, 0)) return;
+        emit seedRunRequested(table_->item(row, 0)->text().toULongLong());
+    });
+    connect(table_, &QTableWidget::itemSelectionChanged, this, &SeedsTab::updateSeedButton);
     split->addWidget(left);
     split->addWidget(plot_);
     plot_->setEmptyHint(
@@ -98,7 +114,27 @@ std::uint64_t SeedsTab::lastSeed() const {
     return static_cast<std::uint64_t>(last_->value());
 }
 void SeedsTab::setRunnable(bool runnable) {
+    runnable_ = runnable;
     run_->setEnabled(runnable);
+    updateSeedButton();
+}
+
+std::optional<std::uint64_t> SeedsTab::selectedSeed() const {
+    const QList<QTableWidgetItem*> selected = table_->selectedItems();
+    if (selected.isEmpty()) return std::nullopt;
+    const QTableWidgetItem* seed = table_->item(selected.first()->row(), 0);
+    if (!seed) return std::nullopt;
+    return seed->text().toULongLong();
+}
+
+std::optional<std::uint64_t> SeedsTab::firstSeedWithLostActiveTrial() const {
+    for (const SeedOutcome& o : rates_.seeds)
+        if (o.activeCompleted < o.activeTrials) return o.seed;
+    return std::nullopt;
+}
+
+void SeedsTab::updateSeedButton() {
+    runSeed_->setEnabled(runnable_ && selectedSeed().has_value());
 }
 
 void SeedsTab::begin(const QString& experiment) {
@@ -106,6 +142,7 @@ void SeedsTab::begin(const QString& experiment) {
     rates_ = {};
     running_ = true;
     table_->setRowCount(0);
+    updateSeedButton();
     buildSeedRatesFigure(plot_->plot(), rates_, experiment_, true);
     plot_->requestReplot();
     showSummary(tr("running"));

@@ -5,6 +5,7 @@
 #include <QWidget>
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "app/run/SeedRates.h"
 
@@ -24,8 +25,12 @@ public:
 
     std::uint64_t firstSeed() const;
     std::uint64_t lastSeed() const;
-    /// Enables the run button (an experiment is open and nothing is running).
+    /// Enables the run buttons (an experiment is open and nothing is running).
     void setRunnable(bool runnable);
+    /// The seed of the table's selected row, if a row is selected.
+    std::optional<std::uint64_t> selectedSeed() const;
+    /// The first seed shown that lost an active trial, if any.
+    std::optional<std::uint64_t> firstSeedWithLostActiveTrial() const;
 
     /// Empties the table and plot for a new seeds run of `experiment`.
     void begin(const QString& experiment);
@@ -43,15 +48,20 @@ public:
 
 signals:
     void runRequested(std::uint64_t first, std::uint64_t last);
+    /// Asks for one seed's whole run, to look at its trials (a double-click on its row, or the
+    /// button under the table).
+    void seedRunRequested(std::uint64_t seed);
 
 private:
     void showSummary(const QString& state);
+    void updateSeedButton();
 
     QString experiment_;
     bool running_ = false;
+    bool runnable_ = false;
     SeedRates rates_;
     QSpinBox *first_, *last_;
-    QPushButton* run_;
+    QPushButton *run_, *runSeed_;
     QTableWidget* table_;
     QLabel* summary_;
     PlotPanel* plot_;

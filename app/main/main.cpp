@@ -1,7 +1,8 @@
 // activetouch: the workbench window.
 //   activetouch [experiment.json]
 //   activetouch --screenshots <dir> [experiment.json]   run the experiment, then over seeds 1-10,
-//   save a PNG of each tab and of the device panels, quit
+//   save a PNG of each tab and of the device panels, then of the replay of the first seed's
+//   lost active trial, if any; quit
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QDir>
@@ -9,7 +10,9 @@
 #include <QTabWidget>
 #include <QTimer>
 
+#include "app/gui/FollowingTab.h"
 #include "app/gui/MainWindow.h"
+#include "app/gui/SeedsTab.h"
 
 using namespace activetouch;
 
@@ -23,7 +26,8 @@ int main(int argc, char** argv) {
     parser.addHelpOption();
     QCommandLineOption shots("screenshots",
                              "Run the experiment, then over seeds 1-10, save a screenshot of each "
-                             "tab into <dir>, and quit.",
+                             "tab into <dir>, and of the replay of the first lost active trial "
+                             "over those seeds, and quit.",
                              "dir");
     parser.addOption(shots);
     parser.addPositionalArgument(
@@ -40,42 +44,61 @@ int main(int argc, char** argv) {
     window.show();
     if (!parser.isSet(shots)) return app.exec();
 
-    // Screenshot mode: a whole run and a run over seeds 1-10, then each tab as a person sees it.
+    // Screenshot mode: a whole run and a run over seeds 1-10, then each tab as a person sees it;
+    // then, if a seed lost an active trial, that seed's run with the replay on the lost trial.
     const QString dir = parser.value(shots);
     QDir().mkpath(dir);
     window.setOutputBase(QDir(dir).filePath("runs"));
     window.setPace(Pace::Fastest);
     // The scene first, whichever panel the saved layout last showed in the left dock.
     if (auto* scene = window.findChild<QDockWidget*>("sceneDock")) scene->raise();
+    auto settle = [] {
+        QApplication::processEvents();
+        QEventLoop wait;
+        QTimer::singleShot(300, &wait, &QEventLoop::quit);
+        wait.exec();
+    };
+    auto save = [&](int number, const QString& name) {
+        window.grab().save(QDir(dir).filePath(QString("%1_%2.png").arg(number).arg(name)));
+    };
     int status = 0, runsEnded = 0;
     QObject::connect(&window, &MainWindow::runEnded, &window, [&](bool completed) {
-        if (++runsEnded == 1 && completed) {
+        const int step = ++runsEnded;
+        if (!completed) status = 1;
+        if (step == 1 && completed) {
             QTimer::singleShot(200, &window, [&] {
                 if (!window.startSeeds(1, 10)) app.exit(1);
             });
             return;
         }
-        QTimer::singleShot(500, &window, [&, completed] {
-            for (int i = 0; i < window.tabs()->count(); ++i) {
+        QTimer::singleShot(500, &window, [&, step, completed] {
+            const int tabs = window.tabs()->count();
+            if (step == 3) {
+                // The seed's run: its trials and the replay of the first lost active trial.
+                if (auto* scene = window.findChild<QDockWidget*>("sceneDock")) scene->raise();
+                window.tabs()->setCurrentWidget(window.followingTab());
+                if (auto* views = window.followingTab()->findChild<QTabWidget*>())
+                    views->setCurrentIndex(views->count() - 1);
+                settle();
+                save(tabs + 2, "lost_trial_replay");
+                app.quit();
+                return;
+            }
+            for (int i = 0; i < tabs; ++i) {
                 window.tabs()->setCurrentIndex(i);
-                QApplication::processEvents();
-                QTimer t;
-                QEventLoop wait;
-                QTimer::singleShot(300, &wait, &QEventLoop::quit);
-                wait.exec();
-                const QString name =
-                    window.tabs()->tabText(i).replace("&&", "and").replace(' ', '_').toLower();
-                window.grab().save(QDir(dir).filePath(QString("%1_%2.png").arg(i + 1).arg(name)));
+                settle();
+                save(i + 1,
+                     window.tabs()->tabText(i).replace("&&", "and").replace(' ', '_').toLower());
             }
             // The device panels share the left dock with the scene: raise them for one more.
             if (auto* devices = window.findChild<QDockWidget*>("devicesDock")) {
                 devices->raise();
-                QApplication::processEvents();
-                window.grab().save(
-                    QDir(dir).filePath(QString("%1_devices.png").arg(window.tabs()->count() + 1)));
+                settle();
+                save(tabs + 1, "devices");
             }
-            status = completed ? 0 : 1;
-            app.quit();
+            const std::optional<std::uint64_t> lost =
+                completed ? window.seedsTab()->firstSeedWithLostActiveTrial() : std::nullopt;
+            if (!lost || !window.startSeedRun(*lost)) app.quit();
         });
     });
     QTimer::singleShot(200, &window, [&] {

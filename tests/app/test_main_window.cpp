@@ -2,8 +2,9 @@
 // watch the progress reach the end; cancel half-way and find every finished tap kept; toggle an
 // effect and see the next run use it; export every figure in every format; open bad files and
 // keep the session; drive the simulated devices from their panel; run the experiment over a range
-// of seeds and cancel such a run, keeping every finished seed; resize the window and find paths
-// and histograms still drawn at one scale on both axes, and no legend hiding a value.
+// of seeds, open one seed's run from its row, and cancel such a run, keeping every finished seed;
+// resize the window and find paths and histograms still drawn at one scale on both axes, and no
+// legend hiding a value.
 #include <QComboBox>
 #include <QElapsedTimer>
 #include <QFontMetricsF>
@@ -345,6 +346,62 @@ private slots:
         QCOMPARE(linesIn(dir + "/rates.csv"), 4);
         QCOMPARE(readJson(dir + "/rates.json")["runs"].toInt(), 3);
         QVERIFY(QFileInfo(dir + "/figures/seed_rates.png").size() > 0);
+    }
+
+    void aSeedsRowOpensThatSeedsRun() {
+        // A row of the seeds run (2-4, above) that lost an active trial: selecting it and clicking
+        // the button runs that very seed again and opens the replay on the lost trial's end.
+        SeedsTab* tab = window_->seedsTab();
+        QTableWidget* table = tab->table();
+        auto* runSeed = tab->findChild<QPushButton*>("runSelectedSeed");
+        QVERIFY(runSeed);
+        table->clearSelection();
+        QVERIFY(!runSeed->isEnabled());
+        int row = 0;
+        while (row < table->rowCount() && table->item(row, 7)->text().isEmpty()) ++row;
+        QVERIFY2(row < table->rowCount(), "seeds 2-4 of paper.json lose an active trial");
+        table->selectRow(row);
+        QVERIFY(runSeed->isEnabled());
+        const std::uint64_t seed = table->item(row, 0)->text().toULongLong();
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QTest::mouseClick(runSeed, Qt::LeftButton);
+        QVERIFY(window_->running());
+        QVERIFY(!runSeed->isEnabled());
+        QCOMPARE(window_->tabs()->currentWidget(), window_->followingTab());
+        QVERIFY(ended.wait(120000));
+        QTRY_VERIFY(!window_->running());
+        const auto run = window_->lastRun();
+        QCOMPARE(run->spec.scene.seed, seed);
+        QVERIFY(window_->lastRunDirectory().contains(QString("_seed%1-").arg(seed)));
+        const SeedOutcome again = seedOutcome(*run);
+        QCOMPARE(QString("%1 / %2").arg(again.activeCompleted).arg(again.activeTrials),
+                 table->item(row, 2)->text());
+        QStringList failures;
+        for (const auto& f : again.failures) failures << QString::fromStdString(f);
+        QCOMPARE(failures.join("; "), table->item(row, 7)->text());
+        std::size_t lost = 0;
+        while (run->trials[lost].result.mode != FollowingMode::Active ||
+               run->trials[lost].result.completed())
+            ++lost;
+        FollowingTab* following = window_->followingTab();
+        QCOMPARE(following->replayedTrial(), int(lost));
+        QCOMPARE(following->replayedTap(), int(run->trials[lost].result.taps.size()) - 1);
+        QVERIFY2(following->replayText().startsWith(
+                     QString("Tap %1 of %1 ").arg(run->trials[lost].result.taps.size())),
+                 qPrintable(following->replayText()));
+
+        // Double-clicking another row runs its seed.
+        const int other = row == 0 ? 1 : 0;
+        showTab(tab);
+        QCoreApplication::processEvents();
+        table->scrollToItem(table->item(other, 0));
+        const QRect cellRect = table->visualItemRect(table->item(other, 0));
+        // A person's double-click: a press and release, then the double-click.
+        QTest::mouseClick(table->viewport(), Qt::LeftButton, Qt::NoModifier, cellRect.center());
+        QTest::mouseDClick(table->viewport(), Qt::LeftButton, Qt::NoModifier, cellRect.center());
+        QVERIFY(ended.wait(120000));
+        QTRY_VERIFY(!window_->running());
+        QCOMPARE(window_->lastRun()->spec.scene.seed, table->item(other, 0)->text().toULongLong());
     }
 
     void cancellingSeedsKeepsEveryFinishedSeed() {
