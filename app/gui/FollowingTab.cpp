@@ -38,8 +38,9 @@ FollowingTab::FollowingTab(QWidget* parent)
     auto* lower = new QSplitter(Qt::Horizontal);
     table_ = new QTableWidget(0, 9);
     table_->setHorizontalHeaderLabels({tr("shape"), tr("mode"), tr("trial"), tr("result"),
-                                       tr("taps"), tr("robot time (s)"), tr("coverage (%)"),
-                                       tr("mean dist. (mm)"), tr("max dist. (mm)")});
+                                       tr("taps"), tr("robot\ntime (s)"), tr("coverage\n(%)"),
+                                       tr("mean dist.\n(mm)"), tr("max dist.\n(mm)")});
+    table_->verticalHeader()->setVisible(false);
     table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     table_->setSelectionBehavior(QAbstractItemView::SelectRows);
@@ -64,8 +65,8 @@ FollowingTab::FollowingTab(QWidget* parent)
     active_->setEmptyHint(following);
     passive_->setEmptyHint(following);
     replay_->setEmptyHint(tr("Pick a trial to replay it tap by tap."));
-    lower->setStretchFactor(0, 1);
-    lower->setStretchFactor(1, 1);
+    lower->setStretchFactor(0, 4);
+    lower->setStretchFactor(1, 3);
     views->addTab(lower, tr("Trials and replay"));
     layout->addWidget(views);
     connect(trial_, &QComboBox::currentIndexChanged, this, [this](int i) { replay(i, 0); });
