@@ -321,7 +321,7 @@ bool MainWindow::startRun(RunController::What what) {
 }
 
 bool MainWindow::startSeedRun(std::uint64_t seed) {
-    auto toRun = experimentToRun();
+    auto toRun = seedsSpec_ ? seedsSpec_ : experimentToRun();
     if (!toRun) return false;
     // A seed stands for a whole run on the simulated rig, as in the seeds run, whatever devices
     // are connected.
@@ -361,6 +361,7 @@ bool MainWindow::startSeeds(std::uint64_t first, std::uint64_t last) {
     if (!runs_.startSeeds(spec, first, last, dir)) return false;
     countingSeeds_ = true;
     lastSeedsDir_ = dir;
+    seedsSpec_ = spec;
     seeds_->begin(name);
     tabs_->setCurrentWidget(seeds_);
     progress_->setRange(0, static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX)));

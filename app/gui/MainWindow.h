@@ -45,8 +45,10 @@ public:
     /// Runs the experiment as shown once per seed from `first` to `last` on the simulated rig
     /// (the "Rates over seeds" tab), writing into a new folder under the output base.
     bool startSeeds(std::uint64_t first, std::uint64_t last);
-    /// Runs the experiment as shown with `seed` on the simulated rig: the very run that seed
-    /// stands for in a seeds run, with every artefact, shown in the contour following tab.
+    /// Runs `seed` of the last seeds run (its experiment and scene, whatever the panels show
+    /// since) as a whole run on the simulated rig: the very run that seed's row stands for, with
+    /// every artefact, shown in the contour following tab. Without a seeds run, the experiment
+    /// as shown.
     bool startSeedRun(std::uint64_t seed);
     void cancelRun();
     /// Writes every figure of the last run into `dir`/figures; returns the files.
@@ -99,7 +101,8 @@ private:
     std::shared_ptr<const RunResult> last_;
     QString lastOutDir_;
     QString lastSeedsDir_;
-    bool countingSeeds_ = false;  ///< the run going counts seeds, not taps
+    std::optional<ExperimentSpec> seedsSpec_;  ///< what the last seeds run ran
+    bool countingSeeds_ = false;               ///< the run going counts seeds, not taps
 
     QTabWidget* tabs_;
     LiveView* live_;

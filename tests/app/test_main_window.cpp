@@ -363,6 +363,11 @@ private slots:
         table->selectRow(row);
         QVERIFY(runSeed->isEnabled());
         const std::uint64_t seed = table->item(row, 0)->text().toULongLong();
+        // The row stands for the seeds run's experiment, not for what the panel shows since.
+        QGroupBox* noise = window_->findChild<QGroupBox*>("effect_taxel_noise");
+        QVERIFY(noise && noise->isChecked());
+        clickCheckBox(noise);
+        QVERIFY(!noise->isChecked());
         QSignalSpy ended(window_.get(), &MainWindow::runEnded);
         QTest::mouseClick(runSeed, Qt::LeftButton);
         QVERIFY(window_->running());
@@ -370,8 +375,12 @@ private slots:
         QCOMPARE(window_->tabs()->currentWidget(), window_->followingTab());
         QVERIFY(ended.wait(120000));
         QTRY_VERIFY(!window_->running());
+        clickCheckBox(noise);
+        QVERIFY(noise->isChecked());
         const auto run = window_->lastRun();
         QCOMPARE(run->spec.scene.seed, seed);
+        const auto& effects = run->activeEffects;
+        QVERIFY(std::find(effects.begin(), effects.end(), "taxel_noise") != effects.end());
         QVERIFY(window_->lastRunDirectory().contains(QString("_seed%1-").arg(seed)));
         const SeedOutcome again = seedOutcome(*run);
         QCOMPARE(QString("%1 / %2").arg(again.activeCompleted).arg(again.activeTrials),
