@@ -1,5 +1,6 @@
 #include "app/run/SeedRates.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -25,6 +26,12 @@ SeedOutcome seedOutcome(const RunResult& run) {
             continue;
         }
         ++o.activeTrials;
+        auto label = std::find_if(o.activeByLabel.begin(), o.activeByLabel.end(),
+                                  [&](const LabelOutcome& l) { return l.label == t.label; });
+        if (label == o.activeByLabel.end())
+            label = o.activeByLabel.insert(o.activeByLabel.end(), LabelOutcome{t.label, 0, 0});
+        ++label->trials;
+        label->completed += t.result.completed();
         if (!t.result.completed()) {
             o.failures.push_back(t.label + " trial " + std::to_string(t.trial) + ": " +
                                  t.result.detail);
@@ -108,6 +115,19 @@ Rate SeedRates::recognisedSmoothed() const {
 Rate SeedRates::paperResult() const {
     return sumOver(seeds, paperResultIn);
 }
+std::vector<std::pair<std::string, Rate>> SeedRates::activeCompletedByLabel() const {
+    std::vector<std::pair<std::string, Rate>> byLabel;
+    for (const auto& s : seeds)
+        for (const LabelOutcome& l : s.activeByLabel) {
+            auto it = std::find_if(byLabel.begin(), byLabel.end(),
+                                   [&](const auto& b) { return b.first == l.label; });
+            if (it == byLabel.end()) it = byLabel.insert(byLabel.end(), {l.label, Rate{}});
+            it->second.count += l.completed;
+            it->second.total += l.trials;
+        }
+    return byLabel;
+}
+
 double SeedRates::tapsPerCompletedTrial() const {
     double taps = 0;
     for (const auto& s : seeds) taps += s.completedTaps;
@@ -141,10 +161,17 @@ Json seedRatesJson(const SeedRates& r) {
                          {"run_robot_time_s", s.runRobotTime_s},
                          {"paper_result", s.paperResult()},
                          {"active_failures", s.failures}});
+    Json byLabel = Json::array();
+    for (const auto& [label, rate] : r.activeCompletedByLabel()) {
+        Json entry = rateJson(rate);
+        entry["label"] = label;
+        byLabel.push_back(entry);
+    }
     return {{"seeds", seeds},
             {"runs", r.seeds.size()},
             {"passive_lost", rateJson(r.passiveLost())},
             {"active_completed", rateJson(r.activeCompleted())},
+            {"active_completed_by_label", byLabel},
             {"recognised_raw", rateJson(r.recognisedRaw())},
             {"recognised_smoothed", rateJson(r.recognisedSmoothed())},
             {"paper_result", rateJson(r.paperResult())},
@@ -157,21 +184,24 @@ Json seedRatesJson(const SeedRates& r) {
 std::vector<std::string> describeRates(const SeedRates& r) {
     std::vector<std::string> lines;
     char buf[200];
-    for (const auto& [what, rate] :
-         {std::pair<const char*, Rate>{"passive trials lost", r.passiveLost()},
-          {"active trials completed", r.activeCompleted()},
-          {"recognised, paper's rule", r.recognisedRaw()},
-          {"recognised, smoothed histograms", r.recognisedSmoothed()},
-          {"runs with the paper's result whole", r.paperResult()}}) {
+    auto line = [&](const std::string& what, const Rate& rate) {
         if (rate.total == 0)
-            std::snprintf(buf, sizeof buf, "%-34s none in this experiment", what);
+            std::snprintf(buf, sizeof buf, "%-34s none in this experiment", what.c_str());
         else
             std::snprintf(buf, sizeof buf,
-                          "%-34s %4d / %-4d %5.1f %%  (95 %% interval %5.1f-%5.1f %%)", what,
-                          rate.count, rate.total, 100.0 * rate.fraction(), 100.0 * rate.low(),
-                          100.0 * rate.high());
+                          "%-34s %4d / %-4d %5.1f %%  (95 %% interval %5.1f-%5.1f %%)",
+                          what.c_str(), rate.count, rate.total, 100.0 * rate.fraction(),
+                          100.0 * rate.low(), 100.0 * rate.high());
         lines.push_back(buf);
-    }
+    };
+    line("passive trials lost", r.passiveLost());
+    line("active trials completed", r.activeCompleted());
+    const auto byLabel = r.activeCompletedByLabel();
+    if (byLabel.size() > 1)
+        for (const auto& [label, rate] : byLabel) line("  " + label, rate);
+    line("recognised, paper's rule", r.recognisedRaw());
+    line("recognised, smoothed histograms", r.recognisedSmoothed());
+    line("runs with the paper's result whole", r.paperResult());
     if (r.activeCompleted().count > 0) {
         std::snprintf(buf, sizeof buf,
                       "completed active trial: %.0f taps, %.0f s robot time; whole run %.0f s",

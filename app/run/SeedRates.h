@@ -5,11 +5,18 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/run/ExperimentRun.h"
 
 namespace activetouch {
+
+/// One trial label's active trials in a run.
+struct LabelOutcome {
+    std::string label;
+    int trials = 0, completed = 0;
+};
 
 /// One whole run's outcome.
 struct SeedOutcome {
@@ -22,6 +29,7 @@ struct SeedOutcome {
     double runRobotTime_s = 0.0;                          ///< the whole run, training included
     double angleError_deg = 0.0, positionError_mm = 0.0;  ///< offline validation
     std::vector<std::string> failures;  ///< "cross trial 2: lost: ..." for each active trial lost
+    std::vector<LabelOutcome> activeByLabel;  ///< per trial label, in the experiment's order
 
     /// The paper's result whole in this run: every passive trial lost, every active trial
     /// completed and every active path recognised by the paper's rule.
@@ -55,6 +63,9 @@ struct SeedRates {
     Rate recognisedRaw() const;       ///< of completed active paths
     Rate recognisedSmoothed() const;  ///< of completed active paths
     Rate paperResult() const;         ///< of runs: SeedOutcome::paperResult
+    /// Active trials completed per trial label (a shape, or the label a trial gives), in the
+    /// order the labels first appear.
+    std::vector<std::pair<std::string, Rate>> activeCompletedByLabel() const;
     double tapsPerCompletedTrial() const;
     double robotTimePerCompletedTrial_s() const;
     double robotTimePerRun_s() const;
@@ -70,8 +81,9 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
 Json seedRatesJson(const SeedRates& rates);
 
 /// The rates as lines of text, one per rate ("<what>  count / total  p %  (95 % interval lo-hi
-/// %)", or that there are none), then what a completed active trial and a whole run cost in taps
-/// and robot time.
+/// %)", or that there are none; with more than one trial label, active completion per label under
+/// the overall rate), then what a completed active trial and a whole run cost in taps and robot
+/// time.
 std::vector<std::string> describeRates(const SeedRates& rates);
 
 }  // namespace activetouch

@@ -93,6 +93,47 @@ private slots:
                 QVERIFY2(t.result.completed(), t.result.detail.c_str());
     }
 
+    void ratesAreReportedPerShape() {
+        // Active completion per trial label, in the experiment's order, adds up to the whole and
+        // matches the trials it counts.
+        const auto byLabel = rates_.activeCompletedByLabel();
+        QCOMPARE(int(byLabel.size()), 4);
+        const char* shapes[] = {"rectangle", "cross", "c", "l"};
+        Rate sum;
+        for (std::size_t i = 0; i < byLabel.size(); ++i) {
+            const auto& [label, rate] = byLabel[i];
+            QCOMPARE(label, std::string(shapes[i]));
+            int trials = 0, completed = 0;
+            for (const auto& run : runs_)
+                for (const auto& t : run.trials)
+                    if (t.result.mode == FollowingMode::Active && t.label == label) {
+                        ++trials;
+                        completed += t.result.completed();
+                    }
+            QCOMPARE(rate.total, trials);
+            QCOMPARE(rate.count, completed);
+            sum.count += rate.count;
+            sum.total += rate.total;
+        }
+        QCOMPARE(sum.count, rates_.activeCompleted().count);
+        QCOMPARE(sum.total, rates_.activeCompleted().total);
+        const auto lines = describeRates(rates_);
+        const auto cross = std::find_if(lines.begin(), lines.end(), [](const std::string& l) {
+            return l.rfind("  cross ", 0) == 0;
+        });
+        QVERIFY(cross != lines.end());
+        QVERIFY2(cross->find(QString("%1 / %2 ")
+                                 .arg(byLabel[1].second.count)
+                                 .arg(byLabel[1].second.total)
+                                 .toStdString()) != std::string::npos,
+                 cross->c_str());
+        // One label only: no per-label lines.
+        SeedRates one;
+        one.seeds.push_back(rates_.seeds.front());
+        one.seeds.back().activeByLabel.resize(1);
+        for (const auto& l : describeRates(one)) QVERIFY2(l.rfind("  ", 0) != 0, l.c_str());
+    }
+
     void recognitionNamesTheActivePaths() {
         for (const auto& run : runs_)
             for (const auto& t : run.trials)
