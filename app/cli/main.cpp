@@ -273,11 +273,13 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     try {
         const auto start = std::chrono::steady_clock::now();
         const SeedRates rates = runSeeds(spec, *from, *to, outDir, [](const SeedOutcome& o) {
-            std::printf(
-                "seed %llu: passive lost %d/%d, active completed %d/%d, recognised %d (smoothed "
-                "%d)\n",
-                static_cast<unsigned long long>(o.seed), o.passiveLost, o.passiveTrials,
-                o.activeCompleted, o.activeTrials, o.recognisedRaw, o.recognisedSmoothed);
+            std::printf("seed %llu: passive lost %d/%d, active completed %d/%d",
+                        static_cast<unsigned long long>(o.seed), o.passiveLost, o.passiveTrials,
+                        o.activeCompleted, o.activeTrials);
+            if (o.recognition)
+                std::printf(", recognised %d (smoothed %d) of %d", o.recognisedRaw,
+                            o.recognisedSmoothed, o.recognitionTrials);
+            std::printf("\n");
             for (const auto& f : o.failures) std::printf("    %s\n", f.c_str());
             std::fflush(stdout);
             return true;

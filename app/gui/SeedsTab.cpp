@@ -160,12 +160,15 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     table_->setItem(row, 0, cell(QString::number(o.seed)));
     table_->setItem(row, 1, cell(fraction(o.passiveLost, o.passiveTrials)));
     table_->setItem(row, 2, cell(fraction(o.activeCompleted, o.activeTrials)));
-    table_->setItem(row, 3, cell(fraction(o.recognisedRaw, o.activeCompleted)));
-    table_->setItem(row, 4, cell(fraction(o.recognisedSmoothed, o.activeCompleted)));
+    table_->setItem(row, 3, cell(fraction(o.recognisedRaw, o.recognitionTrials)));
+    table_->setItem(row, 4, cell(fraction(o.recognisedSmoothed, o.recognitionTrials)));
     table_->setItem(row, 5, cell(QString::number(o.angleError_deg, 'f', 2)));
     auto* failures = new QTableWidgetItem(lost.join("; "));
     failures->setToolTip(lost.join("\n"));
-    table_->setItem(row, 6, cell(o.paperResult() ? tr("yes") : tr("no")));
+    table_->setItem(row, 6,
+                    cell(!o.paperResultApplies() ? QString("-")
+                         : o.paperResult()       ? tr("yes")
+                                                 : tr("no")));
     table_->setItem(row, 7, failures);
     if (o.activeCompleted < o.activeTrials)
         for (int c = 0; c < table_->columnCount(); ++c)

@@ -19,6 +19,7 @@ SeedOutcome seedOutcome(const RunResult& run) {
     o.runRobotTime_s = run.robotTime_s;
     o.angleError_deg = run.validation.angleError_deg;
     o.positionError_mm = run.validation.positionError_mm;
+    o.recognition = run.spec.recognition.enabled;
     for (const TrialRun& t : run.trials) {
         if (t.result.mode == FollowingMode::Passive) {
             ++o.passiveTrials;
@@ -38,6 +39,7 @@ SeedOutcome seedOutcome(const RunResult& run) {
             continue;
         }
         ++o.activeCompleted;
+        o.recognitionTrials += t.recognised;
         o.recognisedRaw += t.recognised && t.recognition.predicted == t.label;
         o.recognisedSmoothed += t.recognised && t.recognition.predictedSmoothed == t.label;
         o.completedTaps += static_cast<int>(t.result.taps.size());
@@ -91,12 +93,13 @@ Rate activeCompletedIn(const SeedOutcome& s) {
     return {s.activeCompleted, s.activeTrials};
 }
 Rate recognisedRawIn(const SeedOutcome& s) {
-    return {s.recognisedRaw, s.activeCompleted};
+    return {s.recognisedRaw, s.recognitionTrials};
 }
 Rate recognisedSmoothedIn(const SeedOutcome& s) {
-    return {s.recognisedSmoothed, s.activeCompleted};
+    return {s.recognisedSmoothed, s.recognitionTrials};
 }
 Rate paperResultIn(const SeedOutcome& s) {
+    if (!s.paperResultApplies()) return {0, 0};
     return {s.paperResult() ? 1 : 0, 1};
 }
 
@@ -149,18 +152,20 @@ double SeedRates::robotTimePerRun_s() const {
 Json seedRatesJson(const SeedRates& r) {
     Json seeds = Json::array();
     for (const auto& s : r.seeds)
-        seeds.push_back({{"seed", s.seed},
-                         {"passive_trials", s.passiveTrials},
-                         {"passive_lost", s.passiveLost},
-                         {"active_trials", s.activeTrials},
-                         {"active_completed", s.activeCompleted},
-                         {"recognised_raw", s.recognisedRaw},
-                         {"recognised_smoothed", s.recognisedSmoothed},
-                         {"validation_angle_error_deg", s.angleError_deg},
-                         {"validation_position_error_mm", s.positionError_mm},
-                         {"run_robot_time_s", s.runRobotTime_s},
-                         {"paper_result", s.paperResult()},
-                         {"active_failures", s.failures}});
+        seeds.push_back(
+            {{"seed", s.seed},
+             {"passive_trials", s.passiveTrials},
+             {"passive_lost", s.passiveLost},
+             {"active_trials", s.activeTrials},
+             {"active_completed", s.activeCompleted},
+             {"recognition_trials", s.recognitionTrials},
+             {"recognised_raw", s.recognisedRaw},
+             {"recognised_smoothed", s.recognisedSmoothed},
+             {"validation_angle_error_deg", s.angleError_deg},
+             {"validation_position_error_mm", s.positionError_mm},
+             {"run_robot_time_s", s.runRobotTime_s},
+             {"paper_result", s.paperResultApplies() ? Json(s.paperResult()) : Json(nullptr)},
+             {"active_failures", s.failures}});
     Json byLabel = Json::array();
     for (const auto& [label, rate] : r.activeCompletedByLabel()) {
         Json entry = rateJson(rate);
@@ -186,7 +191,7 @@ std::vector<std::string> describeRates(const SeedRates& r) {
     char buf[200];
     auto line = [&](const std::string& what, const Rate& rate) {
         if (rate.total == 0)
-            std::snprintf(buf, sizeof buf, "%-34s none in this experiment", what.c_str());
+            std::snprintf(buf, sizeof buf, "%-34s  none in this experiment", what.c_str());
         else
             std::snprintf(buf, sizeof buf,
                           "%-34s %4d / %-4d %5.1f %%  (95 %% interval %5.1f-%5.1f %%)",
@@ -224,7 +229,8 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
         file.reset(openOutputTable((fs::path(outDir) / "rates.csv").string()));
         std::fprintf(file.get(),
                      "seed,passive_trials,passive_lost,active_trials,active_completed,"
-                     "recognised_raw,recognised_smoothed,completed_taps,completed_robot_time_s,"
+                     "recognition_trials,recognised_raw,recognised_smoothed,completed_taps,"
+                     "completed_robot_time_s,"
                      "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
                      "paper_result,active_failures\n");
         std::fflush(file.get());
@@ -240,11 +246,13 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
             for (std::size_t i = failures.find('"'); i != std::string::npos;
                  i = failures.find('"', i + 2))
                 failures.insert(i, 1, '"');
-            std::fprintf(file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%d,\"%s\"\n",
+            // Where the experiment does not have the paper's parts, its result is left empty.
+            const char* paper = !o.paperResultApplies() ? "" : o.paperResult() ? "1" : "0";
+            std::fprintf(file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,\"%s\"\n",
                          static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
-                         o.activeTrials, o.activeCompleted, o.recognisedRaw, o.recognisedSmoothed,
-                         o.completedTaps, o.completedRobotTime_s, o.runRobotTime_s,
-                         o.angleError_deg, o.positionError_mm, int(o.paperResult()),
+                         o.activeTrials, o.activeCompleted, o.recognitionTrials, o.recognisedRaw,
+                         o.recognisedSmoothed, o.completedTaps, o.completedRobotTime_s,
+                         o.runRobotTime_s, o.angleError_deg, o.positionError_mm, paper,
                          failures.c_str());
             std::fflush(file.get());
         }

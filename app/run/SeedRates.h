@@ -23,7 +23,9 @@ struct SeedOutcome {
     std::uint64_t seed = 0;
     int passiveTrials = 0, passiveLost = 0;
     int activeTrials = 0, activeCompleted = 0;
-    int recognisedRaw = 0, recognisedSmoothed = 0;        ///< completed active paths named rightly
+    bool recognition = false;   ///< the experiment recognises shapes from the paths
+    int recognitionTrials = 0;  ///< completed active paths it looked at
+    int recognisedRaw = 0, recognisedSmoothed = 0;        ///< of those, named rightly
     int completedTaps = 0;                                ///< taps of the completed active trials
     double completedRobotTime_s = 0.0;                    ///< their robot time
     double runRobotTime_s = 0.0;                          ///< the whole run, training included
@@ -31,11 +33,13 @@ struct SeedOutcome {
     std::vector<std::string> failures;  ///< "cross trial 2: lost: ..." for each active trial lost
     std::vector<LabelOutcome> activeByLabel;  ///< per trial label, in the experiment's order
 
+    /// Whether the run has the paper's parts: passive and active trials, and recognition.
+    bool paperResultApplies() const { return passiveTrials > 0 && activeTrials > 0 && recognition; }
     /// The paper's result whole in this run: every passive trial lost, every active trial
     /// completed and every active path recognised by the paper's rule.
     bool paperResult() const {
-        return passiveLost == passiveTrials && activeCompleted == activeTrials &&
-               recognisedRaw == activeCompleted;
+        return paperResultApplies() && passiveLost == passiveTrials &&
+               activeCompleted == activeTrials && recognisedRaw == recognitionTrials;
     }
 };
 
@@ -52,9 +56,9 @@ struct Rate {
 /// One run's part in each rate: its count and its total, which SeedRates sums over runs.
 Rate passiveLostIn(const SeedOutcome& run);
 Rate activeCompletedIn(const SeedOutcome& run);
-Rate recognisedRawIn(const SeedOutcome& run);       ///< of its completed active paths
-Rate recognisedSmoothedIn(const SeedOutcome& run);  ///< of its completed active paths
-Rate paperResultIn(const SeedOutcome& run);         ///< 1 of 1 or 0 of 1
+Rate recognisedRawIn(const SeedOutcome& run);       ///< of its recognised completed active paths
+Rate recognisedSmoothedIn(const SeedOutcome& run);  ///< of its recognised completed active paths
+Rate paperResultIn(const SeedOutcome& run);  ///< 1 of 1 or 0 of 1; 0 of 0 where it does not apply
 
 struct SeedRates {
     std::vector<SeedOutcome> seeds;

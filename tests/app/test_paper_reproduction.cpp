@@ -134,6 +134,33 @@ private slots:
         for (const auto& l : describeRates(one)) QVERIFY2(l.rfind("  ", 0) != 0, l.c_str());
     }
 
+    void ratesWithoutThePapersPartsSayNone() {
+        // Active trials only, no recognition (as experiments/feature_size.json): nothing is
+        // reported as recognised or as the paper's result, rather than as 0 %.
+        ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
+        spec.recognition.enabled = false;
+        std::erase_if(spec.trials,
+                      [](const TrialSpec& t) { return t.mode == FollowingMode::Passive; });
+        RunOptions options;
+        options.seed = 1;
+        SeedRates rates;
+        rates.seeds.push_back(seedOutcome(runExperiment(spec, options)));
+        const SeedOutcome& o = rates.seeds.front();
+        QCOMPARE(o.activeTrials, 8);
+        QVERIFY(!o.paperResultApplies());
+        QVERIFY(!o.paperResult());
+        for (const Rate& r : {rates.passiveLost(), rates.recognisedRaw(),
+                              rates.recognisedSmoothed(), rates.paperResult()})
+            QCOMPARE(r.total, 0);
+        int none = 0;
+        for (const auto& line : describeRates(rates))
+            none += line.find("none in this experiment") != std::string::npos;
+        QCOMPARE(none, 4);
+        const Json j = seedRatesJson(rates);
+        QVERIFY(j["seeds"][0]["paper_result"].is_null());
+        QVERIFY(j["paper_result"]["rate"].is_null());
+    }
+
     void recognitionNamesTheActivePaths() {
         for (const auto& run : runs_)
             for (const auto& t : run.trials)
