@@ -101,12 +101,18 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
 }
 
 bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
-    startFigure(plot, QString("Figure 9 - recognition from 20 x 20 path histograms: %1 % (paper's "
-                              "rule), %2 % (smoothed, sigma %3 bins)")
+    const int bins = r.spec.recognition.bins;
+    if (r.templates.empty()) {
+        // Nothing recognised (no recognition step, or no run yet): no accuracy to claim.
+        startFigure(plot, QString("Figure 9 - recognition from %1 x %1 path histograms").arg(bins));
+        return false;
+    }
+    startFigure(plot, QString("Figure 9 - recognition from %1 x %1 path histograms: %2 % (paper's "
+                              "rule), %3 % (smoothed, sigma %4 bins)")
+                          .arg(bins)
                           .arg(100.0 * r.recognitionAccuracy, 0, 'f', 0)
                           .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0)
                           .arg(r.spec.recognition.smoothingSigmaBins));
-    if (r.templates.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
     std::map<std::string, std::vector<const TrialRun*>> byShape;
     int maxTrials = 0;

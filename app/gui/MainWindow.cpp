@@ -90,9 +90,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
            "training and test sets on the rig and validate the classifier.");
     taps_->setEmptyHint(training);
     errors_->setEmptyHint(training);
-    recognition_->setEmptyHint(
-        tr("The active paths are recognised after active following: click Run whole protocol, or "
-           "Run following once the classifier is trained."));
+    recognition_->setEmptyHint(recognitionHint());
     for (PlotPanel* p : {sweepPerception_, sweepFollowing_, sweepCompute_})
         p->setEmptyHint(
             tr("No sweeps measured yet. Open experiments/accuracy_vs_time.json (or any "
@@ -299,6 +297,12 @@ std::optional<ExperimentSpec> MainWindow::experimentToRun() {
     }
 }
 
+QString MainWindow::recognitionHint() const {
+    return tr(
+        "The active paths are recognised after active following: click Run whole protocol, "
+        "or Run following once the classifier is trained.");
+}
+
 QString MainWindow::newRunDirectory(const QString& stem) const {
     return QDir(outputBase_)
         .filePath(stem + "-" + QDateTime::currentDateTime().toString("yyyyMMdd-hhmmss-zzz"));
@@ -417,7 +421,13 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
     if (!r.validation.byClass.empty()) buildErrorFigure(errors_->plot(), r);
     for (auto* p : {taps_, errors_}) p->plot().replot();
     following_->showRun(result);
-    if (buildRecognitionFigure(recognition_->plot(), r)) recognition_->plot().replot();
+    recognition_->setEmptyHint(r.spec.recognition.enabled
+                                   ? recognitionHint()
+                                   : tr("This experiment has no recognition step: add a "
+                                        "\"recognition\" section, as experiments/paper.json has, "
+                                        "to recognise the shapes from the traced paths."));
+    buildRecognitionFigure(recognition_->plot(), r);
+    recognition_->plot().replot();
     if (!r.sweeps.empty()) {
         buildPerceptionSweepFigure(sweepPerception_->plot(), r);
         buildFollowingSweepFigure(sweepFollowing_->plot(), r);

@@ -86,6 +86,7 @@ private:
                 std::shared_ptr<const ConnectedRig> connected);
     /// A new folder under the output base for a run: <stem>-<date and time>.
     QString newRunDirectory(const QString& stem) const;
+    QString recognitionHint() const;
     void log(const QString& text);
     void showRun(std::shared_ptr<const RunResult> result, const QString& dir);
     void showSeeds(std::shared_ptr<const SeedRates> rates, const QString& dir, bool cancelled);

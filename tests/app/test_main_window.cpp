@@ -299,6 +299,16 @@ private slots:
             if (p->name().startsWith("sweep"))
                 QVERIFY2(p->plot().plottableCount() > 0 && !p->showsEmptyHint(),
                          qPrintable(p->name()));
+        // This experiment recognises nothing: the recognition tab says so and claims no accuracy.
+        for (PlotPanel* p : window_->plotPanels())
+            if (p->name() == "figure9_recognition") {
+                QVERIFY(p->showsEmptyHint());
+                QVERIFY2(p->emptyHint().contains("no recognition step"),
+                         qPrintable(p->emptyHint()));
+                auto* title = qobject_cast<QCPTextElement*>(p->plot().plotLayout()->element(0, 0));
+                QVERIFY(title);
+                QVERIFY2(!title->text().contains('%'), qPrintable(title->text()));
+            }
         QTRY_VERIFY(!window_->running());
         QVERIFY(window_->openExperiment(source("experiments/paper.json")));
     }
