@@ -63,6 +63,7 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
         legend->setBrush(QColor(255, 255, 255, 220));
         Vec2 lo{1e9, 1e9}, hi{-1e9, -1e9};
         bool outlineDrawn = false;
+        QCPCurve* firstEnd = nullptr;
         for (const auto& t : r.trials) {
             if (t.result.mode != mode || t.label != labels[i]) continue;
             if (!outlineDrawn) {
@@ -87,11 +88,21 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
                               .arg(trialEndName(t.result.end))
                               .arg(t.result.taps.size()));
             legend->addItem(new QCPPlottableLegendItem(legend, path));
+            if (!t.result.completed() && !t.result.taps.empty()) {
+                // Where a trial that did not complete ended; one legend entry per panel, last.
+                auto* end = polyline(rect, {t.result.path().back()}, false);
+                end->setPen(Qt::NoPen);
+                end->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCross, QPen(Qt::black, 2.5),
+                                                     Qt::NoBrush, 13));
+                end->setName("where the trial ended");
+                if (!firstEnd) firstEnd = end;
+            }
             for (Vec2 v : t.result.path()) {
                 lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
                 hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
             }
         }
+        if (firstEnd) legend->addItem(new QCPPlottableLegendItem(legend, firstEnd));
         // Room above the paths for the legend.
         const double margin = 8.0;
         setEqualAspectRanges(rect, QCPRange(lo.x - margin, hi.x + margin),
