@@ -47,6 +47,39 @@ private slots:
         QCOMPARE(drawn.size(), static_cast<int>(runFigures().size()));
     }
 
+    void pathFiguresMarkWhereLostTrialsEnded() {
+        // The paper's passive trials are lost: a cross at each one's last tap, one legend entry.
+        const RunResult& paper = runs_.front();
+        QCustomPlot plot;
+        QVERIFY(buildPathFigure(plot, paper, FollowingMode::Passive, "passive"));
+        std::vector<Vec2> ends;
+        for (const auto& t : paper.trials)
+            if (t.result.mode == FollowingMode::Passive && !t.result.completed())
+                ends.push_back(t.result.path().back());
+        QCOMPARE(int(ends.size()), 2);
+        int marks = 0, inLegend = 0;
+        for (int i = 0; i < plot.plottableCount(); ++i) {
+            auto* c = qobject_cast<QCPCurve*>(plot.plottable(i));
+            if (!c || c->name() != "where the trial ended") continue;
+            QCOMPARE(c->dataCount(), 1);
+            const Vec2 at{c->data()->begin()->key, c->data()->begin()->value};
+            QVERIFY(std::any_of(ends.begin(), ends.end(),
+                                [&](Vec2 e) { return distance(e, at) < 1e-9; }));
+            ++marks;
+            for (QCPAxisRect* rect : plot.axisRects())
+                for (int e = 0; e < rect->insetLayout()->elementCount(); ++e)
+                    if (auto* legend = qobject_cast<QCPLegend*>(rect->insetLayout()->elementAt(e)))
+                        inLegend += legend->hasItemWithPlottable(c);
+        }
+        QCOMPARE(marks, 2);
+        QCOMPARE(inLegend, 1);
+        // Every active trial of seed 1 completed: no marks there.
+        QCustomPlot active;
+        QVERIFY(buildPathFigure(active, paper, FollowingMode::Active, "active"));
+        for (int i = 0; i < active.plottableCount(); ++i)
+            QVERIFY(active.plottable(i)->name() != "where the trial ended");
+    }
+
     void aCancelledRunDrawsOnlyItsTaps() {
         RunResult cancelled = runs_.front();
         cancelled.cancelled = true;
