@@ -4,6 +4,7 @@
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
+#include <QPushButton>
 #include <QSlider>
 #include <QSplitter>
 #include <QTabWidget>
@@ -50,8 +51,12 @@ FollowingTab::FollowingTab(QWidget* parent)
     auto* controls = new QHBoxLayout;
     trial_ = new QComboBox;
     slider_ = new QSlider(Qt::Horizontal);
+    play_ = new QPushButton(tr("Play"));
+    play_->setObjectName("replayPlay");
+    play_->setToolTip(tr("Plays the trial on from the tap shown, 20 taps a second"));
     controls->addWidget(new QLabel(tr("Replay")));
     controls->addWidget(trial_);
+    controls->addWidget(play_);
     controls->addWidget(slider_, 1);
     rl->addLayout(controls);
     step_ = new QLabel(tr("Run an experiment to replay its trials."));
@@ -69,7 +74,16 @@ FollowingTab::FollowingTab(QWidget* parent)
     lower->setStretchFactor(1, 3);
     views->addTab(lower, tr("Trials and replay"));
     layout->addWidget(views);
-    connect(trial_, &QComboBox::currentIndexChanged, this, [this](int i) { replay(i, 0); });
+    player_.setInterval(50);
+    connect(&player_, &QTimer::timeout, this, [this] {
+        if (slider_->value() >= slider_->maximum()) return pause();
+        slider_->setValue(slider_->value() + 1);
+    });
+    connect(play_, &QPushButton::clicked, this, [this] { playing() ? pause() : play(); });
+    connect(trial_, &QComboBox::currentIndexChanged, this, [this](int i) {
+        pause();
+        replay(i, 0);
+    });
     connect(slider_, &QSlider::valueChanged, this,
             [this](int tap) { replay(trial_->currentIndex(), tap); });
     connect(table_, &QTableWidget::cellClicked, this,
@@ -77,6 +91,7 @@ FollowingTab::FollowingTab(QWidget* parent)
 }
 
 void FollowingTab::showRun(std::shared_ptr<const RunResult> result) {
+    pause();
     result_ = std::move(result);
     const RunResult& r = *result_;
     buildPathFigure(active_->plot(), r, FollowingMode::Active,
@@ -122,6 +137,19 @@ void FollowingTab::showRun(std::shared_ptr<const RunResult> result) {
     }
 }
 
+void FollowingTab::play() {
+    if (!result_ || trial_->currentIndex() < 0) return;
+    // From the last tap, play starts over.
+    if (slider_->value() >= slider_->maximum()) replay(trial_->currentIndex(), 0);
+    player_.start();
+    play_->setText(tr("Pause"));
+}
+
+void FollowingTab::pause() {
+    player_.stop();
+    play_->setText(tr("Play"));
+}
+
 int FollowingTab::replayedTrial() const {
     return trial_->currentIndex();
 }
@@ -134,6 +162,10 @@ void FollowingTab::replay(int index, int tap) {
     if (!result_ || index < 0 || index >= static_cast<int>(result_->trials.size())) return;
     const TrialRun& t = result_->trials[static_cast<std::size_t>(index)];
     if (t.result.taps.empty()) return;
+    if (trial_->currentIndex() != index) {
+        const QSignalBlocker block(trial_);
+        trial_->setCurrentIndex(index);
+    }
     tap = std::clamp(tap, 0, static_cast<int>(t.result.taps.size()) - 1);
     {
         const QSignalBlocker block(slider_);

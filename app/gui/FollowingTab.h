@@ -2,10 +2,12 @@
 // The contour following tab (DESIGN.md §5): active and passive paths side by side over the
 // outline, per-trial statistics, and a step-by-step replay of one trial with the percept and the
 // rule that fired at each tap.
+#include <QTimer>
 #include <QWidget>
 #include <memory>
 
 class QComboBox;
+class QPushButton;
 class QLabel;
 class QSlider;
 class QTableWidget;
@@ -32,6 +34,10 @@ public:
     /// The trial (in the table's order) and tap the replay shows.
     int replayedTrial() const;
     int replayedTap() const;
+    /// Plays the replay on from the tap shown, 20 taps a second, to the trial's last tap.
+    void play();
+    void pause();
+    bool playing() const { return player_.isActive(); }
 
 private:
     std::shared_ptr<const RunResult> result_;
@@ -39,6 +45,8 @@ private:
     QTableWidget* table_;
     QComboBox* trial_;
     QSlider* slider_;
+    QPushButton* play_;
+    QTimer player_;
     QLabel* step_;
 };
 

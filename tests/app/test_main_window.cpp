@@ -157,8 +157,22 @@ private slots:
             if (filledByARun(p))
                 QVERIFY2(p->plot().plottableCount() > 0 && !p->showsEmptyHint(),
                          qPrintable(p->name()));
-        window_->followingTab()->replay(3, 10);
-        QVERIFY(window_->followingTab()->replayText().contains("Rule '"));
+        FollowingTab* following = window_->followingTab();
+        following->replay(3, 10);
+        QVERIFY(following->replayText().contains("Rule '"));
+        // Play runs the replay on to the trial's last tap and stops there.
+        const int last = int(run->trials[3].result.taps.size()) - 1;
+        following->replay(3, last - 4);
+        auto* play = following->findChild<QPushButton*>("replayPlay");
+        QVERIFY(play);
+        QTest::mouseClick(play, Qt::LeftButton);
+        QVERIFY(following->playing());
+        QCOMPARE(play->text(), QString("Pause"));
+        QTRY_VERIFY_WITH_TIMEOUT(!following->playing(), 10000);
+        QCOMPARE(following->replayedTrial(), 3);
+        QCOMPARE(following->replayedTap(), last);
+        QCOMPARE(play->text(), QString("Play"));
+        QVERIFY(following->replayText().startsWith(QString("Tap %1 of %1 ").arg(last + 1)));
         QVERIFY(window_->liveView()->framesDrawn() > 0);
     }
 
