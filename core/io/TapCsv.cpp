@@ -44,7 +44,8 @@ void TapCsvWriter::append(const CollectedTap& c, const ClassSet& classes) {
     std::fflush(file_);
 }
 
-std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& classes) {
+std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& classes,
+                                     std::string* cutOff) {
     std::ifstream in = openInputFile(path);
     std::string line;
     if (!std::getline(in, line))
@@ -69,8 +70,17 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     auto number = [&](const std::string& field, const std::string& column) {
         return csvNumber(field, path, lineNo, column);
     };
+    // A line that broke off is only accepted as the file's last: it is held here until then.
+    std::string brokenLine;
+    int brokenAt = 0, samplesPerTap = 0, lastRow = 0;
     auto finishTap = [&]() {
         if (taps.empty()) return;
+        if (samplesPerTap == 0) samplesPerTap = static_cast<int>(samples.size());
+        if (static_cast<int>(samples.size()) != samplesPerTap)
+            throw InputError(path, "line " + std::to_string(lastRow),
+                             "the tap above has " + std::to_string(samples.size()) +
+                                 " samples, the first tap " + std::to_string(samplesPerTap) +
+                                 "; every tap of a recording has as many");
         Tap& t = taps.back().record.tap;
         t = Tap(static_cast<int>(samples.size()), taxels);
         for (std::size_t s = 0; s < samples.size(); ++s)
@@ -81,11 +91,16 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     while (std::getline(in, line)) {
         ++lineNo;
         if (line.empty() || line == "\r") continue;
+        if (brokenAt)
+            throw InputError(path, "line " + std::to_string(brokenAt),
+                             brokenLine + "; only the file's last line may be cut short");
         const auto f = splitCsvLine(line);
-        if (static_cast<int>(f.size()) != kFixed + taxels)
-            throw InputError(path, "line " + std::to_string(lineNo),
-                             "has " + std::to_string(f.size()) + " fields, the header has " +
-                                 std::to_string(kFixed + taxels));
+        if (static_cast<int>(f.size()) != kFixed + taxels) {
+            brokenAt = lineNo;
+            brokenLine = "has " + std::to_string(f.size()) + " fields, the header has " +
+                         std::to_string(kFixed + taxels);
+            continue;
+        }
         const int set = static_cast<int>(number(f[0], "set"));
         const int cls = static_cast<int>(number(f[1], "class"));
         if (cls < 0 || cls >= classes.classCount())
@@ -93,6 +108,19 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
                              "class " + f[1] + " is outside 0.." +
                                  std::to_string(classes.classCount() - 1) +
                                  " for this experiment's classes");
+        // A class number means an orientation and a position only within its class set: a row
+        // naming others was recorded with other classes.
+        const double orientation = number(f[2], "orientation_deg");
+        const int position = static_cast<int>(number(f[3], "position"));
+        if (orientation != classes.orientationDegOf(cls) || position != classes.positionOf(cls))
+            throw InputError(path, "line " + std::to_string(lineNo) + ", column class",
+                             "class " + f[1] + " is the " +
+                                 ClassSet::orientationName(classes.orientationDegOf(cls)) +
+                                 " edge at position " + std::to_string(classes.positionOf(cls)) +
+                                 " in these classes, but the row says orientation " + f[2] +
+                                 " deg, position " + f[3] +
+                                 "; the taps were recorded with other classes: give the "
+                                 "experiment they were recorded with");
         const int sample = static_cast<int>(number(f[9], "sample"));
         if (sample == 0) {
             finishTap();
@@ -125,9 +153,31 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
             frame[static_cast<std::size_t>(k)] = v;
         }
         samples.push_back(std::move(frame));
+        lastRow = lineNo;
     }
-    finishTap();
-    if (taps.empty()) throw InputError(path, "line 2", "the file holds no taps");
+    // The last tap: whole, or cut short by a run that stopped while writing it.
+    std::string cut;
+    if (!taps.empty() && samplesPerTap > 0 && static_cast<int>(samples.size()) < samplesPerTap) {
+        const CollectedTap& last = taps.back();
+        cut = "the last tap (set " + std::to_string(last.dataSet) + ", class " +
+              std::to_string(last.cls) + ") has " + std::to_string(samples.size()) + " of " +
+              std::to_string(samplesPerTap) + " samples";
+        taps.pop_back();
+    } else {
+        finishTap();
+    }
+    if (brokenAt)
+        cut = (cut.empty() ? std::string() : cut + "; ") + "line " + std::to_string(brokenAt) +
+              " is cut off (" + brokenLine + ")";
+    if (taps.empty()) throw InputError(path, "line 2", "the file holds no whole tap");
+    if (!cut.empty()) {
+        if (!cutOff)
+            throw InputError(path, "the end",
+                             cut +
+                                 "; the recording was cut short, as by a run stopped while "
+                                 "writing");
+        *cutOff = cut;
+    }
     return taps;
 }
 

@@ -30,8 +30,12 @@ private:
     int taxels_;
 };
 
-/// Reads taps written by TapCsvWriter. Throws InputError naming the file, the line and the
-/// problem for wrong columns, non-numbers, NaN, values outside 0..255, or ragged taps.
-std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& classes);
+/// Reads taps written by TapCsvWriter with `classes`. Throws InputError naming the file, the line
+/// and the problem for wrong columns, non-numbers, NaN, values outside 0..255, a row whose
+/// orientation and position are not its class's, or taps with unequal numbers of samples. A run
+/// stopped while writing leaves its last tap (and maybe its last line) cut short: that tap is left
+/// out and `cutOff` says what was cut; without `cutOff`, such a file is refused.
+std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& classes,
+                                     std::string* cutOff = nullptr);
 
 }  // namespace activetouch

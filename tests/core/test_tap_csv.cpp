@@ -1,4 +1,5 @@
-// Tap files: what is written reads back exactly, and a broken file is refused with its line.
+// Tap files: what is written reads back exactly, a file cut short by a stopped run keeps its
+// finished taps and says what was cut, and a broken file is refused with its line.
 #include <QTemporaryDir>
 #include <QtTest>
 #include <fstream>
@@ -129,6 +130,11 @@ private slots:
         QTest::newRow("bad ending")
             << 2 << "1,3,270,4,-1.25,100,50,0,bounced,0,0,0,0,0,0,0,0,0,0,0,0,0"
             << "neither reflex nor stroke_limit";
+        QTest::newRow("other classes")
+            << 2 << "1,3,0,4,-1.25,100,50,0,reflex,0,0,0,0,0,0,0,0,0,0,0,0,0"
+            << "recorded with other classes";
+        QTest::newRow("a short line inside") << 30 << "1,3,270"
+                                             << "only the file's last line may be cut short";
     }
     void brokenFilesNameTheLineAndProblem() {
         QFETCH(int, line);
@@ -136,6 +142,36 @@ private slots:
         QFETCH(QString, problem);
         const std::string bad = corrupt(writeTaps(), line, replacement.toStdString());
         expectRefusedAt([&] { readTapCsv(bad, classes_); }, line, problem);
+    }
+
+    void tapRecordingCutShortKeepsItsFinishedTaps() {
+        // A run stopped while writing its third tap, in the middle of a line: the two finished
+        // taps are read and the cut is said; asked for whole taps only, the file is refused.
+        const std::string path = writeTaps();
+        std::ifstream in(path);
+        const std::string whole((std::istreambuf_iterator<char>(in)), {});
+        std::size_t at = 0;
+        for (int n = 0; n < 1 + 2 * 50 + 20; ++n) at = whole.find('\n', at) + 1;
+        const std::string cut = dir_.filePath("cut.csv").toStdString();
+        std::ofstream(cut) << whole.substr(0, at + 30);
+        std::string said;
+        const auto taps = readTapCsv(cut, classes_, &said);
+        QCOMPARE(int(taps.size()), 2);
+        QCOMPARE(taps.back().record.tap.sampleCount(), 50);
+        QVERIFY2(QString::fromStdString(said).contains("the last tap (set 3, class 13) has 20 of "
+                                                       "50 samples"),
+                 said.c_str());
+        QVERIFY2(QString::fromStdString(said).contains("is cut off"), said.c_str());
+        QVERIFY_THROWS_EXCEPTION(InputError, readTapCsv(cut, classes_));
+        std::string none;
+        QCOMPARE(int(readTapCsv(path, classes_, &none).size()), 3);
+        QVERIFY(none.empty());
+    }
+
+    void tapsWithUnequalSamplesAreRefused() {
+        // The first tap lost its last sample row: the taps no longer match.
+        const std::string bad = corrupt(writeTaps(), 51, "");
+        expectRefusedAt([&] { readTapCsv(bad, classes_); }, 101, "the first tap 49");
     }
 
     void followingRecordingsAreCheckedWhole() {
