@@ -1,6 +1,7 @@
 // activetouch-cli: the headless runner (DESIGN.md §4).
 //   activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--no-figures]
 //   activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>] [--no-figures]
+//   activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>] [--no-figures]
 //   activetouch-cli check <file.json | taps.csv | following_taps.csv>
 // Exit codes: 0 ok, 1 the run failed, 2 bad input.
 #include <QApplication>
@@ -51,6 +52,11 @@ void printHelp() {
         "      <dir>/rates.csv (a row per seed, appended as each finishes), <dir>/rates.json\n"
         "      and <dir>/figures/seed_rates.{png,pdf,svg} (each seed's outcome and the rates so\n"
         "      far with their intervals). --out defaults to results/<experiment name>_seeds.\n"
+        "  activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>] [--no-figures]\n"
+        "      Re-analyses recorded training and test taps (a run's data/taps.csv, from the\n"
+        "      simulated or the real rig) with the experiment's classes, classifier, training\n"
+        "      and validation settings: trains, validates and writes summary.json, the tables\n"
+        "      and Figures 5 and 6. --out defaults to results/<experiment name>_analysis.\n"
         "  activetouch-cli check <file.json | taps.csv | following_taps.csv>\n"
         "      Validates an experiment, a scene or a recording (training taps, or following\n"
         "      taps: a run stopped while writing leaves every finished tap whole and the cut\n"
@@ -125,14 +131,15 @@ std::optional<std::uint64_t> parseSeed(const std::string& v) {
 /// The arguments of run and seeds: one experiment file, --out, the seed options that command
 /// takes (each a whole number) and --no-figures where allowed. An error is the message to print.
 struct RunArguments {
-    std::string experimentPath, outDir;
+    std::string experimentPath, recordingPath, outDir;
     std::map<std::string, std::uint64_t> seeds;  ///< "--seed", "--from", "--to" as given
     bool figures = true;
     std::string error;
 };
 
 RunArguments parseRunArguments(const std::vector<std::string>& args, const char* command,
-                               const std::vector<std::string>& seedOptions, bool figuresOption) {
+                               const std::vector<std::string>& seedOptions, bool figuresOption,
+                               bool takesRecording = false) {
     RunArguments r;
     auto fail = [&](const std::string& message) {
         r.error = message;
@@ -157,6 +164,8 @@ RunArguments parseRunArguments(const std::vector<std::string>& args, const char*
             return fail("unknown option '" + a + "'");
         } else if (r.experimentPath.empty()) {
             r.experimentPath = a;
+        } else if (takesRecording && r.recordingPath.empty()) {
+            r.recordingPath = a;
         } else {
             return fail("unexpected argument '" + a + "'");
         }
@@ -164,7 +173,48 @@ RunArguments parseRunArguments(const std::vector<std::string>& args, const char*
     if (r.experimentPath.empty())
         return fail(std::string(command) +
                     " needs an experiment file, e.g. experiments/paper.json");
+    if (takesRecording && r.recordingPath.empty())
+        return fail(std::string(command) +
+                    " needs a recording of training and test taps after the experiment, e.g. "
+                    "results/paper/data/taps.csv");
     return r;
+}
+
+/// What a run or an analysis found: validation, noise floor, trials, recognition, where it went.
+void printReport(const RunResult& result, double wall, double figures_s,
+                 const std::string& outDir) {
+    const ExperimentSpec& spec = result.spec;
+    const auto& v = result.validation;
+    std::printf(
+        "validation: angle error %.2f deg, position error %.3f mm, class accuracy %.1f %%, "
+        "valid range %d-%d mm\n",
+        v.angleError_deg, v.positionError_mm, 100.0 * v.correctFraction, v.validRange.first,
+        v.validRange.last);
+    if (const auto& m = result.measuredNoiseFloor)
+        std::printf(
+            "noise floor: %.1f counts (measured from %d taps that touched nothing; "
+            "scene %.1f); classes whose ideal tap stays below it are air\n",
+            result.noiseFloor_counts, m->taps, result.spec.scene.tap.noiseFloor);
+    else
+        std::printf(
+            "noise floor: %.1f counts, the scene's (no class lies wholly in the air to "
+            "measure it from)\n",
+            result.noiseFloor_counts);
+    for (const auto& t : result.trials)
+        std::printf(
+            "%-7s %-9s trial %d: %-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, "
+            "contour distance mean %.2f max %.2f mm%s%s\n",
+            modeName(t.result.mode), t.label.c_str(), t.trial, trialEndName(t.result.end),
+            t.result.taps.size(), t.result.robotTime_s, 100.0 * t.result.coverage,
+            t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
+            t.recognised ? ", recognised as " : "",
+            t.recognised ? t.recognition.predicted.c_str() : "");
+    if (!result.templates.empty())
+        std::printf("recognition: %.0f %% of %s paths (smoothed histograms: %.0f %%)\n",
+                    100.0 * result.recognitionAccuracy, modeName(spec.recognition.ofMode),
+                    100.0 * result.recognitionAccuracySmoothed);
+    std::printf("wall time %.3f s (figures %.3f s); results in %s\n", wall, figures_s,
+                outDir.c_str());
 }
 
 int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
@@ -200,40 +250,10 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
         const double wall =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         writeSummary(result, outDir, wall, figures_s);
-        const auto& v = result.validation;
         std::printf("%s (seed %llu): %zu taps simulated, %.0f s of robot time\n", spec.name.c_str(),
                     static_cast<unsigned long long>(result.spec.scene.seed),
                     static_cast<std::size_t>(result.tapsSimulated), result.robotTime_s);
-        std::printf(
-            "validation: angle error %.2f deg, position error %.3f mm, class accuracy %.1f %%, "
-            "valid range %d-%d mm\n",
-            v.angleError_deg, v.positionError_mm, 100.0 * v.correctFraction, v.validRange.first,
-            v.validRange.last);
-        if (const auto& m = result.measuredNoiseFloor)
-            std::printf(
-                "noise floor: %.1f counts (measured from %d taps that touched nothing; "
-                "scene %.1f); classes whose ideal tap stays below it are air\n",
-                result.noiseFloor_counts, m->taps, result.spec.scene.tap.noiseFloor);
-        else
-            std::printf(
-                "noise floor: %.1f counts, the scene's (no class lies wholly in the air to "
-                "measure it from)\n",
-                result.noiseFloor_counts);
-        for (const auto& t : result.trials)
-            std::printf(
-                "%-7s %-9s trial %d: %-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, "
-                "contour distance mean %.2f max %.2f mm%s%s\n",
-                modeName(t.result.mode), t.label.c_str(), t.trial, trialEndName(t.result.end),
-                t.result.taps.size(), t.result.robotTime_s, 100.0 * t.result.coverage,
-                t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
-                t.recognised ? ", recognised as " : "",
-                t.recognised ? t.recognition.predicted.c_str() : "");
-        if (!result.templates.empty())
-            std::printf("recognition: %.0f %% of %s paths (smoothed histograms: %.0f %%)\n",
-                        100.0 * result.recognitionAccuracy, modeName(spec.recognition.ofMode),
-                        100.0 * result.recognitionAccuracySmoothed);
-        std::printf("wall time %.3f s (figures %.3f s); results in %s\n", wall, figures_s,
-                    outDir.c_str());
+        printReport(result, wall, figures_s, outDir);
         if (!result.failure.empty()) {
             std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data.\n",
                          result.failure.c_str(), outDir.c_str());
@@ -250,6 +270,57 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
     } catch (const std::exception& e) {
         std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data/taps.csv.\n",
                      e.what(), outDir.c_str());
+        return kRunFailed;
+    }
+}
+
+int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv) {
+    const RunArguments parsed = parseRunArguments(args, "analyse", {}, true, true);
+    if (!parsed.error.empty()) return usageError(parsed.error);
+    const auto start = std::chrono::steady_clock::now();
+    const auto loaded = loadForRun(parsed.experimentPath);
+    if (!loaded) return kBadInput;
+    const ExperimentSpec& spec = *loaded;
+    const std::string outDir = parsed.outDir.empty()
+                                   ? (fs::path("results") / (spec.name + "_analysis")).string()
+                                   : parsed.outDir;
+    const fs::path out(outDir);
+    try {
+        // Read whole before anything is written: the output may be where the recording lies.
+        std::string cut;
+        const std::vector<CollectedTap> taps = readTapCsv(parsed.recordingPath, spec.classes, &cut);
+        RunOptions options;
+        options.outDir = outDir;
+        options.recordedTaps = &taps;
+        options.recordingName = parsed.recordingPath;
+        std::error_code ec;
+        fs::remove(out / "summary.json", ec);
+        const RunResult result = runExperiment(spec, options);
+        writeRunTables(result, outDir);
+        double figures_s = 0.0;
+        if (parsed.figures)
+            figures_s = drawFigures(
+                argc, argv, [&] { writeRunFigures(result, QString::fromStdString(out.string())); });
+        const double wall =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        writeSummary(result, outDir, wall, figures_s);
+        std::printf(
+            "%s: %zu recorded taps from %s re-analysed (recorded over %.0f s of robot "
+            "time)\n",
+            spec.name.c_str(), result.taps.size(), parsed.recordingPath.c_str(),
+            result.robotTime_s);
+        if (!cut.empty())
+            std::printf(
+                "the recording was cut short at the end, as by a run stopped while "
+                "writing: %s; that tap is left out\n",
+                cut.c_str());
+        printReport(result, wall, figures_s, outDir);
+        return kOk;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "analysis failed: %s\n", e.what());
         return kRunFailed;
     }
 }
@@ -326,8 +397,14 @@ int commandCheck(const std::vector<std::string>& args) {
                             c.cutOff.c_str());
                 return kOk;
             }
-            const auto taps = readTapCsv(args[0], ClassSet{});
-            std::printf("%s: ok (%zu taps)\n", args[0].c_str(), taps.size());
+            std::string cut;
+            const auto taps = readTapCsv(args[0], ClassSet{}, &cut);
+            std::printf("%s: ok (%zu taps, %d samples each)%s%s\n", args[0].c_str(), taps.size(),
+                        taps.front().record.tap.sampleCount(),
+                        cut.empty() ? ""
+                                    : "; cut short at the end, as by a run stopped while "
+                                      "writing: ",
+                        cut.c_str());
             return kOk;
         } catch (const InputError& e) {
             std::fprintf(stderr, "error: %s\n", e.what());
@@ -367,6 +444,7 @@ int main(int argc, char** argv) {
     }
     if (command == "run") return commandRun(args, argc, argv);
     if (command == "seeds") return commandSeeds(args, argc, argv);
+    if (command == "analyse" || command == "analyze") return commandAnalyse(args, argc, argv);
     if (command == "check") return commandCheck(args);
-    return usageError("unknown command '" + command + "'; use run, seeds or check");
+    return usageError("unknown command '" + command + "'; use run, seeds, analyse or check");
 }

@@ -172,6 +172,47 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
 
 }  // namespace
 
+void checkRecordingCovers(const ExperimentSpec& spec, const std::vector<CollectedTap>& taps,
+                          int taxels, const std::string& name) {
+    const ClassSet& classes = spec.classes;
+    const int sets = spec.training.dataSets;
+    std::vector<std::vector<int>> count(static_cast<std::size_t>(sets) + 1,
+                                        std::vector<int>(classes.classCount(), 0));
+    bool anyTest = false;
+    for (const CollectedTap& t : taps) {
+        if (t.dataSet < 1 || t.dataSet > sets)
+            throw InputError(name, "column set",
+                             "data set " + std::to_string(t.dataSet) +
+                                 " is not one of the experiment's data sets 1.." +
+                                 std::to_string(sets) +
+                                 "; use the experiment the taps were "
+                                 "recorded with, or set training.data_sets");
+        if (t.record.tap.taxels != taxels)
+            throw InputError(name, "taxel columns",
+                             "the taps have " + std::to_string(t.record.tap.taxels) +
+                                 " taxels and the experiment's fingertip " +
+                                 std::to_string(taxels) +
+                                 "; use the fingertip description the taps were recorded with");
+        ++count[static_cast<std::size_t>(t.dataSet)][static_cast<std::size_t>(t.cls)];
+        anyTest = anyTest || !spec.training.isTrainingSet(t.dataSet);
+    }
+    for (int set : spec.training.trainingSets)
+        for (int c = 0; c < classes.classCount(); ++c)
+            if (count[static_cast<std::size_t>(set)][static_cast<std::size_t>(c)] == 0)
+                throw InputError(
+                    name, "data set " + std::to_string(set),
+                    "training set " + std::to_string(set) + " has no tap of class " +
+                        std::to_string(c) + " (" +
+                        ClassSet::orientationName(classes.orientationDegOf(c)) +
+                        " edge, position " + std::to_string(classes.positionOf(c)) +
+                        "); every class needs a training tap: record it, or train on other sets "
+                        "(training.training_sets)");
+    if (!anyTest)
+        throw InputError(name, "column set",
+                         "every tap belongs to a training set, so nothing is left to validate on; "
+                         "record test sets, or train on fewer sets (training.training_sets)");
+}
+
 RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options) {
     const auto started = std::chrono::steady_clock::now();
     RunResult result;
@@ -180,13 +221,15 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     const ExperimentSpec& spec = result.spec;
 
     auto model = std::make_shared<const FingertipContactModel>(spec.scene.fingertip);
+    const std::vector<CollectedTap>* recorded = options.recordedTaps;
+    if (recorded) checkRecordingCovers(spec, *recorded, model->taxelCount(), options.recordingName);
     if (options.connected) checkRunnableOn(spec, *options.connected);
     std::optional<SimulatedRig> simulated;
-    if (!options.connected) simulated.emplace(spec.scene, model);
-    Rig rig = options.connected ? options.connected->rig : simulated->rig();
-    const double robotStart_s = rig.clock.now_s();
+    if (!options.connected && !recorded) simulated.emplace(spec.scene, model);
     if (simulated) {
         result.activeEffects = simulated->world().activeEffects();
+    } else if (recorded) {
+        result.rig = "recording " + options.recordingName;
     } else {
         result.rig = options.connected->description;
     }
@@ -218,12 +261,26 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
         if (options.progress) options.progress(progress);
         return !(options.cancel && options.cancel->load());
     };
-    result.taps = collectTrainingTaps(
-        rig, simulated ? simulated->world().object() : spec.scene.object.outline(), result.classes,
-        spec.training, RandomStream::derived(spec.scene.seed, "protocol:placement"), onTap);
-    result.robotTime_s = rig.clock.now_s() - robotStart_s;
+    if (recorded) {
+        for (const CollectedTap& tap : *recorded) {
+            if (!onTap(tap)) break;
+            result.taps.push_back(tap);
+        }
+        if (!result.taps.empty())
+            result.robotTime_s =
+                result.taps.back().record.startTime_s - result.taps.front().record.startTime_s;
+    } else {
+        Rig rig = options.connected ? options.connected->rig : simulated->rig();
+        const double robotStart_s = rig.clock.now_s();
+        result.taps = collectTrainingTaps(
+            rig, simulated ? simulated->world().object() : spec.scene.object.outline(),
+            result.classes, spec.training,
+            RandomStream::derived(spec.scene.seed, "protocol:placement"), onTap);
+        result.robotTime_s = rig.clock.now_s() - robotStart_s;
+    }
     if (simulated) result.tapsSimulated = simulated->world().tapsSimulated();
-    if (static_cast<int>(result.taps.size()) < spec.plannedTaps()) {
+    if (recorded ? result.taps.size() < recorded->size()
+                 : static_cast<int>(result.taps.size()) < spec.plannedTaps()) {
         result.cancelled = true;
         result.runWall_s =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -272,6 +329,12 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     result.validOffsets.trustedLow = result.classes.offsetOf(lo) - half;
     result.validOffsets.trustedHigh = result.classes.offsetOf(hi) + half;
 
+    if (recorded) {
+        // A recording is analysed offline: no rig to follow a contour or sweep on.
+        result.runWall_s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        return result;
+    }
     runTrials(result, model, options, progress);
     if (spec.sweeps.any() && !result.cancelled && result.failure.empty()) {
         progress.step = "accuracy-versus-time sweeps";

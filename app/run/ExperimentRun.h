@@ -82,7 +82,17 @@ struct RunOptions {
     const std::atomic<bool>* cancel = nullptr;
     /// Take the taps on this rig instead of simulated ones (not owned; must outlive the run).
     const ConnectedRig* connected = nullptr;
+    /// Re-analyse these recorded training and test taps instead of taking any (not owned): the
+    /// run trains and validates on them and stops there (trials and sweeps need a rig).
+    const std::vector<CollectedTap>* recordedTaps = nullptr;
+    std::string recordingName;  ///< where the recorded taps came from, for the summary
 };
+
+/// Refuses recorded taps the experiment cannot be validated on: a data set outside the
+/// experiment's, a class of a training set without a tap, no test tap, or taps with another
+/// number of taxels than the fingertip's. Throws InputError naming `name` and what is missing.
+void checkRecordingCovers(const ExperimentSpec& spec, const std::vector<CollectedTap>& taps,
+                          int taxels, const std::string& name);
 
 /// Refuses, before any tap, what cannot run on `connected`: a scene or trial whose object is not
 /// the one mounted there, or a sweep (sweeps replay on simulated rigs). Throws InputError naming
@@ -90,11 +100,11 @@ struct RunOptions {
 void checkRunnableOn(const ExperimentSpec& spec, const ConnectedRig& connected);
 
 /// Runs the experiment's steps: training and validation taps (appended to <outDir>/data/taps.csv
-/// as they are taken), then the contour-following trials (appended to
-/// <outDir>/data/following_taps.csv), then recognition of the traced paths. A device error
-/// during the training taps throws RigError; during a trial it ends that trial, is noted in
-/// `failure`, and stops the run with everything recorded so far. InputError if the output cannot
-/// be written.
+/// as they are taken, or the recorded ones of `options.recordedTaps`), then the contour-following
+/// trials (appended to <outDir>/data/following_taps.csv), then recognition of the traced paths. A
+/// device error during the training taps throws RigError; during a trial it ends that trial, is
+/// noted in `failure`, and stops the run with everything recorded so far. InputError if the output
+/// cannot be written.
 RunResult runExperiment(const ExperimentSpec& spec, const RunOptions& options);
 
 /// Runs only the following trials (and recognition) of `spec` with the classifier, class regions

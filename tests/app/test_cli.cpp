@@ -1,5 +1,6 @@
-// The headless runner as a user drives it: runs write complete artefacts; bad input gets exit
-// code 2, a message naming the file, the place and the problem, and nothing written.
+// The headless runner as a user drives it: runs write complete artefacts; a run's recording
+// re-analysed gives its validation again; bad input gets exit code 2, a message naming the file,
+// the place and the problem, and nothing written.
 #include <QDir>
 #include <QFile>
 #include <QJsonArray>
@@ -27,6 +28,11 @@ Outcome runCli(const QStringList& args) {
 }
 QString source(const QString& relative) {
     return QString::fromStdString(test::sourcePath(relative.toStdString()));
+}
+QJsonObject readJson(const QString& path) {
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly)) return {};
+    return QJsonDocument::fromJson(f.readAll()).object();
 }
 }  // namespace
 
@@ -397,11 +403,89 @@ private slots:
         QVERIFY(!QFile::exists(out + "/figures/seed_rates.png"));
     }
 
+    void analyseReanalysesARecording() {
+        // The paper run's recording (paperRunWritesSummaryDataAndFigures, above) re-analysed with
+        // the same experiment gives the same validation, from the taps alone.
+        const QString recording = dir_.filePath("paper/data/taps.csv");
+        QVERIFY(QFile::exists(recording));
+        const QString out = dir_.filePath("analysis");
+        const Outcome o =
+            runCli({"analyse", source("experiments/paper.json"), recording, "--out", out});
+        QVERIFY2(o.exitCode == 0, qPrintable(o.err));
+        QVERIFY2(o.out.contains("360 recorded taps"), qPrintable(o.out));
+        const QJsonObject run = readJson(dir_.filePath("paper/summary.json"));
+        const QJsonObject again = readJson(out + "/summary.json");
+        for (const char* key :
+             {"angle_error_deg_mean", "position_error_mm_mean", "valid_range_mm", "by_class"})
+            QVERIFY2(again["validation"].toObject()[key] == run["validation"].toObject()[key], key);
+        QCOMPARE(again["rig"].toString(), "recording " + recording);
+        QCOMPARE(again["following"].toArray().size(), 0);
+        for (const char* figure : {"figure5_taps", "figure6_errors"})
+            QVERIFY2(QFileInfo(out + "/figures/" + figure + ".png").size() > 0, figure);
+        QVERIFY(!QFile::exists(out + "/figures/figure8_active_paths.png"));
+        QFile in(recording), copy(out + "/data/taps.csv");
+        QVERIFY(in.open(QIODevice::ReadOnly) && copy.open(QIODevice::ReadOnly));
+        QVERIFY(in.readAll() == copy.readAll());
+
+        // Other classifier settings on the same taps: another validation.
+        const QString coarse = write("coarse.json", QString(R"({"extends": "%1",
+            "classifier": {"bins": 10}})")
+                                                        .arg(source("experiments/paper.json")));
+        const QString outCoarse = dir_.filePath("analysis_coarse");
+        QCOMPARE(
+            runCli({"analyse", coarse, recording, "--out", outCoarse, "--no-figures"}).exitCode, 0);
+        const QJsonObject c = readJson(outCoarse + "/summary.json");
+        QVERIFY(c["validation"].toObject()["by_class"] != run["validation"].toObject()["by_class"]);
+    }
+
+    void analyseRefusesRecordingsItCannotValidate_data() {
+        QTest::addColumn<QString>("edit");  // what to do to the paper run's recording
+        QTest::addColumn<QString>("expected");
+        QTest::newRow("a class without a training tap") << "drop set 1 class 0"
+                                                        << "training set 1 has no tap of class 0";
+        QTest::newRow("other classes") << "orientation 45"
+                                       << "recorded with other classes";
+        QTest::newRow("a data set the experiment lacks") << "set 7"
+                                                         << "data set 7 is not one";
+        QTest::newRow("only training taps") << "all set 1"
+                                            << "nothing is left to validate on";
+        QTest::newRow("no such file") << "missing"
+                                      << "no such file";
+    }
+
+    void analyseRefusesRecordingsItCannotValidate() {
+        QFETCH(QString, edit);
+        QFETCH(QString, expected);
+        QFile in(dir_.filePath("paper/data/taps.csv"));
+        QVERIFY(in.open(QIODevice::ReadOnly));
+        QStringList rows = QString(in.readAll()).split('\n', Qt::SkipEmptyParts);
+        QStringList kept{rows.takeFirst()};
+        for (const QString& row : rows) {
+            QStringList f = row.split(',');
+            if (edit == "drop set 1 class 0" && f[0] == "1" && f[1] == "0") continue;
+            if (edit == "orientation 45" && f[1] == "3") f[2] = "45";
+            if (edit == "set 7" && f[0] == "5") f[0] = "7";
+            if (edit == "all set 1") f[0] = "1";
+            kept << f.join(',');
+        }
+        const QString recording = edit == "missing" ? dir_.filePath("nowhere/taps.csv")
+                                                    : write("edited_taps.csv", kept.join('\n'));
+        const QString out = dir_.filePath("refused_analysis");
+        const Outcome o = runCli(
+            {"analyse", source("experiments/paper.json"), recording, "--out", out, "--no-figures"});
+        QCOMPARE(o.exitCode, 2);
+        QVERIFY2(o.err.contains(expected) && o.err.contains(recording), qPrintable(o.err));
+        QVERIFY(!QFile::exists(out));  // nothing written
+    }
+
     void usageErrors() {
         QCOMPARE(runCli({}).exitCode, 2);
         QCOMPARE(runCli({"fly"}).exitCode, 2);
         QCOMPARE(runCli({"run"}).exitCode, 2);
         QCOMPARE(runCli({"run", source("experiments/paper.json"), "--seed", "minus"}).exitCode, 2);
+        const Outcome noRecording = runCli({"analyse", source("experiments/paper.json")});
+        QCOMPARE(noRecording.exitCode, 2);
+        QVERIFY2(noRecording.err.contains("needs a recording"), qPrintable(noRecording.err));
         const Outcome help = runCli({"--help"});
         QCOMPARE(help.exitCode, 0);
         QVERIFY(help.out.contains("run <experiment.json>"));
