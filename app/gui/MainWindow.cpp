@@ -35,6 +35,7 @@
 #include "app/gui/PlotPanel.h"
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
+#include "core/io/TapCsv.h"
 #include "devices/simulated/SimulatedWorld.h"
 #include "qcustomplot.h"
 
@@ -144,6 +145,16 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
                                   [this] { startRun(RunController::What::TrainingOnly); });
     runFollowing_ = bar->addAction(tr("Run following"), this,
                                    [this] { startRun(RunController::What::FollowingOnly); });
+    analyse_ = bar->addAction(tr("Analyse recording..."), this, [this] {
+        const QString path =
+            QFileDialog::getOpenFileName(this, tr("Analyse recorded training and test taps"),
+                                         lastOutDir_, tr("Tap recordings (taps.csv *.csv)"));
+        if (!path.isEmpty()) analyseRecording(path);
+    });
+    analyse_->setObjectName("analyseRecording");
+    analyse_->setToolTip(
+        tr("Train and validate the experiment as shown on recorded taps (a run's data/taps.csv, "
+           "from the simulated or the real rig), taking no tap"));
     cancel_ = bar->addAction(tr("Cancel"), this, &MainWindow::cancelRun);
     cancel_->setObjectName("cancel");
     pace_ = new QComboBox;
@@ -337,21 +348,53 @@ bool MainWindow::startSeedRun(std::uint64_t seed) {
     return true;
 }
 
+bool MainWindow::analyseRecording(const QString& path) {
+    const auto toRun = experimentToRun();
+    if (!toRun) return false;
+    auto recorded = std::make_shared<RecordedTaps>();
+    recorded->name = path.toStdString();
+    try {
+        std::string cut;
+        recorded->taps = readTapCsv(recorded->name, toRun->classes, &cut);
+        checkRecordingCovers(*toRun, recorded->taps,
+                             FingertipContactModel(toRun->scene.fingertip).taxelCount(),
+                             recorded->name);
+        if (!cut.empty())
+            log(tr("%1 was cut short at the end, as by a run stopped while writing: %2; that tap "
+                   "is left out")
+                    .arg(path, QString::fromStdString(cut)));
+    } catch (const std::exception& e) {
+        showError(tr("Could not analyse %1:\n%2").arg(path, e.what()));
+        return false;
+    }
+    return launch(*toRun, RunController::What::TrainingOnly,
+                  QString::fromStdString(toRun->name) + "_analysis", nullptr, recorded);
+}
+
 bool MainWindow::launch(const ExperimentSpec& spec, RunController::What what, const QString& stem,
-                        std::shared_ptr<const ConnectedRig> connected) {
+                        std::shared_ptr<const ConnectedRig> connected,
+                        std::shared_ptr<const RecordedTaps> recorded) {
     const QString dir = newRunDirectory(stem);
-    if (!runs_.start(spec, dir, what, static_cast<Pace>(pace_->currentIndex()), last_, connected))
+    if (!runs_.start(spec, dir, what, static_cast<Pace>(pace_->currentIndex()), last_, connected,
+                     recorded))
         return false;
     countingSeeds_ = false;
     lastOutDir_ = dir;
-    progress_->setRange(0, plannedTapEstimate(spec));
+    progress_->setRange(
+        0, recorded ? static_cast<int>(recorded->taps.size()) : plannedTapEstimate(spec));
     progress_->setValue(0);
-    log(tr("run started: %1, seed %2, on %3, writing %4")
-            .arg(QString::fromStdString(spec.name), QString::number(spec.scene.seed),
-                 connected ? tr("the connected rig (%1)")
-                                 .arg(QString::fromStdString(connected->description))
-                           : tr("the simulated rig"),
-                 dir));
+    if (recorded)
+        log(tr("analysis started: %1 on the %2 taps recorded in %3, writing %4")
+                .arg(QString::fromStdString(spec.name))
+                .arg(recorded->taps.size())
+                .arg(QString::fromStdString(recorded->name), dir));
+    else
+        log(tr("run started: %1, seed %2, on %3, writing %4")
+                .arg(QString::fromStdString(spec.name), QString::number(spec.scene.seed),
+                     connected ? tr("the connected rig (%1)")
+                                     .arg(QString::fromStdString(connected->description))
+                               : tr("the simulated rig"),
+                     dir));
     updateActions();
     return true;
 }
@@ -456,7 +499,14 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
     progress_->setValue(progress_->maximum());
     const QString state =
         r.cancelled ? tr("cancelled") : (r.failure.empty() ? tr("finished") : tr("failed"));
-    progress_->setFormat(tr("%1: %2 taps").arg(state).arg(r.tapsSimulated));
+    // Taps taken: simulated ones (sweeps included), or those of the devices or the recording.
+    std::uint64_t taps = r.tapsSimulated;
+    if (r.rig != "simulated") {
+        taps = r.taps.size();
+        for (const auto& t : r.trials) taps += t.result.taps.size();
+    }
+    const QString what = r.rig.rfind("recording ", 0) == 0 ? tr("analysis") : tr("run");
+    progress_->setFormat(tr("%1: %2 taps").arg(state).arg(taps));
     status_->setText(tr("%1, results in %2").arg(state, dir));
     if (!r.validation.byClass.empty())
         log(tr("validation: angle error %1 deg, position error %2 mm, valid range %3-%4 mm")
@@ -469,7 +519,7 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
                 .arg(modeName(t.result.mode), QString::fromStdString(t.label))
                 .arg(t.trial)
                 .arg(QString::fromStdString(t.result.detail)));
-    log(tr("run %1: %2 taps, results in %3").arg(state).arg(r.tapsSimulated).arg(dir));
+    log(tr("%1 %2: %3 taps, results in %4").arg(what, state).arg(taps).arg(dir));
     if (!r.failure.empty())
         showError(tr("The run stopped: %1. Every tap taken so far is in %2/data.")
                       .arg(QString::fromStdString(r.failure), dir));
@@ -496,6 +546,7 @@ void MainWindow::updateActions() {
     const bool ready = !experimentPath_.isEmpty();
     runAll_->setEnabled(!busy && ready);
     runTraining_->setEnabled(!busy && ready);
+    analyse_->setEnabled(!busy && ready);
     runFollowing_->setEnabled(!busy && ready && last_ && last_->classifier.trained());
     cancel_->setEnabled(busy);
     seeds_->setRunnable(!busy && ready);

@@ -50,6 +50,10 @@ public:
     /// every artefact, shown in the contour following tab. Without a seeds run, the experiment
     /// as shown.
     bool startSeedRun(std::uint64_t seed);
+    /// Trains and validates the experiment as shown on the training and test taps recorded in
+    /// `path` (a run's data/taps.csv), taking no tap; a recording that cannot be read or
+    /// validated is refused with the reason and the session kept.
+    bool analyseRecording(const QString& path);
     void cancelRun();
     /// Writes every figure of the last run into `dir`/figures; returns the files.
     QStringList exportAllFigures(const QString& dir);
@@ -83,7 +87,8 @@ private:
     std::optional<ExperimentSpec> experimentToRun();
     /// Starts `spec` into a new folder named after `stem`, on `connected` or the simulated rig.
     bool launch(const ExperimentSpec& spec, RunController::What what, const QString& stem,
-                std::shared_ptr<const ConnectedRig> connected);
+                std::shared_ptr<const ConnectedRig> connected,
+                std::shared_ptr<const RecordedTaps> recorded = {});
     /// A new folder under the output base for a run: <stem>-<date and time>.
     QString newRunDirectory(const QString& stem) const;
     QString recognitionHint() const;
@@ -117,7 +122,7 @@ private:
     QProgressBar* progress_;
     QLabel* status_;
     QComboBox* pace_;
-    QAction *runAll_, *runTraining_, *runFollowing_, *cancel_, *exportAll_;
+    QAction *runAll_, *runTraining_, *runFollowing_, *analyse_, *cancel_, *exportAll_;
 };
 
 }  // namespace activetouch

@@ -35,7 +35,8 @@ bool RunController::stopAndWait(int ms) {
 
 bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, What what, Pace pace,
                           std::shared_ptr<const RunResult> trained,
-                          std::shared_ptr<const ConnectedRig> connected) {
+                          std::shared_ptr<const ConnectedRig> connected,
+                          std::shared_ptr<const RecordedTaps> recorded) {
     if (thread_) {
         emit failed(tr("A run is already going; cancel it or wait for it to finish."));
         return false;
@@ -55,12 +56,22 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
         }
         pace = Pace::Fastest;  // real devices keep their own time
     }
-    launch(outDir, [this, spec, outDir, what, pace, trained, connected]() mutable {
+    if (recorded && (connected || what == What::FollowingOnly)) {
+        emit failed(
+            tr("A recording is analysed on its own: its taps train and validate, with no "
+               "devices and no following."));
+        return false;
+    }
+    launch(outDir, [this, spec, outDir, what, pace, trained, connected, recorded]() mutable {
         const auto started = std::chrono::steady_clock::now();
         RunOptions options;
         options.outDir = outDir.toStdString();
         options.cancel = &cancel_;
         options.connected = connected.get();
+        if (recorded) {
+            options.recordedTaps = &recorded->taps;
+            options.recordingName = recorded->name;
+        }
         options.progress = [this, started](const RunProgress& p) {
             const double elapsed =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -19,6 +19,12 @@ enum class Pace {
     RobotTime,   ///< the robot's own timing: frames at 50 Hz and the settle pause
 };
 
+/// Recorded training and test taps to analyse instead of taking any, and where they came from.
+struct RecordedTaps {
+    std::vector<CollectedTap> taps;
+    std::string name;
+};
+
 class RunController : public QObject {
     Q_OBJECT
 public:
@@ -28,12 +34,14 @@ public:
     enum class What { Everything, TrainingOnly, FollowingOnly };
 
     /// Starts a run writing into `outDir`, on the simulated rig or on `connected` (held until the
-    /// run ends; the pace is then the devices' own); false (and failed()) if one is already
+    /// run ends; the pace is then the devices' own), or an analysis of `recorded` taps (training
+    /// and validation only, the taps shown at `pace`); false (and failed()) if one is already
     /// running, FollowingOnly has no trained classifier to use, or the experiment cannot run on
     /// the connected rig.
     bool start(const ExperimentSpec& spec, const QString& outDir, What what, Pace pace,
                std::shared_ptr<const RunResult> trained = {},
-               std::shared_ptr<const ConnectedRig> connected = {});
+               std::shared_ptr<const ConnectedRig> connected = {},
+               std::shared_ptr<const RecordedTaps> recorded = {});
     /// Starts running `spec` once per seed from `first` to `last` on the simulated rig, each a
     /// whole run, writing <outDir>/rates.csv seed by seed and rates.json at the end; cancel
     /// stops after the seed in flight and keeps every finished seed. False (and failed()) if a

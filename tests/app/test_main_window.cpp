@@ -3,8 +3,8 @@
 // effect and see the next run use it; export every figure in every format; open bad files and
 // keep the session; drive the simulated devices from their panel; run the experiment over a range
 // of seeds, open one seed's run from its row, and cancel such a run, keeping every finished seed;
-// resize the window and find paths and histograms still drawn at one scale on both axes, and no
-// legend hiding a value.
+// analyse a run's recording; resize the window and find paths and histograms still drawn at one
+// scale on both axes, and no legend hiding a value.
 #include <QComboBox>
 #include <QElapsedTimer>
 #include <QFontMetricsF>
@@ -503,6 +503,53 @@ private slots:
         QCOMPARE(after.object.outline().area(), 40.0 * 40.0);
         // Back to the paper's scene for the tests that follow.
         QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+    }
+
+    void recordingsAreAnalysedFromTheWindow() {
+        // The last run's recording (a seed's run, above), analysed with the same experiment:
+        // the same validation from the taps alone, and no tap taken.
+        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+        const auto recordedRun = window_->lastRun();
+        QVERIFY(recordedRun && recordedRun->rig == "simulated");
+        QAction* analyse = window_->findChild<QAction*>("analyseRecording");
+        QVERIFY(analyse && analyse->isEnabled());
+        const QString recording = window_->lastRunDirectory() + "/data/taps.csv";
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QVERIFY(window_->analyseRecording(recording));
+        QVERIFY(!analyse->isEnabled());
+        QVERIFY(ended.wait(60000));
+        QCOMPARE(ended.takeFirst().at(0).toBool(), true);
+        QTRY_VERIFY(!window_->running());
+        const auto analysed = window_->lastRun();
+        QCOMPARE(analysed->rig, "recording " + recording.toStdString());
+        QCOMPARE(analysed->taps.size(), recordedRun->taps.size());
+        QCOMPARE(analysed->validation.angleError_deg, recordedRun->validation.angleError_deg);
+        QCOMPARE(analysed->validation.positionError_mm, recordedRun->validation.positionError_mm);
+        QVERIFY(analysed->trials.empty());
+        QCOMPARE(window_->progressBar()->format(),
+                 QString("finished: %1 taps").arg(analysed->taps.size()));
+        QVERIFY(QFile::exists(window_->lastRunDirectory() + "/summary.json"));
+        QVERIFY(window_->lastRunDirectory().contains("paper_analysis-"));
+        // Its classifier follows the contours next.
+        QVERIFY(window_->startRun(RunController::What::FollowingOnly));
+        QVERIFY(ended.wait(60000));
+        QCOMPARE(ended.takeFirst().at(0).toBool(), true);
+        QTRY_VERIFY(!window_->running());
+        QCOMPARE(int(window_->lastRun()->trials.size()), 10);
+        QCOMPARE(window_->lastRun()->rig, std::string("simulated"));
+        QCOMPARE(window_->lastRun()->validation.angleError_deg,
+                 analysed->validation.angleError_deg);
+
+        // What cannot be analysed is refused with the reason; the session stays as it was.
+        const auto before = window_->lastRun();
+        QSignalSpy errors(window_.get(), &MainWindow::errorShown);
+        QVERIFY(!window_->analyseRecording(window_->lastRunDirectory() + "/summary.json"));
+        QCOMPARE(errors.size(), 1);
+        QVERIFY2(errors.first().at(0).toString().contains("unexpected columns"),
+                 qPrintable(errors.first().at(0).toString()));
+        QCOMPARE(window_->lastRun(), before);
+        QVERIFY(!window_->running());
+        closeErrorDialogs(*window_);
     }
 
     void badFilesShowTheProblemAndKeepTheSession_data() {
