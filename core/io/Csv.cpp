@@ -32,4 +32,33 @@ double csvNumber(const std::string& field, const std::string& path, int line,
     return v;
 }
 
+RecordingRows::RecordingRows(std::istream& in, const std::string& path) : in_(in), path_(path) {
+    std::string line;
+    if (!std::getline(in_, line))
+        throw InputError(path_, "line 1", "the file is empty; expected a header row");
+    header_ = splitCsvLine(line);
+}
+
+bool RecordingRows::next(std::vector<std::string>& fields) {
+    std::string line;
+    while (std::getline(in_, line)) {
+        ++line_;
+        if (line.empty() || line == "\r") continue;
+        if (brokenAt_)
+            throw InputError(path_, "line " + std::to_string(brokenAt_),
+                             broken_ + "; only the file's last line may be cut short");
+        fields = splitCsvLine(line);
+        if (fields.size() == header_.size()) return true;
+        brokenAt_ = line_;
+        broken_ = "has " + std::to_string(fields.size()) + " fields, the header has " +
+                  std::to_string(header_.size());
+    }
+    return false;
+}
+
+std::string RecordingRows::cutOff() const {
+    if (!brokenAt_) return {};
+    return "line " + std::to_string(brokenAt_) + " is cut off (" + broken_ + ")";
+}
+
 }  // namespace activetouch

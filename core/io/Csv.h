@@ -1,6 +1,7 @@
 #pragma once
 // What the project's CSV readers share: splitting a line (the project writes no quoted fields)
 // and reading a finite number from a field, with an error that names the file, line and column.
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -13,5 +14,27 @@ std::vector<std::string> splitCsvLine(const std::string& line);
 /// or not finite.
 double csvNumber(const std::string& field, const std::string& path, int line,
                  const std::string& column);
+
+/// The rows of a recording written and flushed row by row: every row as wide as the header, but
+/// the file's last line, which a run stopped while writing may have cut short.
+class RecordingRows {
+public:
+    /// Reads the header line; throws InputError if the file is empty.
+    RecordingRows(std::istream& in, const std::string& path);
+    const std::vector<std::string>& header() const { return header_; }
+    /// The next row as wide as the header, or false at the end of the file. Empty lines are
+    /// skipped; a line of another width is held back and refused if any row follows it.
+    bool next(std::vector<std::string>& fields);
+    int line() const { return line_; }  ///< the line of the row `next` gave
+    /// Empty, or "line N is cut off (has F fields, the header has W)".
+    std::string cutOff() const;
+
+private:
+    std::istream& in_;
+    std::string path_;
+    std::vector<std::string> header_;
+    int line_ = 1, brokenAt_ = 0;
+    std::string broken_;
+};
 
 }  // namespace activetouch

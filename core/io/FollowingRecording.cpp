@@ -82,10 +82,8 @@ void FollowingRecording::append(const std::string& label, FollowingMode mode, in
 
 FollowingRecordingContents checkFollowingRecording(const std::string& path) {
     std::ifstream in = openInputFile(path);
-    std::string line;
-    if (!std::getline(in, line))
-        throw InputError(path, "line 1", "the file is empty; expected a header row");
-    const auto header = splitCsvLine(line);
+    RecordingRows rows(in, path);
+    const auto& header = rows.header();
     const int taxels = static_cast<int>(header.size()) - kFixed;
     bool ok = taxels >= 1;
     for (int i = 0; ok && i < kFixed; ++i)
@@ -99,9 +97,6 @@ FollowingRecordingContents checkFollowingRecording(const std::string& path) {
 
     FollowingRecordingContents contents;
     int lineNo = 1;
-    // A line that broke off is only accepted as the file's last: it is held here until then.
-    std::string brokenLine;
-    int brokenAt = 0;
     // The tap being read: its trial, its index and how many samples came so far.
     std::string trialKey;
     int tapIndex = -1, samples = 0;
@@ -119,19 +114,9 @@ FollowingRecordingContents checkFollowingRecording(const std::string& path) {
                                  std::to_string(contents.samplesPerTap));
         ++contents.taps;
     };
-    while (std::getline(in, line)) {
-        ++lineNo;
-        if (line.empty() || line == "\r") continue;
-        if (brokenAt)
-            throw InputError(path, "line " + std::to_string(brokenAt),
-                             brokenLine + "; only the file's last line may be cut short");
-        const auto f = splitCsvLine(line);
-        if (static_cast<int>(f.size()) != kFixed + taxels) {
-            brokenAt = lineNo;
-            brokenLine = "has " + std::to_string(f.size()) + " fields, the header has " +
-                         std::to_string(kFixed + taxels);
-            continue;
-        }
+    std::vector<std::string> f;
+    while (rows.next(f)) {
+        lineNo = rows.line();
         std::vector<double> v(f.size(), 0.0);
         for (int i = 0; i < kFixed + taxels; ++i) {
             if (i == kShape || i == kMode || i == kEnding || i == kShapeClass || i == kRule)
@@ -191,9 +176,9 @@ FollowingRecordingContents checkFollowingRecording(const std::string& path) {
     } else {
         finishTap();
     }
-    if (brokenAt)
-        contents.cutOff = (contents.cutOff.empty() ? std::string() : contents.cutOff + "; ") +
-                          "line " + std::to_string(brokenAt) + " is cut off (" + brokenLine + ")";
+    if (!rows.cutOff().empty())
+        contents.cutOff =
+            (contents.cutOff.empty() ? std::string() : contents.cutOff + "; ") + rows.cutOff();
     if (contents.taps == 0) throw InputError(path, "line 2", "the file holds no whole tap");
     return contents;
 }

@@ -47,10 +47,8 @@ void TapCsvWriter::append(const CollectedTap& c, const ClassSet& classes) {
 std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& classes,
                                      std::string* cutOff) {
     std::ifstream in = openInputFile(path);
-    std::string line;
-    if (!std::getline(in, line))
-        throw InputError(path, "line 1", "the file is empty; expected a header row");
-    const auto header = splitCsvLine(line);
+    RecordingRows rows(in, path);
+    const auto& header = rows.header();
     int taxels = static_cast<int>(header.size()) - kFixed;
     bool ok = taxels >= 1;
     for (int i = 0; ok && i < kFixed; ++i)
@@ -70,9 +68,7 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     auto number = [&](const std::string& field, const std::string& column) {
         return csvNumber(field, path, lineNo, column);
     };
-    // A line that broke off is only accepted as the file's last: it is held here until then.
-    std::string brokenLine;
-    int brokenAt = 0, samplesPerTap = 0, lastRow = 0;
+    int samplesPerTap = 0, lastRow = 0;
     auto finishTap = [&]() {
         if (taps.empty()) return;
         if (samplesPerTap == 0) samplesPerTap = static_cast<int>(samples.size());
@@ -88,19 +84,9 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
                 t.at(static_cast<int>(s), k) = samples[s][static_cast<std::size_t>(k)];
         samples.clear();
     };
-    while (std::getline(in, line)) {
-        ++lineNo;
-        if (line.empty() || line == "\r") continue;
-        if (brokenAt)
-            throw InputError(path, "line " + std::to_string(brokenAt),
-                             brokenLine + "; only the file's last line may be cut short");
-        const auto f = splitCsvLine(line);
-        if (static_cast<int>(f.size()) != kFixed + taxels) {
-            brokenAt = lineNo;
-            brokenLine = "has " + std::to_string(f.size()) + " fields, the header has " +
-                         std::to_string(kFixed + taxels);
-            continue;
-        }
+    std::vector<std::string> f;
+    while (rows.next(f)) {
+        lineNo = rows.line();
         const int set = static_cast<int>(number(f[0], "set"));
         const int cls = static_cast<int>(number(f[1], "class"));
         if (cls < 0 || cls >= classes.classCount())
@@ -166,9 +152,7 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     } else {
         finishTap();
     }
-    if (brokenAt)
-        cut = (cut.empty() ? std::string() : cut + "; ") + "line " + std::to_string(brokenAt) +
-              " is cut off (" + brokenLine + ")";
+    if (!rows.cutOff().empty()) cut = (cut.empty() ? std::string() : cut + "; ") + rows.cutOff();
     if (taps.empty()) throw InputError(path, "line 2", "the file holds no whole tap");
     if (!cut.empty()) {
         if (!cutOff)
