@@ -128,8 +128,9 @@ std::optional<std::uint64_t> parseSeed(const std::string& v) {
     return static_cast<std::uint64_t>(n);
 }
 
-/// The arguments of run and seeds: one experiment file, --out, the seed options that command
-/// takes (each a whole number) and --no-figures where allowed. An error is the message to print.
+/// The arguments of run, seeds and analyse: one experiment file (and for analyse a recording),
+/// --out, the seed options that command takes (each a whole number) and --no-figures where
+/// allowed. An error is the message to print.
 struct RunArguments {
     std::string experimentPath, recordingPath, outDir;
     std::map<std::string, std::uint64_t> seeds;  ///< "--seed", "--from", "--to" as given
@@ -178,6 +179,23 @@ RunArguments parseRunArguments(const std::vector<std::string>& args, const char*
                     " needs a recording of training and test taps after the experiment, e.g. "
                     "results/paper/data/taps.csv");
     return r;
+}
+
+struct Timing {
+    double wall_s = 0.0, figures_s = 0.0;
+};
+
+/// Writes a finished run's tables, its figures if asked, and last its summary.json.
+Timing writeArtefacts(const RunResult& result, const std::string& outDir, bool figures, int argc,
+                      char** argv, std::chrono::steady_clock::time_point start) {
+    writeRunTables(result, outDir);
+    Timing t;
+    if (figures)
+        t.figures_s = drawFigures(argc, argv,
+                                  [&] { writeRunFigures(result, QString::fromStdString(outDir)); });
+    t.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    writeSummary(result, outDir, t.wall_s, t.figures_s);
+    return t;
 }
 
 /// What a run or an analysis found: validation, noise floor, trials, recognition, where it went.
@@ -242,18 +260,11 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
         options.outDir = outDir;
         options.seed = seed;
         result = runExperiment(spec, options);
-        writeRunTables(result, outDir);
-        double figures_s = 0.0;
-        if (figures)
-            figures_s = drawFigures(
-                argc, argv, [&] { writeRunFigures(result, QString::fromStdString(out.string())); });
-        const double wall =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        writeSummary(result, outDir, wall, figures_s);
+        const Timing t = writeArtefacts(result, outDir, figures, argc, argv, start);
         std::printf("%s (seed %llu): %zu taps simulated, %.0f s of robot time\n", spec.name.c_str(),
                     static_cast<unsigned long long>(result.spec.scene.seed),
                     static_cast<std::size_t>(result.tapsSimulated), result.robotTime_s);
-        printReport(result, wall, figures_s, outDir);
+        printReport(result, t.wall_s, t.figures_s, outDir);
         if (!result.failure.empty()) {
             std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data.\n",
                          result.failure.c_str(), outDir.c_str());
@@ -296,14 +307,7 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv) 
         std::error_code ec;
         fs::remove(out / "summary.json", ec);
         const RunResult result = runExperiment(spec, options);
-        writeRunTables(result, outDir);
-        double figures_s = 0.0;
-        if (parsed.figures)
-            figures_s = drawFigures(
-                argc, argv, [&] { writeRunFigures(result, QString::fromStdString(out.string())); });
-        const double wall =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        writeSummary(result, outDir, wall, figures_s);
+        const Timing t = writeArtefacts(result, outDir, parsed.figures, argc, argv, start);
         std::printf(
             "%s: %zu recorded taps from %s re-analysed (recorded over %.0f s of robot "
             "time)\n",
@@ -314,7 +318,7 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv) 
                 "the recording was cut short at the end, as by a run stopped while "
                 "writing: %s; that tap is left out\n",
                 cut.c_str());
-        printReport(result, wall, figures_s, outDir);
+        printReport(result, t.wall_s, t.figures_s, outDir);
         return kOk;
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

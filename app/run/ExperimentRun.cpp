@@ -247,8 +247,8 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     }
 
     RunProgress progress;
-    progress.step = "training and test taps";
-    progress.tapsPlanned = plannedTapEstimate(spec);
+    progress.step = recorded ? "recorded training and test taps" : "training and test taps";
+    progress.tapsPlanned = recorded ? static_cast<int>(recorded->size()) : plannedTapEstimate(spec);
     auto onTap = [&](const CollectedTap& tap) {
         if (recording) recording->append(tap, result.classes);
         if (options.tapTaken)
@@ -263,8 +263,8 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     };
     if (recorded) {
         for (const CollectedTap& tap : *recorded) {
-            if (!onTap(tap)) break;
             result.taps.push_back(tap);
+            if (!onTap(tap)) break;
         }
         if (!result.taps.empty())
             result.robotTime_s =
