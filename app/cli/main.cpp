@@ -318,6 +318,16 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv) 
                 "the recording was cut short at the end, as by a run stopped while "
                 "writing: %s; that tap is left out\n",
                 cut.c_str());
+        const SweepSpec& sweeps = spec.sweeps;
+        if (!result.sweeps.compute.empty())
+            std::printf(
+                "sweep (c): %zu settings of bins and samples per tap measured on the "
+                "recorded taps\n",
+                result.sweeps.compute.size());
+        if (!sweeps.beliefThresholds.empty() || !sweeps.followSteps_mm.empty())
+            std::printf(
+                "sweeps (a) and (b) take new taps and follow contours on simulated rigs: "
+                "not run on a recording\n");
         printReport(result, t.wall_s, t.figures_s, outDir);
         return kOk;
     } catch (const InputError& e) {

@@ -330,7 +330,13 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     result.validOffsets.trustedHigh = result.classes.offsetOf(hi) + half;
 
     if (recorded) {
-        // A recording is analysed offline: no rig to follow a contour or sweep on.
+        // A recording is analysed offline: no rig to follow a contour on, and of the sweeps only
+        // the one on the recorded taps themselves.
+        if (!spec.sweeps.bins.empty() && !result.cancelled) {
+            progress.step = "compute sweep on the recorded taps";
+            if (options.progress) options.progress(progress);
+            result.sweeps = runSweeps(result, options, true);
+        }
         result.runWall_s =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         return result;

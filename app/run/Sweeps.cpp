@@ -212,11 +212,12 @@ std::vector<ComputeSweepRow> computeSweep(const RunResult& r, const RunOptions& 
 
 }  // namespace
 
-SweepResults runSweeps(const RunResult& trained, const RunOptions& options) {
+SweepResults runSweeps(const RunResult& trained, const RunOptions& options, bool onTapsOnly) {
     SweepResults s;
     const SweepSpec& sw = trained.spec.sweeps;
     if (!trained.classifier.trained()) return s;
     if (!sw.bins.empty()) s.compute = computeSweep(trained, options);
+    if (onTapsOnly) return s;
     if (!sw.beliefThresholds.empty()) s.perception = perceptionSweep(trained, options);
     if (!sw.followSteps_mm.empty()) s.following = followingSweep(trained, options);
     return s;

@@ -43,7 +43,10 @@ struct SweepResults {
 };
 
 /// Runs the experiment's sweeps using the trained result (its classifier, regions, valid range
-/// and taps). Stops early, keeping the rows measured, when options.cancel is set.
-SweepResults runSweeps(const RunResult& trained, const RunOptions& options);
+/// and taps). Stops early, keeping the rows measured, when options.cancel is set. With
+/// `onTapsOnly`, only (c), which needs nothing but the taps taken (as for a recording: (a) takes
+/// new taps and (b) follows contours, both on simulated rigs).
+SweepResults runSweeps(const RunResult& trained, const RunOptions& options,
+                       bool onTapsOnly = false);
 
 }  // namespace activetouch

@@ -436,6 +436,21 @@ private slots:
             runCli({"analyse", coarse, recording, "--out", outCoarse, "--no-figures"}).exitCode, 0);
         const QJsonObject c = readJson(outCoarse + "/summary.json");
         QVERIFY(c["validation"].toObject()["by_class"] != run["validation"].toObject()["by_class"]);
+
+        // Of the sweeps, (c) runs on the recorded taps; (a) and (b) need a rig and are said so.
+        const QString swept = write("swept.json", QString(R"({"extends": "%1",
+            "sweeps": {"compute": {"bins": [20, 100], "samples_per_tap": [25, 50]},
+                       "perception": {"belief_thresholds": [0.5]}}})")
+                                                      .arg(source("experiments/paper.json")));
+        const QString outSwept = dir_.filePath("analysis_swept");
+        const Outcome s = runCli({"analyse", swept, recording, "--out", outSwept});
+        QVERIFY2(s.exitCode == 0, qPrintable(s.err));
+        QVERIFY2(s.out.contains("sweeps (a) and (b)"), qPrintable(s.out));
+        const QJsonObject sw = readJson(outSwept + "/summary.json")["sweeps"].toObject();
+        QCOMPARE(sw["compute"].toArray().size(), 4);
+        QCOMPARE(sw["perception"].toArray().size(), 0);
+        QVERIFY(QFileInfo(outSwept + "/figures/sweep_c_compute.png").size() > 0);
+        QVERIFY(!QFile::exists(outSwept + "/figures/sweep_a_sequential_perception.png"));
     }
 
     void analyseRefusesRecordingsItCannotValidate_data() {
