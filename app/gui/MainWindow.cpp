@@ -458,6 +458,7 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
     const RunResult& r = *result;
     const bool trainingRun =
         !r.taps.empty();  // a following-only run keeps the training figures shown
+    const bool analysis = r.rig.rfind("recording ", 0) == 0;  // of recorded taps, none taken
     last_ = result;
     lastOutDir_ = dir;
     if (trainingRun) buildTapFigure(taps_->plot(), r);
@@ -472,6 +473,12 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
     buildRecognitionFigure(recognition_->plot(), r);
     recognition_->plot().replot();
     if (!r.sweeps.empty()) {
+        if (analysis)
+            for (PlotPanel* p : {sweepPerception_, sweepFollowing_})
+                p->setEmptyHint(
+                    tr("This sweep takes new taps and follows contours on simulated "
+                       "rigs: run the experiment to measure it. An analysed recording "
+                       "measures only the compute sweep (c), on its own taps."));
         buildPerceptionSweepFigure(sweepPerception_->plot(), r);
         buildFollowingSweepFigure(sweepFollowing_->plot(), r);
         buildComputeSweepFigure(sweepCompute_->plot(), r);
@@ -505,7 +512,7 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
         taps = r.taps.size();
         for (const auto& t : r.trials) taps += t.result.taps.size();
     }
-    const QString what = r.rig.rfind("recording ", 0) == 0 ? tr("analysis") : tr("run");
+    const QString what = analysis ? tr("analysis") : tr("run");
     progress_->setFormat(tr("%1: %2 taps").arg(state).arg(taps));
     status_->setText(tr("%1, results in %2").arg(state, dir));
     if (!r.validation.byClass.empty())

@@ -550,6 +550,29 @@ private slots:
         QCOMPARE(window_->lastRun(), before);
         QVERIFY(!window_->running());
         closeErrorDialogs(*window_);
+
+        // With sweeps: (c) is measured on the recorded taps; (a) says why it stays empty.
+        const QString swept = dir_.filePath("swept.json");
+        writeJson(swept, QJsonDocument::fromJson(QString(R"({"extends": "%1", "sweeps": {
+                                 "perception": {"belief_thresholds": [0.5]},
+                                 "compute": {"bins": [20, 100], "samples_per_tap": [50]}}})")
+                                                     .arg(source("experiments/paper.json"))
+                                                     .toUtf8())
+                             .object());
+        QVERIFY(window_->openExperiment(swept));
+        QVERIFY(window_->analyseRecording(recording));
+        QVERIFY(ended.wait(60000));
+        QTRY_VERIFY(!window_->running());
+        QCOMPARE(int(window_->lastRun()->sweeps.compute.size()), 2);
+        for (PlotPanel* p : window_->plotPanels()) {
+            if (p->name() == "sweep_c_compute") QVERIFY(p->plot().plottableCount() > 0);
+            if (p->name() == "sweep_a_sequential_perception") {
+                QVERIFY(p->showsEmptyHint());
+                QVERIFY2(p->emptyHint().contains("An analysed recording measures only"),
+                         qPrintable(p->emptyHint()));
+            }
+        }
+        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
     }
 
     void badFilesShowTheProblemAndKeepTheSession_data() {
