@@ -129,7 +129,6 @@ void FollowingTab::showRun(std::shared_ptr<const RunResult> result) {
     }
     if (firstLostActive >= 0) {
         // The whole path up to where the trial ended, and the tap it ended on.
-        trial_->setCurrentIndex(firstLostActive);
         replay(firstLostActive,
                static_cast<int>(r.trials[std::size_t(firstLostActive)].result.taps.size()) - 1);
     } else if (!r.trials.empty()) {

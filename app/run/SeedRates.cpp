@@ -13,6 +13,16 @@ namespace activetouch {
 
 namespace fs = std::filesystem;
 
+namespace {
+/// The rate kept for `label`, appended (empty) where the label is new.
+Rate& rateOf(RatesByLabel& byLabel, const std::string& label) {
+    auto it = std::find_if(byLabel.begin(), byLabel.end(),
+                           [&](const auto& b) { return b.first == label; });
+    if (it == byLabel.end()) it = byLabel.insert(byLabel.end(), {label, Rate{}});
+    return it->second;
+}
+}  // namespace
+
 SeedOutcome seedOutcome(const RunResult& run) {
     SeedOutcome o;
     o.seed = run.spec.scene.seed;
@@ -27,12 +37,9 @@ SeedOutcome seedOutcome(const RunResult& run) {
             continue;
         }
         ++o.activeTrials;
-        auto label = std::find_if(o.activeByLabel.begin(), o.activeByLabel.end(),
-                                  [&](const LabelOutcome& l) { return l.label == t.label; });
-        if (label == o.activeByLabel.end())
-            label = o.activeByLabel.insert(o.activeByLabel.end(), LabelOutcome{t.label, 0, 0});
-        ++label->trials;
-        label->completed += t.result.completed();
+        Rate& label = rateOf(o.activeByLabel, t.label);
+        ++label.total;
+        label.count += t.result.completed();
         if (!t.result.completed()) {
             o.failures.push_back(t.label + " trial " + std::to_string(t.trial) + ": " +
                                  t.result.detail);
@@ -118,15 +125,13 @@ Rate SeedRates::recognisedSmoothed() const {
 Rate SeedRates::paperResult() const {
     return sumOver(seeds, paperResultIn);
 }
-std::vector<std::pair<std::string, Rate>> SeedRates::activeCompletedByLabel() const {
-    std::vector<std::pair<std::string, Rate>> byLabel;
+RatesByLabel SeedRates::activeCompletedByLabel() const {
+    RatesByLabel byLabel;
     for (const auto& s : seeds)
-        for (const LabelOutcome& l : s.activeByLabel) {
-            auto it = std::find_if(byLabel.begin(), byLabel.end(),
-                                   [&](const auto& b) { return b.first == l.label; });
-            if (it == byLabel.end()) it = byLabel.insert(byLabel.end(), {l.label, Rate{}});
-            it->second.count += l.completed;
-            it->second.total += l.trials;
+        for (const auto& [label, rate] : s.activeByLabel) {
+            Rate& sum = rateOf(byLabel, label);
+            sum.count += rate.count;
+            sum.total += rate.total;
         }
     return byLabel;
 }

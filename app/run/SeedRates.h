@@ -12,11 +12,17 @@
 
 namespace activetouch {
 
-/// One trial label's active trials in a run.
-struct LabelOutcome {
-    std::string label;
-    int trials = 0, completed = 0;
+/// A count out of a total with its Wilson score 95 % interval.
+struct Rate {
+    int count = 0, total = 0;
+    double fraction() const { return total > 0 ? double(count) / total : 0.0; }
+    double low() const;
+    double high() const;
 };
+
+/// Active trials completed per trial label (a shape, or the label a trial gives), in the order
+/// the labels first appear.
+using RatesByLabel = std::vector<std::pair<std::string, Rate>>;
 
 /// One whole run's outcome.
 struct SeedOutcome {
@@ -31,7 +37,7 @@ struct SeedOutcome {
     double runRobotTime_s = 0.0;                          ///< the whole run, training included
     double angleError_deg = 0.0, positionError_mm = 0.0;  ///< offline validation
     std::vector<std::string> failures;  ///< "cross trial 2: lost: ..." for each active trial lost
-    std::vector<LabelOutcome> activeByLabel;  ///< per trial label, in the experiment's order
+    RatesByLabel activeByLabel;
 
     /// Whether the run has the paper's parts: passive and active trials, and recognition.
     bool paperResultApplies() const { return passiveTrials > 0 && activeTrials > 0 && recognition; }
@@ -44,14 +50,6 @@ struct SeedOutcome {
 };
 
 SeedOutcome seedOutcome(const RunResult& run);
-
-/// A count out of a total with its Wilson score 95 % interval.
-struct Rate {
-    int count = 0, total = 0;
-    double fraction() const { return total > 0 ? double(count) / total : 0.0; }
-    double low() const;
-    double high() const;
-};
 
 /// One run's part in each rate: its count and its total, which SeedRates sums over runs.
 Rate passiveLostIn(const SeedOutcome& run);
@@ -67,9 +65,7 @@ struct SeedRates {
     Rate recognisedRaw() const;       ///< of completed active paths
     Rate recognisedSmoothed() const;  ///< of completed active paths
     Rate paperResult() const;         ///< of runs: SeedOutcome::paperResult
-    /// Active trials completed per trial label (a shape, or the label a trial gives), in the
-    /// order the labels first appear.
-    std::vector<std::pair<std::string, Rate>> activeCompletedByLabel() const;
+    RatesByLabel activeCompletedByLabel() const;
     double tapsPerCompletedTrial() const;
     double robotTimePerCompletedTrial_s() const;
     double robotTimePerRun_s() const;
