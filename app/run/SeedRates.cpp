@@ -77,6 +77,13 @@ Rate sumOver(const std::vector<SeedOutcome>& seeds, Rate (*part)(const SeedOutco
     return r;
 }
 
+Json shortJson(const ShortOfPaper& s) {
+    return {{"runs", s.runs},
+            {"passive_trial_not_lost", s.passiveNotLost},
+            {"active_trial_lost", s.activeLost},
+            {"path_misnamed_paper_rule", s.misnamedRaw}};
+}
+
 Json rateJson(const Rate& r) {
     if (r.total == 0) return {{"count", 0}, {"total", 0}, {"rate", nullptr}, {"ci95", nullptr}};
     return {{"count", r.count},
@@ -109,6 +116,10 @@ Rate paperResultIn(const SeedOutcome& s) {
     if (!s.paperResultApplies()) return {0, 0};
     return {s.paperResult() ? 1 : 0, 1};
 }
+Rate paperResultSmoothedIn(const SeedOutcome& s) {
+    if (!s.paperResultApplies()) return {0, 0};
+    return {s.paperResultSmoothed() ? 1 : 0, 1};
+}
 
 Rate SeedRates::passiveLost() const {
     return sumOver(seeds, passiveLostIn);
@@ -124,6 +135,20 @@ Rate SeedRates::recognisedSmoothed() const {
 }
 Rate SeedRates::paperResult() const {
     return sumOver(seeds, paperResultIn);
+}
+Rate SeedRates::paperResultSmoothed() const {
+    return sumOver(seeds, paperResultSmoothedIn);
+}
+ShortOfPaper SeedRates::shortOfPaper() const {
+    ShortOfPaper s;
+    for (const auto& o : seeds) {
+        if (!o.paperResultApplies() || o.paperResult()) continue;
+        ++s.runs;
+        s.passiveNotLost += o.passiveLost < o.passiveTrials;
+        s.activeLost += o.activeCompleted < o.activeTrials;
+        s.misnamedRaw += o.recognisedRaw < o.recognitionTrials;
+    }
+    return s;
 }
 RatesByLabel SeedRates::activeCompletedByLabel() const {
     RatesByLabel byLabel;
@@ -170,6 +195,8 @@ Json seedRatesJson(const SeedRates& r) {
              {"validation_position_error_mm", s.positionError_mm},
              {"run_robot_time_s", s.runRobotTime_s},
              {"paper_result", s.paperResultApplies() ? Json(s.paperResult()) : Json(nullptr)},
+             {"paper_result_smoothed",
+              s.paperResultApplies() ? Json(s.paperResultSmoothed()) : Json(nullptr)},
              {"active_failures", s.failures}});
     Json byLabel = Json::array();
     for (const auto& [label, rate] : r.activeCompletedByLabel()) {
@@ -185,6 +212,8 @@ Json seedRatesJson(const SeedRates& r) {
             {"recognised_raw", rateJson(r.recognisedRaw())},
             {"recognised_smoothed", rateJson(r.recognisedSmoothed())},
             {"paper_result", rateJson(r.paperResult())},
+            {"paper_result_smoothed", rateJson(r.paperResultSmoothed())},
+            {"paper_result_short_by", shortJson(r.shortOfPaper())},
             {"taps_per_completed_trial", r.tapsPerCompletedTrial()},
             {"robot_time_per_completed_trial_s", r.robotTimePerCompletedTrial_s()},
             {"robot_time_per_run_s", r.robotTimePerRun_s()},
@@ -212,6 +241,13 @@ std::vector<std::string> describeRates(const SeedRates& r) {
     line("recognised, paper's rule", r.recognisedRaw());
     line("recognised, smoothed histograms", r.recognisedSmoothed());
     line("runs with the paper's result whole", r.paperResult());
+    line("runs whole, smoothed histograms", r.paperResultSmoothed());
+    if (const ShortOfPaper s = r.shortOfPaper(); s.runs > 0) {
+        std::snprintf(buf, sizeof buf,
+                      "runs short: %d (passive not lost %d, active lost %d, path misnamed %d)",
+                      s.runs, s.passiveNotLost, s.activeLost, s.misnamedRaw);
+        lines.push_back(buf);
+    }
     if (r.activeCompleted().count > 0) {
         std::snprintf(buf, sizeof buf,
                       "completed active trial: %.0f taps, %.0f s robot time; whole run %.0f s",
@@ -237,7 +273,7 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
                      "recognition_trials,recognised_raw,recognised_smoothed,completed_taps,"
                      "completed_robot_time_s,"
                      "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
-                     "paper_result,active_failures\n");
+                     "paper_result,paper_result_smoothed,active_failures\n");
         std::fflush(file.get());
     }
     for (std::uint64_t seed = first; seed <= last; ++seed) {
@@ -253,12 +289,15 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
                 failures.insert(i, 1, '"');
             // Where the experiment does not have the paper's parts, its result is left empty.
             const char* paper = !o.paperResultApplies() ? "" : o.paperResult() ? "1" : "0";
-            std::fprintf(file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,\"%s\"\n",
-                         static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
-                         o.activeTrials, o.activeCompleted, o.recognitionTrials, o.recognisedRaw,
-                         o.recognisedSmoothed, o.completedTaps, o.completedRobotTime_s,
-                         o.runRobotTime_s, o.angleError_deg, o.positionError_mm, paper,
-                         failures.c_str());
+            const char* smoothed = !o.paperResultApplies()   ? ""
+                                   : o.paperResultSmoothed() ? "1"
+                                                             : "0";
+            std::fprintf(
+                file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,\"%s\"\n",
+                static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
+                o.activeTrials, o.activeCompleted, o.recognitionTrials, o.recognisedRaw,
+                o.recognisedSmoothed, o.completedTaps, o.completedRobotTime_s, o.runRobotTime_s,
+                o.angleError_deg, o.positionError_mm, paper, smoothed, failures.c_str());
             std::fflush(file.get());
         }
         if (seedDone && !seedDone(o)) break;

@@ -47,6 +47,20 @@ struct SeedOutcome {
         return paperResultApplies() && passiveLost == passiveTrials &&
                activeCompleted == activeTrials && recognisedRaw == recognitionTrials;
     }
+    /// The same with the smoothed histograms deciding recognition.
+    bool paperResultSmoothed() const {
+        return paperResultApplies() && passiveLost == passiveTrials &&
+               activeCompleted == activeTrials && recognisedSmoothed == recognitionTrials;
+    }
+};
+
+/// Of the runs with the paper's parts, how many fall short of its result in each part (a run may
+/// fall short in several).
+struct ShortOfPaper {
+    int runs = 0;            ///< runs without the paper's result whole
+    int passiveNotLost = 0;  ///< a passive trial completed or ran to its tap cap
+    int activeLost = 0;      ///< an active trial did not complete
+    int misnamedRaw = 0;     ///< a completed active path misnamed by the paper's rule
 };
 
 SeedOutcome seedOutcome(const RunResult& run);
@@ -57,14 +71,17 @@ Rate activeCompletedIn(const SeedOutcome& run);
 Rate recognisedRawIn(const SeedOutcome& run);       ///< of its recognised completed active paths
 Rate recognisedSmoothedIn(const SeedOutcome& run);  ///< of its recognised completed active paths
 Rate paperResultIn(const SeedOutcome& run);  ///< 1 of 1 or 0 of 1; 0 of 0 where it does not apply
+Rate paperResultSmoothedIn(const SeedOutcome& run);  ///< as paperResultIn, smoothed recognition
 
 struct SeedRates {
     std::vector<SeedOutcome> seeds;
     Rate passiveLost() const;
     Rate activeCompleted() const;
-    Rate recognisedRaw() const;       ///< of completed active paths
-    Rate recognisedSmoothed() const;  ///< of completed active paths
-    Rate paperResult() const;         ///< of runs: SeedOutcome::paperResult
+    Rate recognisedRaw() const;        ///< of completed active paths
+    Rate recognisedSmoothed() const;   ///< of completed active paths
+    Rate paperResult() const;          ///< of runs: SeedOutcome::paperResult
+    Rate paperResultSmoothed() const;  ///< of runs: SeedOutcome::paperResultSmoothed
+    ShortOfPaper shortOfPaper() const;
     RatesByLabel activeCompletedByLabel() const;
     double tapsPerCompletedTrial() const;
     double robotTimePerCompletedTrial_s() const;
@@ -82,8 +99,8 @@ Json seedRatesJson(const SeedRates& rates);
 
 /// The rates as lines of text, one per rate ("<what>  count / total  p %  (95 % interval lo-hi
 /// %)", or that there are none; with more than one trial label, active completion per label under
-/// the overall rate), then what a completed active trial and a whole run cost in taps and robot
-/// time.
+/// the overall rate), in which parts the runs short of the paper's result fall short, then what a
+/// completed active trial and a whole run cost in taps and robot time.
 std::vector<std::string> describeRates(const SeedRates& rates);
 
 }  // namespace activetouch

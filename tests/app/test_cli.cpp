@@ -335,6 +335,8 @@ private slots:
             QCOMPARE(c[5], c[4]);  // recognition looks at every completed active path
             const bool paper = c[2] == c[1] && c[4] == c[3] && c[6] == c[5];
             QCOMPARE(c[13], QString::number(int(paper)));
+            const bool smoothed = c[2] == c[1] && c[4] == c[3] && c[7] == c[5];
+            QCOMPARE(c[14], QString::number(int(smoothed)));
             whole += paper;
         }
         QFile js(out + "/rates.json");
@@ -351,6 +353,7 @@ private slots:
         QCOMPARE(r["passive_lost"].toObject()["total"].toInt(), 6);
         QCOMPARE(r["paper_result"].toObject()["count"].toInt(), whole);
         QCOMPARE(r["paper_result"].toObject()["total"].toInt(), 3);
+        QCOMPARE(r["paper_result_short_by"].toObject()["runs"].toInt(), 3 - whole);
         QVERIFY2(o.out.contains("runs with the paper's result whole"), qPrintable(o.out));
         // The figure: each seed's outcome and the rates so far, as a paper would print it.
         for (const char* ext : {"png", "pdf", "svg"})

@@ -134,6 +134,49 @@ private slots:
         for (const auto& l : describeRates(one)) QVERIFY2(l.rfind("  ", 0) != 0, l.c_str());
     }
 
+    void runsShortOfThePapersResultSayWhere() {
+        // Each run short of the paper's result is counted under every part it misses, and the
+        // smoothed recognition rule can only add whole runs, never remove them.
+        const ShortOfPaper s = rates_.shortOfPaper();
+        QCOMPARE(s.runs, rates_.paperResult().total - rates_.paperResult().count);
+        int passive = 0, active = 0, misnamed = 0;
+        for (const SeedOutcome& o : rates_.seeds) {
+            passive += o.passiveLost < o.passiveTrials;
+            active += o.activeCompleted < o.activeTrials;
+            misnamed += o.recognisedRaw < o.recognitionTrials;
+        }
+        QCOMPARE(s.passiveNotLost, passive);
+        QCOMPARE(s.activeLost, active);
+        QCOMPARE(s.misnamedRaw, misnamed);
+        QVERIFY(s.passiveNotLost + s.activeLost + s.misnamedRaw >= s.runs);
+        QVERIFY(rates_.paperResultSmoothed().count >= rates_.paperResult().count);
+
+        // A run whose only miss is one path misnamed by the paper's rule is whole with the
+        // smoothed histograms, and the summary says which part it missed.
+        SeedRates one;
+        SeedOutcome o;
+        o.passiveTrials = o.passiveLost = 2;
+        o.activeTrials = o.activeCompleted = 8;
+        o.recognition = true;
+        o.recognitionTrials = o.recognisedSmoothed = 8;
+        o.recognisedRaw = 7;
+        one.seeds.push_back(o);
+        QCOMPARE(one.paperResult().count, 0);
+        QCOMPARE(one.paperResultSmoothed().count, 1);
+        const ShortOfPaper m = one.shortOfPaper();
+        QCOMPARE(m.runs, 1);
+        QCOMPARE(m.misnamedRaw, 1);
+        QCOMPARE(m.passiveNotLost + m.activeLost, 0);
+        const auto lines = describeRates(one);
+        QVERIFY(std::find(lines.begin(), lines.end(),
+                          "runs short: 1 (passive not lost 0, active lost 0, path misnamed 1)") !=
+                lines.end());
+        const Json j = seedRatesJson(one);
+        QCOMPARE(j["paper_result_short_by"]["path_misnamed_paper_rule"].get<int>(), 1);
+        QCOMPARE(j["paper_result_smoothed"]["count"].get<int>(), 1);
+        QCOMPARE(j["seeds"][0]["paper_result_smoothed"].get<bool>(), true);
+    }
+
     void ratesWithoutThePapersPartsSayNone() {
         // Active trials only, no recognition (as experiments/feature_size.json): nothing is
         // reported as recognised or as the paper's result, rather than as 0 %.
@@ -149,16 +192,18 @@ private slots:
         QCOMPARE(o.activeTrials, 8);
         QVERIFY(!o.paperResultApplies());
         QVERIFY(!o.paperResult());
-        for (const Rate& r : {rates.passiveLost(), rates.recognisedRaw(),
-                              rates.recognisedSmoothed(), rates.paperResult()})
+        for (const Rate& r :
+             {rates.passiveLost(), rates.recognisedRaw(), rates.recognisedSmoothed(),
+              rates.paperResult(), rates.paperResultSmoothed()})
             QCOMPARE(r.total, 0);
         int none = 0;
         for (const auto& line : describeRates(rates))
             none += line.find("none in this experiment") != std::string::npos;
-        QCOMPARE(none, 4);
+        QCOMPARE(none, 5);
         const Json j = seedRatesJson(rates);
         QVERIFY(j["seeds"][0]["paper_result"].is_null());
         QVERIFY(j["paper_result"]["rate"].is_null());
+        QCOMPARE(rates.shortOfPaper().runs, 0);
     }
 
     void recognitionNamesTheActivePaths() {
