@@ -2,6 +2,7 @@
 //   activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--no-figures]
 //   activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>] [--no-figures]
 //   activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>] [--no-figures]
+//   activetouch-cli replay <experiment.json> <run folder> [--out <dir>] [--no-figures]
 //   activetouch-cli check <file.json | taps.csv | following_taps.csv>
 // Exit codes: 0 ok, 1 the run failed, 2 bad input.
 #include <QApplication>
@@ -57,6 +58,14 @@ void printHelp() {
         "      simulated or the real rig) with the experiment's classes, classifier, training\n"
         "      and validation settings: trains, validates and writes summary.json, the tables\n"
         "      and Figures 5 and 6. --out defaults to results/<experiment name>_analysis.\n"
+        "  activetouch-cli replay <experiment.json> <run folder> [--out <dir>] [--no-figures]\n"
+        "      Replays a run's recording (<run folder>/data/taps.csv and following_taps.csv,\n"
+        "      from the simulated or the real rig) as a rig: trains and validates on the\n"
+        "      recorded taps, then runs every trial of the experiment, served the recorded tap\n"
+        "      wherever the recorded run tapped. With the run's own settings every trial\n"
+        "      retraces its recording; with others, each trial says at which tap it decided\n"
+        "      otherwise and left the recording. --out defaults to\n"
+        "      results/<experiment name>_replay.\n"
         "  activetouch-cli check <file.json | taps.csv | following_taps.csv>\n"
         "      Validates an experiment, a scene or a recording (training taps, or following\n"
         "      taps: a run stopped while writing leaves every finished tap whole and the cut\n"
@@ -176,8 +185,10 @@ RunArguments parseRunArguments(const std::vector<std::string>& args, const char*
                     " needs an experiment file, e.g. experiments/paper.json");
     if (takesRecording && r.recordingPath.empty())
         return fail(std::string(command) +
-                    " needs a recording of training and test taps after the experiment, e.g. "
-                    "results/paper/data/taps.csv");
+                    (std::string(command) == "replay"
+                         ? " needs a run's folder after the experiment, e.g. results/paper"
+                         : " needs a recording of training and test taps after the experiment, "
+                           "e.g. results/paper/data/taps.csv"));
     return r;
 }
 
@@ -285,39 +296,81 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
     }
 }
 
-int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv) {
-    const RunArguments parsed = parseRunArguments(args, "analyse", {}, true, true);
+/// analyse (recorded training and test taps) and replay (a run's whole recording, its trials
+/// replayed as rigs).
+int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv, bool replay) {
+    const char* command = replay ? "replay" : "analyse";
+    const RunArguments parsed = parseRunArguments(args, command, {}, true, true);
     if (!parsed.error.empty()) return usageError(parsed.error);
     const auto start = std::chrono::steady_clock::now();
     const auto loaded = loadForRun(parsed.experimentPath);
     if (!loaded) return kBadInput;
     const ExperimentSpec& spec = *loaded;
-    const std::string outDir = parsed.outDir.empty()
-                                   ? (fs::path("results") / (spec.name + "_analysis")).string()
-                                   : parsed.outDir;
+    const std::string outDir =
+        parsed.outDir.empty()
+            ? (fs::path("results") / (spec.name + (replay ? "_replay" : "_analysis"))).string()
+            : parsed.outDir;
     const fs::path out(outDir);
     try {
         // Read whole before anything is written: the output may be where the recording lies.
+        const fs::path data = fs::path(parsed.recordingPath) / "data";
+        const std::string tapsPath = replay ? (data / "taps.csv").string() : parsed.recordingPath;
+        if (replay && !fs::is_directory(parsed.recordingPath))
+            throw InputError(parsed.recordingPath, "",
+                             "not a folder; give the folder a run wrote (it holds data/taps.csv "
+                             "and data/following_taps.csv)");
         std::string cut;
-        const std::vector<CollectedTap> taps = readTapCsv(parsed.recordingPath, spec.classes, &cut);
+        const std::vector<CollectedTap> taps = readTapCsv(tapsPath, spec.classes, &cut);
+        std::vector<RecordedTrial> trials;
+        FollowingRecordingContents followed;
+        if (replay) {
+            const std::string path = (data / "following_taps.csv").string();
+            if (!fs::exists(path))
+                throw InputError(path, "",
+                                 "the run recorded no contour following, so there is nothing to "
+                                 "replay; re-analyse its training taps with 'analyse'");
+            trials = readFollowingRecording(path, &followed);
+        }
         RunOptions options;
         options.outDir = outDir;
         options.recordedTaps = &taps;
-        options.recordingName = parsed.recordingPath;
+        options.recordedTrials = replay ? &trials : nullptr;
+        options.recordingName = replay ? parsed.recordingPath : tapsPath;
         std::error_code ec;
         fs::remove(out / "summary.json", ec);
         const RunResult result = runExperiment(spec, options);
         const Timing t = writeArtefacts(result, outDir, parsed.figures, argc, argv, start);
-        std::printf(
-            "%s: %zu recorded taps from %s re-analysed (recorded over %.0f s of robot "
-            "time)\n",
-            spec.name.c_str(), result.taps.size(), parsed.recordingPath.c_str(),
-            result.robotTime_s);
+        if (replay)
+            std::printf(
+                "%s: %zu recorded training and test taps and %d following taps over %d trials "
+                "from %s replayed (%.0f s of recorded robot time)\n",
+                spec.name.c_str(), result.taps.size(), followed.taps, followed.trials,
+                parsed.recordingPath.c_str(), result.robotTime_s);
+        else
+            std::printf(
+                "%s: %zu recorded taps from %s re-analysed (recorded over %.0f s of robot "
+                "time)\n",
+                spec.name.c_str(), result.taps.size(), parsed.recordingPath.c_str(),
+                result.robotTime_s);
         if (!cut.empty())
             std::printf(
                 "the recording was cut short at the end, as by a run stopped while "
                 "writing: %s; that tap is left out\n",
                 cut.c_str());
+        if (!followed.cutOff.empty())
+            std::printf(
+                "the following recording was cut short at the end: %s; that tap is left out\n",
+                followed.cutOff.c_str());
+        for (const TrialRun& t : result.trials) {
+            if (t.recordedTaps < 0) continue;
+            if (t.result.end == TrialEnd::LeftRecording)
+                std::printf("replayed %s %s trial %d: %s\n", modeName(t.result.mode),
+                            t.label.c_str(), t.trial, t.result.detail.c_str());
+            else
+                std::printf("replayed %s %s trial %d: %zu of %d recorded taps retraced, %s\n",
+                            modeName(t.result.mode), t.label.c_str(), t.trial, t.result.taps.size(),
+                            t.recordedTaps, trialEndName(t.result.end));
+        }
         const SweepSpec& sweeps = spec.sweeps;
         if (!result.sweeps.compute.empty())
             std::printf(
@@ -334,7 +387,7 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv) 
         std::fprintf(stderr, "error: %s\n", e.what());
         return kBadInput;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "analysis failed: %s\n", e.what());
+        std::fprintf(stderr, "%s failed: %s\n", replay ? "replay" : "analysis", e.what());
         return kRunFailed;
     }
 }
@@ -458,7 +511,10 @@ int main(int argc, char** argv) {
     }
     if (command == "run") return commandRun(args, argc, argv);
     if (command == "seeds") return commandSeeds(args, argc, argv);
-    if (command == "analyse" || command == "analyze") return commandAnalyse(args, argc, argv);
+    if (command == "analyse" || command == "analyze")
+        return commandAnalyse(args, argc, argv, false);
+    if (command == "replay") return commandAnalyse(args, argc, argv, true);
     if (command == "check") return commandCheck(args);
-    return usageError("unknown command '" + command + "'; use run, seeds, analyse or check");
+    return usageError("unknown command '" + command +
+                      "'; use run, seeds, analyse, replay or check");
 }

@@ -12,6 +12,7 @@
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
 #include "core/validation/ClassRegions.h"
+#include "devices/replay/ReplayRig.h"
 #include "devices/simulated/SimulatedWorld.h"
 
 namespace activetouch {
@@ -71,12 +72,52 @@ int plannedTapEstimate(const ExperimentSpec& spec) {
     return static_cast<int>(taps);
 }
 
+std::vector<const RecordedTrial*> replayedTrialsFor(const ExperimentSpec& spec,
+                                                    const std::vector<RecordedTrial>& recorded,
+                                                    const std::string& name) {
+    std::vector<const RecordedTrial*> replayed;
+    std::map<std::string, int> counters;  // trials so far per (label, mode), as runTrials counts
+    for (const TrialSpec& ts : spec.trials)
+        for (int repeat = 0; repeat < ts.repeats; ++repeat) {
+            const int trial = ++counters[ts.label + "/" + modeName(ts.mode)];
+            const auto it = std::find_if(recorded.begin(), recorded.end(), [&](const auto& r) {
+                return r.label == ts.label && r.mode == ts.mode && r.trial == trial;
+            });
+            if (it == recorded.end())
+                throw InputError(name, "",
+                                 "the recording holds no " + std::string(modeName(ts.mode)) + " " +
+                                     ts.label + " trial " + std::to_string(trial) +
+                                     " (the experiment's " + ts.place +
+                                     "); replay it with the experiment the run was made with, or "
+                                     "leave that trial out of the experiment");
+            replayed.push_back(&*it);
+        }
+    return replayed;
+}
+
 namespace {
+
+/// Adds to a replayed trial that left its recording what the recording and the replay perceived
+/// and decided at the tap where they parted.
+void noteWhereReplayLeft(const RecordedTrial& recorded, TrialResult& replayed) {
+    const std::size_t k = replayed.taps.size();
+    if (k == 0 || k >= recorded.taps.size()) return;  // parted at the start, or at the end
+    const RecordedDecision& was = recorded.decisions[k - 1];
+    const FollowedTap& now = replayed.taps[k - 1];
+    replayed.detail += "; they parted at tap " + std::to_string(k - 1) + ": the recording read " +
+                       was.shapeClass + ", position " + std::to_string(was.position) + " -> " +
+                       was.rule + ", the replay " + now.percept.shapeClass() + ", position " +
+                       std::to_string(now.percept.position) + " -> " +
+                       ruleFor(now.decision.rule).name;
+}
 
 void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> model,
                const RunOptions& options, RunProgress& progress) {
     const ExperimentSpec& spec = result.spec;
     if (spec.trials.empty()) return;
+    std::vector<const RecordedTrial*> replayed;
+    if (options.recordedTrials)
+        replayed = replayedTrialsFor(spec, *options.recordedTrials, options.recordingName);
     std::unique_ptr<FollowingRecording> recording;
     if (!options.outDir.empty())
         recording = std::make_unique<FollowingRecording>(
@@ -87,9 +128,14 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
     for (const TrialSpec& ts : spec.trials) {
         for (int repeat = 0; repeat < ts.repeats; ++repeat, ++trialIndex) {
             // On the simulated rig each trial gets its own world on the trial's object, with its
-            // own noise; a connected rig has the one object mounted.
+            // own noise; a connected rig has the one object mounted; a replay serves the
+            // recorded trial.
             std::optional<SimulatedRig> simulated;
-            if (!options.connected) {
+            std::optional<ReplayRig> replay;
+            if (!replayed.empty()) {
+                replay.emplace(*replayed[static_cast<std::size_t>(trialIndex)],
+                               options.recordingName);
+            } else if (!options.connected) {
                 SceneSpec scene = spec.scene;
                 scene.object = ts.object;
                 scene.seed =
@@ -98,8 +144,13 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
                     1;
                 simulated.emplace(scene, model);
             }
-            Rig rig = options.connected ? options.connected->rig : simulated->rig();
+            Rig rig = replay              ? replay->rig()
+                      : options.connected ? options.connected->rig
+                                          : simulated->rig();
             TrialRun run;
+            if (replay)
+                run.recordedTaps =
+                    static_cast<int>(replayed[static_cast<std::size_t>(trialIndex)]->taps.size());
             run.label = ts.label;
             run.trial = ++counters[ts.label + "/" + modeName(ts.mode)];
             run.outline = simulated ? simulated->world().object() : ts.object.outline();
@@ -126,6 +177,8 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
                              if (options.progress) options.progress(progress);
                              return !(options.cancel && options.cancel->load());
                          });
+            if (replay && run.result.end == TrialEnd::LeftRecording)
+                noteWhereReplayLeft(*replayed[static_cast<std::size_t>(trialIndex)], run.result);
             result.robotTime_s += run.result.robotTime_s;
             if (simulated) result.tapsSimulated += simulated->world().tapsSimulated();
             result.trials.push_back(std::move(run));
@@ -223,13 +276,30 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     auto model = std::make_shared<const FingertipContactModel>(spec.scene.fingertip);
     const std::vector<CollectedTap>* recorded = options.recordedTaps;
     if (recorded) checkRecordingCovers(spec, *recorded, model->taxelCount(), options.recordingName);
+    if (recorded && options.recordedTrials) {
+        const Tap& first = recorded->front().record.tap;
+        for (const RecordedTrial* t :
+             replayedTrialsFor(spec, *options.recordedTrials, options.recordingName))
+            for (const TapRecord& r : t->taps)
+                if (r.tap.taxels != first.taxels || r.tap.sampleCount() != first.sampleCount())
+                    throw InputError(
+                        options.recordingName,
+                        std::string(modeName(t->mode)) + " " + t->label + " trial " +
+                            std::to_string(t->trial),
+                        "its taps have " + std::to_string(r.tap.taxels) + " taxels and " +
+                            std::to_string(r.tap.sampleCount()) +
+                            " samples, the training and test taps " + std::to_string(first.taxels) +
+                            " and " + std::to_string(first.sampleCount()) +
+                            "; replay a run whose recordings were taken with one fingertip and "
+                            "tap window");
+    }
     if (options.connected) checkRunnableOn(spec, *options.connected);
     std::optional<SimulatedRig> simulated;
     if (!options.connected && !recorded) simulated.emplace(spec.scene, model);
     if (simulated) {
         result.activeEffects = simulated->world().activeEffects();
     } else if (recorded) {
-        result.rig = "recording " + options.recordingName;
+        result.rig = (options.recordedTrials ? "replay of " : "recording ") + options.recordingName;
     } else {
         result.rig = options.connected->description;
     }
@@ -249,6 +319,10 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     RunProgress progress;
     progress.step = recorded ? "recorded training and test taps" : "training and test taps";
     progress.tapsPlanned = recorded ? static_cast<int>(recorded->size()) : plannedTapEstimate(spec);
+    if (recorded && options.recordedTrials)
+        for (const RecordedTrial* t :
+             replayedTrialsFor(spec, *options.recordedTrials, options.recordingName))
+            progress.tapsPlanned += static_cast<int>(t->taps.size());
     auto onTap = [&](const CollectedTap& tap) {
         if (recording) recording->append(tap, result.classes);
         if (options.tapTaken)
@@ -330,9 +404,11 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     result.validOffsets.trustedHigh = result.classes.offsetOf(hi) + half;
 
     if (recorded) {
-        // A recording is analysed offline: no rig to follow a contour on, and of the sweeps only
-        // the one on the recorded taps themselves.
-        if (!spec.sweeps.bins.empty() && !result.cancelled) {
+        // A recording is analysed offline: its trials, if any, replay on the recorded taps, and
+        // of the sweeps only the one on the recorded taps themselves runs.
+        if (options.recordedTrials && !result.cancelled)
+            runTrials(result, model, options, progress);
+        if (!spec.sweeps.bins.empty() && !result.cancelled && result.failure.empty()) {
             progress.step = "compute sweep on the recorded taps";
             if (options.progress) options.progress(progress);
             result.sweeps = runSweeps(result, options, true);
@@ -648,7 +724,7 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
         {"orientation_trusted_offsets_mm", {r.validOffsets.trustedLow, r.validOffsets.trustedHigh}},
         {"orientation_trust_max_error_deg", r.spec.following.orientationTrustMaxError_deg}};
     Json following = Json::array();
-    for (const auto& t : r.trials)
+    for (const auto& t : r.trials) {
         following.push_back({{"shape", t.label},
                              {"mode", modeName(t.result.mode)},
                              {"trial", t.trial},
@@ -662,6 +738,8 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
                              {"max_contour_distance_mm", t.result.maxContourDistance_mm},
                              {"progress_mm", t.result.progress_mm},
                              {"start_mm", {t.start.x, t.start.y}}});
+        if (t.recordedTaps >= 0) following.back()["recorded_taps"] = t.recordedTaps;
+    }
     j["following"] = following;
     if (!r.templates.empty()) {
         Json trials = Json::array();

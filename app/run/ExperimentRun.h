@@ -13,6 +13,7 @@
 #include "core/classify/HistogramClassifier.h"
 #include "core/control/ContourFollower.h"
 #include "core/experiment/Experiment.h"
+#include "core/io/FollowingRecording.h"
 #include "core/recognition/PathHistogram.h"
 #include "core/rig/Rig.h"
 #include "core/validation/ClassRegions.h"
@@ -35,6 +36,7 @@ struct TrialRun {
     TrialResult result;
     bool recognised = false;
     Recognition recognition;
+    int recordedTaps = -1;  ///< replayed: the taps the recording holds for this trial
 };
 
 /// A connected rig (real devices, or any mix of real and simulated) to take every tap on instead
@@ -85,8 +87,18 @@ struct RunOptions {
     /// Re-analyse these recorded training and test taps instead of taking any (not owned): the
     /// run trains and validates on them and stops there (trials and sweeps need a rig).
     const std::vector<CollectedTap>* recordedTaps = nullptr;
+    /// With recordedTaps: replay these recorded trials as rigs (not owned). Each trial of the
+    /// experiment runs on its recorded namesake, served a recorded tap wherever the recorded run
+    /// tapped; where it decides otherwise it leaves the recording (TrialEnd::LeftRecording).
+    const std::vector<RecordedTrial>* recordedTrials = nullptr;
     std::string recordingName;  ///< where the recorded taps came from, for the summary
 };
+
+/// The recorded trial each of the experiment's trials replays, in the experiment's order.
+/// Throws InputError naming `name` and the trial the recording lacks.
+std::vector<const RecordedTrial*> replayedTrialsFor(const ExperimentSpec& spec,
+                                                    const std::vector<RecordedTrial>& recorded,
+                                                    const std::string& name);
 
 /// Refuses recorded taps the experiment cannot be validated on: a data set outside the
 /// experiment's, a class of a training set without a tap, no test tap, or taps with another

@@ -26,6 +26,8 @@ const char* trialEndName(TrialEnd e) {
             return "tap cap reached";
         case TrialEnd::DeviceError:
             return "device error";
+        case TrialEnd::LeftRecording:
+            return "left the recording";
         case TrialEnd::Cancelled:
             return "cancelled";
     }
@@ -198,6 +200,9 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
             if (n + 1 < tapCap && t.decision.move() != Vec2{})
                 pose = sendMotorCommand(rig.stage, pose, t.decision);
         }
+    } catch (const RecordingLeft& e) {
+        result.end = TrialEnd::LeftRecording;
+        result.detail = e.what();
     } catch (const RigError& e) {
         result.end = TrialEnd::DeviceError;
         result.detail = e.what();

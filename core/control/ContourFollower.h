@@ -32,6 +32,7 @@ enum class TrialEnd {
     LostPlaneOrAir,
     TapCap,
     DeviceError,
+    LeftRecording,  ///< replayed on a recording, the trial asked for a tap it does not hold
     Cancelled
 };
 const char* trialEndName(TrialEnd e);
@@ -69,8 +70,9 @@ Vec2 lowerEdgeStart(const Polygon& outline, const ValidOffsets& valid);
 std::string startProblem(const Polygon& outline, Vec2 start, const FollowingSettings& settings);
 
 /// Runs one trial. `onTap` sees each tap as it is taken (for the recording) and may return false
-/// to cancel. A device error ends the trial with TrialEnd::DeviceError and its message; every
-/// tap taken so far is kept.
+/// to cancel. A device error ends the trial with TrialEnd::DeviceError and its message (a replayed
+/// recording that holds no tap for where the trial went: TrialEnd::LeftRecording); every tap taken
+/// so far is kept.
 TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const ClassSet& classes,
                      const Polygon& outline, const TrialSetup& setup,
                      const std::function<bool(const FollowedTap&)>& onTap = {});

@@ -36,9 +36,14 @@ enum Column {
     kMode,
     kTrial,
     kTap,
-    kEnding = 7,
+    kPoseX,
+    kPoseY,
+    kTime,
+    kEnding,
     kContact,
     kShapeClass,
+    kOrientation,
+    kPosition,
     kRule = 14,
     kSample = 19
 };
@@ -80,7 +85,11 @@ void FollowingRecording::append(const std::string& label, FollowingMode mode, in
     std::fflush(file_);
 }
 
-FollowingRecordingContents checkFollowingRecording(const std::string& path) {
+namespace {
+
+/// Reads and checks `path`; with `trials`, keeps every whole tap.
+FollowingRecordingContents parseFollowingRecording(const std::string& path,
+                                                   std::vector<RecordedTrial>* trials) {
     std::ifstream in = openInputFile(path);
     RecordingRows rows(in, path);
     const auto& header = rows.header();
@@ -103,7 +112,9 @@ FollowingRecordingContents checkFollowingRecording(const std::string& path) {
     auto at = [&](const char* column) {
         return "line " + std::to_string(lineNo) + ", column " + column;
     };
-    int lastRow = 0;  // the line of the tap's last sample so far
+    int lastRow = 0;    // the line of the tap's last sample so far
+    TapRecord tapRead;  // the tap being read, when its samples are kept
+    RecordedDecision decisionRead;
     auto finishTap = [&]() {
         if (samples == 0) return;
         if (contents.samplesPerTap == 0) contents.samplesPerTap = samples;
@@ -113,6 +124,10 @@ FollowingRecordingContents checkFollowingRecording(const std::string& path) {
                                  " samples, the first tap " +
                                  std::to_string(contents.samplesPerTap));
         ++contents.taps;
+        if (trials) {
+            trials->back().taps.push_back(std::move(tapRead));
+            trials->back().decisions.push_back(decisionRead);
+        }
     };
     std::vector<std::string> f;
     while (rows.next(f)) {
@@ -154,10 +169,27 @@ FollowingRecordingContents checkFollowingRecording(const std::string& path) {
                                      (key == trialKey ? "tap " + std::to_string(tapIndex)
                                                       : std::string("another trial")) +
                                      "; a trial's taps run 0, 1, 2, ... in order");
-            if (key != trialKey) ++contents.trials;
+            if (key != trialKey) {
+                ++contents.trials;
+                if (trials)
+                    trials->push_back(
+                        {f[kShape],
+                         f[kMode] == "active" ? FollowingMode::Active : FollowingMode::Passive,
+                         static_cast<int>(v[kTrial]),
+                         {}});
+            }
             trialKey = key;
             tapIndex = tap;
             samples = 0;
+            if (trials) {
+                tapRead = TapRecord{};
+                tapRead.tap.taxels = taxels;
+                tapRead.pose = {v[kPoseX], v[kPoseY]};
+                tapRead.startTime_s = v[kTime];
+                tapRead.ending =
+                    f[kEnding] == "reflex" ? TapEnding::ContactReflex : TapEnding::StrokeLimit;
+                decisionRead = {f[kShapeClass], static_cast<int>(v[kPosition]), f[kRule]};
+            }
         } else if (key != trialKey || tap != tapIndex || sample != samples) {
             throw InputError(path, at("sample"),
                              "sample " + f[kSample] +
@@ -166,13 +198,19 @@ FollowingRecordingContents checkFollowingRecording(const std::string& path) {
         }
         ++samples;
         lastRow = lineNo;
+        if (trials)
+            tapRead.tap.samples.insert(tapRead.tap.samples.end(), v.begin() + kFixed,
+                                       v.begin() + kFixed + taxels);
     }
     // The last tap: whole, or cut short by a run that stopped while writing it.
     if (samples > 0 && contents.samplesPerTap > 0 && samples < contents.samplesPerTap) {
         contents.cutOff = "the last tap (" + trialKey + ", tap " + std::to_string(tapIndex) +
                           ") has " + std::to_string(samples) + " of " +
                           std::to_string(contents.samplesPerTap) + " samples";
-        if (tapIndex == 0) --contents.trials;
+        if (tapIndex == 0) {
+            --contents.trials;
+            if (trials) trials->pop_back();
+        }
     } else {
         finishTap();
     }
@@ -181,6 +219,20 @@ FollowingRecordingContents checkFollowingRecording(const std::string& path) {
             (contents.cutOff.empty() ? std::string() : contents.cutOff + "; ") + rows.cutOff();
     if (contents.taps == 0) throw InputError(path, "line 2", "the file holds no whole tap");
     return contents;
+}
+
+}  // namespace
+
+FollowingRecordingContents checkFollowingRecording(const std::string& path) {
+    return parseFollowingRecording(path, nullptr);
+}
+
+std::vector<RecordedTrial> readFollowingRecording(const std::string& path,
+                                                  FollowingRecordingContents* contents) {
+    std::vector<RecordedTrial> trials;
+    const FollowingRecordingContents c = parseFollowingRecording(path, &trials);
+    if (contents) *contents = c;
+    return trials;
 }
 
 }  // namespace activetouch

@@ -4,6 +4,7 @@
 // flight. Long format: one row per (tap, sample), one column per taxel.
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "core/control/ContourFollower.h"
 
@@ -41,5 +42,27 @@ struct FollowingRecordingContents {
 /// end of the file may be cut short (reported, not an error). Throws InputError naming the file,
 /// the line, the column and the problem.
 FollowingRecordingContents checkFollowingRecording(const std::string& path);
+
+/// What the recorded run perceived and decided at a tap, as the recording words it.
+struct RecordedDecision {
+    std::string shapeClass;  ///< "lower edge", "plane", ...
+    int position = 0;
+    std::string rule;  ///< the rules table's name
+};
+
+/// One trial as a recording holds it: its whole taps in order, each with its pose, robot time,
+/// how the stroke ended and its samples (what a rig gave), and beside them what the recorded run
+/// perceived and decided.
+struct RecordedTrial {
+    std::string label;
+    FollowingMode mode = FollowingMode::Active;
+    int trial = 1;
+    std::vector<TapRecord> taps;
+    std::vector<RecordedDecision> decisions;  ///< one per tap
+};
+
+/// Reads and checks a recording as checkFollowingRecording does, keeping every whole tap.
+std::vector<RecordedTrial> readFollowingRecording(const std::string& path,
+                                                  FollowingRecordingContents* contents = nullptr);
 
 }  // namespace activetouch

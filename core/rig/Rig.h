@@ -17,6 +17,13 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/// A rig that replays a recording has no tap for what was asked: the run has left what was
+/// recorded (it moved elsewhere, or tapped on after the recording ended).
+class RecordingLeft : public RigError {
+public:
+    using RigError::RigError;
+};
+
 class RobotClock {
 public:
     virtual ~RobotClock() = default;

@@ -496,6 +496,95 @@ private slots:
         QVERIFY(!QFile::exists(out));  // nothing written
     }
 
+    void replayRetracesARunsRecording() {
+        // The paper run (paperRunWritesSummaryDataAndFigures, above) replayed as a rig with its own
+        // experiment: every trial is served the recorded taps and retraces them to the same end.
+        const QString run = dir_.filePath("paper");
+        const QString out = dir_.filePath("replay");
+        const Outcome o = runCli({"replay", source("experiments/paper.json"), run, "--out", out});
+        QVERIFY2(o.exitCode == 0, qPrintable(o.err));
+        const QJsonObject recorded = readJson(run + "/summary.json");
+        const QJsonObject again = readJson(out + "/summary.json");
+        QCOMPARE(again["rig"].toString(), "replay of " + run);
+        const QJsonArray before = recorded["following"].toArray(),
+                         after = again["following"].toArray();
+        QCOMPARE(after.size(), 10);
+        QCOMPARE(after.size(), before.size());
+        for (int i = 0; i < after.size(); ++i) {
+            const QJsonObject a = after[i].toObject(), b = before[i].toObject();
+            for (const char* key : {"shape", "mode", "trial", "completed", "reason", "taps",
+                                    "coverage", "mean_contour_distance_mm", "start_mm"})
+                QVERIFY2(a[key] == b[key], qPrintable(QString("trial %1, %2").arg(i).arg(key)));
+            QCOMPARE(a["recorded_taps"].toInt(), b["taps"].toInt());
+            QVERIFY2(
+                o.out.contains(QString("%1 of %1 recorded taps retraced").arg(a["taps"].toInt())),
+                qPrintable(o.out));
+        }
+        QVERIFY(again["recognition"].toObject()["trials"] ==
+                recorded["recognition"].toObject()["trials"]);
+        // The replay's own recording holds the same taps.
+        QFile in(run + "/data/following_taps.csv"), copy(out + "/data/following_taps.csv");
+        QVERIFY(in.open(QIODevice::ReadOnly) && copy.open(QIODevice::ReadOnly));
+        QVERIFY(in.readAll() == copy.readAll());
+        QVERIFY(QFileInfo(out + "/figures/figure8_active_paths.png").size() > 0);
+    }
+
+    void replayWithOtherSettingsSaysWhereItLeft() {
+        // Another smoothing on the same recording: a trial that decides otherwise leaves the
+        // recording at that tap, says what both perceived and decided there, and keeps its taps.
+        const QString other = write("smoother.json", QString(R"({"extends": "%1",
+            "classifier": {"bins": 100, "smoothing": 0.1}})")
+                                                         .arg(source("experiments/paper.json")));
+        const QString out = dir_.filePath("replay_other");
+        const Outcome o =
+            runCli({"replay", other, dir_.filePath("paper"), "--out", out, "--no-figures"});
+        QVERIFY2(o.exitCode == 0, qPrintable(o.err));
+        int left = 0;
+        for (const auto& v : readJson(out + "/summary.json")["following"].toArray()) {
+            const QJsonObject t = v.toObject();
+            if (t["reason"].toString() != "left the recording") continue;
+            ++left;
+            QVERIFY(!t["completed"].toBool());
+            QVERIFY(t["taps"].toInt() < t["recorded_taps"].toInt());
+            const QString detail = t["detail"].toString();
+            QVERIFY2(detail.contains("the replay asked for it at") &&
+                         detail.contains(QString("they parted at tap %1: the recording read ")
+                                             .arg(t["taps"].toInt() - 1)),
+                     qPrintable(detail));
+        }
+        QVERIFY2(left > 0, qPrintable(o.out));
+    }
+
+    void replayRefusesWhatItCannotReplay() {
+        const QString run = dir_.filePath("paper");
+        const QString out = dir_.filePath("refused_replay");
+        // A trial the recording does not hold.
+        const Outcome missing = runCli(
+            {"replay", source("experiments/polygons.json"), run, "--out", out, "--no-figures"});
+        QCOMPARE(missing.exitCode, 2);
+        QVERIFY2(missing.err.contains("the recording holds no active") &&
+                     missing.err.contains("replay it with the experiment the run was made with"),
+                 qPrintable(missing.err));
+        // A file where the run's folder belongs.
+        const Outcome file = runCli(
+            {"replay", source("experiments/paper.json"), run + "/data/taps.csv", "--out", out});
+        QCOMPARE(file.exitCode, 2);
+        QVERIFY2(file.err.contains("not a folder"), qPrintable(file.err));
+        // A run that followed no contour.
+        const QString trainingOnly = dir_.filePath("training_only");
+        QVERIFY(QDir().mkpath(trainingOnly + "/data"));
+        QVERIFY(QFile::copy(run + "/data/taps.csv", trainingOnly + "/data/taps.csv"));
+        const Outcome none =
+            runCli({"replay", source("experiments/paper.json"), trainingOnly, "--out", out});
+        QCOMPARE(none.exitCode, 2);
+        QVERIFY2(none.err.contains("nothing to replay") && none.err.contains("analyse"),
+                 qPrintable(none.err));
+        QVERIFY(!QFile::exists(out));  // nothing written
+        const Outcome usage = runCli({"replay", source("experiments/paper.json")});
+        QCOMPARE(usage.exitCode, 2);
+        QVERIFY2(usage.err.contains("needs a run's folder"), qPrintable(usage.err));
+    }
+
     void usageErrors() {
         QCOMPARE(runCli({}).exitCode, 2);
         QCOMPARE(runCli({"fly"}).exitCode, 2);

@@ -182,6 +182,47 @@ private slots:
         QVERIFY(c.cutOff.empty());
     }
 
+    void followingRecordingReadsBackEveryTap() {
+        // What a replay is served: each trial's taps in order with their pose, time, ending and
+        // samples exactly as taken, and what the run perceived and decided at each.
+        const auto taps = someTaps();
+        FollowingRecordingContents c;
+        const auto trials = readFollowingRecording(writeFollowing(), &c);
+        QCOMPARE(c.taps, 5);
+        QCOMPARE(int(trials.size()), 2);
+        for (int trial = 1; trial <= 2; ++trial) {
+            const RecordedTrial& r = trials[static_cast<std::size_t>(trial - 1)];
+            QCOMPARE(r.label, std::string("rectangle"));
+            QVERIFY(r.mode == FollowingMode::Active);
+            QCOMPARE(r.trial, trial);
+            QCOMPARE(int(r.taps.size()), 4 - trial);
+            QCOMPARE(r.decisions.size(), r.taps.size());
+            for (std::size_t i = 0; i < r.taps.size(); ++i) {
+                const TapRecord& want = taps[i % 3].record;
+                QCOMPARE(r.taps[i].pose.x, want.pose.x);
+                QCOMPARE(r.taps[i].pose.y, want.pose.y);
+                QCOMPARE(r.taps[i].startTime_s, want.startTime_s);
+                QVERIFY(r.taps[i].ending == want.ending);
+                QCOMPARE(r.taps[i].tap.taxels, 12);
+                QVERIFY(r.taps[i].tap.samples == want.tap.samples);
+                QCOMPARE(r.decisions[i].shapeClass, std::string("lower edge"));
+                QCOMPARE(r.decisions[i].position, 9);
+                QCOMPARE(r.decisions[i].rule, std::string(ruleFor(RuleId::FollowInRange).name));
+            }
+        }
+        // Cut short in the first tap of a trial: that trial is not read at all.
+        const std::string path = writeFollowing();
+        std::ifstream in(path);
+        const std::string whole((std::istreambuf_iterator<char>(in)), {});
+        std::size_t at = 0;
+        for (int n = 0; n < 1 + 3 * 50 + 10; ++n) at = whole.find('\n', at) + 1;
+        const std::string cut = dir_.filePath("cut_first.csv").toStdString();
+        std::ofstream(cut) << whole.substr(0, at);
+        const auto kept = readFollowingRecording(cut);
+        QCOMPARE(int(kept.size()), 1);
+        QCOMPARE(int(kept.front().taps.size()), 3);
+    }
+
     void followingRecordingCutShortKeepsItsFinishedTaps() {
         // A run stopped while writing leaves whole taps and a last one cut short, maybe in the
         // middle of a line: every finished tap is read and the cut is reported.
