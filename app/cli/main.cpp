@@ -313,29 +313,18 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv, 
     const fs::path out(outDir);
     try {
         // Read whole before anything is written: the output may be where the recording lies.
-        const fs::path data = fs::path(parsed.recordingPath) / "data";
-        const std::string tapsPath = replay ? (data / "taps.csv").string() : parsed.recordingPath;
-        if (replay && !fs::is_directory(parsed.recordingPath))
-            throw InputError(parsed.recordingPath, "",
-                             "not a folder; give the folder a run wrote (it holds data/taps.csv "
-                             "and data/following_taps.csv)");
-        std::string cut;
-        const std::vector<CollectedTap> taps = readTapCsv(tapsPath, spec.classes, &cut);
-        std::vector<RecordedTrial> trials;
-        FollowingRecordingContents followed;
-        if (replay) {
-            const std::string path = (data / "following_taps.csv").string();
-            if (!fs::exists(path))
-                throw InputError(path, "",
-                                 "the run recorded no contour following, so there is nothing to "
-                                 "replay; re-analyse its training taps with 'analyse'");
-            trials = readFollowingRecording(path, &followed);
-        }
+        RecordedRun recorded;
+        if (replay)
+            recorded = readRecordedRun(parsed.recordingPath, spec.classes);
+        else
+            recorded.taps = readTapCsv(parsed.recordingPath, spec.classes, &recorded.tapsCutOff);
+        const std::vector<CollectedTap>& taps = recorded.taps;
+        const std::string& cut = recorded.tapsCutOff;
         RunOptions options;
         options.outDir = outDir;
         options.recordedTaps = &taps;
-        options.recordedTrials = replay ? &trials : nullptr;
-        options.recordingName = replay ? parsed.recordingPath : tapsPath;
+        options.recordedTrials = replay ? &recorded.trials : nullptr;
+        options.recordingName = parsed.recordingPath;
         std::error_code ec;
         fs::remove(out / "summary.json", ec);
         const RunResult result = runExperiment(spec, options);
@@ -344,8 +333,9 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv, 
             std::printf(
                 "%s: %zu recorded training and test taps and %d following taps over %d trials "
                 "from %s replayed (%.0f s of recorded robot time)\n",
-                spec.name.c_str(), result.taps.size(), followed.taps, followed.trials,
-                parsed.recordingPath.c_str(), result.robotTime_s);
+                spec.name.c_str(), result.taps.size(), recorded.followingTaps,
+                static_cast<int>(recorded.trials.size()), parsed.recordingPath.c_str(),
+                result.robotTime_s);
         else
             std::printf(
                 "%s: %zu recorded taps from %s re-analysed (recorded over %.0f s of robot "
@@ -357,10 +347,10 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv, 
                 "the recording was cut short at the end, as by a run stopped while "
                 "writing: %s; that tap is left out\n",
                 cut.c_str());
-        if (!followed.cutOff.empty())
+        if (!recorded.trialsCutOff.empty())
             std::printf(
                 "the following recording was cut short at the end: %s; that tap is left out\n",
-                followed.cutOff.c_str());
+                recorded.trialsCutOff.c_str());
         for (const TrialRun& t : result.trials) {
             if (t.recordedTaps < 0) continue;
             if (t.result.end == TrialEnd::LeftRecording)

@@ -38,6 +38,7 @@ FollowingTab::FollowingTab(QWidget* parent)
     views->addTab(paths, tr("Paths: active and passive"));
     auto* lower = new QSplitter(Qt::Horizontal);
     table_ = new QTableWidget(0, 9);
+    table_->setObjectName("followingTrials");
     table_->setHorizontalHeaderLabels({tr("shape"), tr("mode"), tr("trial"), tr("result"),
                                        tr("taps"), tr("robot\ntime (s)"), tr("coverage\n(%)"),
                                        tr("mean dist.\n(mm)"), tr("max dist.\n(mm)")});
@@ -121,6 +122,7 @@ void FollowingTab::showRun(std::shared_ptr<const RunResult> result) {
         for (int c = 0; c < cells.size(); ++c) {
             auto* item = new QTableWidgetItem(cells[c]);
             if (lostActive) item->setBackground(QColor(255, 235, 230));
+            if (c == 3) item->setToolTip(QString::fromStdString(t.result.detail));
             table_->setItem(static_cast<int>(i), c, item);
         }
         trial_->addItem(QString("%1 %2 %3")

@@ -35,6 +35,7 @@
 #include "app/gui/PlotPanel.h"
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
+#include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
 #include "devices/simulated/SimulatedWorld.h"
 #include "qcustomplot.h"
@@ -155,6 +156,16 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     analyse_->setToolTip(
         tr("Train and validate the experiment as shown on recorded taps (a run's data/taps.csv, "
            "from the simulated or the real rig), taking no tap"));
+    replay_ = bar->addAction(tr("Replay run..."), this, [this] {
+        const QString dir = QFileDialog::getExistingDirectory(
+            this, tr("Replay the run recorded in (a run's folder)"), lastOutDir_);
+        if (!dir.isEmpty()) replayRun(dir);
+    });
+    replay_->setObjectName("replayRun");
+    replay_->setToolTip(
+        tr("Replay a run's recording (simulated or real rig) as a rig with the experiment as "
+           "shown: train and validate on its taps, then run each trial on its recorded taps and "
+           "see where other settings would have decided otherwise"));
     cancel_ = bar->addAction(tr("Cancel"), this, &MainWindow::cancelRun);
     cancel_->setObjectName("cancel");
     pace_ = new QComboBox;
@@ -351,7 +362,7 @@ bool MainWindow::startSeedRun(std::uint64_t seed) {
 bool MainWindow::analyseRecording(const QString& path) {
     const auto toRun = experimentToRun();
     if (!toRun) return false;
-    auto recorded = std::make_shared<RecordedTaps>();
+    auto recorded = std::make_shared<RecordedRun>();
     recorded->name = path.toStdString();
     try {
         std::string cut;
@@ -371,19 +382,52 @@ bool MainWindow::analyseRecording(const QString& path) {
                   QString::fromStdString(toRun->name) + "_analysis", nullptr, recorded);
 }
 
+bool MainWindow::replayRun(const QString& runDir) {
+    const auto toRun = experimentToRun();
+    if (!toRun) return false;
+    std::shared_ptr<RecordedRun> recorded;
+    try {
+        recorded =
+            std::make_shared<RecordedRun>(readRecordedRun(runDir.toStdString(), toRun->classes));
+        checkRecordingCovers(*toRun, recorded->taps,
+                             FingertipContactModel(toRun->scene.fingertip).taxelCount(),
+                             recorded->name);
+        replayedTrialsFor(*toRun, recorded->trials, recorded->name);
+        for (const std::string& c : {recorded->tapsCutOff, recorded->trialsCutOff})
+            if (!c.empty())
+                log(tr("the recording in %1 was cut short at the end, as by a run stopped while "
+                       "writing: %2; that tap is left out")
+                        .arg(runDir, QString::fromStdString(c)));
+    } catch (const std::exception& e) {
+        showError(tr("Could not replay %1:\n%2").arg(runDir, e.what()));
+        return false;
+    }
+    return launch(*toRun, RunController::What::Everything,
+                  QString::fromStdString(toRun->name) + "_replay", nullptr, recorded);
+}
+
 bool MainWindow::launch(const ExperimentSpec& spec, RunController::What what, const QString& stem,
                         std::shared_ptr<const ConnectedRig> connected,
-                        std::shared_ptr<const RecordedTaps> recorded) {
+                        std::shared_ptr<const RecordedRun> recorded) {
     const QString dir = newRunDirectory(stem);
     if (!runs_.start(spec, dir, what, static_cast<Pace>(pace_->currentIndex()), last_, connected,
                      recorded))
         return false;
     countingSeeds_ = false;
     lastOutDir_ = dir;
-    progress_->setRange(
-        0, recorded ? static_cast<int>(recorded->taps.size()) : plannedTapEstimate(spec));
-    progress_->setValue(0);
+    int recordedTaps = recorded ? static_cast<int>(recorded->taps.size()) : 0;
     if (recorded)
+        for (const RecordedTrial& t : recorded->trials)
+            recordedTaps += static_cast<int>(t.taps.size());
+    progress_->setRange(0, recorded ? recordedTaps : plannedTapEstimate(spec));
+    progress_->setValue(0);
+    if (recorded && recorded->replay())
+        log(tr("replay started: %1 on the run recorded in %2 (%3 taps, %4 trials), writing %5")
+                .arg(QString::fromStdString(spec.name), QString::fromStdString(recorded->name))
+                .arg(recordedTaps)
+                .arg(recorded->trials.size())
+                .arg(dir));
+    else if (recorded)
         log(tr("analysis started: %1 on the %2 taps recorded in %3, writing %4")
                 .arg(QString::fromStdString(spec.name))
                 .arg(recorded->taps.size())
@@ -458,7 +502,9 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
     const RunResult& r = *result;
     const bool trainingRun =
         !r.taps.empty();  // a following-only run keeps the training figures shown
-    const bool analysis = r.rig.rfind("recording ", 0) == 0;  // of recorded taps, none taken
+    // Of recorded taps, none taken: an analysis, or a replay that also followed on them.
+    const bool replay = r.rig.rfind("replay of ", 0) == 0;
+    const bool analysis = replay || r.rig.rfind("recording ", 0) == 0;
     last_ = result;
     lastOutDir_ = dir;
     if (trainingRun) buildTapFigure(taps_->plot(), r);
@@ -477,8 +523,8 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
             for (PlotPanel* p : {sweepPerception_, sweepFollowing_})
                 p->setEmptyHint(
                     tr("This sweep takes new taps and follows contours on simulated "
-                       "rigs: run the experiment to measure it. An analysed recording "
-                       "measures only the compute sweep (c), on its own taps."));
+                       "rigs: run the experiment to measure it. An analysed or replayed "
+                       "recording measures only the compute sweep (c), on its own taps."));
         buildPerceptionSweepFigure(sweepPerception_->plot(), r);
         buildFollowingSweepFigure(sweepFollowing_->plot(), r);
         buildComputeSweepFigure(sweepCompute_->plot(), r);
@@ -512,7 +558,7 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
         taps = r.taps.size();
         for (const auto& t : r.trials) taps += t.result.taps.size();
     }
-    const QString what = analysis ? tr("analysis") : tr("run");
+    const QString what = replay ? tr("replay") : analysis ? tr("analysis") : tr("run");
     progress_->setFormat(tr("%1: %2 taps").arg(state).arg(taps));
     status_->setText(tr("%1, results in %2").arg(state, dir));
     if (!r.validation.byClass.empty())
@@ -554,6 +600,7 @@ void MainWindow::updateActions() {
     runAll_->setEnabled(!busy && ready);
     runTraining_->setEnabled(!busy && ready);
     analyse_->setEnabled(!busy && ready);
+    replay_->setEnabled(!busy && ready);
     runFollowing_->setEnabled(!busy && ready && last_ && last_->classifier.trained());
     cancel_->setEnabled(busy);
     seeds_->setRunnable(!busy && ready);

@@ -54,6 +54,12 @@ public:
     /// `path` (a run's data/taps.csv), taking no tap; a recording that cannot be read or
     /// validated is refused with the reason and the session kept.
     bool analyseRecording(const QString& path);
+    /// Replays the run recorded in the folder `runDir` (its data/taps.csv and
+    /// data/following_taps.csv) with the experiment as shown: trains and validates on the
+    /// recorded taps, then runs every trial on its recorded taps, which it retraces as long as it
+    /// decides as the recorded run did. A recording that cannot be read or lacks a trial is
+    /// refused with the reason and the session kept.
+    bool replayRun(const QString& runDir);
     void cancelRun();
     /// Writes every figure of the last run into `dir`/figures; returns the files.
     QStringList exportAllFigures(const QString& dir);
@@ -88,7 +94,7 @@ private:
     /// Starts `spec` into a new folder named after `stem`, on `connected` or the simulated rig.
     bool launch(const ExperimentSpec& spec, RunController::What what, const QString& stem,
                 std::shared_ptr<const ConnectedRig> connected,
-                std::shared_ptr<const RecordedTaps> recorded = {});
+                std::shared_ptr<const RecordedRun> recorded = {});
     /// A new folder under the output base for a run: <stem>-<date and time>.
     QString newRunDirectory(const QString& stem) const;
     QString recognitionHint() const;
@@ -122,7 +128,7 @@ private:
     QProgressBar* progress_;
     QLabel* status_;
     QComboBox* pace_;
-    QAction *runAll_, *runTraining_, *runFollowing_, *analyse_, *cancel_, *exportAll_;
+    QAction *runAll_, *runTraining_, *runFollowing_, *analyse_, *replay_, *cancel_, *exportAll_;
 };
 
 }  // namespace activetouch

@@ -36,7 +36,7 @@ bool RunController::stopAndWait(int ms) {
 bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, What what, Pace pace,
                           std::shared_ptr<const RunResult> trained,
                           std::shared_ptr<const ConnectedRig> connected,
-                          std::shared_ptr<const RecordedTaps> recorded) {
+                          std::shared_ptr<const RecordedRun> recorded) {
     if (thread_) {
         emit failed(tr("A run is already going; cancel it or wait for it to finish."));
         return false;
@@ -58,8 +58,8 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
     }
     if (recorded && (connected || what == What::FollowingOnly)) {
         emit failed(
-            tr("A recording is analysed on its own: its taps train and validate, with no "
-               "devices and no following."));
+            tr("A recording is analysed or replayed on its own: its taps train and validate "
+               "(and a replay's follow), with no devices."));
         return false;
     }
     launch(outDir, [this, spec, outDir, what, pace, trained, connected, recorded]() mutable {
@@ -70,6 +70,7 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
         options.connected = connected.get();
         if (recorded) {
             options.recordedTaps = &recorded->taps;
+            if (recorded->replay()) options.recordedTrials = &recorded->trials;
             options.recordingName = recorded->name;
         }
         options.progress = [this, started](const RunProgress& p) {

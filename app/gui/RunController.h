@@ -19,12 +19,6 @@ enum class Pace {
     RobotTime,   ///< the robot's own timing: frames at 50 Hz and the settle pause
 };
 
-/// Recorded training and test taps to analyse instead of taking any, and where they came from.
-struct RecordedTaps {
-    std::vector<CollectedTap> taps;
-    std::string name;
-};
-
 class RunController : public QObject {
     Q_OBJECT
 public:
@@ -41,7 +35,7 @@ public:
     bool start(const ExperimentSpec& spec, const QString& outDir, What what, Pace pace,
                std::shared_ptr<const RunResult> trained = {},
                std::shared_ptr<const ConnectedRig> connected = {},
-               std::shared_ptr<const RecordedTaps> recorded = {});
+               std::shared_ptr<const RecordedRun> recorded = {});
     /// Starts running `spec` once per seed from `first` to `last` on the simulated rig, each a
     /// whole run, writing <outDir>/rates.csv seed by seed and rates.json at the end; cancel
     /// stops after the seed in flight and keeps every finished seed. False (and failed()) if a

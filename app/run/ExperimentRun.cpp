@@ -72,6 +72,33 @@ int plannedTapEstimate(const ExperimentSpec& spec) {
     return static_cast<int>(taps);
 }
 
+RecordedRun readRecordedRun(const std::string& runDir, const ClassSet& classes) {
+    if (!fs::is_directory(runDir))
+        throw InputError(runDir, "",
+                         "not a folder; give the folder a run wrote (it holds data/taps.csv and "
+                         "data/following_taps.csv)");
+    const fs::path data = fs::path(runDir) / "data";
+    const std::string following = (data / "following_taps.csv").string(),
+                      taps = (data / "taps.csv").string();
+    if (!fs::exists(following))
+        throw InputError(following, "",
+                         "the run recorded no contour following, so there is nothing to replay; "
+                         "re-analyse its training taps instead (analyse)");
+    if (!fs::exists(taps))
+        throw InputError(taps, "",
+                         "no training taps beside the following recording: this run followed "
+                         "with a classifier trained in an earlier run; copy that run's "
+                         "data/taps.csv here to replay both");
+    RecordedRun run;
+    run.name = runDir;
+    run.taps = readTapCsv(taps, classes, &run.tapsCutOff);
+    FollowingRecordingContents contents;
+    run.trials = readFollowingRecording(following, &contents);
+    run.followingTaps = contents.taps;
+    run.trialsCutOff = contents.cutOff;
+    return run;
+}
+
 std::vector<const RecordedTrial*> replayedTrialsFor(const ExperimentSpec& spec,
                                                     const std::vector<RecordedTrial>& recorded,
                                                     const std::string& name) {

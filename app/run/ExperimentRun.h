@@ -94,6 +94,23 @@ struct RunOptions {
     std::string recordingName;  ///< where the recorded taps came from, for the summary
 };
 
+/// A recording read back whole: training and test taps to analyse instead of taking any, and for
+/// a replay a run's trials too.
+struct RecordedRun {
+    std::string name;                   ///< where it came from (a file, or a run's folder)
+    std::vector<CollectedTap> taps;     ///< <runDir>/data/taps.csv
+    std::vector<RecordedTrial> trials;  ///< <runDir>/data/following_taps.csv; none: analyse
+    int followingTaps = 0;
+    /// Empty, or what a run stopped while writing cut from the end of each file.
+    std::string tapsCutOff, trialsCutOff;
+    bool replay() const { return !trials.empty(); }
+};
+
+/// Reads the recording of the run in `runDir` for a replay. Throws InputError naming the file
+/// and what to do: not a folder, no following recording, or no training taps beside it (a
+/// following-only run's classifier was trained in another run's folder).
+RecordedRun readRecordedRun(const std::string& runDir, const ClassSet& classes);
+
 /// The recorded trial each of the experiment's trials replays, in the experiment's order.
 /// Throws InputError naming `name` and the trial the recording lacks.
 std::vector<const RecordedTrial*> replayedTrialsFor(const ExperimentSpec& spec,

@@ -568,11 +568,78 @@ private slots:
             if (p->name() == "sweep_c_compute") QVERIFY(p->plot().plottableCount() > 0);
             if (p->name() == "sweep_a_sequential_perception") {
                 QVERIFY(p->showsEmptyHint());
-                QVERIFY2(p->emptyHint().contains("An analysed recording measures only"),
+                QVERIFY2(p->emptyHint().contains("recording measures only the compute sweep"),
                          qPrintable(p->emptyHint()));
             }
         }
         QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+    }
+
+    void runsAreReplayedFromTheWindow() {
+        // A whole run, replayed with the same experiment: every trial retraces its recorded taps.
+        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QVERIFY(window_->startRun(RunController::What::Everything));
+        QVERIFY(ended.wait(60000));
+        QTRY_VERIFY(!window_->running());
+        const auto recordedRun = window_->lastRun();
+        const QString runDir = window_->lastRunDirectory();
+        QAction* replay = window_->findChild<QAction*>("replayRun");
+        QVERIFY(replay && replay->isEnabled());
+        QVERIFY(window_->replayRun(runDir));
+        QVERIFY(!replay->isEnabled());
+        QVERIFY(ended.wait(60000));
+        QCOMPARE(ended.takeLast().at(0).toBool(), true);
+        QTRY_VERIFY(!window_->running());
+        const auto replayed = window_->lastRun();
+        QCOMPARE(replayed->rig, "replay of " + runDir.toStdString());
+        QVERIFY(window_->lastRunDirectory().contains("paper_replay-"));
+        QCOMPARE(replayed->trials.size(), recordedRun->trials.size());
+        for (std::size_t i = 0; i < replayed->trials.size(); ++i) {
+            const TrialRun &a = replayed->trials[i], &b = recordedRun->trials[i];
+            QCOMPARE(a.recordedTaps, int(b.result.taps.size()));
+            QCOMPARE(a.result.path(), b.result.path());
+            QVERIFY(a.result.end == b.result.end);
+        }
+
+        // Another smoothing on the same recording: the trials that decide otherwise leave it,
+        // shown as such in the trials table.
+        const QString smoother = dir_.filePath("smoother.json");
+        writeJson(smoother, QJsonDocument::fromJson(QString(R"({"extends": "%1",
+                                "classifier": {"bins": 100, "smoothing": 0.1}})")
+                                                        .arg(source("experiments/paper.json"))
+                                                        .toUtf8())
+                                .object());
+        QVERIFY(window_->openExperiment(smoother));
+        QVERIFY(window_->replayRun(runDir));
+        QVERIFY(ended.wait(60000));
+        QTRY_VERIFY(!window_->running());
+        int left = 0;
+        for (const TrialRun& t : window_->lastRun()->trials)
+            left += t.result.end == TrialEnd::LeftRecording;
+        QVERIFY(left > 0);
+        auto* table = window_->findChild<QTableWidget*>("followingTrials");
+        QVERIFY(table);
+        int shown = 0;
+        for (int r = 0; r < table->rowCount(); ++r)
+            for (int c = 0; c < table->columnCount(); ++c)
+                shown += table->item(r, c) && table->item(r, c)->text() == "left the recording";
+        QCOMPARE(shown, left);
+
+        // A folder without a following recording is refused, the session kept.
+        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+        const auto before = window_->lastRun();
+        QSignalSpy errors(window_.get(), &MainWindow::errorShown);
+        const QString trainingOnly = dir_.filePath("training_only_run");
+        QVERIFY(QDir().mkpath(trainingOnly + "/data"));
+        QVERIFY(QFile::copy(runDir + "/data/taps.csv", trainingOnly + "/data/taps.csv"));
+        QVERIFY(!window_->replayRun(trainingOnly));
+        QCOMPARE(errors.size(), 1);
+        QVERIFY2(errors.first().at(0).toString().contains("nothing to replay"),
+                 qPrintable(errors.first().at(0).toString()));
+        QCOMPARE(window_->lastRun(), before);
+        QVERIFY(!window_->running());
+        closeErrorDialogs(*window_);
     }
 
     void badFilesShowTheProblemAndKeepTheSession_data() {
