@@ -393,6 +393,22 @@ private slots:
         QVERIFY(following.open(QIODevice::ReadOnly));
         QCOMPARE(int(following.readAll().count('\n')),
                  int(t.taps.size()) * spec.scene.tap.samples + 1);  // a line per sample
+
+        // The rig's recording replayed without the devices: the same validation from the
+        // recorded taps, and the trial retraces the path it took on the rig to the same end.
+        const RecordedRun recorded = readRecordedRun(out.path().toStdString(), spec.classes);
+        RunOptions replay;
+        replay.recordedTaps = &recorded.taps;
+        replay.recordedTrials = &recorded.trials;
+        replay.recordingName = recorded.name;
+        const RunResult again = runExperiment(spec, replay);
+        QCOMPARE(again.validation.angleError_deg, r.validation.angleError_deg);
+        QCOMPARE(again.validation.validRange.first, r.validation.validRange.first);
+        QCOMPARE(int(again.trials.size()), 1);
+        const TrialResult& a = again.trials[0].result;
+        QVERIFY2(a.end == t.end, a.detail.c_str());
+        QCOMPARE(a.path(), t.path());
+        QCOMPARE(again.trials[0].recordedTaps, int(t.taps.size()));
     }
 
     void aTrialOnAnotherObjectIsRefusedBeforeAnyTap() {
