@@ -360,50 +360,44 @@ bool MainWindow::startSeedRun(std::uint64_t seed) {
 }
 
 bool MainWindow::analyseRecording(const QString& path) {
-    const auto toRun = experimentToRun();
-    if (!toRun) return false;
-    auto recorded = std::make_shared<RecordedRun>();
-    recorded->name = path.toStdString();
-    try {
-        std::string cut;
-        recorded->taps = readTapCsv(recorded->name, toRun->classes, &cut);
-        checkRecordingCovers(*toRun, recorded->taps,
-                             FingertipContactModel(toRun->scene.fingertip).taxelCount(),
-                             recorded->name);
-        if (!cut.empty())
-            log(tr("%1 was cut short at the end, as by a run stopped while writing: %2; that tap "
-                   "is left out")
-                    .arg(path, QString::fromStdString(cut)));
-    } catch (const std::exception& e) {
-        showError(tr("Could not analyse %1:\n%2").arg(path, e.what()));
-        return false;
-    }
-    return launch(*toRun, RunController::What::TrainingOnly,
-                  QString::fromStdString(toRun->name) + "_analysis", nullptr, recorded);
+    return startOnRecording(path, false);
 }
 
 bool MainWindow::replayRun(const QString& runDir) {
+    return startOnRecording(runDir, true);
+}
+
+bool MainWindow::startOnRecording(const QString& path, bool replay) {
     const auto toRun = experimentToRun();
     if (!toRun) return false;
     std::shared_ptr<RecordedRun> recorded;
     try {
-        recorded =
-            std::make_shared<RecordedRun>(readRecordedRun(runDir.toStdString(), toRun->classes));
+        if (replay) {
+            recorded =
+                std::make_shared<RecordedRun>(readRecordedRun(path.toStdString(), toRun->classes));
+        } else {
+            recorded = std::make_shared<RecordedRun>();
+            recorded->name = path.toStdString();
+            recorded->taps = readTapCsv(recorded->name, toRun->classes, &recorded->tapsCutOff);
+        }
         checkRecordingCovers(*toRun, recorded->taps,
                              FingertipContactModel(toRun->scene.fingertip).taxelCount(),
                              recorded->name);
-        replayedTrialsFor(*toRun, recorded->trials, recorded->name);
+        if (replay) replayedTrialsFor(*toRun, recorded->trials, recorded->name);
         for (const std::string& c : {recorded->tapsCutOff, recorded->trialsCutOff})
             if (!c.empty())
                 log(tr("the recording in %1 was cut short at the end, as by a run stopped while "
                        "writing: %2; that tap is left out")
-                        .arg(runDir, QString::fromStdString(c)));
+                        .arg(path, QString::fromStdString(c)));
     } catch (const std::exception& e) {
-        showError(tr("Could not replay %1:\n%2").arg(runDir, e.what()));
+        showError((replay ? tr("Could not replay %1:\n%2") : tr("Could not analyse %1:\n%2"))
+                      .arg(path, e.what()));
         return false;
     }
-    return launch(*toRun, RunController::What::Everything,
-                  QString::fromStdString(toRun->name) + "_replay", nullptr, recorded);
+    return launch(*toRun,
+                  replay ? RunController::What::Everything : RunController::What::TrainingOnly,
+                  QString::fromStdString(toRun->name) + (replay ? "_replay" : "_analysis"), nullptr,
+                  recorded);
 }
 
 bool MainWindow::launch(const ExperimentSpec& spec, RunController::What what, const QString& stem,

@@ -91,6 +91,9 @@ private:
     void showError(const QString& message);
     /// The experiment as shown, if one is open and it can run; otherwise says why.
     std::optional<ExperimentSpec> experimentToRun();
+    /// Analyses the recorded taps in the file `path`, or (`replay`) replays the run recorded in
+    /// the folder `path`; what cannot be read or run is refused with the reason.
+    bool startOnRecording(const QString& path, bool replay);
     /// Starts `spec` into a new folder named after `stem`, on `connected` or the simulated rig.
     bool launch(const ExperimentSpec& spec, RunController::What what, const QString& stem,
                 std::shared_ptr<const ConnectedRig> connected,
