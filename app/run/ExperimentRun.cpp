@@ -138,13 +138,13 @@ void noteWhereReplayLeft(const RecordedTrial& recorded, TrialResult& replayed) {
                        ruleFor(now.decision.rule).name;
 }
 
+/// Runs the experiment's trials, each on the simulated rig, the connected one, or (`replayed`
+/// not empty) the recorded trial at its index.
 void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> model,
-               const RunOptions& options, RunProgress& progress) {
+               const RunOptions& options, RunProgress& progress,
+               const std::vector<const RecordedTrial*>& replayed = {}) {
     const ExperimentSpec& spec = result.spec;
     if (spec.trials.empty()) return;
-    std::vector<const RecordedTrial*> replayed;
-    if (options.recordedTrials)
-        replayed = replayedTrialsFor(spec, *options.recordedTrials, options.recordingName);
     std::unique_ptr<FollowingRecording> recording;
     if (!options.outDir.empty())
         recording = std::make_unique<FollowingRecording>(
@@ -303,10 +303,12 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     auto model = std::make_shared<const FingertipContactModel>(spec.scene.fingertip);
     const std::vector<CollectedTap>* recorded = options.recordedTaps;
     if (recorded) checkRecordingCovers(spec, *recorded, model->taxelCount(), options.recordingName);
+    // A replay's trials: each of the experiment's trials has its recording, of one tap shape.
+    std::vector<const RecordedTrial*> replayed;
     if (recorded && options.recordedTrials) {
+        replayed = replayedTrialsFor(spec, *options.recordedTrials, options.recordingName);
         const Tap& first = recorded->front().record.tap;
-        for (const RecordedTrial* t :
-             replayedTrialsFor(spec, *options.recordedTrials, options.recordingName))
+        for (const RecordedTrial* t : replayed)
             for (const TapRecord& r : t->taps)
                 if (r.tap.taxels != first.taxels || r.tap.sampleCount() != first.sampleCount())
                     throw InputError(
@@ -346,10 +348,8 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     RunProgress progress;
     progress.step = recorded ? "recorded training and test taps" : "training and test taps";
     progress.tapsPlanned = recorded ? static_cast<int>(recorded->size()) : plannedTapEstimate(spec);
-    if (recorded && options.recordedTrials)
-        for (const RecordedTrial* t :
-             replayedTrialsFor(spec, *options.recordedTrials, options.recordingName))
-            progress.tapsPlanned += static_cast<int>(t->taps.size());
+    for (const RecordedTrial* t : replayed)
+        progress.tapsPlanned += static_cast<int>(t->taps.size());
     auto onTap = [&](const CollectedTap& tap) {
         if (recording) recording->append(tap, result.classes);
         if (options.tapTaken)
@@ -433,8 +433,8 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     if (recorded) {
         // A recording is analysed offline: its trials, if any, replay on the recorded taps, and
         // of the sweeps only the one on the recorded taps themselves runs.
-        if (options.recordedTrials && !result.cancelled)
-            runTrials(result, model, options, progress);
+        if (!replayed.empty() && !result.cancelled)
+            runTrials(result, model, options, progress, replayed);
         if (!spec.sweeps.bins.empty() && !result.cancelled && result.failure.empty()) {
             progress.step = "compute sweep on the recorded taps";
             if (options.progress) options.progress(progress);

@@ -43,14 +43,15 @@ struct SeedOutcome {
     bool paperResultApplies() const { return passiveTrials > 0 && activeTrials > 0 && recognition; }
     /// The paper's result whole in this run: every passive trial lost, every active trial
     /// completed and every active path recognised by the paper's rule.
-    bool paperResult() const {
-        return paperResultApplies() && passiveLost == passiveTrials &&
-               activeCompleted == activeTrials && recognisedRaw == recognitionTrials;
-    }
+    bool paperResult() const { return paperFollowing() && recognisedRaw == recognitionTrials; }
     /// The same with the smoothed histograms deciding recognition.
     bool paperResultSmoothed() const {
+        return paperFollowing() && recognisedSmoothed == recognitionTrials;
+    }
+    /// The paper's parts, every passive trial lost and every active trial completed.
+    bool paperFollowing() const {
         return paperResultApplies() && passiveLost == passiveTrials &&
-               activeCompleted == activeTrials && recognisedSmoothed == recognitionTrials;
+               activeCompleted == activeTrials;
     }
 };
 

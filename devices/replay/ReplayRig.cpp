@@ -13,15 +13,17 @@ TapRecord ReplayRig::tap() {
     // Taps are numbered from 0, as in following_taps.csv.
     const int count = static_cast<int>(trial_.taps.size());
     char buf[320];
-    const std::string which = "the recorded " + std::string(modeName(trial_.mode)) + " " +
-                              trial_.label + " trial " + std::to_string(trial_.trial) + " (" +
-                              source_ + ")";
+    // Named only when the replay leaves the recording.
+    const auto which = [&] {
+        return "the recorded " + std::string(modeName(trial_.mode)) + " " + trial_.label +
+               " trial " + std::to_string(trial_.trial) + " (" + source_ + ")";
+    };
     if (next_ >= count) {
-        if (count == 0) throw RecordingLeft(which + " holds no tap");
+        if (count == 0) throw RecordingLeft(which() + " holds no tap");
         std::snprintf(buf, sizeof buf,
                       " ends after tap %d; the replay went on to tap %d at (%.2f, %.2f) mm",
                       count - 1, next_, pose_.x, pose_.y);
-        throw RecordingLeft(which + buf);
+        throw RecordingLeft(which() + buf);
     }
     const TapRecord& recorded = trial_.taps[static_cast<std::size_t>(next_)];
     const double off = distance(recorded.pose, pose_);
@@ -36,7 +38,7 @@ TapRecord ReplayRig::tap() {
                           " took tap %d at (%.2f, %.2f) mm; the replay asked for it at (%.2f, "
                           "%.2f) mm, %.2f mm away",
                           next_, recorded.pose.x, recorded.pose.y, pose_.x, pose_.y, off);
-        throw RecordingLeft(which + buf);
+        throw RecordingLeft(which() + buf);
     }
     ++next_;
     return recorded;

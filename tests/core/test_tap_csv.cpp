@@ -70,6 +70,19 @@ class TestTapCsv : public QObject {
     }
 
     /// Two trials of a following recording: three taps, then two.
+    /// A copy of the file at `path` as a run stopped while writing leaves it: its first `lines`
+    /// lines and `more` characters of the next.
+    std::string cutAfter(const std::string& path, std::size_t lines, std::size_t more,
+                         const char* name) {
+        std::ifstream in(path);
+        const std::string whole((std::istreambuf_iterator<char>(in)), {});
+        std::size_t at = 0;
+        for (std::size_t n = 0; n < lines; ++n) at = whole.find('\n', at) + 1;
+        const std::string cut = dir_.filePath(name).toStdString();
+        std::ofstream(cut) << whole.substr(0, at + more);
+        return cut;
+    }
+
     std::string writeFollowing() {
         const std::string path = dir_.filePath("following.csv").toStdString();
         FollowingRecording w(path, 12);
@@ -148,12 +161,7 @@ private slots:
         // A run stopped while writing its third tap, in the middle of a line: the two finished
         // taps are read and the cut is said; asked for whole taps only, the file is refused.
         const std::string path = writeTaps();
-        std::ifstream in(path);
-        const std::string whole((std::istreambuf_iterator<char>(in)), {});
-        std::size_t at = 0;
-        for (int n = 0; n < 1 + 2 * 50 + 20; ++n) at = whole.find('\n', at) + 1;
-        const std::string cut = dir_.filePath("cut.csv").toStdString();
-        std::ofstream(cut) << whole.substr(0, at + 30);
+        const std::string cut = cutAfter(path, 1 + 2 * 50 + 20, 30, "cut.csv");
         std::string said;
         const auto taps = readTapCsv(cut, classes_, &said);
         QCOMPARE(int(taps.size()), 2);
@@ -211,13 +219,7 @@ private slots:
             }
         }
         // Cut short in the first tap of a trial: that trial is not read at all.
-        const std::string path = writeFollowing();
-        std::ifstream in(path);
-        const std::string whole((std::istreambuf_iterator<char>(in)), {});
-        std::size_t at = 0;
-        for (int n = 0; n < 1 + 3 * 50 + 10; ++n) at = whole.find('\n', at) + 1;
-        const std::string cut = dir_.filePath("cut_first.csv").toStdString();
-        std::ofstream(cut) << whole.substr(0, at);
+        const std::string cut = cutAfter(writeFollowing(), 1 + 3 * 50 + 10, 0, "cut_first.csv");
         const auto kept = readFollowingRecording(cut);
         QCOMPARE(int(kept.size()), 1);
         QCOMPARE(int(kept.front().taps.size()), 3);
@@ -226,14 +228,8 @@ private slots:
     void followingRecordingCutShortKeepsItsFinishedTaps() {
         // A run stopped while writing leaves whole taps and a last one cut short, maybe in the
         // middle of a line: every finished tap is read and the cut is reported.
-        const std::string path = writeFollowing();
-        std::ifstream in(path);
-        const std::string whole((std::istreambuf_iterator<char>(in)), {});
-        const std::size_t fourthTap = 1 + 3 * 50 + 20;  // lines before: header, 3 taps, 20 rows
-        std::size_t at = 0;
-        for (std::size_t n = 0; n < fourthTap; ++n) at = whole.find('\n', at) + 1;
-        const std::string cut = dir_.filePath("cut.csv").toStdString();
-        std::ofstream(cut) << whole.substr(0, at + 30);
+        // Lines before the cut: header, 3 taps, 20 rows of the fourth.
+        const std::string cut = cutAfter(writeFollowing(), 1 + 3 * 50 + 20, 30, "cut.csv");
         const auto c = checkFollowingRecording(cut);
         QCOMPARE(c.taps, 3);
         QCOMPARE(c.trials, 1);
