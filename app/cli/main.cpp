@@ -49,8 +49,9 @@ void printHelp() {
         "      Runs the experiment once per seed A..B (each a whole run: its own data sets,\n"
         "      training, valid range and trials) and reports the rates with 95 %% intervals:\n"
         "      passive trials lost, active trials completed (and per trial label), active\n"
-        "      paths recognised by both rules, runs with the paper's result whole. Writes\n"
-        "      <dir>/rates.csv (a row per seed, appended as each finishes), <dir>/rates.json\n"
+        "      paths recognised by both rules (and which shapes each misnamed as which), runs\n"
+        "      with the paper's result whole. Writes <dir>/rates.csv (a row per seed, appended\n"
+        "      as each finishes), <dir>/rates.json (with the recognition confusion)\n"
         "      and <dir>/figures/seed_rates.{png,pdf,svg} (each seed's outcome and the rates so\n"
         "      far with their intervals). --out defaults to results/<experiment name>_seeds.\n"
         "  activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>] [--no-figures]\n"
@@ -409,6 +410,7 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
                             o.recognisedSmoothed, o.recognitionTrials);
             std::printf("\n");
             for (const auto& f : o.failures) std::printf("    %s\n", f.c_str());
+            for (const auto& m : o.misnamed()) std::printf("    %s\n", m.c_str());
             std::fflush(stdout);
             return true;
         });

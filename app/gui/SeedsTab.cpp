@@ -67,14 +67,15 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     summary_->setFont(QFont("Monospace", 9));
     summary_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     ll->addWidget(summary_);
-    table_ = new QTableWidget(0, 8);
-    table_->setHorizontalHeaderLabels({tr("seed"), tr("passive\nlost"), tr("active\ncompleted"),
-                                       tr("recognised\n(paper's rule)"),
-                                       tr("recognised\n(smoothed)"), tr("angle error\n(deg)"),
-                                       tr("paper's result\nwhole"), tr("active trials lost")});
+    table_ = new QTableWidget(0, 9);
+    table_->setHorizontalHeaderLabels(
+        {tr("seed"), tr("passive\nlost"), tr("active\ncompleted"), tr("recognised\n(paper's rule)"),
+         tr("recognised\n(smoothed)"), tr("angle error\n(deg)"), tr("paper's result\nwhole"),
+         tr("active trials lost"), tr("paths misnamed")});
     for (int c = 0; c < 7; ++c)
         table_->horizontalHeader()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
     table_->horizontalHeader()->setSectionResizeMode(7, QHeaderView::Stretch);
+    table_->horizontalHeader()->setSectionResizeMode(8, QHeaderView::Stretch);
     table_->setWordWrap(false);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     table_->setSelectionBehavior(QAbstractItemView::SelectRows);
@@ -155,24 +156,33 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     auto fraction = [](int count, int total) {
         return total > 0 ? QString("%1 / %2").arg(count).arg(total) : QString("-");
     };
-    QStringList lost;
+    QStringList lost, misnamed;
     for (const auto& f : o.failures) lost << QString::fromStdString(f);
+    for (const auto& m : o.misnamed()) misnamed << QString::fromStdString(m);
     table_->setItem(row, 0, cell(QString::number(o.seed)));
     table_->setItem(row, 1, cell(fraction(o.passiveLost, o.passiveTrials)));
     table_->setItem(row, 2, cell(fraction(o.activeCompleted, o.activeTrials)));
     table_->setItem(row, 3, cell(fraction(o.recognisedRaw, o.recognitionTrials)));
     table_->setItem(row, 4, cell(fraction(o.recognisedSmoothed, o.recognitionTrials)));
     table_->setItem(row, 5, cell(QString::number(o.angleError_deg, 'f', 2)));
-    auto* failures = new QTableWidgetItem(lost.join("; "));
-    failures->setToolTip(lost.join("\n"));
+    auto listCell = [](const QStringList& items) {
+        auto* item = new QTableWidgetItem(items.join("; "));
+        item->setToolTip(items.join("\n"));
+        return item;
+    };
     table_->setItem(row, 6,
                     cell(!o.paperResultApplies() ? QString("-")
                          : o.paperResult()       ? tr("yes")
                                                  : tr("no")));
-    table_->setItem(row, 7, failures);
-    if (o.activeCompleted < o.activeTrials)
+    table_->setItem(row, 7, listCell(lost));
+    table_->setItem(row, 8, listCell(misnamed));
+    // A run that lost an active trial is red; one that only misnamed a path (paper's rule), amber.
+    const bool lostActive = o.activeCompleted < o.activeTrials,
+               misnamedRaw = o.recognisedRaw < o.recognitionTrials;
+    if (lostActive || misnamedRaw)
         for (int c = 0; c < table_->columnCount(); ++c)
-            table_->item(row, c)->setBackground(QColor(255, 235, 230));
+            table_->item(row, c)->setBackground(lostActive ? QColor(255, 235, 230)
+                                                           : QColor(255, 246, 214));
     table_->scrollToBottom();
     buildSeedRatesFigure(plot_->plot(), rates_, experiment_, true);
     plot_->requestReplot();

@@ -21,7 +21,44 @@ Rate& rateOf(RatesByLabel& byLabel, const std::string& label) {
     if (it == byLabel.end()) it = byLabel.insert(byLabel.end(), {label, Rate{}});
     return it->second;
 }
+
+/// Where `label` stands in `labels`, appended where it is new.
+std::size_t indexOf(std::vector<std::string>& labels, const std::string& label) {
+    const auto it = std::find(labels.begin(), labels.end(), label);
+    if (it != labels.end()) return static_cast<std::size_t>(it - labels.begin());
+    labels.push_back(label);
+    return labels.size() - 1;
+}
+
+/// `items` joined by "; " as one quoted CSV field.
+std::string csvField(const std::vector<std::string>& items) {
+    std::string joined;
+    for (const auto& item : items) joined += (joined.empty() ? "" : "; ") + item;
+    std::string quoted = "\"";
+    for (const char c : joined) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + '"';
+}
 }  // namespace
+
+std::vector<std::string> SeedOutcome::misnamed() const {
+    std::vector<std::string> out;
+    for (const PathNaming& n : namings)
+        if (n.raw != n.label || n.smoothed != n.label)
+            out.push_back(n.label + " trial " + std::to_string(n.trial) + ": " + n.raw +
+                          " by the paper's rule, " + n.smoothed + " smoothed");
+    return out;
+}
+
+std::string RecognitionConfusion::misnamed(bool smoothedRule) const {
+    const auto& counts = smoothedRule ? smoothed : raw;
+    std::string out;
+    for (std::size_t i = 0; i < counts.size(); ++i)
+        for (std::size_t j = 0; j < counts[i].size(); ++j)
+            if (i != j && counts[i][j] > 0)
+                out += (out.empty() ? "" : ", ") + labels[i] + " as " + labels[j] + " " +
+                       std::to_string(counts[i][j]);
+    return out;
+}
 
 SeedOutcome seedOutcome(const RunResult& run) {
     SeedOutcome o;
@@ -49,6 +86,9 @@ SeedOutcome seedOutcome(const RunResult& run) {
         o.recognitionTrials += t.recognised;
         o.recognisedRaw += t.recognised && t.recognition.predicted == t.label;
         o.recognisedSmoothed += t.recognised && t.recognition.predictedSmoothed == t.label;
+        if (t.recognised)
+            o.namings.push_back(
+                {t.label, t.trial, t.recognition.predicted, t.recognition.predictedSmoothed});
         o.completedTaps += static_cast<int>(t.result.taps.size());
         o.completedRobotTime_s += t.result.robotTime_s;
     }
@@ -150,6 +190,26 @@ ShortOfPaper SeedRates::shortOfPaper() const {
     }
     return s;
 }
+RecognitionConfusion SeedRates::confusion() const {
+    RecognitionConfusion c;
+    for (const auto& o : seeds)
+        for (const PathNaming& n : o.namings) indexOf(c.labels, n.label);
+    for (const auto& o : seeds)
+        for (const PathNaming& n : o.namings) {
+            indexOf(c.labels, n.raw);
+            indexOf(c.labels, n.smoothed);
+        }
+    const std::size_t n = c.labels.size();
+    c.raw.assign(n, std::vector<int>(n, 0));
+    c.smoothed = c.raw;
+    for (const auto& o : seeds)
+        for (const PathNaming& p : o.namings) {
+            const std::size_t traced = indexOf(c.labels, p.label);
+            ++c.raw[traced][indexOf(c.labels, p.raw)];
+            ++c.smoothed[traced][indexOf(c.labels, p.smoothed)];
+        }
+    return c;
+}
 RatesByLabel SeedRates::activeCompletedByLabel() const {
     RatesByLabel byLabel;
     for (const auto& s : seeds)
@@ -197,13 +257,15 @@ Json seedRatesJson(const SeedRates& r) {
              {"paper_result", s.paperResultApplies() ? Json(s.paperResult()) : Json(nullptr)},
              {"paper_result_smoothed",
               s.paperResultApplies() ? Json(s.paperResultSmoothed()) : Json(nullptr)},
-             {"active_failures", s.failures}});
+             {"active_failures", s.failures},
+             {"misnamed_paths", s.misnamed()}});
     Json byLabel = Json::array();
     for (const auto& [label, rate] : r.activeCompletedByLabel()) {
         Json entry = rateJson(rate);
         entry["label"] = label;
         byLabel.push_back(entry);
     }
+    const RecognitionConfusion confusion = r.confusion();
     return {{"seeds", seeds},
             {"runs", r.seeds.size()},
             {"passive_lost", rateJson(r.passiveLost())},
@@ -211,6 +273,12 @@ Json seedRatesJson(const SeedRates& r) {
             {"active_completed_by_label", byLabel},
             {"recognised_raw", rateJson(r.recognisedRaw())},
             {"recognised_smoothed", rateJson(r.recognisedSmoothed())},
+            {"recognition_confusion",
+             {{"labels", confusion.labels},
+              {"rows", "traced shape"},
+              {"columns", "named as"},
+              {"paper_rule", confusion.raw},
+              {"smoothed", confusion.smoothed}}},
             {"paper_result", rateJson(r.paperResult())},
             {"paper_result_smoothed", rateJson(r.paperResultSmoothed())},
             {"paper_result_short_by", shortJson(r.shortOfPaper())},
@@ -238,8 +306,13 @@ std::vector<std::string> describeRates(const SeedRates& r) {
     const auto byLabel = r.activeCompletedByLabel();
     if (byLabel.size() > 1)
         for (const auto& [label, rate] : byLabel) line("  " + label, rate);
+    const RecognitionConfusion confusion = r.confusion();
     line("recognised, paper's rule", r.recognisedRaw());
+    if (const std::string m = confusion.misnamed(false); !m.empty())
+        lines.push_back("  misnamed: " + m);
     line("recognised, smoothed histograms", r.recognisedSmoothed());
+    if (const std::string m = confusion.misnamed(true); !m.empty())
+        lines.push_back("  misnamed: " + m);
     line("runs with the paper's result whole", r.paperResult());
     line("runs whole, smoothed histograms", r.paperResultSmoothed());
     if (const ShortOfPaper s = r.shortOfPaper(); s.runs > 0) {
@@ -273,7 +346,7 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
                      "recognition_trials,recognised_raw,recognised_smoothed,completed_taps,"
                      "completed_robot_time_s,"
                      "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
-                     "paper_result,paper_result_smoothed,active_failures\n");
+                     "paper_result,paper_result_smoothed,active_failures,misnamed_paths\n");
         std::fflush(file.get());
     }
     for (std::uint64_t seed = first; seed <= last; ++seed) {
@@ -282,22 +355,18 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
         const SeedOutcome o = seedOutcome(runExperiment(spec, options));
         rates.seeds.push_back(o);
         if (file) {
-            std::string failures;
-            for (const auto& f : o.failures) failures += (failures.empty() ? "" : "; ") + f;
-            for (std::size_t i = failures.find('"'); i != std::string::npos;
-                 i = failures.find('"', i + 2))
-                failures.insert(i, 1, '"');
             // Where the experiment does not have the paper's parts, its result is left empty.
             const char* paper = !o.paperResultApplies() ? "" : o.paperResult() ? "1" : "0";
             const char* smoothed = !o.paperResultApplies()   ? ""
                                    : o.paperResultSmoothed() ? "1"
                                                              : "0";
-            std::fprintf(
-                file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,\"%s\"\n",
-                static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
-                o.activeTrials, o.activeCompleted, o.recognitionTrials, o.recognisedRaw,
-                o.recognisedSmoothed, o.completedTaps, o.completedRobotTime_s, o.runRobotTime_s,
-                o.angleError_deg, o.positionError_mm, paper, smoothed, failures.c_str());
+            std::fprintf(file.get(),
+                         "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s\n",
+                         static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
+                         o.activeTrials, o.activeCompleted, o.recognitionTrials, o.recognisedRaw,
+                         o.recognisedSmoothed, o.completedTaps, o.completedRobotTime_s,
+                         o.runRobotTime_s, o.angleError_deg, o.positionError_mm, paper, smoothed,
+                         csvField(o.failures).c_str(), csvField(o.misnamed()).c_str());
             std::fflush(file.get());
         }
         if (seedDone && !seedDone(o)) break;

@@ -24,6 +24,13 @@ struct Rate {
 /// the labels first appear.
 using RatesByLabel = std::vector<std::pair<std::string, Rate>>;
 
+/// A completed active path and the shape each recognition rule named it.
+struct PathNaming {
+    std::string label;  ///< the trial's label, the shape it traced
+    int trial = 0;
+    std::string raw, smoothed;  ///< named by the paper's rule and by the smoothed histograms
+};
+
 /// One whole run's outcome.
 struct SeedOutcome {
     std::uint64_t seed = 0;
@@ -37,7 +44,11 @@ struct SeedOutcome {
     double runRobotTime_s = 0.0;                          ///< the whole run, training included
     double angleError_deg = 0.0, positionError_mm = 0.0;  ///< offline validation
     std::vector<std::string> failures;  ///< "cross trial 2: lost: ..." for each active trial lost
+    std::vector<PathNaming> namings;    ///< each recognised completed active path
     RatesByLabel activeByLabel;
+
+    /// "rectangle trial 1 as c (smoothed: rectangle)" for each path either rule misnamed.
+    std::vector<std::string> misnamed() const;
 
     /// Whether the run has the paper's parts: passive and active trials, and recognition.
     bool paperResultApplies() const { return passiveTrials > 0 && activeTrials > 0 && recognition; }
@@ -66,6 +77,16 @@ struct ShortOfPaper {
 
 SeedOutcome seedOutcome(const RunResult& run);
 
+/// Recognition over many runs: how often each traced shape was named as each shape, by both
+/// rules. Rows are the traced shapes, columns the names, over one list of labels (the traced
+/// shapes in the order they first appear, then any other name a rule gave).
+struct RecognitionConfusion {
+    std::vector<std::string> labels;
+    std::vector<std::vector<int>> raw, smoothed;  ///< [traced][named]
+    /// "rectangle as c 3, c as rectangle 1" for the paths one rule misnamed; empty if none.
+    std::string misnamed(bool smoothedRule) const;
+};
+
 /// One run's part in each rate: its count and its total, which SeedRates sums over runs.
 Rate passiveLostIn(const SeedOutcome& run);
 Rate activeCompletedIn(const SeedOutcome& run);
@@ -83,6 +104,7 @@ struct SeedRates {
     Rate paperResult() const;          ///< of runs: SeedOutcome::paperResult
     Rate paperResultSmoothed() const;  ///< of runs: SeedOutcome::paperResultSmoothed
     ShortOfPaper shortOfPaper() const;
+    RecognitionConfusion confusion() const;
     RatesByLabel activeCompletedByLabel() const;
     double tapsPerCompletedTrial() const;
     double robotTimePerCompletedTrial_s() const;
@@ -100,7 +122,8 @@ Json seedRatesJson(const SeedRates& rates);
 
 /// The rates as lines of text, one per rate ("<what>  count / total  p %  (95 % interval lo-hi
 /// %)", or that there are none; with more than one trial label, active completion per label under
-/// the overall rate), in which parts the runs short of the paper's result fall short, then what a
+/// the overall rate; under each recognition rate, which shapes it misnamed as which), in which
+/// parts the runs short of the paper's result fall short, then what a
 /// completed active trial and a whole run cost in taps and robot time.
 std::vector<std::string> describeRates(const SeedRates& rates);
 

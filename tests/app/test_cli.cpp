@@ -325,6 +325,7 @@ private slots:
         const QStringList rows = QString(csv.readAll()).trimmed().split('\n');
         QCOMPARE(rows.size(), 4);  // header + seeds 2, 3, 4
         QVERIFY(rows[0].startsWith("seed,passive_trials,passive_lost,active_trials,"));
+        QVERIFY(rows[0].endsWith(",paper_result_smoothed,active_failures,misnamed_paths"));
         int completed = 0, whole = 0;
         for (int i = 1; i < rows.size(); ++i) {
             const QStringList c = rows[i].split(',');
@@ -354,6 +355,15 @@ private slots:
         QCOMPARE(r["paper_result"].toObject()["count"].toInt(), whole);
         QCOMPARE(r["paper_result"].toObject()["total"].toInt(), 3);
         QCOMPARE(r["paper_result_short_by"].toObject()["runs"].toInt(), 3 - whole);
+        // Recognition over the runs: each completed active path in one cell, traced x named.
+        const QJsonObject confusion = r["recognition_confusion"].toObject();
+        QCOMPARE(confusion["labels"].toArray().size(), 4);
+        for (const char* rule : {"paper_rule", "smoothed"}) {
+            int paths = 0;
+            for (const auto& row : confusion[rule].toArray())
+                for (const auto& n : row.toArray()) paths += n.toInt();
+            QCOMPARE(paths, completed);
+        }
         QVERIFY2(o.out.contains("runs with the paper's result whole"), qPrintable(o.out));
         // The figure: each seed's outcome and the rates so far, as a paper would print it.
         for (const char* ext : {"png", "pdf", "svg"})

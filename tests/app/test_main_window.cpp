@@ -359,6 +359,9 @@ private slots:
             QCOMPARE(table->item(i, 2)->text(),
                      QString("%1 / %2").arg(o.activeCompleted).arg(o.activeTrials));
             QCOMPARE(table->item(i, 6)->text(), QString(o.paperResult() ? "yes" : "no"));
+            QStringList misnamed;
+            for (const auto& m : o.misnamed()) misnamed << QString::fromStdString(m);
+            QCOMPARE(table->item(i, 8)->text(), misnamed.join("; "));
         }
         for (const Rate& r : {direct.activeCompleted(), direct.passiveLost()})
             QVERIFY2(tab->summaryText().contains(QString("%1 / %2").arg(r.count).arg(r.total)),

@@ -177,6 +177,52 @@ private slots:
         QCOMPARE(j["seeds"][0]["paper_result_smoothed"].get<bool>(), true);
     }
 
+    void recognitionConfusionSaysWhichShapesAreMisnamed() {
+        // Over the ten runs: every recognised path in one cell of each rule's table, its row the
+        // shape it traced, the diagonal the paths named rightly.
+        const RecognitionConfusion c = rates_.confusion();
+        QCOMPARE(c.labels, (std::vector<std::string>{"rectangle", "cross", "c", "l"}));
+        int rawRight = 0, smoothedRight = 0, rawAll = 0, smoothedAll = 0, misnamedPaths = 0;
+        for (std::size_t i = 0; i < c.labels.size(); ++i)
+            for (std::size_t j = 0; j < c.labels.size(); ++j) {
+                rawAll += c.raw[i][j];
+                smoothedAll += c.smoothed[i][j];
+                if (i == j) rawRight += c.raw[i][j], smoothedRight += c.smoothed[i][j];
+            }
+        QCOMPARE(rawAll, rates_.recognisedRaw().total);
+        QCOMPARE(smoothedAll, rates_.recognisedSmoothed().total);
+        QCOMPARE(rawRight, rates_.recognisedRaw().count);
+        QCOMPARE(smoothedRight, rates_.recognisedSmoothed().count);
+        for (const SeedOutcome& o : rates_.seeds) misnamedPaths += int(o.misnamed().size());
+        QVERIFY(misnamedPaths >= rawAll - rawRight);
+
+        // One run with a rectangle named C by the paper's rule only: the run, the table and the
+        // summary each say so, and nothing is said of the smoothed rule.
+        SeedRates one;
+        SeedOutcome o;
+        o.recognition = true;
+        o.namings = {{"rectangle", 1, "c", "rectangle"}, {"c", 1, "c", "c"}};
+        one.seeds.push_back(o);
+        QCOMPARE(o.misnamed(),
+                 (std::vector<std::string>{
+                     "rectangle trial 1: c by the paper's rule, rectangle smoothed"}));
+        const RecognitionConfusion m = one.confusion();
+        QCOMPARE(m.labels, (std::vector<std::string>{"rectangle", "c"}));
+        QCOMPARE(m.raw, (std::vector<std::vector<int>>{{0, 1}, {0, 1}}));
+        QCOMPARE(m.smoothed, (std::vector<std::vector<int>>{{1, 0}, {0, 1}}));
+        QCOMPARE(m.misnamed(false), std::string("rectangle as c 1"));
+        QCOMPARE(m.misnamed(true), std::string());
+        const auto lines = describeRates(one);
+        QCOMPARE(std::count(lines.begin(), lines.end(), "  misnamed: rectangle as c 1"), 1);
+        QCOMPARE(std::count_if(lines.begin(), lines.end(),
+                               [](const std::string& l) { return l.find("misnamed:") == 2; }),
+                 1);
+        const Json j = seedRatesJson(one);
+        QCOMPARE(j["recognition_confusion"]["paper_rule"][0][1].get<int>(), 1);
+        QCOMPARE(j["recognition_confusion"]["smoothed"][0][0].get<int>(), 1);
+        QCOMPARE(j["seeds"][0]["misnamed_paths"].size(), std::size_t(1));
+    }
+
     void ratesWithoutThePapersPartsSayNone() {
         // Active trials only, no recognition (as experiments/feature_size.json): nothing is
         // reported as recognised or as the paper's result, rather than as 0 %.
