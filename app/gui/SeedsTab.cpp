@@ -67,15 +67,14 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     summary_->setFont(QFont("Monospace", 9));
     summary_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     ll->addWidget(summary_);
-    table_ = new QTableWidget(0, 9);
+    table_ = new QTableWidget(0, 8);
     table_->setHorizontalHeaderLabels(
         {tr("seed"), tr("passive\nlost"), tr("active\ncompleted"), tr("recognised\n(paper's rule)"),
          tr("recognised\n(smoothed)"), tr("angle error\n(deg)"), tr("paper's result\nwhole"),
-         tr("active trials lost"), tr("paths misnamed")});
+         tr("active trials lost,\npaths misnamed")});
     for (int c = 0; c < 7; ++c)
         table_->horizontalHeader()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
     table_->horizontalHeader()->setSectionResizeMode(7, QHeaderView::Stretch);
-    table_->horizontalHeader()->setSectionResizeMode(8, QHeaderView::Stretch);
     table_->setWordWrap(false);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     table_->setSelectionBehavior(QAbstractItemView::SelectRows);
@@ -156,26 +155,22 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     auto fraction = [](int count, int total) {
         return total > 0 ? QString("%1 / %2").arg(count).arg(total) : QString("-");
     };
-    QStringList lost, misnamed;
-    for (const auto& f : o.failures) lost << QString::fromStdString(f);
-    for (const auto& m : o.misnamed()) misnamed << QString::fromStdString(m);
+    QStringList shortfalls;  // the active trials lost, then the paths misnamed
+    for (const auto& f : o.failures) shortfalls << QString::fromStdString(f);
+    for (const auto& m : o.misnamed()) shortfalls << QString::fromStdString(m);
     table_->setItem(row, 0, cell(QString::number(o.seed)));
     table_->setItem(row, 1, cell(fraction(o.passiveLost, o.passiveTrials)));
     table_->setItem(row, 2, cell(fraction(o.activeCompleted, o.activeTrials)));
     table_->setItem(row, 3, cell(fraction(o.recognisedRaw, o.recognitionTrials)));
     table_->setItem(row, 4, cell(fraction(o.recognisedSmoothed, o.recognitionTrials)));
     table_->setItem(row, 5, cell(QString::number(o.angleError_deg, 'f', 2)));
-    auto listCell = [](const QStringList& items) {
-        auto* item = new QTableWidgetItem(items.join("; "));
-        item->setToolTip(items.join("\n"));
-        return item;
-    };
     table_->setItem(row, 6,
                     cell(!o.paperResultApplies() ? QString("-")
                          : o.paperResult()       ? tr("yes")
                                                  : tr("no")));
-    table_->setItem(row, 7, listCell(lost));
-    table_->setItem(row, 8, listCell(misnamed));
+    auto* shortfall = new QTableWidgetItem(shortfalls.join("; "));
+    shortfall->setToolTip(shortfalls.join("\n"));
+    table_->setItem(row, 7, shortfall);
     // A run that lost an active trial is red; one that only misnamed a path (paper's rule), amber.
     const bool lostActive = o.activeCompleted < o.activeTrials,
                misnamedRaw = o.recognisedRaw < o.recognitionTrials;
