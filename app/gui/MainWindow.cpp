@@ -10,6 +10,7 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QGroupBox>
+#include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
 #include <QMessageBox>
@@ -24,6 +25,7 @@
 #include <QVBoxLayout>
 #include <algorithm>
 #include <climits>
+#include <tuple>
 
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
@@ -41,6 +43,32 @@
 #include "qcustomplot.h"
 
 namespace activetouch {
+
+namespace {
+/// `table` as the confusion of the recognised trials: a row per shape traced, a column per shape
+/// named by one rule; the cells off the diagonal that are not zero stand out.
+void fillConfusion(QTableWidget* table, const std::vector<std::string>& shapes,
+                   const std::vector<TrialRun>& trials, bool smoothed) {
+    table->clear();
+    table->setRowCount(static_cast<int>(shapes.size()));
+    table->setColumnCount(static_cast<int>(shapes.size()));
+    QStringList names;
+    for (const auto& s : shapes) names << QString::fromStdString(s);
+    table->setHorizontalHeaderLabels(names);
+    table->setVerticalHeaderLabels(names);
+    for (std::size_t a = 0; a < shapes.size(); ++a)
+        for (std::size_t b = 0; b < shapes.size(); ++b) {
+            int n = 0;
+            for (const auto& t : trials)
+                n += t.recognised && t.label == shapes[a] &&
+                     (smoothed ? t.recognition.predictedSmoothed : t.recognition.predicted) ==
+                         shapes[b];
+            auto* cell = new QTableWidgetItem(QString::number(n));
+            if (a != b && n > 0) cell->setBackground(QColor(255, 220, 200));
+            table->setItem(static_cast<int>(a), static_cast<int>(b), cell);
+        }
+}
+}  // namespace
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), devices_(feed_) {
     setWindowTitle(tr("ActiveTouch Workbench"));
@@ -61,13 +89,23 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     tabs_->addTab(following_, tr("Contour following"));
     auto* recognition = new QSplitter(Qt::Vertical);
     recognition_ = new PlotPanel("figure9_recognition");
-    confusion_ = new QTableWidget;
-    confusion_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     recognition->addWidget(recognition_);
-    auto* confusionBox =
-        new QGroupBox(tr("Confusion over the recognised trials (rows: true shape; columns: "
-                         "predicted by the paper's rule)"));
-    (new QVBoxLayout(confusionBox))->addWidget(confusion_);
+    auto* confusionBox = new QGroupBox(
+        tr("Confusion over the recognised trials (rows: the shape traced; columns: the shape "
+           "named)"));
+    auto* confusionRow = new QHBoxLayout(confusionBox);
+    for (auto [table, title, name] :
+         {std::tuple{&confusionRaw_, &confusionRawTitle_, "confusionPaperRule"},
+          std::tuple{&confusionSmoothed_, &confusionSmoothedTitle_, "confusionSmoothed"}}) {
+        auto* column = new QVBoxLayout;
+        *title = new QLabel;
+        *table = new QTableWidget;
+        (*table)->setObjectName(name);
+        (*table)->setEditTriggers(QAbstractItemView::NoEditTriggers);
+        column->addWidget(*title);
+        column->addWidget(*table, 1);
+        confusionRow->addLayout(column, 1);
+    }
     recognition->addWidget(confusionBox);
     recognition->setStretchFactor(0, 4);
     tabs_->addTab(recognition, tr("Recognition"));
@@ -524,24 +562,16 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
         buildComputeSweepFigure(sweepCompute_->plot(), r);
         for (auto* p : {sweepPerception_, sweepFollowing_, sweepCompute_}) p->plot().replot();
     }
-    // Confusion over recognised trials: true shape x predicted (paper's rule).
+    // Confusion over the recognised trials, traced shape x named, for each rule.
     std::vector<std::string> shapes;
     for (const auto& t : r.templates) shapes.push_back(t.shape);
-    confusion_->clear();
-    confusion_->setRowCount(static_cast<int>(shapes.size()));
-    confusion_->setColumnCount(static_cast<int>(shapes.size()));
-    QStringList names;
-    for (const auto& s : shapes) names << QString::fromStdString(s);
-    confusion_->setHorizontalHeaderLabels(names);
-    confusion_->setVerticalHeaderLabels(names);
-    for (std::size_t a = 0; a < shapes.size(); ++a)
-        for (std::size_t b = 0; b < shapes.size(); ++b) {
-            int n = 0;
-            for (const auto& t : r.trials)
-                n += t.recognised && t.label == shapes[a] && t.recognition.predicted == shapes[b];
-            confusion_->setItem(static_cast<int>(a), static_cast<int>(b),
-                                new QTableWidgetItem(QString::number(n)));
-        }
+    fillConfusion(confusionRaw_, shapes, r.trials, false);
+    fillConfusion(confusionSmoothed_, shapes, r.trials, true);
+    confusionRawTitle_->setText(
+        tr("paper's rule: %1 % named rightly").arg(100.0 * r.recognitionAccuracy, 0, 'f', 0));
+    confusionSmoothedTitle_->setText(tr("smoothed histograms (sigma %1 bins): %2 % named rightly")
+                                         .arg(r.spec.recognition.smoothingSigmaBins)
+                                         .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0));
     progress_->setRange(0, std::max(1, progress_->value()));
     progress_->setValue(progress_->maximum());
     const QString state =

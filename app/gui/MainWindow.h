@@ -124,7 +124,8 @@ private:
     PlotPanel *taps_, *errors_, *recognition_, *sweepPerception_, *sweepFollowing_, *sweepCompute_;
     FollowingTab* following_;
     SeedsTab* seeds_;
-    QTableWidget* confusion_;
+    QTableWidget *confusionRaw_, *confusionSmoothed_;  ///< traced shape x named, each rule
+    QLabel *confusionRawTitle_, *confusionSmoothedTitle_;
     ScenePanel* scene_;
     DevicesPanel* devicesPanel_;
     QPlainTextEdit* log_;

@@ -770,7 +770,7 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
     j["following"] = following;
     if (!r.templates.empty()) {
         Json trials = Json::array();
-        std::map<std::string, std::map<std::string, int>> confusion;
+        std::map<std::string, std::map<std::string, int>> confusion, confusionSmoothed;
         for (const auto& t : r.trials) {
             if (!t.recognised) continue;
             trials.push_back({{"shape", t.label},
@@ -780,6 +780,7 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
                               {"distances", t.recognition.distances},
                               {"smoothed_distances", t.recognition.smoothedDistances}});
             ++confusion[t.label][t.recognition.predicted];
+            ++confusionSmoothed[t.label][t.recognition.predictedSmoothed];
         }
         j["recognition"] = {{"accuracy", r.recognitionAccuracy},
                             {"accuracy_smoothed", r.recognitionAccuracySmoothed},
@@ -787,7 +788,8 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
                             {"bins", r.spec.recognition.bins},
                             {"smoothing_sigma_bins", r.spec.recognition.smoothingSigmaBins},
                             {"trials", trials},
-                            {"confusion", confusion}};
+                            {"confusion", confusion},
+                            {"confusion_smoothed", confusionSmoothed}};
     }
     if (!r.sweeps.empty()) {
         Json perception = Json::array(), following = Json::array(), compute = Json::array();

@@ -81,10 +81,22 @@ private slots:
         QVERIFY(recognition.contains("accuracy") && recognition.contains("accuracy_smoothed"));
         const QJsonArray recognised = recognition["trials"].toArray();
         QCOMPARE(recognised.size(), 8);
+        // The confusion of each rule counts every recognised trial under its shape and name.
+        QMap<QString, QMap<QString, int>> confusion, confusionSmoothed;
         for (const auto& v : recognised) {
             const QJsonObject r = v.toObject();
             QCOMPARE(r["distances"].toObject().size(), 4);  // the full table of distances
             QVERIFY(r.contains("predicted") && r.contains("predicted_smoothed"));
+            ++confusion[r["shape"].toString()][r["predicted"].toString()];
+            ++confusionSmoothed[r["shape"].toString()][r["predicted_smoothed"].toString()];
+        }
+        for (const auto& [key, expected] : {std::pair{"confusion", confusion},
+                                            std::pair{"confusion_smoothed", confusionSmoothed}}) {
+            const QJsonObject table = recognition[key].toObject();
+            QCOMPARE(table.size(), expected.size());
+            for (auto row = expected.begin(); row != expected.end(); ++row)
+                for (auto cell = row->begin(); cell != row->end(); ++cell)
+                    QCOMPARE(table[row.key()].toObject()[cell.key()].toInt(), cell.value());
         }
         const QJsonObject t = s["timing"].toObject();
         QVERIFY(t["wall_s"].toDouble() > 0);

@@ -165,6 +165,28 @@ private slots:
             if (filledByARun(p))
                 QVERIFY2(p->plot().plottableCount() > 0 && !p->showsEmptyHint(),
                          qPrintable(p->name()));
+        // The recognition tab's confusion, for each rule: a row per shape traced, a column per
+        // shape named, each recognised trial in one cell.
+        for (const bool smoothed : {false, true}) {
+            auto* table = window_->findChild<QTableWidget*>(smoothed ? "confusionSmoothed"
+                                                                     : "confusionPaperRule");
+            QVERIFY(table);
+            QCOMPARE(table->rowCount(), 4);
+            int recognised = 0;
+            for (int a = 0; a < 4; ++a)
+                for (int b = 0; b < 4; ++b) {
+                    const std::string traced = table->verticalHeaderItem(a)->text().toStdString(),
+                                      named = table->horizontalHeaderItem(b)->text().toStdString();
+                    int n = 0;
+                    for (const auto& t : run->trials)
+                        n += t.recognised && t.label == traced &&
+                             (smoothed ? t.recognition.predictedSmoothed
+                                       : t.recognition.predicted) == named;
+                    QCOMPARE(table->item(a, b)->text().toInt(), n);
+                    recognised += n;
+                }
+            QCOMPARE(recognised, 8);
+        }
         FollowingTab* following = window_->followingTab();
         following->replay(3, 10);
         QVERIFY(following->replayText().contains("Rule '"));
