@@ -37,6 +37,7 @@
 #include "app/gui/PlotPanel.h"
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
+#include "app/run/SeedRates.h"
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
 #include "devices/simulated/SimulatedWorld.h"
@@ -45,27 +46,24 @@
 namespace activetouch {
 
 namespace {
-/// `table` as the confusion of the recognised trials: a row per shape traced, a column per shape
-/// named by one rule; the cells off the diagonal that are not zero stand out.
-void fillConfusion(QTableWidget* table, const std::vector<std::string>& shapes,
-                   const std::vector<TrialRun>& trials, bool smoothed) {
+/// `table` as one rule's confusion: a row per shape traced, a column per shape named; the cells
+/// off the diagonal that are not zero stand out.
+void fillConfusion(QTableWidget* table, const RecognitionConfusion& confusion, bool smoothed) {
+    const auto& counts = smoothed ? confusion.smoothed : confusion.raw;
+    const int n = static_cast<int>(confusion.labels.size());
     table->clear();
-    table->setRowCount(static_cast<int>(shapes.size()));
-    table->setColumnCount(static_cast<int>(shapes.size()));
+    table->setRowCount(n);
+    table->setColumnCount(n);
     QStringList names;
-    for (const auto& s : shapes) names << QString::fromStdString(s);
+    for (const auto& s : confusion.labels) names << QString::fromStdString(s);
     table->setHorizontalHeaderLabels(names);
     table->setVerticalHeaderLabels(names);
-    for (std::size_t a = 0; a < shapes.size(); ++a)
-        for (std::size_t b = 0; b < shapes.size(); ++b) {
-            int n = 0;
-            for (const auto& t : trials)
-                n += t.recognised && t.label == shapes[a] &&
-                     (smoothed ? t.recognition.predictedSmoothed : t.recognition.predicted) ==
-                         shapes[b];
-            auto* cell = new QTableWidgetItem(QString::number(n));
-            if (a != b && n > 0) cell->setBackground(QColor(255, 220, 200));
-            table->setItem(static_cast<int>(a), static_cast<int>(b), cell);
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+            const int count = counts[std::size_t(a)][std::size_t(b)];
+            auto* cell = new QTableWidgetItem(QString::number(count));
+            if (a != b && count > 0) cell->setBackground(QColor(255, 220, 200));
+            table->setItem(a, b, cell);
         }
 }
 }  // namespace
@@ -565,8 +563,9 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
     // Confusion over the recognised trials, traced shape x named, for each rule.
     std::vector<std::string> shapes;
     for (const auto& t : r.templates) shapes.push_back(t.shape);
-    fillConfusion(confusionRaw_, shapes, r.trials, false);
-    fillConfusion(confusionSmoothed_, shapes, r.trials, true);
+    const RecognitionConfusion confusion = recognitionConfusion(pathNamings(r), shapes);
+    fillConfusion(confusionRaw_, confusion, false);
+    fillConfusion(confusionSmoothed_, confusion, true);
     confusionRawTitle_->setText(
         tr("paper's rule: %1 % named rightly").arg(100.0 * r.recognitionAccuracy, 0, 'f', 0));
     confusionSmoothedTitle_->setText(tr("smoothed histograms (sigma %1 bins): %2 % named rightly")

@@ -60,6 +60,35 @@ std::string RecognitionConfusion::misnamed(bool smoothedRule) const {
     return out;
 }
 
+RecognitionConfusion recognitionConfusion(const std::vector<PathNaming>& namings,
+                                          std::vector<std::string> labels) {
+    RecognitionConfusion c;
+    c.labels = std::move(labels);
+    for (const PathNaming& n : namings) indexOf(c.labels, n.label);
+    for (const PathNaming& n : namings) {
+        indexOf(c.labels, n.raw);
+        indexOf(c.labels, n.smoothed);
+    }
+    const std::size_t size = c.labels.size();
+    c.raw.assign(size, std::vector<int>(size, 0));
+    c.smoothed = c.raw;
+    for (const PathNaming& n : namings) {
+        const std::size_t traced = indexOf(c.labels, n.label);
+        ++c.raw[traced][indexOf(c.labels, n.raw)];
+        ++c.smoothed[traced][indexOf(c.labels, n.smoothed)];
+    }
+    return c;
+}
+
+std::vector<PathNaming> pathNamings(const RunResult& run) {
+    std::vector<PathNaming> namings;
+    for (const TrialRun& t : run.trials)
+        if (t.recognised)
+            namings.push_back(
+                {t.label, t.trial, t.recognition.predicted, t.recognition.predictedSmoothed});
+    return namings;
+}
+
 SeedOutcome seedOutcome(const RunResult& run) {
     SeedOutcome o;
     o.seed = run.spec.scene.seed;
@@ -191,24 +220,9 @@ ShortOfPaper SeedRates::shortOfPaper() const {
     return s;
 }
 RecognitionConfusion SeedRates::confusion() const {
-    RecognitionConfusion c;
-    for (const auto& o : seeds)
-        for (const PathNaming& n : o.namings) indexOf(c.labels, n.label);
-    for (const auto& o : seeds)
-        for (const PathNaming& n : o.namings) {
-            indexOf(c.labels, n.raw);
-            indexOf(c.labels, n.smoothed);
-        }
-    const std::size_t n = c.labels.size();
-    c.raw.assign(n, std::vector<int>(n, 0));
-    c.smoothed = c.raw;
-    for (const auto& o : seeds)
-        for (const PathNaming& p : o.namings) {
-            const std::size_t traced = indexOf(c.labels, p.label);
-            ++c.raw[traced][indexOf(c.labels, p.raw)];
-            ++c.smoothed[traced][indexOf(c.labels, p.smoothed)];
-        }
-    return c;
+    std::vector<PathNaming> namings;
+    for (const auto& o : seeds) namings.insert(namings.end(), o.namings.begin(), o.namings.end());
+    return recognitionConfusion(namings);
 }
 RatesByLabel SeedRates::activeCompletedByLabel() const {
     RatesByLabel byLabel;

@@ -77,15 +77,22 @@ struct ShortOfPaper {
 
 SeedOutcome seedOutcome(const RunResult& run);
 
-/// Recognition over many runs: how often each traced shape was named as each shape, by both
-/// rules. Rows are the traced shapes, columns the names, over one list of labels (the traced
-/// shapes in the order they first appear, then any other name a rule gave).
+/// Recognition over trials: how often each traced shape was named as each shape, by both rules.
+/// Rows are the traced shapes, columns the names, over one list of labels.
 struct RecognitionConfusion {
     std::vector<std::string> labels;
     std::vector<std::vector<int>> raw, smoothed;  ///< [traced][named]
     /// "rectangle as c 3, c as rectangle 1" for the paths one rule misnamed; empty if none.
     std::string misnamed(bool smoothedRule) const;
 };
+
+/// The confusion of `namings` over `labels` (kept in their order), then the traced shapes in the
+/// order they first appear, then any other name a rule gave.
+RecognitionConfusion recognitionConfusion(const std::vector<PathNaming>& namings,
+                                          std::vector<std::string> labels = {});
+
+/// Each trial of `run` that recognition looked at, with the shape each rule named it.
+std::vector<PathNaming> pathNamings(const RunResult& run);
 
 /// One run's part in each rate: its count and its total, which SeedRates sums over runs.
 Rate passiveLostIn(const SeedOutcome& run);
