@@ -406,8 +406,8 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
                         static_cast<unsigned long long>(o.seed), o.passiveLost, o.passiveTrials,
                         o.activeCompleted, o.activeTrials);
             if (o.recognition)
-                std::printf(", recognised %d (smoothed %d) of %d", o.recognisedRaw,
-                            o.recognisedSmoothed, o.recognitionTrials);
+                std::printf(", recognised %d (smoothed %d) of %d", o.recognisedRaw(),
+                            o.recognisedSmoothed(), o.recognitionTrials());
             std::printf("\n");
             for (const auto& f : o.failures) std::printf("    %s\n", f.c_str());
             for (const auto& m : o.misnamed()) std::printf("    %s\n", m.c_str());

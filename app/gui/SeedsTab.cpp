@@ -161,8 +161,8 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     table_->setItem(row, 0, cell(QString::number(o.seed)));
     table_->setItem(row, 1, cell(fraction(o.passiveLost, o.passiveTrials)));
     table_->setItem(row, 2, cell(fraction(o.activeCompleted, o.activeTrials)));
-    table_->setItem(row, 3, cell(fraction(o.recognisedRaw, o.recognitionTrials)));
-    table_->setItem(row, 4, cell(fraction(o.recognisedSmoothed, o.recognitionTrials)));
+    table_->setItem(row, 3, cell(fraction(o.recognisedRaw(), o.recognitionTrials())));
+    table_->setItem(row, 4, cell(fraction(o.recognisedSmoothed(), o.recognitionTrials())));
     table_->setItem(row, 5, cell(QString::number(o.angleError_deg, 'f', 2)));
     table_->setItem(row, 6,
                     cell(!o.paperResultApplies() ? QString("-")
@@ -173,7 +173,7 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     table_->setItem(row, 7, shortfall);
     // A run that lost an active trial is red; one that only misnamed a path (paper's rule), amber.
     const bool lostActive = o.activeCompleted < o.activeTrials,
-               misnamedRaw = o.recognisedRaw < o.recognitionTrials;
+               misnamedRaw = o.recognisedRaw() < o.recognitionTrials();
     if (lostActive || misnamedRaw)
         for (int c = 0; c < table_->columnCount(); ++c)
             table_->item(row, c)->setBackground(lostActive ? QColor(255, 235, 230)

@@ -40,6 +40,15 @@ std::string csvField(const std::vector<std::string>& items) {
 }
 }  // namespace
 
+int SeedOutcome::recognisedRaw() const {
+    return static_cast<int>(std::count_if(namings.begin(), namings.end(),
+                                          [](const PathNaming& n) { return n.raw == n.label; }));
+}
+int SeedOutcome::recognisedSmoothed() const {
+    return static_cast<int>(std::count_if(
+        namings.begin(), namings.end(), [](const PathNaming& n) { return n.smoothed == n.label; }));
+}
+
 std::vector<std::string> SeedOutcome::misnamed() const {
     std::vector<std::string> out;
     for (const PathNaming& n : namings)
@@ -112,9 +121,6 @@ SeedOutcome seedOutcome(const RunResult& run) {
             continue;
         }
         ++o.activeCompleted;
-        o.recognitionTrials += t.recognised;
-        o.recognisedRaw += t.recognised && t.recognition.predicted == t.label;
-        o.recognisedSmoothed += t.recognised && t.recognition.predictedSmoothed == t.label;
         if (t.recognised)
             o.namings.push_back(
                 {t.label, t.trial, t.recognition.predicted, t.recognition.predictedSmoothed});
@@ -176,10 +182,10 @@ Rate activeCompletedIn(const SeedOutcome& s) {
     return {s.activeCompleted, s.activeTrials};
 }
 Rate recognisedRawIn(const SeedOutcome& s) {
-    return {s.recognisedRaw, s.recognitionTrials};
+    return {s.recognisedRaw(), s.recognitionTrials()};
 }
 Rate recognisedSmoothedIn(const SeedOutcome& s) {
-    return {s.recognisedSmoothed, s.recognitionTrials};
+    return {s.recognisedSmoothed(), s.recognitionTrials()};
 }
 Rate paperResultIn(const SeedOutcome& s) {
     if (!s.paperResultApplies()) return {0, 0};
@@ -215,7 +221,7 @@ ShortOfPaper SeedRates::shortOfPaper() const {
         ++s.runs;
         s.passiveNotLost += o.passiveLost < o.passiveTrials;
         s.activeLost += o.activeCompleted < o.activeTrials;
-        s.misnamedRaw += o.recognisedRaw < o.recognitionTrials;
+        s.misnamedRaw += o.recognisedRaw() < o.recognitionTrials();
     }
     return s;
 }
@@ -262,9 +268,9 @@ Json seedRatesJson(const SeedRates& r) {
              {"passive_lost", s.passiveLost},
              {"active_trials", s.activeTrials},
              {"active_completed", s.activeCompleted},
-             {"recognition_trials", s.recognitionTrials},
-             {"recognised_raw", s.recognisedRaw},
-             {"recognised_smoothed", s.recognisedSmoothed},
+             {"recognition_trials", s.recognitionTrials()},
+             {"recognised_raw", s.recognisedRaw()},
+             {"recognised_smoothed", s.recognisedSmoothed()},
              {"validation_angle_error_deg", s.angleError_deg},
              {"validation_position_error_mm", s.positionError_mm},
              {"run_robot_time_s", s.runRobotTime_s},
@@ -374,13 +380,13 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
             const char* smoothed = !o.paperResultApplies()   ? ""
                                    : o.paperResultSmoothed() ? "1"
                                                              : "0";
-            std::fprintf(file.get(),
-                         "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s\n",
-                         static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
-                         o.activeTrials, o.activeCompleted, o.recognitionTrials, o.recognisedRaw,
-                         o.recognisedSmoothed, o.completedTaps, o.completedRobotTime_s,
-                         o.runRobotTime_s, o.angleError_deg, o.positionError_mm, paper, smoothed,
-                         csvField(o.failures).c_str(), csvField(o.misnamed()).c_str());
+            std::fprintf(
+                file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s\n",
+                static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
+                o.activeTrials, o.activeCompleted, o.recognitionTrials(), o.recognisedRaw(),
+                o.recognisedSmoothed(), o.completedTaps, o.completedRobotTime_s, o.runRobotTime_s,
+                o.angleError_deg, o.positionError_mm, paper, smoothed, csvField(o.failures).c_str(),
+                csvField(o.misnamed()).c_str());
             std::fflush(file.get());
         }
         if (seedDone && !seedDone(o)) break;

@@ -36,28 +36,31 @@ struct SeedOutcome {
     std::uint64_t seed = 0;
     int passiveTrials = 0, passiveLost = 0;
     int activeTrials = 0, activeCompleted = 0;
-    bool recognition = false;   ///< the experiment recognises shapes from the paths
-    int recognitionTrials = 0;  ///< completed active paths it looked at
-    int recognisedRaw = 0, recognisedSmoothed = 0;        ///< of those, named rightly
-    int completedTaps = 0;                                ///< taps of the completed active trials
-    double completedRobotTime_s = 0.0;                    ///< their robot time
-    double runRobotTime_s = 0.0;                          ///< the whole run, training included
+    bool recognition = false;           ///< the experiment recognises shapes from the paths
+    int completedTaps = 0;              ///< taps of the completed active trials
+    double completedRobotTime_s = 0.0;  ///< their robot time
+    double runRobotTime_s = 0.0;        ///< the whole run, training included
     double angleError_deg = 0.0, positionError_mm = 0.0;  ///< offline validation
     std::vector<std::string> failures;  ///< "cross trial 2: lost: ..." for each active trial lost
     std::vector<PathNaming> namings;    ///< each recognised completed active path
     RatesByLabel activeByLabel;
 
-    /// "rectangle trial 1 as c (smoothed: rectangle)" for each path either rule misnamed.
+    /// Completed active paths recognition looked at, and of those the ones each rule named rightly.
+    int recognitionTrials() const { return static_cast<int>(namings.size()); }
+    int recognisedRaw() const;
+    int recognisedSmoothed() const;
+    /// "rectangle trial 1: c by the paper's rule, rectangle smoothed" for each path either rule
+    /// misnamed.
     std::vector<std::string> misnamed() const;
 
     /// Whether the run has the paper's parts: passive and active trials, and recognition.
     bool paperResultApplies() const { return passiveTrials > 0 && activeTrials > 0 && recognition; }
     /// The paper's result whole in this run: every passive trial lost, every active trial
     /// completed and every active path recognised by the paper's rule.
-    bool paperResult() const { return paperFollowing() && recognisedRaw == recognitionTrials; }
+    bool paperResult() const { return paperFollowing() && recognisedRaw() == recognitionTrials(); }
     /// The same with the smoothed histograms deciding recognition.
     bool paperResultSmoothed() const {
-        return paperFollowing() && recognisedSmoothed == recognitionTrials;
+        return paperFollowing() && recognisedSmoothed() == recognitionTrials();
     }
     /// The paper's parts, every passive trial lost and every active trial completed.
     bool paperFollowing() const {

@@ -143,7 +143,7 @@ private slots:
         for (const SeedOutcome& o : rates_.seeds) {
             passive += o.passiveLost < o.passiveTrials;
             active += o.activeCompleted < o.activeTrials;
-            misnamed += o.recognisedRaw < o.recognitionTrials;
+            misnamed += o.recognisedRaw() < o.recognitionTrials();
         }
         QCOMPARE(s.passiveNotLost, passive);
         QCOMPARE(s.activeLost, active);
@@ -158,8 +158,8 @@ private slots:
         o.passiveTrials = o.passiveLost = 2;
         o.activeTrials = o.activeCompleted = 8;
         o.recognition = true;
-        o.recognitionTrials = o.recognisedSmoothed = 8;
-        o.recognisedRaw = 7;
+        for (int trial = 1; trial <= 8; ++trial)
+            o.namings.push_back({"rectangle", trial, trial == 1 ? "c" : "rectangle", "rectangle"});
         one.seeds.push_back(o);
         QCOMPARE(one.paperResult().count, 0);
         QCOMPARE(one.paperResultSmoothed().count, 1);
