@@ -37,6 +37,10 @@ bool segmentsIntersect(Vec2 p1, Vec2 p2, Vec2 q1, Vec2 q2) {
     return false;
 }
 
+// Beyond this, squared lengths lose the precision the outline tests need (and no stage is that
+// big).
+constexpr double kMaxCoordinate_mm = 1e6;
+
 std::string vertexText(std::size_t i, Vec2 v) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "vertex %zu (%.6g, %.6g)", i, v.x, v.y);
@@ -51,6 +55,9 @@ std::optional<std::string> Polygon::problemWith(const std::vector<Vec2>& v) {
     for (std::size_t i = 0; i < v.size(); ++i) {
         if (!std::isfinite(v[i].x) || !std::isfinite(v[i].y))
             return vertexText(i, v[i]) + " is not a finite number";
+        if (std::abs(v[i].x) > kMaxCoordinate_mm || std::abs(v[i].y) > kMaxCoordinate_mm)
+            return vertexText(i, v[i]) +
+                   " lies more than 1 km from the origin; vertices are in millimetres";
         if (distance(v[i], v[(i + 1) % v.size()]) < 1e-9)
             return vertexText(i, v[i]) + " repeats the next vertex; remove the duplicate";
     }

@@ -88,6 +88,8 @@ private slots:
                                  << "intersects itself";
         QTest::newRow("NaN") << QVector<QPointF>{{0, 0}, {qQNaN(), 0}, {0, 1}}
                              << "not a finite number";
+        QTest::newRow("vertex beyond any stage")
+            << QVector<QPointF>{{0, 0}, {1e300, 0}, {0, 20}} << "more than 1 km from the origin";
         QTest::newRow("spike folds back")
             << QVector<QPointF>{{0, 0}, {10, 0}, {5, 0}, {5, 5}} << "fold back";
     }
