@@ -32,6 +32,16 @@ double csvNumber(const std::string& field, const std::string& path, int line,
     return v;
 }
 
+int csvInteger(const std::string& field, const std::string& path, int line,
+               const std::string& column) {
+    const double v = csvNumber(field, path, line, column);
+    if (v != std::floor(v) || std::abs(v) > 1e9)
+        throw InputError(
+            path, "line " + std::to_string(line) + ", column " + column,
+            "'" + field + "' is not a whole number within +-1e9, as the column must be");
+    return static_cast<int>(v);
+}
+
 RecordingRows::RecordingRows(std::istream& in, const std::string& path) : in_(in), path_(path) {
     std::string line;
     if (!std::getline(in_, line))

@@ -15,6 +15,11 @@ std::vector<std::string> splitCsvLine(const std::string& line);
 double csvNumber(const std::string& field, const std::string& path, int line,
                  const std::string& column);
 
+/// The whole number in `field` (a set, class, trial, tap, sample or position), within
+/// -1e9..1e9; throws InputError as csvNumber does, and also for a fraction.
+int csvInteger(const std::string& field, const std::string& path, int line,
+               const std::string& column);
+
 /// The rows of a recording written and flushed row by row: every row as wide as the header, but
 /// the file's last line, which a run stopped while writing may have cut short.
 class RecordingRows {

@@ -138,8 +138,10 @@ FollowingRecordingContents parseFollowingRecording(const std::string& path,
                 continue;
             const std::string column =
                 i < kFixed ? kFixedColumns[i] : header[static_cast<std::size_t>(i)];
-            v[static_cast<std::size_t>(i)] =
-                csvNumber(f[static_cast<std::size_t>(i)], path, lineNo, column);
+            const std::string& field = f[static_cast<std::size_t>(i)];
+            const bool counts = i == kTrial || i == kTap || i == kPosition || i == kSample;
+            v[static_cast<std::size_t>(i)] = counts ? csvInteger(field, path, lineNo, column)
+                                                    : csvNumber(field, path, lineNo, column);
             if (i >= kFixed &&
                 (v[static_cast<std::size_t>(i)] < 0.0 || v[static_cast<std::size_t>(i)] > 255.0))
                 throw InputError(path, at(column.c_str()),
@@ -176,6 +178,7 @@ FollowingRecordingContents parseFollowingRecording(const std::string& path,
                         {f[kShape],
                          f[kMode] == "active" ? FollowingMode::Active : FollowingMode::Passive,
                          static_cast<int>(v[kTrial]),
+                         {},
                          {}});
             }
             trialKey = key;

@@ -68,6 +68,9 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     auto number = [&](const std::string& field, const std::string& column) {
         return csvNumber(field, path, lineNo, column);
     };
+    auto integer = [&](const std::string& field, const std::string& column) {
+        return csvInteger(field, path, lineNo, column);
+    };
     int samplesPerTap = 0, lastRow = 0;
     auto finishTap = [&]() {
         if (taps.empty()) return;
@@ -87,8 +90,8 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     std::vector<std::string> f;
     while (rows.next(f)) {
         lineNo = rows.line();
-        const int set = static_cast<int>(number(f[0], "set"));
-        const int cls = static_cast<int>(number(f[1], "class"));
+        const int set = integer(f[0], "set");
+        const int cls = integer(f[1], "class");
         if (cls < 0 || cls >= classes.classCount())
             throw InputError(path, "line " + std::to_string(lineNo) + ", column class",
                              "class " + f[1] + " is outside 0.." +
@@ -97,7 +100,7 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
         // A class number means an orientation and a position only within its class set: a row
         // naming others was recorded with other classes.
         const double orientation = number(f[2], "orientation_deg");
-        const int position = static_cast<int>(number(f[3], "position"));
+        const int position = integer(f[3], "position");
         if (orientation != classes.orientationDegOf(cls) || position != classes.positionOf(cls))
             throw InputError(path, "line " + std::to_string(lineNo) + ", column class",
                              "class " + f[1] + " is the " +
@@ -107,7 +110,7 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
                                  " deg, position " + f[3] +
                                  "; the taps were recorded with other classes: give the "
                                  "experiment they were recorded with");
-        const int sample = static_cast<int>(number(f[9], "sample"));
+        const int sample = integer(f[9], "sample");
         if (sample == 0) {
             finishTap();
             CollectedTap c;

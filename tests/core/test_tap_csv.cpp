@@ -146,6 +146,15 @@ private slots:
         QTest::newRow("other classes")
             << 2 << "1,3,0,4,-1.25,100,50,0,reflex,0,0,0,0,0,0,0,0,0,0,0,0,0"
             << "recorded with other classes";
+        QTest::newRow("set beyond any count")
+            << 2 << "99999999999,3,270,4,-1.25,100,50,0,reflex,0,0,0,0,0,0,0,0,0,0,0,0,0"
+            << "'99999999999' is not a whole number";
+        QTest::newRow("position between classes")
+            << 2 << "1,3,270,4.5,-1.25,100,50,0,reflex,0,0,0,0,0,0,0,0,0,0,0,0,0"
+            << "'4.5' is not a whole number";
+        QTest::newRow("fractional sample")
+            << 3 << "1,3,270,4,-1.25,100,50,0,reflex,1.5,0,0,0,0,0,0,0,0,0,0,0,0"
+            << "'1.5' is not a whole number";
         QTest::newRow("a short line inside") << 30 << "1,3,270"
                                              << "only the file's last line may be cut short";
     }
@@ -260,6 +269,11 @@ private slots:
         QTest::newRow("bad contact")
             << 2 << QString(row.arg(0).arg(0)).replace(",reflex,1,", ",reflex,2,")
             << "neither 0 nor 1";
+        QTest::newRow("sample beyond any count")
+            << 3 << row.arg("1e30").arg(0) << "'1e30' is not a whole number";
+        QTest::newRow("fractional tap")
+            << 2 << QString(row.arg(0).arg(0)).replace("active,1,0,", "active,1,0.5,")
+            << "'0.5' is not a whole number";
         QTest::newRow("tap out of order")
             << 52 << QString(row.arg(0).arg(0)).replace("active,1,0,", "active,1,7,")
             << "a trial's taps run 0, 1, 2";
