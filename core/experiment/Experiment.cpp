@@ -219,8 +219,16 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
         c.rejectUnknownKeys({"orientations_deg", "positions", "position_step_mm"});
         if (c.has("orientations_deg")) {
             e.classes.orientationsDeg = c.numbers("orientations_deg", -360.0, 360.0);
-            if (e.classes.orientationsDeg.empty())
-                c.fail("orientations_deg", "list at least one orientation");
+            const auto& o = e.classes.orientationsDeg;
+            if (o.empty()) c.fail("orientations_deg", "list at least one orientation");
+            // Two entries facing the same way would make classes no tap can tell apart.
+            for (std::size_t i = 0; i < o.size(); ++i)
+                for (std::size_t j = 0; j < i; ++j)
+                    if (angleDifferenceDeg(o[i], o[j]) < 1e-9)
+                        c.fail("orientations_deg", "orientation " + numberText(o[i]) +
+                                                       " deg faces the same way as orientation " +
+                                                       numberText(o[j]) +
+                                                       " deg before it; list each edge once");
         }
         e.classes.positions = c.integer("positions", 2, 200, e.classes.positions);
         e.classes.positionStep_mm =

@@ -266,6 +266,9 @@ private slots:
         QTest::newRow("orientation with no edge")
             << head + R"("classes": {"orientations_deg": [45]}})"
             << "no edge facing";
+        QTest::newRow("one orientation twice")
+            << head + R"("classes": {"orientations_deg": [270, 0, 90, 180, -90]}})"
+            << "orientation -90 deg faces the same way as orientation 270 deg";
         QTest::newRow("no name") << R"({"scene": "good.json"})"
                                  << "missing required text 'name'";
         QTest::newRow("extends a missing base") << R"({"extends": "nowhere.json", "name": "x"})"
