@@ -58,9 +58,13 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     if (!ok) {
         std::string expected;
         for (const char* c : kFixedColumns) expected += std::string(c) + ",";
+        const bool following = !header.empty() && header[0] == "shape";
         throw InputError(
             path, "line 1",
-            "unexpected columns; a tap file starts with " + expected + "taxel_0,...,taxel_11");
+            "unexpected columns; a tap file starts with " + expected + "taxel_0,...,taxel_11" +
+                (following ? " (this is a contour-following recording; the training taps are in "
+                             "the run's data/taps.csv)"
+                           : ""));
     }
     std::vector<CollectedTap> taps;
     std::vector<std::vector<double>> samples;

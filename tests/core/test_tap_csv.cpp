@@ -286,6 +286,13 @@ private slots:
         expectRefusedAt([&] { checkFollowingRecording(bad); }, line, problem);
     }
 
+    void aFollowingRecordingGivenAsTrainingTapsIsNamed() {
+        const std::string copy = corrupt(writeFollowing(), 0, "");  // line 0: none replaced
+        expectRefusedAt([&] { readTapCsv(copy, classes_); }, 1,
+                        "this is a contour-following recording; the training taps are in the "
+                        "run's data/taps.csv");
+    }
+
     void emptyAndMissingFiles() {
         const std::string empty = dir_.filePath("empty.csv").toStdString();
         std::ofstream(empty).close();
