@@ -284,6 +284,10 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
     } catch (const std::invalid_argument& err) {
         throw InputError(source, "/classes/orientations_deg", err.what());
     }
+    if (const std::string problem = trainingPosesProblem(e.scene.object.outline(), e.classes,
+                                                         e.training, e.scene.stage.travel_mm);
+        !problem.empty())
+        throw InputError(source, "/scene", "training on the scene's object: " + problem);
     return e;
 }
 

@@ -51,6 +51,36 @@ std::vector<EdgeSite> edgeSites(const Polygon& object, const ClassSet& classes) 
     return sites;
 }
 
+std::string trainingPosesProblem(const Polygon& object, const ClassSet& classes,
+                                 const TrainingProtocolSettings& settings, Vec2 travel_mm) {
+    const auto sites = edgeSites(object, classes);
+    const double margin = 4.0 * settings.placementJitter_mm;
+    for (std::size_t o = 0; o < sites.size(); ++o) {
+        const std::string edge = ClassSet::orientationName(classes.orientationsDeg[o]) + " edge";
+        for (int p = 1; p <= classes.positions; ++p) {
+            for (const double shift : {0.0, settings.testOffset_mm}) {
+                const double offset = classes.offsetOf(p) + shift;
+                const Vec2 pose = sites[o].midpoint + offset * sites[o].normal;
+                if (offset < 0.0 && !object.contains(pose))
+                    return "position " + std::to_string(p) + " at the " + edge + " puts the tip " +
+                           numberText(-offset) +
+                           " mm inside the edge, past the far side of the training object; use "
+                           "fewer positions, a smaller position_step_mm or a larger object";
+                if (pose.x - margin < 0.0 || pose.y - margin < 0.0 ||
+                    pose.x + margin > travel_mm.x || pose.y + margin > travel_mm.y)
+                    return "position " + std::to_string(p) + " at the " + edge + " taps at (" +
+                           numberText(pose.x) + ", " + numberText(pose.y) + ") mm" +
+                           (margin > 0.0 ? " (+-" + numberText(margin) + " mm placement jitter)"
+                                         : std::string()) +
+                           ", outside the stage travel (0.." + numberText(travel_mm.x) + ", 0.." +
+                           numberText(travel_mm.y) +
+                           " mm); move the training object away from the travel's end";
+            }
+        }
+    }
+    return {};
+}
+
 std::vector<CollectedTap> collectTrainingTaps(
     Rig& rig, const Polygon& object, const ClassSet& classes,
     const TrainingProtocolSettings& settings, RandomStream rng,

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/common/NumberText.h"
+
 namespace activetouch {
 namespace {
 
@@ -168,9 +170,9 @@ TapRecord SimulatedWorld::tap() {
 void SimulatedStage::moveTo(Vec2 target) {
     const Vec2 travel = world_.scene().stage.travel_mm;
     if (!(target.x >= 0 && target.y >= 0 && target.x <= travel.x && target.y <= travel.y))
-        throw RigError("simulated stage: target (" + std::to_string(target.x) + ", " +
-                       std::to_string(target.y) + ") mm is outside the travel 0.." +
-                       std::to_string(travel.x) + " x 0.." + std::to_string(travel.y) + " mm");
+        throw RigError("simulated stage: target (" + numberText(target.x) + ", " +
+                       numberText(target.y) + ") mm is outside the travel (0.." +
+                       numberText(travel.x) + ", 0.." + numberText(travel.y) + " mm)");
     world_.moveStage(target);
 }
 

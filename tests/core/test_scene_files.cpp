@@ -269,6 +269,14 @@ private slots:
         QTest::newRow("one orientation twice")
             << head + R"("classes": {"orientations_deg": [270, 0, 90, 180, -90]}})"
             << "orientation -90 deg faces the same way as orientation 270 deg";
+        QTest::newRow("plane positions past the object's far side")
+            << head + R"("classes": {"positions": 100}})"
+            << "at /scene: training on the scene's object: position 1 at the right edge puts the "
+               "tip 49.5 mm inside the edge, past the far side of the training object";
+        QTest::newRow("air positions beyond the stage travel")
+            << R"({"name": "x", "scene": "near_the_travel_end.json"})"
+            << "position 10 at the left edge taps at (0.5, 150) mm (+-0.8 mm placement jitter), "
+               "outside the stage travel (0..650, 0..300 mm)";
         QTest::newRow("no name") << R"({"scene": "good.json"})"
                                  << "missing required text 'name'";
         QTest::newRow("extends a missing base") << R"({"extends": "nowhere.json", "name": "x"})"
@@ -319,6 +327,9 @@ private slots:
         QFETCH(QString, experiment);
         QFETCH(QString, problem);
         write("good.json", kGoodScene);
+        // The object fits the travel, but the air side of its left edge does not.
+        write("near_the_travel_end.json",
+              QString(kGoodScene).replace("[150, 150]", "[25, 150]").toStdString());
         const std::string path = write("experiment.json", experiment.toStdString());
         try {
             loadExperiment(path);

@@ -243,6 +243,14 @@ private slots:
         SimulatedRig rig(idealScene(), model());
         QVERIFY_THROWS_EXCEPTION(RigError, rig.rig().stage.moveTo({-1, 10}));
         QVERIFY_THROWS_EXCEPTION(RigError, rig.rig().stage.moveTo({10, 301}));
+        try {
+            rig.rig().stage.moveTo({-0.25, 150});
+            QFAIL("a move outside the travel was accepted");
+        } catch (const RigError& e) {
+            QCOMPARE(QString(e.what()),
+                     QString("simulated stage: target (-0.25, 150) mm is outside "
+                             "the travel (0..650, 0..300 mm)"));
+        }
     }
 };
 
