@@ -60,7 +60,7 @@ std::string trainingPosesProblem(const Polygon& object, const ClassSet& classes,
         for (int p = 1; p <= classes.positions; ++p) {
             for (const double shift : {0.0, settings.testOffset_mm}) {
                 const double offset = classes.offsetOf(p) + shift;
-                const Vec2 pose = sites[o].midpoint + offset * sites[o].normal;
+                const Vec2 pose = sites[o].poseAt(offset);
                 if (offset < 0.0 && !object.contains(pose))
                     return "position " + std::to_string(p) + " at the " + edge + " puts the tip " +
                            numberText(-offset) +
@@ -98,7 +98,7 @@ std::vector<CollectedTap> collectTrainingTaps(
             for (int p = 1; p <= classes.positions; ++p) {
                 for (int r = 0; r < settings.tapsPerClass; ++r) {
                     const double offset = classes.offsetOf(p) + shift;
-                    const Vec2 pose = sites[o].midpoint + offset * sites[o].normal + placement;
+                    const Vec2 pose = sites[o].poseAt(offset) + placement;
                     CollectedTap c;
                     c.record = rig.tapAt(pose);
                     c.dataSet = set;

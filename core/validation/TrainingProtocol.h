@@ -38,6 +38,8 @@ struct CollectedTap {
 struct EdgeSite {
     Vec2 midpoint;
     Vec2 normal;
+    /// The tip pose at signed distance `offset_mm` from the edge along its outward normal.
+    Vec2 poseAt(double offset_mm) const { return midpoint + offset_mm * normal; }
 };
 /// Throws std::invalid_argument if the object has no edge for an orientation.
 std::vector<EdgeSite> edgeSites(const Polygon& object, const ClassSet& classes);
