@@ -321,6 +321,8 @@ ExperimentSpec MainWindow::experimentAsShown() const {
     ExperimentSpec spec = spec_;
     spec.scene = scene_->sceneFromPanel(spec_.scene);
     validateEffects(spec.scene, FingertipContactModel(spec.scene.fingertip));
+    if (const std::string problem = trainingObjectProblem(spec); !problem.empty())
+        throw InputError("scene panel", "object", "training on it: " + problem);
     return spec;
 }
 

@@ -44,6 +44,8 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
     opening_ = spin(1, 1000, 20, " mm");
     x_ = spin(0, 5000, 150, " mm");
     y_ = spin(0, 5000, 150, " mm");
+    x_->setObjectName("objectCentreX");
+    y_->setObjectName("objectCentreY");
     rotation_ = spin(-360, 360, 0, " deg");
     top_ = spin(0.1, 500, 10, " mm");
     polygonLabel_ = new QLabel(tr("no polygon loaded"));

@@ -278,17 +278,14 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
                                   " trials to recognise; add trials or change of_mode");
     }
     if (f.has("sweeps")) parseSweeps(f.object("sweeps"), e);
-    // The training object must offer an edge for every orientation.
-    try {
-        edgeSites(e.scene.object.outline(), e.classes);
-    } catch (const std::invalid_argument& err) {
-        throw InputError(source, "/classes/orientations_deg", err.what());
-    }
-    if (const std::string problem = trainingPosesProblem(e.scene.object.outline(), e.classes,
-                                                         e.training, e.scene.stage.travel_mm);
-        !problem.empty())
+    if (const std::string problem = trainingObjectProblem(e); !problem.empty())
         throw InputError(source, "/scene", "training on the scene's object: " + problem);
     return e;
+}
+
+std::string trainingObjectProblem(const ExperimentSpec& e) {
+    return trainingPosesProblem(e.scene.object.outline(), e.classes, e.training,
+                                e.scene.stage.travel_mm);
 }
 
 namespace {

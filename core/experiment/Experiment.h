@@ -64,6 +64,11 @@ struct ExperimentSpec {
     int plannedTaps() const;  ///< training taps; trials add theirs as they go
 };
 
+/// Why training on the scene's object cannot run as the experiment says, or empty (see
+/// trainingPosesProblem). The parser refuses such an experiment; so does the window for a scene
+/// edited in its panel.
+std::string trainingObjectProblem(const ExperimentSpec& e);
+
 /// Parses an experiment; the scene may be inline or a path relative to the experiment file.
 ExperimentSpec parseExperiment(const Json& json, const std::string& source,
                                const std::string& baseDirectory);

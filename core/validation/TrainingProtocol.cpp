@@ -53,7 +53,12 @@ std::vector<EdgeSite> edgeSites(const Polygon& object, const ClassSet& classes) 
 
 std::string trainingPosesProblem(const Polygon& object, const ClassSet& classes,
                                  const TrainingProtocolSettings& settings, Vec2 travel_mm) {
-    const auto sites = edgeSites(object, classes);
+    std::vector<EdgeSite> sites;
+    try {
+        sites = edgeSites(object, classes);
+    } catch (const std::invalid_argument& e) {
+        return e.what();
+    }
     const double margin = 4.0 * settings.placementJitter_mm;
     for (std::size_t o = 0; o < sites.size(); ++o) {
         const std::string edge = ClassSet::orientationName(classes.orientationsDeg[o]) + " edge";

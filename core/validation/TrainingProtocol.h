@@ -44,10 +44,10 @@ struct EdgeSite {
 /// Throws std::invalid_argument if the object has no edge for an orientation.
 std::vector<EdgeSite> edgeSites(const Polygon& object, const ClassSet& classes);
 
-/// Why the protocol's taps cannot all be taken as meant, or empty: a position on the plane side
-/// that lies past the object's far side (it would train a plane class on air), or a tap pose
-/// (training or shifted test, with 4 standard deviations of placement jitter) outside the stage
-/// travel 0..travel_mm. Needs an edge for every orientation (see edgeSites).
+/// Why the protocol's taps cannot all be taken as meant, or empty: no edge for an orientation
+/// (see edgeSites), a position on the plane side that lies past the object's far side (it would
+/// train a plane class on air), or a tap pose (training or shifted test, with 4 standard
+/// deviations of placement jitter) outside the stage travel 0..travel_mm.
 std::string trainingPosesProblem(const Polygon& object, const ClassSet& classes,
                                  const TrainingProtocolSettings& settings, Vec2 travel_mm);
 

@@ -671,6 +671,28 @@ private slots:
         closeErrorDialogs(*window_);
     }
 
+    void aSceneThatCannotTrainIsRefusedBeforeAnyTap() {
+        auto* x = window_->findChild<QDoubleSpinBox*>("objectCentreX");
+        QVERIFY(x);
+        const double was = x->value();
+        x->setValue(25);  // the object still fits the travel; its left edge's air side does not
+        const auto run = window_->lastRun();
+        QSignalSpy errors(window_.get(), &MainWindow::errorShown);
+        QVERIFY(!window_->startRun(RunController::What::TrainingOnly));
+        QCOMPARE(errors.count(), 1);
+        const QString message = errors.takeFirst().at(0).toString();
+        QVERIFY2(message.contains("scene panel") &&
+                     message.contains("training on it: position 10 at the left edge taps at "
+                                      "(0.5, 150) mm"),
+                 qPrintable(message));
+        QVERIFY(!window_->running());
+        QCOMPARE(window_->lastRun(), run);
+        closeErrorDialogs(*window_);
+        x->setValue(was);
+        QVERIFY(window_->startRun(RunController::What::TrainingOnly));
+        QTRY_VERIFY_WITH_TIMEOUT(!window_->running(), 60000);
+    }
+
     void badFilesShowTheProblemAndKeepTheSession_data() {
         QTest::addColumn<QString>("text");
         QTest::addColumn<QString>("problem");
