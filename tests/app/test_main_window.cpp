@@ -117,6 +117,14 @@ void showAt(PlotPanel* panel, QSize size) {
 void closeErrorDialogs(QWidget& w) {
     for (QMessageBox* box : w.findChildren<QMessageBox*>("errorDialog")) box->close();
 }
+
+/// The run the window has just started ends within `timeout_ms`, successfully, and leaves the
+/// window idle. `ended` spies on MainWindow::runEnded; its latest signal is taken.
+void endsSuccessfully(MainWindow& w, QSignalSpy& ended, int timeout_ms = 60000) {
+    QVERIFY(ended.wait(timeout_ms));
+    QCOMPARE(ended.takeLast().at(0).toBool(), true);
+    QTRY_VERIFY(!w.running());
+}
 }  // namespace
 
 class TestMainWindow : public QObject {
@@ -150,9 +158,8 @@ private slots:
         QSignalSpy ended(window_.get(), &MainWindow::runEnded);
         click(*window_, "runAll");
         QVERIFY(window_->running());
-        QVERIFY(ended.wait(120000));
-        QCOMPARE(ended.takeFirst().at(0).toBool(), true);
-        QTRY_VERIFY(!window_->running());
+        endsSuccessfully(*window_, ended, 120000);
+        if (QTest::currentTestFailed()) return;
         QProgressBar* bar = window_->progressBar();
         QCOMPARE(bar->value(), bar->maximum());
         QVERIFY(bar->format().startsWith("finished"));
@@ -372,9 +379,8 @@ private slots:
         QTest::mouseClick(run, Qt::LeftButton);
         QVERIFY(window_->running());
         QVERIFY(!run->isEnabled());
-        QVERIFY(ended.wait(120000));
-        QCOMPARE(ended.takeFirst().at(0).toBool(), true);
-        QTRY_VERIFY(!window_->running());
+        endsSuccessfully(*window_, ended, 120000);
+        if (QTest::currentTestFailed()) return;
         QVERIFY(run->isEnabled());
 
         // Each row is that seed's whole run, as the headless runner computes it.
@@ -546,9 +552,8 @@ private slots:
         QSignalSpy ended(window_.get(), &MainWindow::runEnded);
         QVERIFY(window_->analyseRecording(recording));
         QVERIFY(!analyse->isEnabled());
-        QVERIFY(ended.wait(60000));
-        QCOMPARE(ended.takeFirst().at(0).toBool(), true);
-        QTRY_VERIFY(!window_->running());
+        endsSuccessfully(*window_, ended);
+        if (QTest::currentTestFailed()) return;
         const auto analysed = window_->lastRun();
         QCOMPARE(analysed->rig, "recording " + recording.toStdString());
         QCOMPARE(analysed->taps.size(), recordedRun->taps.size());
@@ -561,9 +566,8 @@ private slots:
         QVERIFY(window_->lastRunDirectory().contains("paper_analysis-"));
         // Its classifier follows the contours next.
         QVERIFY(window_->startRun(RunController::What::FollowingOnly));
-        QVERIFY(ended.wait(60000));
-        QCOMPARE(ended.takeFirst().at(0).toBool(), true);
-        QTRY_VERIFY(!window_->running());
+        endsSuccessfully(*window_, ended);
+        if (QTest::currentTestFailed()) return;
         QCOMPARE(int(window_->lastRun()->trials.size()), 10);
         QCOMPARE(window_->lastRun()->rig, std::string("simulated"));
         QCOMPARE(window_->lastRun()->validation.angleError_deg,
@@ -617,9 +621,8 @@ private slots:
         QVERIFY(replay && replay->isEnabled());
         QVERIFY(window_->replayRun(runDir));
         QVERIFY(!replay->isEnabled());
-        QVERIFY(ended.wait(60000));
-        QCOMPARE(ended.takeLast().at(0).toBool(), true);
-        QTRY_VERIFY(!window_->running());
+        endsSuccessfully(*window_, ended);
+        if (QTest::currentTestFailed()) return;
         const auto replayed = window_->lastRun();
         QCOMPARE(replayed->rig, "replay of " + runDir.toStdString());
         QVERIFY(window_->lastRunDirectory().contains("paper_replay-"));
@@ -798,9 +801,8 @@ private slots:
         QTest::mouseClick(window_->findChild<QPushButton*>("testTap"), Qt::LeftButton);
         auto* log = window_->findChild<QPlainTextEdit*>("log");
         QTRY_VERIFY(log->toPlainText().contains("A run is using the devices"));
-        QVERIFY(ended.wait(60000));
-        QCOMPARE(ended.takeFirst().at(0).toBool(), true);
-        QTRY_VERIFY(!window_->running());
+        endsSuccessfully(*window_, ended);
+        if (QTest::currentTestFailed()) return;
         const auto run = window_->lastRun();
         QVERIFY(QString::fromStdString(run->rig).startsWith("emulated bench: stage: Yamaha"));
         QCOMPARE(int(run->trials.size()), 1);
