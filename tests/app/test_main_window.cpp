@@ -132,6 +132,17 @@ class TestMainWindow : public QObject {
     QTemporaryDir dir_;
     std::unique_ptr<MainWindow> window_;
 
+    /// Writes `name` in the test folder: the paper experiment with `keys` patched on top (an
+    /// experiment that extends it); returns its path.
+    QString paperVariant(const QString& name, const QString& keys) {
+        const QString path = dir_.filePath(name);
+        writeJson(path, QJsonDocument::fromJson(QString(R"({"extends": "%1", %2})")
+                                                    .arg(source("experiments/paper.json"), keys)
+                                                    .toUtf8())
+                            .object());
+        return path;
+    }
+
 private slots:
     void initTestCase() {
         QStandardPaths::setTestModeEnabled(true);  // settings go to a test location
@@ -585,13 +596,9 @@ private slots:
         closeErrorDialogs(*window_);
 
         // With sweeps: (c) is measured on the recorded taps; (a) says why it stays empty.
-        const QString swept = dir_.filePath("swept.json");
-        writeJson(swept, QJsonDocument::fromJson(QString(R"({"extends": "%1", "sweeps": {
+        const QString swept = paperVariant("swept.json", R"("sweeps": {
                                  "perception": {"belief_thresholds": [0.5]},
-                                 "compute": {"bins": [20, 100], "samples_per_tap": [50]}}})")
-                                                     .arg(source("experiments/paper.json"))
-                                                     .toUtf8())
-                             .object());
+                                 "compute": {"bins": [20, 100], "samples_per_tap": [50]}})");
         QVERIFY(window_->openExperiment(swept));
         QVERIFY(window_->analyseRecording(recording));
         QVERIFY(ended.wait(60000));
@@ -636,12 +643,8 @@ private slots:
 
         // Another smoothing on the same recording: the trials that decide otherwise leave it,
         // shown as such in the trials table.
-        const QString smoother = dir_.filePath("smoother.json");
-        writeJson(smoother, QJsonDocument::fromJson(QString(R"({"extends": "%1",
-                                "classifier": {"bins": 100, "smoothing": 0.1}})")
-                                                        .arg(source("experiments/paper.json"))
-                                                        .toUtf8())
-                                .object());
+        const QString smoother =
+            paperVariant("smoother.json", R"("classifier": {"bins": 100, "smoothing": 0.1})");
         QVERIFY(window_->openExperiment(smoother));
         QVERIFY(window_->replayRun(runDir));
         QVERIFY(ended.wait(60000));
