@@ -7,6 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/common/NumberText.h"
+
 namespace activetouch {
 
 std::string ClassifierSettings::problem() const {
@@ -14,6 +16,9 @@ std::string ClassifierSettings::problem() const {
         return "bins must be between 1 and 100000, got " + std::to_string(bins);
     if (!(smoothing > 0.0) || !std::isfinite(smoothing))
         return "smoothing must be a positive number (zero would make unseen bins impossible)";
+    if (!(kernelSigma_bins >= 0.0) || !(kernelSigma_bins <= kMaxKernelSigma_bins))
+        return "kernel_sigma_bins must be between 0 (the paper's histogram) and " +
+               numberText(kMaxKernelSigma_bins) + ", got " + numberText(kernelSigma_bins);
     return {};
 }
 
@@ -26,6 +31,46 @@ int HistogramClassifier::binOf(int taxel, double value) const {
     const int b = static_cast<int>((value - min_[k]) * scale);
     return std::min(b, bins_ - 1);
 }
+
+namespace {
+
+// Spreads each (taxel, class) column of counts over neighbouring bins by a Gaussian of `sigma`
+// bins, cut at the range's ends and scaled per source bin so that no count is lost.
+void spreadCounts(std::vector<double, CacheLineAllocator<double>>& table, int taxels, std::size_t B,
+                  std::size_t C, double sigma) {
+    const auto reach = static_cast<std::ptrdiff_t>(std::ceil(3.0 * sigma));
+    const auto nBins = static_cast<std::ptrdiff_t>(B);
+    std::vector<double> weight(static_cast<std::size_t>(2 * reach + 1));
+    for (std::ptrdiff_t d = -reach; d <= reach; ++d)
+        weight[static_cast<std::size_t>(d + reach)] =
+            std::exp(-0.5 * static_cast<double>(d * d) / (sigma * sigma));
+    // The first and last in-range bin a count in bin `src` reaches, and the weight they sum to.
+    const auto first = [&](std::ptrdiff_t src) { return std::max<std::ptrdiff_t>(0, src - reach); };
+    const auto last = [&](std::ptrdiff_t src) { return std::min(nBins - 1, src + reach); };
+    std::vector<double> inRange(B, 0.0);
+    for (std::ptrdiff_t src = 0; src < nBins; ++src)
+        for (std::ptrdiff_t dst = first(src); dst <= last(src); ++dst)
+            inRange[static_cast<std::size_t>(src)] +=
+                weight[static_cast<std::size_t>(dst - src + reach)];
+    std::vector<double> column(B), spread(B);
+    for (std::size_t k = 0; k < static_cast<std::size_t>(taxels); ++k) {
+        for (std::size_t cls = 0; cls < C; ++cls) {
+            for (std::size_t b = 0; b < B; ++b) column[b] = table[(k * B + b) * C + cls];
+            std::fill(spread.begin(), spread.end(), 0.0);
+            for (std::ptrdiff_t src = 0; src < nBins; ++src) {
+                const double n = column[static_cast<std::size_t>(src)];
+                if (n == 0.0) continue;
+                const double scale = n / inRange[static_cast<std::size_t>(src)];
+                for (std::ptrdiff_t dst = first(src); dst <= last(src); ++dst)
+                    spread[static_cast<std::size_t>(dst)] +=
+                        scale * weight[static_cast<std::size_t>(dst - src + reach)];
+            }
+            for (std::size_t b = 0; b < B; ++b) table[(k * B + b) * C + cls] = spread[b];
+        }
+    }
+}
+
+}  // namespace
 
 HistogramClassifier HistogramClassifier::train(const std::vector<LabelledTap>& taps, int classCount,
                                                const ClassifierSettings& settings) {
@@ -94,6 +139,8 @@ HistogramClassifier HistogramClassifier::train(const std::vector<LabelledTap>& t
             }
         }
     }
+    if (settings.kernelSigma_bins > 0.0)
+        spreadCounts(c.logTable_, K, B, C, settings.kernelSigma_bins);
     const double alpha = settings.smoothing;
     for (std::size_t k = 0; k < static_cast<std::size_t>(K); ++k) {
         for (std::size_t b = 0; b < B; ++b) {

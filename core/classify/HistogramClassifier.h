@@ -5,6 +5,15 @@
 // taxel's min..max over the training set; P_k(s|c) = (h + alpha) / (sum h + B alpha). A tap's
 // class is argmax_c sum_k sum_t log P_k(s_tk | c), always in the log domain.
 //
+// Beyond the paper, a training sample may count not only in its own bin but spread over its
+// neighbours by a Gaussian kernel of kernelSigma_bins (weights exp(-d^2 / 2 sigma^2) for bin
+// distances d up to ceil(3 sigma), cut at the ends of the range and scaled so that each sample
+// still adds 1): a kernel density estimate of P_k(s|c) instead of the raw histogram. With one
+// training tap per class the raw histogram is as narrow as one tap's noise; a tap between
+// training positions then lands in bins its class never saw. Zero gives the paper's histogram,
+// whose decision equals scikit-learn's MultinomialNB(alpha, fit_prior=False) on per-(taxel, bin)
+// counts.
+//
 // The log table is laid out [taxel][bin][class]: a tap touches few distinct (taxel, bin) cells,
 // so the decision sums count x row over those cells instead of over all T x K samples.
 // Ties break to the lowest class index. Samples outside the trained range clamp to the end bins;
@@ -39,10 +48,15 @@ struct CacheLineAllocator {
     }
 };
 
+/// The widest kernel a classifier accepts, in bins (a kernel this wide already spreads one count
+/// over 300 bins).
+inline constexpr double kMaxKernelSigma_bins = 50.0;
+
 struct ClassifierSettings {
     int bins = 100;  ///< B (paper: 100)
     double smoothing =
         0.01;  ///< alpha, additive pseudo-count per bin, > 0 (see README: chosen by validation)
+    double kernelSigma_bins = 0.0;  ///< 0 = the paper's histogram; README: a choice beyond it
     /// Why the settings cannot train a classifier, or empty.
     std::string problem() const;
 };

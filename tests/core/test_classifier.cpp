@@ -13,7 +13,9 @@ namespace {
 
 // An independent long-double implementation: dense sums over every sample, no count vector,
 // no table layout; same binning rule (bins span each taxel's training min..max; outside values
-// clamp; a constant taxel maps everything to bin 0).
+// clamp; a constant taxel maps everything to bin 0) and, for a kernel, the same spreading rule
+// (Gaussian weights to ceil(3 sigma) bins, cut at the range's ends, each count's in-range weights
+// scaled to sum to 1), written as a dense sum over every pair of bins.
 struct Reference {
     int C, K, B;
     long double alpha;
@@ -22,7 +24,7 @@ struct Reference {
     std::vector<long double> totals;  // [c][k]
 
     Reference(const std::vector<std::pair<Tap, int>>& training, int classes, int bins,
-              double smoothing)
+              double smoothing, double kernelSigma = 0.0)
         : C(classes), K(training.front().first.taxels), B(bins), alpha(smoothing) {
         lo.assign(K, std::numeric_limits<long double>::infinity());
         hi.assign(K, -std::numeric_limits<long double>::infinity());
@@ -40,6 +42,24 @@ struct Reference {
                     counts[(std::size_t(c) * K + k) * B + bin(k, tap.at(t, k))] += 1;
                     totals[std::size_t(c) * K + k] += 1;
                 }
+        if (kernelSigma > 0.0) spread(kernelSigma);
+    }
+    void spread(long double sigma) {
+        const int reach = int(std::ceil(3.0L * sigma));
+        const auto w = [&](int d) -> long double {
+            return std::abs(d) > reach ? 0.0L : std::exp(-0.5L * d * d / (sigma * sigma));
+        };
+        std::vector<long double> inRange(B, 0);
+        for (int src = 0; src < B; ++src)
+            for (int dst = 0; dst < B; ++dst) inRange[src] += w(dst - src);
+        for (int ck = 0; ck < C * K; ++ck) {
+            const auto column = counts.begin() + std::ptrdiff_t(ck) * B;
+            std::vector<long double> out(B, 0);
+            for (int dst = 0; dst < B; ++dst)
+                for (int src = 0; src < B; ++src)
+                    out[dst] += column[src] * w(dst - src) / inRange[src];
+            std::copy(out.begin(), out.end(), column);
+        }
     }
     int bin(int k, double v) const {
         const double width = double(hi[k] - lo[k]);
@@ -94,10 +114,29 @@ Problem makeProblem(int classes, int T, int K, double separation, std::uint64_t 
     return p;
 }
 
-HistogramClassifier trainOn(const Problem& p, int bins = 100, double smoothing = 0.01) {
+HistogramClassifier trainOn(const Problem& p, int bins = 100, double smoothing = 0.01,
+                            double kernelSigma = 0.0) {
     std::vector<LabelledTap> labelled;
     for (const auto& [tap, c] : p.training) labelled.push_back({&tap, c});
-    return HistogramClassifier::train(labelled, p.classes, {bins, smoothing});
+    return HistogramClassifier::train(labelled, p.classes, {bins, smoothing, kernelSigma});
+}
+
+// Every (taxel, class) likelihood sums to 1 over the bins: spreading lost no count.
+void verifyNormalised(const HistogramClassifier& clf) {
+    for (int k = 0; k < clf.taxelCount(); ++k)
+        for (int c = 0; c < clf.classCount(); ++c) {
+            double total = 0.0;
+            for (int b = 0; b < clf.binCount(); ++b) {
+                const double lp = clf.logProbability(k, b, c);
+                QVERIFY2(std::isfinite(lp), "a log-probability is not finite");
+                total += std::exp(lp);
+            }
+            QVERIFY2(std::abs(total - 1.0) < 1e-9,
+                     qPrintable(QStringLiteral("taxel %1 class %2 sums to %3")
+                                    .arg(k)
+                                    .arg(c)
+                                    .arg(total, 0, 'g', 17)));
+        }
 }
 
 void verifyFiniteAndMatchesReference(const HistogramClassifier& clf, const Reference& ref,
@@ -303,6 +342,123 @@ private slots:
         labelled[0].tap = &bad;
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
                                  HistogramClassifier::train(labelled, 4, {100, 0.01}));
+    }
+
+    void kernelDecisionsMatchLongDoubleReference_data() {
+        QTest::addColumn<double>("sigma");
+        QTest::newRow("sigma 0 (the paper's histogram)") << 0.0;
+        QTest::newRow("sigma 0.1 (reach 1 bin)") << 0.1;
+        QTest::newRow("sigma 2.5") << 2.5;
+        QTest::newRow("sigma 50 (reach wider than the range)") << 50.0;
+    }
+    void kernelDecisionsMatchLongDoubleReference() {
+        QFETCH(double, sigma);
+        const Problem p = makeProblem(72, 50, 12, 1.5, 53);
+        const auto clf = trainOn(p, 100, 0.01, sigma);
+        const Reference ref(p.training, p.classes, 100, 0.01, sigma);
+        verifyNormalised(clf);
+        RandomStream r(59);
+        for (int i = 0; i < 40; ++i)
+            verifyFiniteAndMatchesReference(clf, ref,
+                                            randomTap(r, 50, 12, r.uniform(30, 150), 6.0));
+    }
+
+    void kernelSpreadsEachCountOverItsNeighboursOnly() {
+        // One taxel, range 0..100 in 100 bins of 1: class 0 holds one count in each end bin,
+        // class 1 two counts in bin 50.
+        Problem p{{}, 2};
+        Tap ends(2, 1), middle(2, 1);
+        ends.at(0, 0) = 0.0;
+        ends.at(1, 0) = 100.0;
+        middle.at(0, 0) = middle.at(1, 0) = 50.5;
+        p.training = {{ends, 0}, {middle, 1}};
+        const double sigma = 2.0, alpha = 0.01;
+        const auto clf = trainOn(p, 100, alpha, sigma);
+        QCOMPARE(clf.binOf(0, 50.5), 50);
+        const auto w = [&](int d) { return std::exp(-0.5 * d * d / (sigma * sigma)); };
+        double full = 0.0, half = 0.0;  // in-range weight of a middle bin and of an end bin
+        for (int d = -6; d <= 6; ++d) full += w(d);
+        for (int d = 0; d <= 6; ++d) half += w(d);
+        const double denominator = 2.0 + 100 * alpha;
+        for (int d = 0; d <= 8; ++d) {
+            const double expected = (d <= 6 ? 2.0 * w(d) / full : 0.0) + alpha;
+            QVERIFY(std::abs(clf.logProbability(0, 50 + d, 1) - std::log(expected / denominator)) <
+                    1e-12);
+            QCOMPARE(clf.logProbability(0, 50 - d, 1), clf.logProbability(0, 50 + d, 1));
+        }
+        // A count in an end bin keeps its whole weight inside the range.
+        QVERIFY(std::abs(clf.logProbability(0, 0, 0) -
+                         std::log((1.0 / half + alpha) / denominator)) < 1e-12);
+        QVERIFY(std::abs(clf.logProbability(0, 99, 0) -
+                         std::log((1.0 / half + alpha) / denominator)) < 1e-12);
+        verifyNormalised(clf);
+    }
+
+    void kernelGivesUnseenNeighbouringBinsToTheNearestClass() {
+        // A tap three bins from where class 1 was trained and far from class 0: the raw histogram
+        // has seen neither class there, scores both at the smoothing floor and ties to class 0;
+        // the kernel gives it to class 1.
+        Problem p{{}, 2};
+        Tap zero(50, 1), one(50, 1), probe(50, 1);
+        for (int s = 0; s < 50; ++s) {
+            zero.at(s, 0) = s == 0 ? 0.0 : s == 1 ? 100.0 : 20.5;
+            one.at(s, 0) = 60.5;
+            probe.at(s, 0) = 63.5;
+        }
+        p.training = {{zero, 0}, {one, 1}};
+        QCOMPARE(trainOn(p, 100, 0.01, 0.0).classify(probe), 0);
+        QCOMPARE(trainOn(p, 100, 0.01, 2.5).classify(probe), 1);
+        // Beyond the kernel's reach (ceil(3 sigma) bins: 2 for sigma 0.6, 3 for 0.9) it is unseen
+        // again.
+        QCOMPARE(trainOn(p, 100, 0.01, 0.6).classify(probe), 0);
+        QCOMPARE(trainOn(p, 100, 0.01, 0.9).classify(probe), 1);
+    }
+
+    void kernelOnDegenerateRanges_data() {
+        QTest::addColumn<int>("bins");
+        QTest::addColumn<double>("sigma");
+        QTest::newRow("one bin") << 1 << 2.5;
+        QTest::newRow("two bins, sigma 50") << 2 << 50.0;
+        QTest::newRow("100 bins, sigma 50") << 100 << 50.0;
+        QTest::newRow("100000 bins, sigma 0.3") << 100000 << 0.3;
+    }
+    void kernelOnDegenerateRanges() {
+        QFETCH(int, bins);
+        QFETCH(double, sigma);
+        Problem p = makeProblem(6, 20, 12, 8.0, 61);
+        for (auto& [tap, c] : p.training)
+            for (int s = 0; s < tap.sampleCount(); ++s) tap.at(s, 7) = 12.0;  // a constant taxel
+        const auto clf = trainOn(p, bins, 0.01, sigma);
+        verifyNormalised(clf);
+        if (bins == 1)
+            for (int k = 0; k < 12; ++k)
+                for (int c = 0; c < 6; ++c) QCOMPARE(clf.logProbability(k, 0, c), 0.0);
+        RandomStream r(67);
+        Tap t = randomTap(r, 20, 12, 60.0, 6.0);
+        const int before = clf.classify(t);
+        for (double v : {0.0, 12.0, 255.0}) {
+            for (int s = 0; s < 20; ++s) t.at(s, 7) = v;
+            QCOMPARE(clf.classify(t), before);
+        }
+        if (bins <= 100) {
+            const Reference ref(p.training, p.classes, bins, 0.01, sigma);
+            verifyFiniteAndMatchesReference(clf, ref, t);
+        }
+    }
+
+    void badKernelsAreRefused_data() {
+        QTest::addColumn<double>("sigma");
+        QTest::newRow("negative") << -1.0;
+        QTest::newRow("NaN") << qQNaN();
+        QTest::newRow("infinite") << qInf();
+        QTest::newRow("wider than 50 bins") << 50.5;
+    }
+    void badKernelsAreRefused() {
+        QFETCH(double, sigma);
+        const ClassifierSettings settings{100, 0.01, sigma};
+        QVERIFY(QString::fromStdString(settings.problem()).contains("kernel_sigma_bins"));
+        const Problem p = makeProblem(4, 50, 12, 10.0, 71);
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, trainOn(p, 100, 0.01, sigma));
     }
 
     void logSumExpIsStable() {
