@@ -697,7 +697,8 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
                     {"position_step_mm", cs.positionStep_mm},
                     {"regions", regions}};
     j["classifier"] = {{"bins", r.spec.classifier.bins},
-                       {"smoothing", r.spec.classifier.smoothing}};
+                       {"smoothing", r.spec.classifier.smoothing},
+                       {"kernel_sigma_bins", r.spec.classifier.kernelSigma_bins}};
     j["training"] = {{"data_sets", r.spec.training.dataSets},
                      {"training_sets", r.spec.training.trainingSets},
                      {"taps_per_class", r.spec.training.tapsPerClass},

@@ -236,9 +236,11 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
     }
     if (f.has("classifier")) {
         const JsonFields c = f.object("classifier");
-        c.rejectUnknownKeys({"bins", "smoothing"});
+        c.rejectUnknownKeys({"bins", "smoothing", "kernel_sigma_bins"});
         e.classifier.bins = c.integer("bins", 1, 100000, e.classifier.bins);
         e.classifier.smoothing = c.number("smoothing", 1e-12, 1e6, e.classifier.smoothing);
+        e.classifier.kernelSigma_bins =
+            c.number("kernel_sigma_bins", 0.0, kMaxKernelSigma_bins, e.classifier.kernelSigma_bins);
     }
     if (f.has("training")) {
         const JsonFields t = f.object("training");

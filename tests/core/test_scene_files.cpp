@@ -97,6 +97,14 @@ private slots:
         QCOMPARE(shipped.following.beliefThreshold, 0.99999999);
         QCOMPARE(shipped.trials.size(), paper.trials.size());
         QCOMPARE(shipped.scene.effects.size(), paper.scene.effects.size());
+        QCOMPARE(paper.classifier.kernelSigma_bins, 0.0);  // the paper's histogram
+
+        const ExperimentSpec kernel =
+            loadExperiment(test::sourcePath("experiments/paper_kernel.json"));
+        QCOMPARE(kernel.classifier.kernelSigma_bins, 2.5);
+        QCOMPARE(kernel.classifier.bins, paper.classifier.bins);
+        QCOMPARE(kernel.classifier.smoothing, paper.classifier.smoothing);
+        QCOMPARE(kernel.trials.size(), paper.trials.size());
     }
 
     void badSceneNamesFilePlaceAndProblem_data() {
@@ -261,6 +269,13 @@ private slots:
             << "leave at least one set to test";
         QTest::newRow("no smoothing") << head + R"("classifier": {"smoothing": 0}})"
                                       << "outside the allowed range";
+        QTest::newRow("negative kernel") << head + R"("classifier": {"kernel_sigma_bins": -1}})"
+                                         << "'kernel_sigma_bins' is -1, outside the allowed range";
+        QTest::newRow("kernel wider than 50 bins")
+            << head + R"("classifier": {"kernel_sigma_bins": 51}})"
+            << "'kernel_sigma_bins' is 51, outside the allowed range";
+        QTest::newRow("kernel as text") << head + R"("classifier": {"kernel_sigma_bins": "wide"}})"
+                                        << "kernel_sigma_bins";
         QTest::newRow("scene file missing") << R"({"name": "x", "scene": "nope.json"})"
                                             << "does not exist";
         QTest::newRow("orientation with no edge")
