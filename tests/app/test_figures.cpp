@@ -80,6 +80,29 @@ private slots:
             QVERIFY(active.plottable(i)->name() != "where the trial ended");
     }
 
+    void theErrorFigureNamesALikelihoodOtherThanThePapers() {
+        // The paper's histogram is what Figure 6 shows unless told otherwise; a kernel-smoothed
+        // likelihood is named in the title, which still fits the exported figure.
+        const RunFigure& errors =
+            *std::find_if(runFigures().begin(), runFigures().end(),
+                          [](const RunFigure& f) { return QString(f.file) == "figure6_errors"; });
+        auto title = [&](const RunResult& run) {
+            QCustomPlot plot;
+            if (!errors.build(plot, run)) return QString();
+            layOutAt(plot, errors.size);
+            test::checkLabelsFitTheirPanels(plot, "figure6_errors");
+            return qobject_cast<QCPTextElement*>(plot.plotLayout()->element(0, 0))->text();
+        };
+        const QString paper = title(runs_.front());
+        QVERIFY(paper.startsWith("Figure 6"));
+        QVERIFY2(!paper.contains("kernel"), qPrintable(paper));
+        ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper_kernel.json"));
+        spec.trials.clear();  // the validation is all Figure 6 needs
+        const RunResult kernel = runExperiment(spec, RunOptions{});
+        const QString named = title(kernel);
+        QVERIFY2(named.endsWith("; kernel 2.5 bins"), qPrintable(named));
+    }
+
     void aCancelledRunDrawsOnlyItsTaps() {
         RunResult cancelled = runs_.front();
         cancelled.cancelled = true;

@@ -82,6 +82,18 @@ inline void checkLegendsClearOfData(QCustomPlot& plot, const QString& name) {
 // Every panel's title fits over its own panel and its y-axis label beside it: wider, a title runs
 // into the next panel's title or the colour scale beside it, and a label is cut off.
 inline void checkLabelsFitTheirPanels(QCustomPlot& plot, const QString& name) {
+    // A figure's and a row's titles fit the figure's width.
+    for (QCPLayoutElement* e : plot.plotLayout()->elements(true)) {
+        auto* title = qobject_cast<QCPTextElement*>(e);
+        if (!title || !title->visible()) continue;
+        const double width =
+            QFontMetricsF(title->font()).boundingRect(QRectF(), 0, title->text()).width();
+        QVERIFY2(width <= plot.width(),
+                 qPrintable(QString("%1: the title '%2' is %3 px wide over a figure of %4 px")
+                                .arg(name, title->text())
+                                .arg(width, 0, 'f', 0)
+                                .arg(plot.width())));
+    }
     // Text placed at a point (a threshold, a setting) is not cut off by its panel's edge.
     for (int i = 0; i < plot.itemCount(); ++i) {
         auto* text = qobject_cast<QCPItemText*>(plot.item(i));
