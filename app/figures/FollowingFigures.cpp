@@ -2,8 +2,9 @@
 
 #include <QDir>
 #include <algorithm>
-#include <map>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "app/figures/FigureExport.h"
 #include "app/figures/FigureLayout.h"
@@ -125,10 +126,17 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
                           .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0)
                           .arg(r.spec.recognition.smoothingSigmaBins));
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    std::map<std::string, std::vector<const TrialRun*>> byShape;
+    // One row per shape, in the order the experiment first follows it (the paper's rectangle,
+    // cross, C, L), the same order as the confusion tables.
+    std::vector<std::pair<std::string, std::vector<const TrialRun*>>> byShape;
     int maxTrials = 0;
-    for (const auto& t : r.trials)
-        if (t.recognised) byShape[t.label].push_back(&t);
+    for (const auto& t : r.trials) {
+        if (!t.recognised) continue;
+        auto row = std::find_if(byShape.begin(), byShape.end(),
+                                [&](const auto& entry) { return entry.first == t.label; });
+        if (row == byShape.end()) row = byShape.insert(byShape.end(), {t.label, {}});
+        row->second.push_back(&t);
+    }
     for (const auto& [shape, trials] : byShape)
         maxTrials = std::max(maxTrials, static_cast<int>(trials.size()));
     auto* scale = new QCPColorScale(&plot);

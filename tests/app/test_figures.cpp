@@ -103,6 +103,30 @@ private slots:
         QVERIFY2(named.endsWith("; kernel 2.5 bins"), qPrintable(named));
     }
 
+    void recognitionRowsFollowTheExperimentsShapeOrder() {
+        // Figure 9 reads top to bottom in the order the shapes were followed (the paper's
+        // rectangle, cross, C, L), as the confusion tables beside it do.
+        const RunResult& paper = runs_.front();
+        QStringList followed;
+        for (const auto& t : paper.trials)
+            if (t.recognised && !followed.contains(QString::fromStdString(t.label)))
+                followed << QString::fromStdString(t.label);
+        QCOMPARE(followed, (QStringList{"rectangle", "cross", "c", "l"}));
+        QCustomPlot plot;
+        QVERIFY(buildRecognitionFigure(plot, paper));
+        const RunFigure& figure9 = *std::find_if(
+            runFigures().begin(), runFigures().end(),
+            [](const RunFigure& f) { return QString(f.file) == "figure9_recognition"; });
+        layOutAt(plot, figure9.size);
+        QMap<int, QString> byHeight;  // each template panel's top edge, as laid out
+        for (QCPAxisRect* rect : plot.axisRects()) {
+            const QString title = rect->axis(QCPAxis::atTop)->label();
+            if (title.startsWith("template: ")) byHeight.insert(rect->top(), title.mid(10));
+        }
+        const QStringList rows = byHeight.values();
+        QCOMPARE(rows, followed);
+    }
+
     void aCancelledRunDrawsOnlyItsTaps() {
         RunResult cancelled = runs_.front();
         cancelled.cancelled = true;
