@@ -11,6 +11,7 @@
 #include "app/figures/SweepFigures.h"
 #include "app/figures/ValidationFigures.h"
 #include "app/run/ExperimentRun.h"
+#include "app/run/SeedRates.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
@@ -126,16 +127,15 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
                           .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0)
                           .arg(r.spec.recognition.smoothingSigmaBins));
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    // One row per shape, in the order the experiment first follows it (the paper's rectangle,
-    // cross, C, L), the same order as the confusion tables.
+    // One row per shape traced, in the order of the confusion tables beside the figure (the
+    // templates' order: the paper's rectangle, cross, C, L).
     std::vector<std::pair<std::string, std::vector<const TrialRun*>>> byShape;
     int maxTrials = 0;
-    for (const auto& t : r.trials) {
-        if (!t.recognised) continue;
-        auto row = std::find_if(byShape.begin(), byShape.end(),
-                                [&](const auto& entry) { return entry.first == t.label; });
-        if (row == byShape.end()) row = byShape.insert(byShape.end(), {t.label, {}});
-        row->second.push_back(&t);
+    for (const std::string& shape : recognitionConfusion(r).labels) {
+        std::vector<const TrialRun*> trials;
+        for (const auto& t : r.trials)
+            if (t.recognised && t.label == shape) trials.push_back(&t);
+        if (!trials.empty()) byShape.emplace_back(shape, std::move(trials));
     }
     for (const auto& [shape, trials] : byShape)
         maxTrials = std::max(maxTrials, static_cast<int>(trials.size()));

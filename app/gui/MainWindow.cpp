@@ -563,9 +563,7 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
         for (auto* p : {sweepPerception_, sweepFollowing_, sweepCompute_}) p->plot().replot();
     }
     // Confusion over the recognised trials, traced shape x named, for each rule.
-    std::vector<std::string> shapes;
-    for (const auto& t : r.templates) shapes.push_back(t.shape);
-    const RecognitionConfusion confusion = recognitionConfusion(pathNamings(r), shapes);
+    const RecognitionConfusion confusion = recognitionConfusion(r);
     fillConfusion(confusionRaw_, confusion, false);
     fillConfusion(confusionSmoothed_, confusion, true);
     confusionRawTitle_->setText(

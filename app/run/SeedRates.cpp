@@ -98,6 +98,12 @@ std::vector<PathNaming> pathNamings(const RunResult& run) {
     return namings;
 }
 
+RecognitionConfusion recognitionConfusion(const RunResult& run) {
+    std::vector<std::string> shapes;
+    for (const auto& t : run.templates) shapes.push_back(t.shape);
+    return recognitionConfusion(pathNamings(run), std::move(shapes));
+}
+
 SeedOutcome seedOutcome(const RunResult& run) {
     SeedOutcome o;
     o.seed = run.spec.scene.seed;

@@ -97,6 +97,10 @@ RecognitionConfusion recognitionConfusion(const std::vector<PathNaming>& namings
 /// Each trial of `run` that recognition looked at, with the shape each rule named it.
 std::vector<PathNaming> pathNamings(const RunResult& run);
 
+/// One run's confusion over its recognised trials, labelled in the order of its templates (the
+/// shapes of the experiment's library), then any other shape traced or named.
+RecognitionConfusion recognitionConfusion(const RunResult& run);
+
 /// One run's part in each rate: its count and its total, which SeedRates sums over runs.
 Rate passiveLostIn(const SeedOutcome& run);
 Rate activeCompletedIn(const SeedOutcome& run);
