@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "app/figures/FigureLayout.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
@@ -50,11 +51,18 @@ bool fitEqualAspect(QCustomPlot& plot) {
     return changed;
 }
 
+bool fitToLayout(QCustomPlot& plot) {
+    const bool legends = fitLegendLines(plot);
+    return fitEqualAspect(plot) || legends;
+}
+
 void layOutAt(QCustomPlot& plot, const FigureSize& size) {
     plot.resize(size.width_px, size.height_px);
     plot.setViewport(QRect(0, 0, size.width_px, size.height_px));
     plot.replot(QCustomPlot::rpImmediateRefresh);
-    if (fitEqualAspect(plot)) plot.replot(QCustomPlot::rpImmediateRefresh);
+    // A refit can move margins and so the panels' shapes again; a few rounds settle it.
+    for (int round = 0; round < 3 && fitToLayout(plot); ++round)
+        plot.replot(QCustomPlot::rpImmediateRefresh);
 }
 
 QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats,

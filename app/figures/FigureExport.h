@@ -25,6 +25,11 @@ void setEqualAspectRanges(QCPAxisRect* rect, const QCPRange& x, const QCPRange& 
 /// accumulate). Returns whether any range changed; does not replot. Call after a layout.
 bool fitEqualAspect(QCustomPlot& plot);
 
+/// Refits what depends on the plot's size after a layout: the lines of the legends under panels
+/// (fitLegendLines) and the equal-aspect ranges. Returns whether anything changed, and so whether
+/// the plot needs laying out again; does not replot.
+bool fitToLayout(QCustomPlot& plot);
+
 /// Lays `plot` out at `size` as it is written: its viewport at that size (a plot that is not shown
 /// gets no resize event, so resizing it alone leaves the layout at its old size) and its
 /// equal-aspect panels fitted to their shapes there.

@@ -1,8 +1,15 @@
 #include "app/figures/FigureLayout.h"
 
+#include <algorithm>
+
 #include "qcustomplot.h"
 
 namespace activetouch {
+
+namespace {
+/// The property of a legend under a panel holding the most entries a line may take.
+constexpr const char* kMostPerLine = "mostEntriesPerLine";
+}  // namespace
 
 void startFigure(QCustomPlot& plot, const QString& title) {
     plot.clearPlottables();
@@ -93,10 +100,80 @@ PanelWithLegend addPanelWithLegendBelow(QCPLayoutGrid* grid, int row, int column
     legend->setFont(QFont("Sans", 8));
     legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
     legend->setWrap(perLine);
+    legend->setProperty(kMostPerLine, perLine);
     legend->setMargins(QMargins(4, 1, 4, 1));
     // The legend spans its cell, out to the figure's edge, where a frame would be cut off.
     legend->setBorderPen(Qt::NoPen);
     return {rect, legend};
+}
+
+namespace {
+
+/// The width `e` gets from the layouts holding it when their columns share out the figure's
+/// width by their stretch factors.
+double shareOfWidth(const QCPLayoutElement* e, const QCustomPlot& plot) {
+    const auto* grid = qobject_cast<const QCPLayoutGrid*>(e->layout());
+    if (!grid) return plot.viewport().width();
+    const double outer =
+        grid == plot.plotLayout() ? plot.viewport().width() : shareOfWidth(grid, plot);
+    const double inner = outer - grid->margins().left() - grid->margins().right() -
+                         grid->columnSpacing() * (grid->columnCount() - 1);
+    int column = 0;
+    for (int i = 0; i < grid->elementCount(); ++i) {
+        if (grid->elementAt(i) != e) continue;
+        int row = 0;
+        grid->indexToRowCol(i, row, column);
+        break;
+    }
+    const QList<double> stretch = grid->columnStretchFactors();
+    double total = 0.0;
+    for (double f : stretch) total += f;
+    return total > 0.0 ? inner * stretch.value(column) / total : inner;
+}
+
+/// The legend's entries in order (a legend's grid also counts the empty cells of its last line).
+QList<const QCPAbstractLegendItem*> entriesOf(const QCPLegend* legend) {
+    QList<const QCPAbstractLegendItem*> entries;
+    for (int i = 0; i < legend->itemCount(); ++i)
+        if (const QCPAbstractLegendItem* item = legend->item(i)) entries << item;
+    return entries;
+}
+
+/// The width `entries` need with `perLine` of them to a line, filled line by line.
+double legendWidth(const QCPLegend* legend, const QList<const QCPAbstractLegendItem*>& entries,
+                   int perLine) {
+    QList<double> columns(perLine, 0.0);
+    for (int i = 0; i < entries.size(); ++i)
+        columns[i % perLine] =
+            std::max(columns[i % perLine], double(entries[i]->minimumOuterSizeHint().width()));
+    double width = legend->margins().left() + legend->margins().right() +
+                   legend->columnSpacing() * (perLine - 1);
+    for (double c : columns) width += c;
+    return width;
+}
+
+}  // namespace
+
+bool fitLegendLines(QCustomPlot& plot) {
+    bool changed = false;
+    for (QCPLayoutElement* e : plot.plotLayout()->elements(true)) {
+        auto* legend = qobject_cast<QCPLegend*>(e);
+        if (!legend || !legend->property(kMostPerLine).isValid()) continue;
+        const auto entries = entriesOf(legend);
+        const int n = static_cast<int>(entries.size());
+        if (n == 0) continue;
+        const int asked = legend->property(kMostPerLine).toInt();
+        int perLine = asked > 0 ? std::min(asked, n) : n;
+        const double available = shareOfWidth(legend, plot);
+        while (perLine > 1 && legendWidth(legend, entries, perLine) > available) --perLine;
+        // Wrap 0 and any wrap of n or more put all n entries on one line.
+        const int now = legend->wrap() > 0 ? std::min(legend->wrap(), n) : n;
+        if (perLine == now) continue;
+        legend->setWrap(perLine);
+        legend->setFillOrder(QCPLayoutGrid::foColumnsFirst, true);
+        changed = true;
+    }
+    return changed;
 }
 
 QCPGraph* addSeries(QCPAxisRect* rect, QCPLegend* legend, const QString& name,

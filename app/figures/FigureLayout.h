@@ -45,13 +45,19 @@ QCPAxisRect* addTitledPanel(QCPLayoutGrid* grid, int column, const QString& titl
 /// A legend inside the panel's top right corner.
 QCPLegend* addLegend(QCPAxisRect* rect);
 
-/// A panel with its legend in a row of its own under it, `perLine` entries to a line (0: all on
-/// one line): for panels whose data may fill any corner, where an inside legend would hide some.
+/// A panel with its legend in a row of its own under it, at most `perLine` entries to a line (0:
+/// all on one line), fewer where the figure is too narrow for them (fitLegendLines): for panels
+/// whose data may fill any corner, where an inside legend would hide some.
 struct PanelWithLegend {
     QCPAxisRect* rect;
     QCPLegend* legend;
 };
 PanelWithLegend addPanelWithLegendBelow(QCPLayoutGrid* grid, int row, int column, int perLine);
+
+/// Puts as many entries on each line of every legend made by addPanelWithLegendBelow as its share
+/// of the figure's width holds, up to the number asked for, and at least one. Returns whether any
+/// legend changed; does not replot. Call after a layout.
+bool fitLegendLines(QCustomPlot& plot);
 
 /// A graph of (x, y) in the panel: points joined by lines unless `lines` is false; listed in
 /// `legend` if one is given.

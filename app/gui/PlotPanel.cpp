@@ -40,11 +40,12 @@ PlotPanel::PlotPanel(const QString& name, QWidget* parent)
         plot_->replot(QCustomPlot::rpQueuedReplot);
     });
     replotTimer_.start();
-    // Equal-aspect panels follow the plot's size: once a layout shows a panel's shape has changed,
-    // its ranges are refitted and the plot drawn again with them. New tick labels can move the
-    // margins and so the shape again; a few rounds settle it, and more are never asked for.
+    // Equal-aspect panels and legends under panels follow the plot's size: once a layout shows a
+    // panel's shape or a legend's room has changed, they are refitted and the plot drawn again.
+    // New tick labels can move the margins and so the shape again; a few rounds settle it, and
+    // more are never asked for.
     connect(plot_, &QCustomPlot::afterLayout, this, [this] {
-        if (!fitEqualAspect(*plot_)) {
+        if (!fitToLayout(*plot_)) {
             refits_ = 0;
             return;
         }

@@ -141,14 +141,24 @@ private slots:
         const SeedRates rates =
             runSeeds(loadExperiment(test::sourcePath("experiments/paper.json")), 1, 3, "");
         QCOMPARE(rates.seeds.size(), std::size_t(3));
-        for (bool stacked : {false, true}) {
+        // Side by side at the exported size and narrower; stacked in a panel taller than wide,
+        // as the window shows it, down to a narrow one: the legends take fewer entries to a line
+        // rather than run off the figure.
+        const QList<QPair<bool, FigureSize>> layouts{{false, kSeedFigureSize},
+                                                     {false, FigureSize{1000, 600, 150}},
+                                                     {true, FigureSize{600, 900, 150}},
+                                                     {true, FigureSize{340, 900, 150}}};
+        for (const auto& [stacked, size] : layouts) {
             QCustomPlot plot;
             QVERIFY(buildSeedRatesFigure(plot, rates, "paper", stacked));
-            // Side by side at the exported size; stacked in a panel taller than wide.
-            layOutAt(plot, stacked ? FigureSize{600, 900, 150} : kSeedFigureSize);
-            test::checkLegendsClearOfData(plot, "seed_rates");
+            layOutAt(plot, size);
+            const QString name = QString("seed_rates %1 at %2 x %3")
+                                     .arg(stacked ? "stacked" : "side by side")
+                                     .arg(size.width_px)
+                                     .arg(size.height_px);
+            test::checkLegendsClearOfData(plot, name);
             if (QTest::currentTestFailed()) return;
-            test::checkLabelsFitTheirPanels(plot, "seed_rates");
+            test::checkLabelsFitTheirPanels(plot, name);
             if (QTest::currentTestFailed()) return;
         }
     }

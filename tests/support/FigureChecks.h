@@ -79,9 +79,44 @@ inline void checkLegendsClearOfData(QCustomPlot& plot, const QString& name) {
     }
 }
 
+// Every legend entry is drawn whole inside the figure: a legend under a panel wider than the
+// figure has its last entries cut off at the figure's edge.
+inline void checkLegendsFitTheFigure(QCustomPlot& plot, const QString& name) {
+    QList<QCPLegend*> legends;
+    for (QCPLayoutElement* e : plot.plotLayout()->elements(true))
+        if (auto* legend = qobject_cast<QCPLegend*>(e)) legends << legend;
+    for (QCPAxisRect* rect : plot.axisRects())
+        for (QCPLayoutElement* e : rect->insetLayout()->elements(false))
+            if (auto* legend = qobject_cast<QCPLegend*>(e)) legends << legend;
+    const QRect figure = plot.viewport();
+    for (QCPLegend* legend : legends) {
+        if (!legend->visible()) continue;
+        for (int i = 0; i < legend->itemCount(); ++i) {
+            QCPAbstractLegendItem* item = legend->item(i);
+            if (!item) continue;
+            const QRect box = item->outerRect();
+            const int needed = item->minimumOuterSizeHint().width();
+            QVERIFY2(box.left() >= figure.left() - 1 && box.right() <= figure.right() + 1 &&
+                         box.width() >= needed - 1,
+                     qPrintable(QString("%1: the legend entry %2 spans x %3..%4 (needs %5 px) in a "
+                                        "figure of x %6..%7")
+                                    .arg(name)
+                                    .arg(i)
+                                    .arg(box.left())
+                                    .arg(box.right())
+                                    .arg(needed)
+                                    .arg(figure.left())
+                                    .arg(figure.right())));
+        }
+    }
+}
+
 // Every panel's title fits over its own panel and its y-axis label beside it: wider, a title runs
-// into the next panel's title or the colour scale beside it, and a label is cut off.
+// into the next panel's title or the colour scale beside it, and a label is cut off. Legends fit
+// the figure.
 inline void checkLabelsFitTheirPanels(QCustomPlot& plot, const QString& name) {
+    checkLegendsFitTheFigure(plot, name);
+    if (QTest::currentTestFailed()) return;
     // A figure's and a row's titles fit the figure's width.
     for (QCPLayoutElement* e : plot.plotLayout()->elements(true)) {
         auto* title = qobject_cast<QCPTextElement*>(e);
