@@ -66,6 +66,9 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     summary_->setObjectName("seedsSummary");
     summary_->setFont(QFont("Monospace", 9));
     summary_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    // Its lines do not wrap; a long results folder is cut at the right rather than squeezing the
+    // figure beside it (the status bar and the log name the folder too).
+    summary_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
     ll->addWidget(summary_);
     table_ = new QTableWidget(0, 8);
     table_->setHorizontalHeaderLabels(
@@ -75,6 +78,9 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     for (int c = 0; c < 7; ++c)
         table_->horizontalHeader()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
     table_->horizontalHeader()->setSectionResizeMode(7, QHeaderView::Stretch);
+    // The shortfalls are read from their start, as the cells beneath are, when the column is
+    // narrower than its heading.
+    table_->horizontalHeaderItem(7)->setTextAlignment(Qt::AlignLeft | Qt::AlignVCenter);
     table_->setWordWrap(false);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     table_->setSelectionBehavior(QAbstractItemView::SelectRows);
@@ -101,9 +107,10 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     plot_->setEmptyHint(
         tr("Choose the seeds above and click Run over seeds: each seed adds its "
            "outcome here, with the rates so far and their intervals."));
-    split->setStretchFactor(0, 2);
-    split->setStretchFactor(1, 3);
-    split->setSizes({560, 840});
+    // The rates' lines (about 90 characters) first; the figure takes the rest.
+    split->setStretchFactor(0, 1);
+    split->setStretchFactor(1, 1);
+    split->setSizes({760, 640});
     layout->addWidget(split, 1);
 }
 
@@ -188,7 +195,7 @@ void SeedsTab::finish(const QString& dir, bool cancelled) {
     running_ = false;
     showSummary((cancelled ? tr("cancelled after %1 seeds") : tr("finished, %1 seeds"))
                     .arg(rates_.seeds.size()) +
-                tr("; results in %1").arg(dir));
+                tr("\nresults in %1").arg(dir));
 }
 
 void SeedsTab::interrupted() {

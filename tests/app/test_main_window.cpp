@@ -515,6 +515,22 @@ private slots:
             checked += panel->plot().plottableCount() > 0;
         }
         QVERIFY(checked >= 6);
+        // The rates over seeds sit beside their table: narrower windows narrow the figure, and
+        // its legends still show every entry whole.
+        PlotPanel* seeds = nullptr;
+        for (PlotPanel* p : window_->plotPanels())
+            if (p->name() == "seed_rates") seeds = p;
+        QVERIFY(seeds);
+        showTab(seeds);
+        const QSize start = window_->size();
+        for (QSize size : {QSize(1900, 700), QSize(1300, 900), QSize(1100, 800)}) {
+            showAt(seeds, size);
+            test::checkLabelsFitTheirPanels(
+                seeds->plot(),
+                QString("%1 at %2 x %3").arg(seeds->name()).arg(size.width()).arg(size.height()));
+            if (QTest::currentTestFailed()) return;
+        }
+        showAt(seeds, start);
     }
 
     void polygonFilesLoadIntoTheScenePanel() {
