@@ -54,6 +54,7 @@ LiveView::LiveView(LiveFeed& feed, QWidget* parent)
     }
     barPlottable_->setData(keys, zeros);
     b.xAxis->setTicker(ticker);
+    b.xAxis->grid()->setZeroLinePen(Qt::NoPen);  // taxel 0 is a taxel like the others
     b.xAxis->setLabel(tr("taxel"));
     b.yAxis->setLabel(tr("pressure (counts)"));
     b.xAxis->setRange(-0.6, kFingertipTaxels - 0.4);

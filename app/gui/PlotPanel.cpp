@@ -33,6 +33,13 @@ PlotPanel::PlotPanel(const QString& name, QWidget* parent)
     hint_->setStyleSheet("QLabel { color: #606060; font-size: 12pt; padding: 40px; }");
     hint_->hide();
     connect(plot_, &QCustomPlot::afterReplot, this, &PlotPanel::updateEmptyHint);
+    // An empty figure shows its hint alone: no bare 0..5 axis frame behind the words.
+    connect(plot_, &QCustomPlot::beforeReplot, this, [this] {
+        const bool shown = !waitsForData();
+        QCPLayoutGrid* layout = plot_->plotLayout();
+        for (int i = 0; i < layout->elementCount(); ++i)
+            if (QCPLayoutElement* e = layout->elementAt(i)) e->setVisible(shown);
+    });
     replotTimer_.setInterval(20);  // at most 50 redraws a second, whatever the data rate
     connect(&replotTimer_, &QTimer::timeout, this, [this] {
         if (!dirty_) return;
@@ -56,10 +63,15 @@ PlotPanel::PlotPanel(const QString& name, QWidget* parent)
 void PlotPanel::setEmptyHint(const QString& text) {
     hint_->setText(text);
     updateEmptyHint();
+    requestReplot();
+}
+
+bool PlotPanel::waitsForData() const {
+    return plot_->plottableCount() == 0 && !hint_->text().isEmpty();
 }
 
 void PlotPanel::updateEmptyHint() {
-    const bool empty = plot_->plottableCount() == 0 && !hint_->text().isEmpty();
+    const bool empty = waitsForData();
     if (empty) hint_->setGeometry(plot_->rect());
     hint_->setHidden(!empty);
 }

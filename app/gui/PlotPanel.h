@@ -44,6 +44,8 @@ private:
     void showMenu(const QPoint& where);
     void exportWithDialog();
     void updateEmptyHint();
+    /// True while the plot has nothing drawn and a hint says what fills it.
+    bool waitsForData() const;
     QString name_;
     QCustomPlot* plot_;
     QLabel* hint_;

@@ -100,6 +100,15 @@ bool filledByARun(const PlotPanel* p) {
     return !p->name().startsWith("sweep") && p->name() != "seed_rates";
 }
 
+/// Whether the plot draws any axis (after a redraw): an empty figure shows its hint alone.
+bool drawsAnAxis(PlotPanel* p) {
+    p->plot().replot(QCustomPlot::rpImmediateRefresh);
+    for (QCPAxisRect* r : p->plot().axisRects())
+        for (QCPAxis* a : r->axes())
+            if (a->realVisibility()) return true;
+    return false;
+}
+
 /// Brings the tab holding `w` to the front, as a person clicking its tabs would.
 void showTab(QWidget* w) {
     for (; w && w->parentWidget(); w = w->parentWidget())
@@ -162,6 +171,7 @@ private slots:
             QVERIFY2(p->showsEmptyHint(), qPrintable(p->name()));
             QVERIFY2(p->emptyHint().contains("Run") || p->emptyHint().contains("trial"),
                      qPrintable(p->name()));
+            QVERIFY2(!drawsAnAxis(p), qPrintable(p->name()));
             ++hinted;
         }
         QCOMPARE(hinted, window_->plotPanels().size() - 2);
@@ -181,7 +191,7 @@ private slots:
         // The tabs show the run: traces, error maps, paths, histograms, a replay.
         for (PlotPanel* p : window_->plotPanels())
             if (filledByARun(p))
-                QVERIFY2(p->plot().plottableCount() > 0 && !p->showsEmptyHint(),
+                QVERIFY2(p->plot().plottableCount() > 0 && !p->showsEmptyHint() && drawsAnAxis(p),
                          qPrintable(p->name()));
         // The recognition tab's confusion, for each rule: a row per shape traced, a column per
         // shape named, each recognised trial in one cell.
