@@ -101,11 +101,19 @@ ExperimentSpec loadChecked(const std::string& path, bool requireExperiment) {
     return spec;
 }
 
-/// The experiment a run or seeds command takes, checked; on bad input the message is printed and
-/// nothing is returned.
+/// Says, before any tap, what an experiment will run but cannot do well.
+void printCautions(const ExperimentSpec& spec) {
+    for (const std::string& c : untrainedEdgeCautions(spec))
+        std::fprintf(stderr, "caution: %s\n", c.c_str());
+}
+
+/// The experiment a run or seeds command takes, checked, its cautions printed; on bad input the
+/// message is printed and nothing is returned.
 std::optional<ExperimentSpec> loadForRun(const std::string& path) {
     try {
-        return loadChecked(path, true);
+        ExperimentSpec spec = loadChecked(path, true);
+        printCautions(spec);
+        return spec;
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return std::nullopt;
@@ -477,6 +485,8 @@ int commandCheck(const std::vector<std::string>& args) {
                     experiment ? ("experiment '" + spec.name + "'").c_str() : "scene",
                     spec.scene.object.shape.c_str(), spec.scene.effects.size(),
                     spec.scene.effects.size() == 1 ? "" : "s");
+        std::fflush(stdout);
+        printCautions(spec);
         return kOk;
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

@@ -307,6 +307,8 @@ bool MainWindow::openExperiment(const QString& path) {
         setWindowTitle(tr("ActiveTouch Workbench - %1").arg(QFileInfo(path).fileName()));
         QSettings().setValue("lastExperiment", path);
         log(tr("opened %1 (%2)").arg(path, QString::fromStdString(spec_.name)));
+        for (const std::string& c : untrainedEdgeCautions(spec_))
+            log(tr("caution: %1").arg(QString::fromStdString(c)));
         updateActions();
         return true;
     } catch (const InputError& e) {

@@ -746,6 +746,7 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
             {"by_position", byPosition}};
     }
     if (!r.failure.empty()) j["failure"] = r.failure;
+    j["cautions"] = untrainedEdgeCautions(r.spec);
     j["controller"] = {
         {"valid_offsets_mm", {r.validOffsets.low, r.validOffsets.high}},
         {"orientation_trusted_positions", {r.trustedPositions.first, r.trustedPositions.second}},

@@ -3,6 +3,7 @@
 // experiment is experiments/paper.json.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/classify/HistogramClassifier.h"
 #include "core/control/FollowingSettings.h"
@@ -68,6 +69,13 @@ struct ExperimentSpec {
 /// trainingPosesProblem). The parser refuses such an experiment; so does the window for a scene
 /// edited in its panel.
 std::string trainingObjectProblem(const ExperimentSpec& e);
+
+/// The trials whose objects have edges facing none of the classes' orientations (more than
+/// `toleranceDeg` off the nearest), one line each naming the trial, how many edges and the worst.
+/// Such an experiment runs, but every percept snaps the follow direction to a trained
+/// orientation, so the follower degrades along those edges: `check`, `run` and the window say so
+/// before any tap.
+std::vector<std::string> untrainedEdgeCautions(const ExperimentSpec& e, double toleranceDeg = 5.0);
 
 /// Parses an experiment; the scene may be inline or a path relative to the experiment file.
 ExperimentSpec parseExperiment(const Json& json, const std::string& source,

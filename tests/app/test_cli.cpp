@@ -63,6 +63,8 @@ private slots:
         QCOMPARE(v["valid_range_mm"].toArray().size(), 2);
         QVERIFY(v["valid_range_mm"].toArray()[0].toDouble() <
                 v["valid_range_mm"].toArray()[1].toDouble());
+        // The paper's shapes face the trained orientations: nothing to caution about.
+        QVERIFY(s["cautions"].isArray() && s["cautions"].toArray().isEmpty());
         // Following: passive on the rectangle x 2, active on four shapes x 2, every trial reported.
         const QJsonArray following = s["following"].toArray();
         QCOMPARE(following.size(), 10);
@@ -162,7 +164,25 @@ private slots:
         for (const QString& f : files) {
             const Outcome o = runCli({"check", f});
             QVERIFY2(o.exitCode == 0, qPrintable(f + ": " + o.err));
+            QVERIFY2(!o.err.contains("caution"), qPrintable(f + ": " + o.err));
         }
+    }
+
+    void checkCautionsAboutEdgesNoTrainedOrientationFaces() {
+        // The run is allowed (the README measures how following degrades with rotation), but the
+        // person is told before any tap which trial and edge, and what would follow it.
+        const QString path = write(
+            "turned.json",
+            QString(
+                R"({"extends": "%1", "name": "turned", "following": {"trials": [{"mode": "active", "object": {"shape": "rectangle", "rotation_deg": 20, "offset_mm": [150, 150]}}]}})")
+                .arg(source("experiments/paper.json")));
+        const Outcome o = runCli({"check", path});
+        QCOMPARE(o.exitCode, 0);
+        QVERIFY2(o.out.contains("ok"), qPrintable(o.out));
+        QVERIFY2(o.err.startsWith("caution: /following/trials/0 (rectangle): 4 of 4 edges face"),
+                 qPrintable(o.err));
+        QVERIFY2(o.err.contains("20 deg off"), qPrintable(o.err));
+        QVERIFY2(o.err.contains("classes/orientations_deg"), qPrintable(o.err));
     }
 
     void badInputExitsTwoAndWritesNothing_data() {

@@ -759,6 +759,28 @@ private slots:
         closeErrorDialogs(*window_);
     }
 
+    void edgesNoTrainedOrientationFacesAreCautionedOnOpening() {
+        const QString path = dir_.filePath("turned.json");
+        QFile f(path);
+        QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        f.write(
+            QString(
+                R"({"extends": "%1", "name": "turned", "following": {"trials": [{"mode": "active", "object": {"shape": "rectangle", "rotation_deg": 30, "offset_mm": [150, 150]}}]}})")
+                .arg(source("experiments/paper.json"))
+                .toUtf8());
+        f.close();
+        auto* log = window_->findChild<QPlainTextEdit*>("log");
+        QVERIFY(window_->openExperiment(path));
+        const QString text = log->toPlainText();
+        const QString opened = text.mid(text.lastIndexOf("opened"));
+        QVERIFY2(opened.contains("caution: /following/trials/0 (rectangle): 4 of 4 edges face") &&
+                     opened.contains("30 deg off"),
+                 qPrintable(opened));
+        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+        QVERIFY(
+            !log->toPlainText().mid(log->toPlainText().lastIndexOf("opened")).contains("caution"));
+    }
+
     void devicePanelsDriveTheSimulatedRig() {
         QPushButton* connectButton = window_->findChild<QPushButton*>("connectDevices");
         QTest::mouseClick(connectButton, Qt::LeftButton);

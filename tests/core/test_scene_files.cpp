@@ -338,6 +338,56 @@ private slots:
             << head + R"("sweeps": {"compute": {"bins": [100], "samples_per_tap": [60]}}})"
             << "up to the tap's 50";
     }
+    void edgesNoTrainedOrientationFacesAreNamedBeforeAnyTap_data() {
+        QTest::addColumn<QString>("object");
+        QTest::addColumn<QString>("orientations");
+        QTest::addColumn<QStringList>("expected");  // the caution's parts; empty: no caution
+        const QString four = "[270, 0, 90, 180]";
+        QTest::newRow("paper rectangle")
+            << R"({"shape": "rectangle", "offset_mm": [150, 150]})" << four << QStringList{};
+        QTest::newRow("C turned 180 deg: still right-angled and square to the stage")
+            << R"({"shape": "c", "rotation_deg": 180, "offset_mm": [150, 150]})" << four
+            << QStringList{};
+        QTest::newRow("rectangle turned 5 deg: followed as well as square")
+            << R"({"shape": "rectangle", "rotation_deg": 5, "offset_mm": [150, 150]})" << four
+            << QStringList{};
+        QTest::newRow("rectangle turned 10 deg")
+            << R"({"shape": "rectangle", "rotation_deg": 10, "offset_mm": [150, 150]})" << four
+            << QStringList{"/following/trials/0 (rectangle)", "4 of 4 edges face", "10 deg off"};
+        QTest::newRow("triangle: its hypotenuse faces 45 deg")
+            << R"({"shape": "polygon", "polygon_mm": [[0, 0], [40, 0], [0, 40]],
+                   "offset_mm": [150, 150]})"
+            << four
+            << QStringList{"(polygon)", "1 of 3 edges faces", "from (190, 150) to (150, 190) mm",
+                           "faces 45 deg, 45 deg off", "270, 0, 90, 180 deg"};
+        QTest::newRow("triangle with the diagonals among the classes")
+            << R"({"shape": "polygon", "polygon_mm": [[0, 0], [40, 0], [0, 40]],
+                   "offset_mm": [150, 150]})"
+            << "[270, 315, 0, 45, 90, 135, 180, 225]" << QStringList{};
+    }
+    void edgesNoTrainedOrientationFacesAreNamedBeforeAnyTap() {
+        QFETCH(QString, object);
+        QFETCH(QString, orientations);
+        QFETCH(QStringList, expected);
+        ExperimentSpec e = loadExperiment(test::sourcePath("experiments/paper.json"));
+        e.classes.orientationsDeg =
+            Json::parse(orientations.toStdString()).get<std::vector<double>>();
+        TrialSpec trial = e.trials.front();
+        trial.place = "/following/trials/0";
+        trial.object =
+            parseObject(JsonFields(Json::parse(object.toStdString()), "test", "/object"));
+        trial.label = trial.object.shape;
+        e.trials = {trial};
+        const std::vector<std::string> cautions = untrainedEdgeCautions(e);
+        if (expected.isEmpty()) {
+            QVERIFY2(cautions.empty(), cautions.empty() ? "" : cautions.front().c_str());
+            return;
+        }
+        QCOMPARE(int(cautions.size()), 1);
+        const QString c = QString::fromStdString(cautions.front());
+        for (const QString& part : expected) QVERIFY2(c.contains(part), qPrintable(c));
+    }
+
     void badExperimentSettings() {
         QFETCH(QString, experiment);
         QFETCH(QString, problem);
