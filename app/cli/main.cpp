@@ -1,13 +1,15 @@
 // activetouch-cli: the headless runner (DESIGN.md §4).
-//   activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--no-figures]
-//   activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>] [--no-figures]
-//   activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>] [--no-figures]
-//   activetouch-cli replay <experiment.json> <run folder> [--out <dir>] [--no-figures]
-//   activetouch-cli check <file.json | taps.csv | following_taps.csv>
+//   activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--rig <rig.json>]
+//   [--no-figures] activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>]
+//   [--no-figures] activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>]
+//   [--no-figures] activetouch-cli replay <experiment.json> <run folder> [--out <dir>]
+//   [--no-figures] activetouch-cli check <file.json | taps.csv | following_taps.csv>
 // Exit codes: 0 ok, 1 the run failed, 2 bad input.
 #include <QApplication>
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -27,6 +29,8 @@
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
 #include "core/rig/Rig.h"
+#include "devices/rigs/RigAssembly.h"
+#include "devices/rigs/RigFile.h"
 #include "devices/simulated/SimulatedWorld.h"
 
 using namespace activetouch;
@@ -36,15 +40,28 @@ namespace {
 
 constexpr int kOk = 0, kRunFailed = 1, kBadInput = 2;
 
+/// Set by Ctrl-C (SIGINT) or SIGTERM during a run on devices: the run stops after the tap in
+/// flight, leaves the tapper retracted and the stage still, and keeps every tap taken.
+std::atomic<bool> gInterrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+extern "C" void onInterrupt(int) {
+    gInterrupted.store(true);
+}
+
 void printHelp() {
     std::printf(
         "activetouch-cli - ActiveTouch Workbench headless runner\n\n"
         "Usage:\n"
-        "  activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--no-figures]\n"
+        "  activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--rig <rig.json>]\n"
+        "                      [--no-figures]\n"
         "      Runs the experiment on the simulated rig and writes <dir>/summary.json,\n"
         "      <dir>/data/*.csv (every tap, appended as it is taken; every table behind a figure)\n"
         "      and <dir>/figures/*.{png,pdf,svg}. --out defaults to results/<experiment name>.\n"
         "      --seed overrides the experiment's seed (one seed = one whole run).\n"
+        "      --rig takes the taps on the devices a rig file names instead (the Yamaha stage,\n"
+        "      the NXT tapper with the fingertip over YARP, or a mix with simulated ones; see\n"
+        "      the README): the scene's object must be the one mounted. Ctrl-C stops after the\n"
+        "      tap in flight, keeping every tap taken.\n"
         "  activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>] [--no-figures]\n"
         "      Runs the experiment once per seed A..B (each a whole run: its own data sets,\n"
         "      training, valid range and trials) and reports the rates with 95 %% intervals:\n"
@@ -68,7 +85,8 @@ void printHelp() {
         "      otherwise and left the recording. --out defaults to\n"
         "      results/<experiment name>_replay.\n"
         "  activetouch-cli check <file.json | taps.csv | following_taps.csv>\n"
-        "      Validates an experiment, a scene or a recording (training taps, or following\n"
+        "      Validates an experiment, a scene, a rig file or a recording (training taps, or "
+        "following\n"
         "      taps: a run stopped while writing leaves every finished tap whole and the cut\n"
         "      is reported) and says what is wrong, if anything.\n"
         "  activetouch-cli --help\n\n"
@@ -150,7 +168,7 @@ std::optional<std::uint64_t> parseSeed(const std::string& v) {
 /// --out, the seed options that command takes (each a whole number) and --no-figures where
 /// allowed. An error is the message to print.
 struct RunArguments {
-    std::string experimentPath, recordingPath, outDir;
+    std::string experimentPath, recordingPath, outDir, rigPath;
     std::map<std::string, std::uint64_t> seeds;  ///< "--seed", "--from", "--to" as given
     bool figures = true;
     std::string error;
@@ -158,7 +176,7 @@ struct RunArguments {
 
 RunArguments parseRunArguments(const std::vector<std::string>& args, const char* command,
                                const std::vector<std::string>& seedOptions, bool figuresOption,
-                               bool takesRecording = false) {
+                               bool takesRecording = false, bool rigOption = false) {
     RunArguments r;
     auto fail = [&](const std::string& message) {
         r.error = message;
@@ -177,6 +195,9 @@ RunArguments parseRunArguments(const std::vector<std::string>& args, const char*
             const auto n = parseSeed(v);
             if (!n) return fail(a + " '" + v + "' is not a whole number between 0 and 2147483647");
             r.seeds[a] = *n;
+        } else if (a == "--rig" && rigOption) {
+            if (i + 1 >= args.size()) return fail("--rig needs a rig file, e.g. rig.json");
+            r.rigPath = args[++i];
         } else if (a == "--no-figures" && figuresOption) {
             r.figures = false;
         } else if (!a.empty() && a[0] == '-') {
@@ -256,7 +277,7 @@ void printReport(const RunResult& result, double wall, double figures_s,
 }
 
 int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
-    const RunArguments parsed = parseRunArguments(args, "run", {"--seed"}, true);
+    const RunArguments parsed = parseRunArguments(args, "run", {"--seed"}, true, false, true);
     if (!parsed.error.empty()) return usageError(parsed.error);
     const std::string& experimentPath = parsed.experimentPath;
     std::string outDir = parsed.outDir;
@@ -268,6 +289,17 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
     const auto loaded = loadForRun(experimentPath);
     if (!loaded) return kBadInput;
     const ExperimentSpec& spec = *loaded;
+    // Devices named by a rig file: everything about them is checked before anything connects.
+    std::optional<RigConfig> rigConfig;
+    if (!parsed.rigPath.empty()) {
+        try {
+            rigConfig = readRigFile(parsed.rigPath, spec.scene);
+            checkRunnableOn(spec, spec.scene.object);
+        } catch (const InputError& e) {
+            std::fprintf(stderr, "error: %s\n", e.what());
+            return kBadInput;
+        }
+    }
     if (outDir.empty()) outDir = (fs::path("results") / spec.name).string();
     const fs::path out(outDir);
     // A stale summary must never be mistaken for this run's.
@@ -279,12 +311,43 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
         RunOptions options;
         options.outDir = outDir;
         options.seed = seed;
-        result = runExperiment(spec, options);
+        if (rigConfig) {
+            // The serial port and the YARP socket run on Qt's event machinery.
+            int qtArgc = 1;
+            QCoreApplication app(qtArgc, argv);
+            auto model = std::make_shared<const FingertipContactModel>(spec.scene.fingertip);
+            std::printf("connecting %s\n", rigConfig->describe().c_str());
+            std::fflush(stdout);
+            AssembledRig assembled(spec.scene, model, *rigConfig);
+            const ConnectedRig connected{assembled.rig(), spec.scene.object, rigConfig->describe()};
+            options.connected = &connected;
+            options.cancel = &gInterrupted;
+            std::signal(SIGINT, onInterrupt);
+            std::signal(SIGTERM, onInterrupt);
+            result = runExperiment(spec, options);
+            std::signal(SIGINT, SIG_DFL);
+            std::signal(SIGTERM, SIG_DFL);
+            assembled.shutdown();
+        } else {
+            result = runExperiment(spec, options);
+        }
         const Timing t = writeArtefacts(result, outDir, figures, argc, argv, start);
-        std::printf("%s (seed %llu): %zu taps simulated, %.0f s of robot time\n", spec.name.c_str(),
-                    static_cast<unsigned long long>(result.spec.scene.seed),
-                    static_cast<std::size_t>(result.tapsSimulated), result.robotTime_s);
+        if (rigConfig) {
+            std::size_t taps = result.taps.size();
+            for (const auto& trial : result.trials) taps += trial.result.taps.size();
+            std::printf("%s: %zu taps on %s, %.0f s of robot time\n", spec.name.c_str(), taps,
+                        result.rig.c_str(), result.robotTime_s);
+        } else {
+            std::printf("%s (seed %llu): %zu taps simulated, %.0f s of robot time\n",
+                        spec.name.c_str(), static_cast<unsigned long long>(result.spec.scene.seed),
+                        static_cast<std::size_t>(result.tapsSimulated), result.robotTime_s);
+        }
         printReport(result, t.wall_s, t.figures_s, outDir);
+        if (result.cancelled) {
+            std::fprintf(stderr, "stopped before the end; every tap taken is in %s/data.\n",
+                         outDir.c_str());
+            return kRunFailed;
+        }
         if (!result.failure.empty()) {
             std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data.\n",
                          result.failure.c_str(), outDir.c_str());
@@ -479,6 +542,12 @@ int commandCheck(const std::vector<std::string>& args) {
         }
     }
     try {
+        if (const Json j = readJsonFile(args[0]); looksLikeRigFile(j)) {
+            // The stage's soft limits come from the experiment's scene at run time.
+            const RigConfig rig = parseRigFile(j, args[0], SceneSpec{});
+            std::printf("%s: ok (rig: %s)\n", args[0].c_str(), rig.describe().c_str());
+            return kOk;
+        }
         const ExperimentSpec spec = loadChecked(args[0], false);
         const bool experiment = !spec.name.empty();
         std::printf("%s: ok (%s; object %s, %zu effect%s listed)\n", args[0].c_str(),

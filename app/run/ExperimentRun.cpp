@@ -30,21 +30,25 @@ bool sameOutline(const Polygon& a, const Polygon& b) {
 }  // namespace
 
 void checkRunnableOn(const ExperimentSpec& spec, const ConnectedRig& connected) {
-    const Polygon mounted = connected.object.outline();
+    checkRunnableOn(spec, connected.object);
+}
+
+void checkRunnableOn(const ExperimentSpec& spec, const ObjectSpec& object) {
+    const Polygon mounted = object.outline();
     const std::string fix =
         "; mount that object and describe it in the scene, or run this on the simulated rig "
         "(disconnect the devices)";
     if (!sameOutline(spec.scene.object.outline(), mounted))
         throw InputError(spec.name, "/scene/object",
                          "the scene's " + spec.scene.object.shape +
-                             " is not the object on the connected rig (" + connected.object.shape +
-                             ")" + fix);
+                             " is not the object on the connected rig (" + object.shape + ")" +
+                             fix);
     for (const TrialSpec& t : spec.trials)
         if (!sameOutline(t.object.outline(), mounted))
             throw InputError(spec.name, t.place,
                              "trial '" + t.label + "' is on a " + t.object.shape +
                                  " at another place than the object on the connected rig (" +
-                                 connected.object.shape + ")" + fix);
+                                 object.shape + ")" + fix);
     if (spec.sweeps.any())
         throw InputError(spec.name, "/sweeps",
                          "sweeps run on simulated rigs only; run this experiment with the devices "

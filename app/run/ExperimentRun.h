@@ -127,6 +127,8 @@ void checkRecordingCovers(const ExperimentSpec& spec, const std::vector<Collecte
 /// the one mounted there, or a sweep (sweeps replay on simulated rigs). Throws InputError naming
 /// the trial and what to do.
 void checkRunnableOn(const ExperimentSpec& spec, const ConnectedRig& connected);
+/// The same for a rig with `object` mounted, before its devices are connected.
+void checkRunnableOn(const ExperimentSpec& spec, const ObjectSpec& object);
 
 /// Runs the experiment's steps: training and validation taps (appended to <outDir>/data/taps.csv
 /// as they are taken, or the recorded ones of `options.recordedTaps`), then the contour-following

@@ -9,10 +9,14 @@
 #include <QProcess>
 #include <QTemporaryDir>
 #include <QtTest>
+#include <csignal>
 
+#include "devices/emulators/FakeRcxController.h"
+#include "support/Files.h"
 #include "support/Paths.h"
 
 using namespace activetouch;
+using test::linesIn;
 
 namespace {
 struct Outcome {
@@ -255,6 +259,119 @@ private slots:
             QCOMPARE(c.exitCode, 2);
             QVERIFY2(c.err.contains(message), qPrintable(c.err));
         }
+    }
+
+    void runTakesItsTapsOnTheDevicesARigFileNames() {
+        // The Yamaha controller emulated on a pseudo-terminal, byte for byte; the tapper and
+        // fingertip simulated on the stage's reported pose. Twenty times faster than real time.
+        emu::FakeRcxSettings settings;
+        settings.timeScale = 20.0;
+        emu::FakeRcxController controller(settings);
+        controller.start();
+        const QString rig =
+            write("stage_rig.json",
+                  QString(R"({"stage": {"device": "yamaha", "port": "%1"}, "time_scale": 20})")
+                      .arg(QString::fromStdString(controller.portName())));
+        const Outcome checked = runCli({"check", rig});
+        QCOMPARE(checked.exitCode, 0);
+        QVERIFY2(checked.out.contains("ok (rig: stage: Yamaha RCX on " +
+                                      QString::fromStdString(controller.portName())),
+                 qPrintable(checked.out));
+        const QString experiment =
+            write("on_the_stage.json",
+                  QString(R"({"extends": "%1", "name": "on_the_stage", "training": {"data_sets": 2},
+                "following": {"trials": [{"mode": "active", "object": {"shape": "rectangle",
+                "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150], "top_height_mm": 10}}]}})")
+                      .arg(source("experiments/paper.json")));
+        const QString out = dir_.filePath("on_the_stage");
+        const Outcome o = runCli({"run", experiment, "--rig", rig, "--out", out, "--no-figures"});
+        QVERIFY2(o.exitCode == 0, qPrintable(o.out + o.err));
+        const QJsonObject s = readJson(out + "/summary.json");
+        QVERIFY2(s["rig"].toString().startsWith("stage: Yamaha RCX on " +
+                                                QString::fromStdString(controller.portName())),
+                 qPrintable(s["rig"].toString()));
+        QCOMPARE(s["run_finished"].toBool(), true);
+        // Every training and test tap went through the controller: the servo on, the origin
+        // searched, then a move for each tap.
+        const auto commands = controller.commands();
+        QCOMPARE(commands.at(0), std::string("SERVO ON"));
+        QCOMPARE(commands.at(1), std::string("ORIGIN"));
+        const int moves = int(std::count_if(commands.begin(), commands.end(),
+                                            [](const auto& c) { return c.rfind("MOVE", 0) == 0; }));
+        const QJsonObject trial = s["following"].toArray().at(0).toObject();
+        QVERIFY2(moves >= 2 * 72 + trial["taps"].toInt(), qPrintable(QString::number(moves)));
+        QCOMPARE(linesIn(out + "/data/taps.csv"), 1 + 2 * 72 * 50);
+        QVERIFY2(trial["taps"].toInt() > 20, qPrintable(o.out));
+        QVERIFY(!controller.moving());
+
+        // Ctrl-C part-way: the run stops after the tap in flight, the stage comes to rest, and
+        // every tap taken is kept, the summary saying the run did not finish.
+        const QString stopped = dir_.filePath("stopped");
+        QProcess p;
+        p.start(qEnvironmentVariable("ACTIVETOUCH_CLI"),
+                {"run", experiment, "--rig", rig, "--out", stopped, "--no-figures"});
+        QVERIFY(p.waitForStarted());
+        QTRY_VERIFY_WITH_TIMEOUT(linesIn(stopped + "/data/taps.csv") > 20 * 50, 60000);
+        ::kill(static_cast<pid_t>(p.processId()), SIGINT);
+        QVERIFY(p.waitForFinished(30000));
+        QCOMPARE(p.exitStatus(), QProcess::NormalExit);
+        QCOMPARE(p.exitCode(), 1);
+        QVERIFY(QString(p.readAllStandardError()).contains("stopped before the end"));
+        const QJsonObject partial = readJson(stopped + "/summary.json");
+        QCOMPARE(partial["run_finished"].toBool(), false);
+        const int kept = linesIn(stopped + "/data/taps.csv");
+        QVERIFY2(kept > 20 * 50 && kept < 1 + 2 * 72 * 50 && (kept - 1) % 50 == 0,
+                 qPrintable(QString::number(kept)));
+        QVERIFY(!controller.moving());
+    }
+
+    void rigFileMistakesAreNamedBeforeAnythingConnects_data() {
+        QTest::addColumn<QString>("rig");
+        QTest::addColumn<QString>("message");
+        QTest::newRow("stage without a port") << R"({"stage": {"device": "yamaha"}})"
+                                              << "/stage/port: missing required text 'port'";
+        QTest::newRow("unknown device") << R"({"stage": {"device": "cnc"}})"
+                                        << "/stage/device: 'cnc' is not one of";
+        QTest::newRow("misspelt key")
+            << R"({"stage": {"device": "yamaha", "port": "/dev/ttyUSB0", "speed": 30}})"
+            << "/stage/speed: unknown key 'speed'";
+        QTest::newRow("NXT without the real fingertip")
+            << R"({"tapper": {"device": "nxt"}})"
+            << "/fingertip: the NXT tapper stops on the real";
+        QTest::newRow("real fingertip on the simulated tapper")
+            << R"({"fingertip": {"device": "yarp"}})"
+            << "/tapper: the simulated tapper taps with";
+        QTest::newRow("port name without a slash")
+            << R"({"tapper": {"device": "nxt"}, "fingertip": {"device": "yarp", "port": "skin"}})"
+            << "/fingertip/port: a YARP port name starts with '/'";
+    }
+    void rigFileMistakesAreNamedBeforeAnythingConnects() {
+        QFETCH(QString, rig);
+        QFETCH(QString, message);
+        const QString path = write("bad_rig.json", rig);
+        const QString out = dir_.filePath("bad_rig_out");
+        const Outcome o = runCli(
+            {"run", source("experiments/paper.json"), "--rig", path, "--out", out, "--no-figures"});
+        QCOMPARE(o.exitCode, 2);
+        QVERIFY2(o.err.contains(path) && o.err.contains(message), qPrintable(o.err));
+        QVERIFY(!o.out.contains("connecting"));
+        QVERIFY(!QDir(out).exists());
+        const Outcome c = runCli({"check", path});
+        QCOMPARE(c.exitCode, 2);
+        QVERIFY2(c.err.contains(message), qPrintable(c.err));
+    }
+
+    void aRigRunRefusesTrialsOnOtherObjectsBeforeAnyTap() {
+        // The paper's trials are on five objects; one object is mounted on a real rig.
+        const QString rig = write("sim_rig.json", R"({"stage": {"device": "simulated"}})");
+        const QString out = dir_.filePath("five_objects");
+        const Outcome o = runCli(
+            {"run", source("experiments/paper.json"), "--rig", rig, "--out", out, "--no-figures"});
+        QCOMPARE(o.exitCode, 2);
+        QVERIFY2(o.err.contains("is not the object on the connected rig") ||
+                     o.err.contains("at another place than the object on the connected rig"),
+                 qPrintable(o.err));
+        QVERIFY(!QDir(out).exists());
     }
 
     void killedRunKeepsEveryFinishedTap() {

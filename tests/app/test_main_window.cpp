@@ -33,9 +33,11 @@
 #include "app/gui/SeedsTab.h"
 #include "qcustomplot.h"
 #include "support/FigureChecks.h"
+#include "support/Files.h"
 #include "support/Paths.h"
 
 using namespace activetouch;
+using test::linesIn;
 
 namespace {
 /// What a seeds row lists as falling short: the active trials lost, then the paths misnamed.
@@ -70,12 +72,6 @@ QJsonObject readJson(const QString& path) {
 void writeJson(const QString& path, const QJsonObject& j) {
     QFile f(path);
     if (f.open(QIODevice::WriteOnly | QIODevice::Truncate)) f.write(QJsonDocument(j).toJson());
-}
-
-int linesIn(const QString& path) {
-    QFile f(path);
-    if (!f.open(QIODevice::ReadOnly)) return -1;
-    return f.readAll().count('\n');
 }
 
 /// Clicks the check box in a checkable group box's title, as a person would.

@@ -1,0 +1,125 @@
+#include "devices/rigs/RigFile.h"
+
+#include <algorithm>
+
+namespace activetouch {
+
+namespace {
+
+/// `key`'s text, one of `allowed` (the first is the default); anything else fails naming them.
+std::string oneOf(const JsonFields& f, const std::string& key,
+                  const std::vector<std::string>& allowed) {
+    const std::string v = f.text(key, allowed.front());
+    if (std::find(allowed.begin(), allowed.end(), v) != allowed.end()) return v;
+    std::string list;
+    for (const std::string& a : allowed) list += (list.empty() ? "'" : ", '") + a + "'";
+    f.fail(key, "'" + v + "' is not one of " + list);
+}
+
+std::string deviceOf(const JsonFields& f, const std::vector<std::string>& allowed) {
+    if (!f.has("device"))
+        f.fail("device", "name the device: " + allowed.front() + " or " + allowed.back());
+    return oneOf(f, "device", allowed);
+}
+
+void readStage(const JsonFields& f, RigConfig& r) {
+    if (deviceOf(f, {"simulated", "yamaha"}) == "simulated") {
+        f.rejectUnknownKeys({"device"});
+        return;
+    }
+    f.rejectUnknownKeys(
+        {"device", "port", "baud", "parity", "dialect", "speed_percent", "search_origin"});
+    r.stage = RigConfig::StageKind::Yamaha;
+    rcx::YamahaStageSettings& y = r.yamaha;
+    y.serial.portName = f.text("port");
+    if (y.serial.portName.empty()) f.fail("port", "name the serial port, e.g. /dev/ttyUSB0");
+    y.serial.baud = f.integer("baud", 1200, 115200, y.serial.baud);
+    const std::string parity = oneOf(f, "parity", {"odd", "even", "none"});
+    y.serial.parity = parity == "odd" ? 'O' : parity == "even" ? 'E' : 'N';
+    y.dialect = oneOf(f, "dialect", {"rcx22x", "rcx340"}) == "rcx340" ? rcx::Dialect::Rcx340
+                                                                      : rcx::Dialect::Rcx22x;
+    y.speedPercent = f.integer("speed_percent", 1, 100, y.speedPercent);
+    r.searchOrigin = f.flag("search_origin", true);
+}
+
+void readTapper(const JsonFields& f, RigConfig& r) {
+    if (deviceOf(f, {"simulated", "nxt"}) == "simulated") {
+        f.rejectUnknownKeys({"device"});
+        return;
+    }
+    f.rejectUnknownKeys({"device", "usb_bus", "usb_address", "motor_port", "degrees_per_mm",
+                         "full_power_degrees_per_s"});
+    r.tapper = RigConfig::TapperKind::Nxt;
+    r.usbBus = f.integer("usb_bus", 0, 255, 0);
+    r.usbAddress = f.integer("usb_address", 0, 127, 0);
+    const std::string port = oneOf(f, "motor_port", {"A", "B", "C"});
+    r.nxt.motorPort = static_cast<std::uint8_t>(port[0] - 'A');
+    r.nxt.degreesPerMm = f.number("degrees_per_mm", 0.1, 10000.0, r.nxt.degreesPerMm);
+    r.nxt.fullPowerDegreesPerSecond =
+        f.number("full_power_degrees_per_s", 1.0, 100000.0, r.nxt.fullPowerDegreesPerSecond);
+}
+
+/// Whether the fingertip is read over YARP.
+bool readFingertip(const JsonFields& f, RigConfig& r) {
+    if (deviceOf(f, {"simulated", "yarp"}) == "simulated") {
+        f.rejectUnknownKeys({"device"});
+        return false;
+    }
+    f.rejectUnknownKeys({"device", "name_server", "name_server_port", "port", "finger", "carrier",
+                         "compensate_raw"});
+    yarp::YarpFingertipSettings& y = r.yarp;
+    y.nameServerHost = f.text("name_server", y.nameServerHost);
+    y.nameServerPort = f.integer("name_server_port", 1, 65535, y.nameServerPort);
+    y.port = f.text("port", y.port);
+    if (y.port.empty() || y.port[0] != '/')
+        f.fail("port", "a YARP port name starts with '/', e.g. /icub/skin/right_hand_comp");
+    const std::vector<std::string> fingers{"index", "middle", "ring", "little", "thumb"};
+    const std::string finger = oneOf(f, "finger", fingers);
+    y.finger = static_cast<yarp::Finger>(
+        12 * (std::find(fingers.begin(), fingers.end(), finger) - fingers.begin()));
+    y.binaryCarrier = oneOf(f, "carrier", {"text", "binary"}) == "binary";
+    y.compensateRaw = f.flag("compensate_raw", false);
+    return true;
+}
+
+}  // namespace
+
+bool looksLikeRigFile(const Json& json) {
+    if (!json.is_object() || json.contains("object") || json.contains("scene") ||
+        json.contains("extends"))
+        return false;
+    for (const char* key : {"stage", "tapper", "fingertip"})
+        if (json.contains(key) && json.at(key).is_object() && json.at(key).contains("device"))
+            return true;
+    return false;
+}
+
+RigConfig parseRigFile(const Json& json, const std::string& source, const SceneSpec& scene) {
+    const JsonFields f(json, source, "");
+    f.rejectUnknownKeys({"description", "stage", "tapper", "fingertip", "time_scale"});
+    RigConfig r;
+    r.yamaha.softMax = scene.stage.travel_mm;
+    if (f.has("stage")) readStage(f.object("stage"), r);
+    if (f.has("tapper")) readTapper(f.object("tapper"), r);
+    const bool yarpTip = f.has("fingertip") && readFingertip(f.object("fingertip"), r);
+    if (r.tapper == RigConfig::TapperKind::Nxt && !yarpTip)
+        throw InputError(source, "/fingertip",
+                         "the NXT tapper stops on the real fingertip's pressure; add a fingertip "
+                         "section with \"device\": \"yarp\"");
+    if (r.tapper == RigConfig::TapperKind::Simulated && yarpTip)
+        throw InputError(source, "/tapper",
+                         "the simulated tapper taps with the simulated fingertip, so a fingertip "
+                         "over YARP needs the NXT tapper: set \"device\": \"nxt\" here, or make "
+                         "the fingertip simulated");
+    // Emulated devices may run faster than real time; real ones never do.
+    r.timeScale = f.number("time_scale", 0.01, 1000.0, 1.0);
+    r.yamaha.timeScale = r.timeScale;
+    r.nxt.timeScale = r.timeScale;
+    return r;
+}
+
+RigConfig readRigFile(const std::string& path, const SceneSpec& scene) {
+    return parseRigFile(readJsonFile(path), path, scene);
+}
+
+}  // namespace activetouch
