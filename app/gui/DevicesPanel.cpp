@@ -3,6 +3,8 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QFile>
+#include <QFileDialog>
 #include <QFormLayout>
 #include <QGridLayout>
 #include <QGroupBox>
@@ -15,6 +17,7 @@
 #include <QVBoxLayout>
 
 #include "devices/nxt/NxtUsbTransport.h"
+#include "devices/rigs/RigFile.h"
 
 namespace activetouch {
 
@@ -37,6 +40,29 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
                 session_,
                 [s = session_, scene = scene_, c = choice()] { s->connectDevices(scene, c); },
                 Qt::QueuedConnection);
+    });
+
+    auto* files = new QHBoxLayout;
+    auto* openRig = new QPushButton(tr("Open rig file..."));
+    openRig->setObjectName("openRigFile");
+    openRig->setToolTip(tr("Set the devices from a rig file (activetouch-cli run --rig)"));
+    auto* saveRig = new QPushButton(tr("Save rig file..."));
+    saveRig->setObjectName("saveRigFile");
+    saveRig->setToolTip(
+        tr("Save these devices as a rig file, for headless runs: activetouch-cli run "
+           "<experiment> --rig <file>"));
+    files->addWidget(openRig);
+    files->addWidget(saveRig);
+    layout->addLayout(files);
+    connect(openRig, &QPushButton::clicked, this, [this] {
+        const QString path = QFileDialog::getOpenFileName(this, tr("Open rig file"), QString(),
+                                                          tr("Rig files (*.json)"));
+        if (!path.isEmpty()) openRigFile(path);
+    });
+    connect(saveRig, &QPushButton::clicked, this, [this] {
+        const QString path = QFileDialog::getSaveFileName(this, tr("Save rig file"), "rig.json",
+                                                          tr("Rig files (*.json)"));
+        if (!path.isEmpty()) saveRigFile(path);
     });
 
     auto* stage = new QGroupBox(tr("XY stage"));
@@ -245,9 +271,76 @@ void DevicesPanel::refreshPorts() {
     if (brick_->count() == 0) brick_->addItem(tr("first NXT found on USB"), QList<QVariant>{0, 0});
 }
 
+bool DevicesPanel::openRigFile(const QString& path) {
+    try {
+        const RigConfig rig = readRigFile(path.toStdString(), scene_);
+        base_ = rig;
+        showRig(rig);
+        emit log(tr("devices set from %1: %2").arg(path, QString::fromStdString(rig.describe())));
+        return true;
+    } catch (const std::exception& e) {
+        emit failed(tr("Could not open the rig file %1:\n%2").arg(path, e.what()));
+        return false;
+    }
+}
+
+bool DevicesPanel::saveRigFile(const QString& path) {
+    const DeviceChoice c = choice();
+    if (c.emulatedBench) {
+        emit failed(
+            tr("The emulated bench is a demo of the drivers without hardware, not devices "
+               "a rig file can name; pick the simulated devices or the NXT, then save."));
+        return false;
+    }
+    QFile f(path);
+    if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) {
+        emit failed(tr("Could not write the rig file %1: %2").arg(path, f.errorString()));
+        return false;
+    }
+    const std::string text = rigFileJson(c.config).dump(2) + "\n";
+    if (f.write(text.data(), static_cast<qint64>(text.size())) != qint64(text.size()) ||
+        !f.flush()) {
+        emit failed(tr("Could not write the rig file %1: %2").arg(path, f.errorString()));
+        return false;
+    }
+    emit log(tr("rig file saved: %1 (activetouch-cli run <experiment> --rig %1)").arg(path));
+    return true;
+}
+
+void DevicesPanel::showRig(const RigConfig& r) {
+    const bool yamaha = r.stage == RigConfig::StageKind::Yamaha;
+    stageKind_->setCurrentIndex(yamaha ? 1 : 0);
+    if (yamaha) {
+        port_->setCurrentText(QString::fromStdString(r.yamaha.serial.portName));
+        baud_->setValue(r.yamaha.serial.baud);
+        parity_->setCurrentIndex(r.yamaha.serial.parity == 'E'   ? 1
+                                 : r.yamaha.serial.parity == 'N' ? 2
+                                                                 : 0);
+        dialect_->setCurrentIndex(r.yamaha.dialect == rcx::Dialect::Rcx340 ? 1 : 0);
+    }
+    const bool nxt = r.tapper == RigConfig::TapperKind::Nxt;
+    tapperKind_->setCurrentIndex(nxt ? 1 : 0);
+    if (!nxt) return;
+    const QList<QVariant> where{r.usbBus, r.usbAddress};
+    int brick = brick_->findData(where);
+    if (brick < 0) {
+        brick_->addItem(
+            tr("bus %1, address %2 (from the rig file)").arg(r.usbBus).arg(r.usbAddress), where);
+        brick = brick_->count() - 1;
+    }
+    brick_->setCurrentIndex(brick);
+    nameServerHost_->setText(QString::fromStdString(r.yarp.nameServerHost));
+    nameServerPort_->setValue(r.yarp.nameServerPort);
+    yarpPort_->setText(QString::fromStdString(r.yarp.port));
+    finger_->setCurrentIndex(static_cast<int>(r.yarp.finger) / 12);
+    carrier_->setCurrentIndex(r.yarp.binaryCarrier ? 1 : 0);
+    compensate_->setChecked(r.yarp.compensateRaw);
+}
+
 DeviceChoice DevicesPanel::choice() const {
     DeviceChoice c;
     RigConfig& r = c.config;
+    r = base_;
     r.stage = stageKind_->currentIndex() == 1 ? RigConfig::StageKind::Yamaha
                                               : RigConfig::StageKind::Simulated;
     r.yamaha.serial.portName = port_->currentText().toStdString();

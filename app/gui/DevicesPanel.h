@@ -27,12 +27,23 @@ public:
     /// What the pickers say now.
     DeviceChoice choice() const;
 
+    /// Sets the pickers from a rig file (activetouch-cli run --rig takes the same file); the
+    /// settings the panel does not show (gearing, stage speed, ...) are kept for connecting. On a
+    /// bad file the pickers stay as they were and `failed` names the file, the place and the fix.
+    bool openRigFile(const QString& path);
+    /// Writes what the pickers say as a rig file; `failed` says why not (the emulated bench is a
+    /// demo, not devices a file can name).
+    bool saveRigFile(const QString& path);
+
 signals:
     void log(const QString& text);
+    void failed(const QString& message);
 
 private:
+    void showRig(const RigConfig& rig);
     DeviceSession* session_;
     SceneSpec scene_;
+    RigConfig base_;  ///< what a rig file set that the pickers do not show
     QLabel *position_, *limits_, *stageState_, *tapperState_, *battery_;
     QDoubleSpinBox *step_, *gotoX_, *gotoY_, *threshold_;
     void refreshPorts();

@@ -153,6 +153,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     tabifyDockWidget(sceneDock, devicesDock);
     sceneDock->raise();
     connect(devicesPanel_, &DevicesPanel::log, this, &MainWindow::log);
+    connect(devicesPanel_, &DevicesPanel::failed, this, &MainWindow::showError);
     log_ = new QPlainTextEdit;
     log_->setReadOnly(true);
     log_->setObjectName("log");

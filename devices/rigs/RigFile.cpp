@@ -118,6 +118,46 @@ RigConfig parseRigFile(const Json& json, const std::string& source, const SceneS
     return r;
 }
 
+Json rigFileJson(const RigConfig& r) {
+    Json j = Json::object();
+    if (r.stage == RigConfig::StageKind::Yamaha) {
+        const rcx::YamahaStageSettings& y = r.yamaha;
+        j["stage"] = {{"device", "yamaha"},
+                      {"port", y.serial.portName},
+                      {"baud", y.serial.baud},
+                      {"parity", y.serial.parity == 'E'   ? "even"
+                                 : y.serial.parity == 'N' ? "none"
+                                                          : "odd"},
+                      {"dialect", y.dialect == rcx::Dialect::Rcx340 ? "rcx340" : "rcx22x"},
+                      {"speed_percent", y.speedPercent},
+                      {"search_origin", r.searchOrigin}};
+    } else {
+        j["stage"] = {{"device", "simulated"}};
+    }
+    if (r.tapper == RigConfig::TapperKind::Nxt) {
+        j["tapper"] = {{"device", "nxt"},
+                       {"usb_bus", r.usbBus},
+                       {"usb_address", r.usbAddress},
+                       {"motor_port", std::string(1, static_cast<char>('A' + r.nxt.motorPort))},
+                       {"degrees_per_mm", r.nxt.degreesPerMm},
+                       {"full_power_degrees_per_s", r.nxt.fullPowerDegreesPerSecond}};
+        static const char* const fingers[] = {"index", "middle", "ring", "little", "thumb"};
+        const yarp::YarpFingertipSettings& y = r.yarp;
+        j["fingertip"] = {{"device", "yarp"},
+                          {"name_server", y.nameServerHost},
+                          {"name_server_port", y.nameServerPort},
+                          {"port", y.port},
+                          {"finger", fingers[static_cast<int>(y.finger) / 12]},
+                          {"carrier", y.binaryCarrier ? "binary" : "text"},
+                          {"compensate_raw", y.compensateRaw}};
+    } else {
+        j["tapper"] = {{"device", "simulated"}};
+        j["fingertip"] = {{"device", "simulated"}};
+    }
+    if (r.timeScale != 1.0) j["time_scale"] = r.timeScale;
+    return j;
+}
+
 RigConfig readRigFile(const std::string& path, const SceneSpec& scene) {
     return parseRigFile(readJsonFile(path), path, scene);
 }

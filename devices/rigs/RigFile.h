@@ -21,6 +21,10 @@ namespace activetouch {
 RigConfig parseRigFile(const Json& json, const std::string& source, const SceneSpec& scene);
 RigConfig readRigFile(const std::string& path, const SceneSpec& scene);
 
+/// The rig file that reads back as `config` (every key written, defaults included; the stage's
+/// soft limits and emulator transports are not part of a rig file).
+Json rigFileJson(const RigConfig& config);
+
 /// Whether a JSON document is a rig file: stage, tapper or fingertip sections, and no object,
 /// scene or extends (which make it a scene or an experiment).
 bool looksLikeRigFile(const Json& json);

@@ -25,12 +25,14 @@
 #include <QToolButton>
 #include <QtTest>
 
+#include "app/gui/DevicesPanel.h"
 #include "app/gui/FollowingTab.h"
 #include "app/gui/LiveView.h"
 #include "app/gui/MainWindow.h"
 #include "app/gui/PlotPanel.h"
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
+#include "devices/rigs/RigFile.h"
 #include "qcustomplot.h"
 #include "support/FigureChecks.h"
 #include "support/Files.h"
@@ -775,6 +777,68 @@ private slots:
         QVERIFY(window_->openExperiment(source("experiments/paper.json")));
         QVERIFY(
             !log->toPlainText().mid(log->toPlainText().lastIndexOf("opened")).contains("caution"));
+    }
+
+    void devicesGoToAndFromRigFiles() {
+        // The devices set up in the window go to a file a headless run takes (run --rig), and
+        // back, with what the panel does not show (the tapper's gearing, say) kept.
+        auto* panel = window_->findChild<DevicesPanel*>();
+        QVERIFY(panel);
+        auto writeFile = [&](const QString& name, const QString& text) {
+            QFile f(dir_.filePath(name));
+            f.open(QIODevice::WriteOnly | QIODevice::Truncate);
+            f.write(text.toUtf8());
+            return f.fileName();
+        };
+        const QString lab = writeFile("lab_rig.json", R"({
+            "stage": {"device": "yamaha", "port": "/dev/ttyUSB3", "baud": 19200, "parity": "even",
+                      "dialect": "rcx340", "speed_percent": 35, "search_origin": false},
+            "tapper": {"device": "nxt", "usb_bus": 2, "usb_address": 7, "motor_port": "B",
+                       "degrees_per_mm": 31.5, "full_power_degrees_per_s": 700},
+            "fingertip": {"device": "yarp", "name_server": "10.0.0.2", "name_server_port": 10002,
+                          "port": "/icub/skin/left_hand_comp", "finger": "ring",
+                          "carrier": "binary", "compensate_raw": true}})");
+        QVERIFY(panel->openRigFile(lab));
+        const RigConfig shown = panel->choice().config;
+        QCOMPARE(shown.stage, RigConfig::StageKind::Yamaha);
+        QCOMPARE(shown.yamaha.serial.portName, std::string("/dev/ttyUSB3"));
+        QCOMPARE(shown.yamaha.serial.parity, 'E');
+        QCOMPARE(shown.tapper, RigConfig::TapperKind::Nxt);
+        QCOMPARE(shown.usbBus, 2);
+        QCOMPARE(shown.usbAddress, 7);
+        QCOMPARE(shown.nxt.degreesPerMm, 31.5);  // not on the panel, kept
+        QCOMPARE(shown.yarp.finger, yarp::Finger::Ring);
+        QVERIFY(shown.yarp.binaryCarrier && shown.yarp.compensateRaw);
+        // Saved again, the file says the same.
+        const QString saved = dir_.filePath("saved_rig.json");
+        QVERIFY(panel->saveRigFile(saved));
+        const SceneSpec scene = window_->experimentAsShown().scene;
+        QCOMPARE(rigFileJson(readRigFile(saved.toStdString(), scene)).dump(),
+                 rigFileJson(readRigFile(lab.toStdString(), scene)).dump());
+
+        // A bad file is named with its place and the fix, and changes nothing.
+        QSignalSpy errors(window_.get(), &MainWindow::errorShown);
+        const QString bad = writeFile("bad_rig.json", R"({"tapper": {"device": "nxt"}})");
+        QVERIFY(!panel->openRigFile(bad));
+        QCOMPARE(errors.count(), 1);
+        const QString message = errors.takeFirst().at(0).toString();
+        QVERIFY2(message.contains(bad) && message.contains("/fingertip"), qPrintable(message));
+        QCOMPARE(rigFileJson(panel->choice().config).dump(), rigFileJson(shown).dump());
+        closeErrorDialogs(*window_);
+        // The emulated bench is a demo, not devices a file can name.
+        auto* tapperKind = window_->findChild<QComboBox*>("tapperKind");
+        tapperKind->setCurrentIndex(2);
+        QVERIFY(!panel->saveRigFile(dir_.filePath("bench_rig.json")));
+        QCOMPARE(errors.count(), 1);
+        QVERIFY(!QFile::exists(dir_.filePath("bench_rig.json")));
+        closeErrorDialogs(*window_);
+
+        // Back to the simulated devices for what follows.
+        QVERIFY(
+            panel->openRigFile(writeFile("sim_rig.json", R"({"stage": {"device": "simulated"}})")));
+        QCOMPARE(panel->choice().config.stage, RigConfig::StageKind::Simulated);
+        QCOMPARE(panel->choice().config.tapper, RigConfig::TapperKind::Simulated);
+        QVERIFY(!panel->choice().emulatedBench);
     }
 
     void devicePanelsDriveTheSimulatedRig() {
