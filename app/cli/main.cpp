@@ -1,9 +1,9 @@
 // activetouch-cli: the headless runner (DESIGN.md §4).
-//   activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--rig <rig.json>]
-//   [--no-figures] activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>]
-//   [--no-figures] activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>]
-//   [--no-figures] activetouch-cli replay <experiment.json> <run folder> [--out <dir>]
-//   [--no-figures] activetouch-cli check <file.json | taps.csv | following_taps.csv>
+//   activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--rig <rig>] [--no-figures]
+//   activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>] [--no-figures]
+//   activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>] [--no-figures]
+//   activetouch-cli replay <experiment.json> <run folder> [--out <dir>] [--no-figures]
+//   activetouch-cli check <file.json | taps.csv | following_taps.csv>
 // Exit codes: 0 ok, 1 the run failed, 2 bad input.
 #include <QApplication>
 #include <algorithm>
@@ -85,10 +85,9 @@ void printHelp() {
         "      otherwise and left the recording. --out defaults to\n"
         "      results/<experiment name>_replay.\n"
         "  activetouch-cli check <file.json | taps.csv | following_taps.csv>\n"
-        "      Validates an experiment, a scene, a rig file or a recording (training taps, or "
-        "following\n"
-        "      taps: a run stopped while writing leaves every finished tap whole and the cut\n"
-        "      is reported) and says what is wrong, if anything.\n"
+        "      Validates an experiment, a scene, a rig file or a recording (training taps,\n"
+        "      or following taps: a run stopped while writing leaves every finished tap whole\n"
+        "      and the cut is reported) and says what is wrong, if anything.\n"
         "  activetouch-cli --help\n\n"
         "Exit codes: 0 ok, 1 the run failed, 2 bad input (the message names the file, the place "
         "and the problem).\n");
