@@ -301,32 +301,31 @@ std::vector<std::string> untrainedEdgeCautions(const ExperimentSpec& e, double t
         int off = 0;
         double worstDeg = 0.0;
         std::size_t worst = 0;
+        double worstFacing = 0.0;
         for (std::size_t i = 0; i < outline.size(); ++i) {
             const Vec2 n = outline.outwardNormal(i);
+            double facing = std::atan2(n.y, n.x) * 180.0 / M_PI;
+            if (facing < 0.0) facing += 360.0;
             double nearest = 180.0;
-            for (double deg : e.classes.orientationsDeg) {
-                const double c = std::clamp(dot(n, directionFromDegrees(deg)), -1.0, 1.0);
-                nearest = std::min(nearest, std::acos(c) * 180.0 / M_PI);
-            }
+            for (double deg : e.classes.orientationsDeg)
+                nearest = std::min(nearest, angleDifferenceDeg(facing, deg));
             if (nearest <= toleranceDeg + 1e-9) continue;
             ++off;
-            if (nearest > worstDeg) {
+            if (nearest > worstDeg + 1e-9) {  // ties: the first such edge
                 worstDeg = nearest;
                 worst = i;
+                worstFacing = facing;
             }
         }
         if (off == 0) continue;
         const Vec2 a = outline.vertex(worst), b = outline.vertex(worst + 1);
-        const Vec2 n = outline.outwardNormal(worst);
-        double facing = std::atan2(n.y, n.x) * 180.0 / M_PI;
-        if (facing < 0.0) facing += 360.0;
         cautions.push_back(
             t.place + " (" + t.label + "): " + std::to_string(off) + " of " +
             std::to_string(outline.size()) + (off == 1 ? " edges faces" : " edges face") +
             " more than " + numberText(toleranceDeg) +
             " deg away from every trained orientation (" + trained + " deg); the worst, from (" +
             tenth(a.x) + ", " + tenth(a.y) + ") to (" + tenth(b.x) + ", " + tenth(b.y) +
-            ") mm, faces " + tenth(facing) + " deg, " + tenth(worstDeg) +
+            ") mm, faces " + tenth(worstFacing) + " deg, " + tenth(worstDeg) +
             " deg off. Every percept snaps the follow direction to a trained orientation, so "
             "following degrades along such edges; to follow them, list finer orientations in "
             "classes/orientations_deg and train on an object with an edge facing each");
