@@ -313,9 +313,8 @@ void DevicesPanel::showRig(const RigConfig& r) {
     if (yamaha) {
         port_->setCurrentText(QString::fromStdString(r.yamaha.serial.portName));
         baud_->setValue(r.yamaha.serial.baud);
-        parity_->setCurrentIndex(r.yamaha.serial.parity == 'E'   ? 1
-                                 : r.yamaha.serial.parity == 'N' ? 2
-                                                                 : 0);
+        parity_->setCurrentIndex(
+            static_cast<int>(QByteArray("OEN").indexOf(r.yamaha.serial.parity)));
         dialect_->setCurrentIndex(r.yamaha.dialect == rcx::Dialect::Rcx340 ? 1 : 0);
     }
     const bool nxt = r.tapper == RigConfig::TapperKind::Nxt;

@@ -1,19 +1,34 @@
 #include "devices/rigs/RigFile.h"
 
 #include <algorithm>
+#include <string_view>
 
 namespace activetouch {
 
 namespace {
 
-/// `key`'s text, one of `allowed` (the first is the default); anything else fails naming them.
-std::string oneOf(const JsonFields& f, const std::string& key,
-                  const std::vector<std::string>& allowed) {
+// The names a rig file uses, read and written from the same tables: a value's index in its table
+// is the setting (Finger steps by 12 along the hand's 192 values, parity is "OEN"'s letter).
+const std::vector<std::string> kParities{"odd", "even", "none"};
+constexpr char kParityLetters[] = "OEN";
+const std::vector<std::string> kDialects{"rcx22x", "rcx340"};
+constexpr rcx::Dialect kDialectValues[] = {rcx::Dialect::Rcx22x, rcx::Dialect::Rcx340};
+const std::vector<std::string> kFingers{"index", "middle", "ring", "little", "thumb"};
+
+/// The index in `allowed` of `key`'s text (default: the first); anything else fails naming them.
+std::size_t indexOf(const JsonFields& f, const std::string& key,
+                    const std::vector<std::string>& allowed) {
     const std::string v = f.text(key, allowed.front());
-    if (std::find(allowed.begin(), allowed.end(), v) != allowed.end()) return v;
+    const auto at = std::find(allowed.begin(), allowed.end(), v);
+    if (at != allowed.end()) return static_cast<std::size_t>(at - allowed.begin());
     std::string list;
     for (const std::string& a : allowed) list += (list.empty() ? "'" : ", '") + a + "'";
     f.fail(key, "'" + v + "' is not one of " + list);
+}
+
+std::string oneOf(const JsonFields& f, const std::string& key,
+                  const std::vector<std::string>& allowed) {
+    return allowed[indexOf(f, key, allowed)];
 }
 
 std::string deviceOf(const JsonFields& f, const std::vector<std::string>& allowed) {
@@ -34,10 +49,8 @@ void readStage(const JsonFields& f, RigConfig& r) {
     y.serial.portName = f.text("port");
     if (y.serial.portName.empty()) f.fail("port", "name the serial port, e.g. /dev/ttyUSB0");
     y.serial.baud = f.integer("baud", 1200, 115200, y.serial.baud);
-    const std::string parity = oneOf(f, "parity", {"odd", "even", "none"});
-    y.serial.parity = parity == "odd" ? 'O' : parity == "even" ? 'E' : 'N';
-    y.dialect = oneOf(f, "dialect", {"rcx22x", "rcx340"}) == "rcx340" ? rcx::Dialect::Rcx340
-                                                                      : rcx::Dialect::Rcx22x;
+    y.serial.parity = kParityLetters[indexOf(f, "parity", kParities)];
+    y.dialect = kDialectValues[indexOf(f, "dialect", kDialects)];
     y.speedPercent = f.integer("speed_percent", 1, 100, y.speedPercent);
     r.searchOrigin = f.flag("search_origin", true);
 }
@@ -52,8 +65,7 @@ void readTapper(const JsonFields& f, RigConfig& r) {
     r.tapper = RigConfig::TapperKind::Nxt;
     r.usbBus = f.integer("usb_bus", 0, 255, 0);
     r.usbAddress = f.integer("usb_address", 0, 127, 0);
-    const std::string port = oneOf(f, "motor_port", {"A", "B", "C"});
-    r.nxt.motorPort = static_cast<std::uint8_t>(port[0] - 'A');
+    r.nxt.motorPort = static_cast<std::uint8_t>(indexOf(f, "motor_port", {"A", "B", "C"}));
     r.nxt.degreesPerMm = f.number("degrees_per_mm", 0.1, 10000.0, r.nxt.degreesPerMm);
     r.nxt.fullPowerDegreesPerSecond =
         f.number("full_power_degrees_per_s", 1.0, 100000.0, r.nxt.fullPowerDegreesPerSecond);
@@ -73,10 +85,7 @@ bool readFingertip(const JsonFields& f, RigConfig& r) {
     y.port = f.text("port", y.port);
     if (y.port.empty() || y.port[0] != '/')
         f.fail("port", "a YARP port name starts with '/', e.g. /icub/skin/right_hand_comp");
-    const std::vector<std::string> fingers{"index", "middle", "ring", "little", "thumb"};
-    const std::string finger = oneOf(f, "finger", fingers);
-    y.finger = static_cast<yarp::Finger>(
-        12 * (std::find(fingers.begin(), fingers.end(), finger) - fingers.begin()));
+    y.finger = static_cast<yarp::Finger>(12 * indexOf(f, "finger", kFingers));
     y.binaryCarrier = oneOf(f, "carrier", {"text", "binary"}) == "binary";
     y.compensateRaw = f.flag("compensate_raw", false);
     return true;
@@ -125,10 +134,8 @@ Json rigFileJson(const RigConfig& r) {
         j["stage"] = {{"device", "yamaha"},
                       {"port", y.serial.portName},
                       {"baud", y.serial.baud},
-                      {"parity", y.serial.parity == 'E'   ? "even"
-                                 : y.serial.parity == 'N' ? "none"
-                                                          : "odd"},
-                      {"dialect", y.dialect == rcx::Dialect::Rcx340 ? "rcx340" : "rcx22x"},
+                      {"parity", kParities[std::string_view(kParityLetters).find(y.serial.parity)]},
+                      {"dialect", kDialects[static_cast<std::size_t>(y.dialect)]},
                       {"speed_percent", y.speedPercent},
                       {"search_origin", r.searchOrigin}};
     } else {
@@ -141,13 +148,12 @@ Json rigFileJson(const RigConfig& r) {
                        {"motor_port", std::string(1, static_cast<char>('A' + r.nxt.motorPort))},
                        {"degrees_per_mm", r.nxt.degreesPerMm},
                        {"full_power_degrees_per_s", r.nxt.fullPowerDegreesPerSecond}};
-        static const char* const fingers[] = {"index", "middle", "ring", "little", "thumb"};
         const yarp::YarpFingertipSettings& y = r.yarp;
         j["fingertip"] = {{"device", "yarp"},
                           {"name_server", y.nameServerHost},
                           {"name_server_port", y.nameServerPort},
                           {"port", y.port},
-                          {"finger", fingers[static_cast<int>(y.finger) / 12]},
+                          {"finger", kFingers[static_cast<std::size_t>(y.finger) / 12]},
                           {"carrier", y.binaryCarrier ? "binary" : "text"},
                           {"compensate_raw", y.compensateRaw}};
     } else {
