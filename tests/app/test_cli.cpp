@@ -12,33 +12,16 @@
 #include <csignal>
 
 #include "devices/emulators/FakeRcxController.h"
+#include "support/Cli.h"
 #include "support/Files.h"
 #include "support/Paths.h"
 
 using namespace activetouch;
 using test::linesIn;
-
-namespace {
-struct Outcome {
-    int exitCode;
-    QString out, err;
-};
-Outcome runCli(const QStringList& args) {
-    QProcess p;
-    p.start(qEnvironmentVariable("ACTIVETOUCH_CLI"), args);
-    p.waitForFinished(300000);
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(),
-            p.readAllStandardError()};
-}
-QString source(const QString& relative) {
-    return QString::fromStdString(test::sourcePath(relative.toStdString()));
-}
-QJsonObject readJson(const QString& path) {
-    QFile f(path);
-    if (!f.open(QIODevice::ReadOnly)) return {};
-    return QJsonDocument::fromJson(f.readAll()).object();
-}
-}  // namespace
+using test::readJson;
+using test::runCli;
+using Outcome = test::CliOutcome;
+using test::sourceFile;
 
 class TestCli : public QObject {
     Q_OBJECT
@@ -54,7 +37,7 @@ class TestCli : public QObject {
 private slots:
     void paperRunWritesSummaryDataAndFigures() {
         const QString out = dir_.filePath("paper");
-        const Outcome o = runCli({"run", source("experiments/paper.json"), "--out", out});
+        const Outcome o = runCli({"run", sourceFile("experiments/paper.json"), "--out", out});
         QVERIFY2(o.exitCode == 0, qPrintable(o.err));
         QFile f(out + "/summary.json");
         QVERIFY(f.open(QIODevice::ReadOnly));
@@ -134,15 +117,15 @@ private slots:
 
     void seedMakesRunsReproducibleAndDistinct() {
         const QString a = dir_.filePath("a"), b = dir_.filePath("b"), c = dir_.filePath("c");
-        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", a, "--seed", "5",
+        QCOMPARE(runCli({"run", sourceFile("experiments/paper.json"), "--out", a, "--seed", "5",
                          "--no-figures"})
                      .exitCode,
                  0);
-        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", b, "--seed", "5",
+        QCOMPARE(runCli({"run", sourceFile("experiments/paper.json"), "--out", b, "--seed", "5",
                          "--no-figures"})
                      .exitCode,
                  0);
-        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", c, "--seed", "6",
+        QCOMPARE(runCli({"run", sourceFile("experiments/paper.json"), "--out", c, "--seed", "6",
                          "--no-figures"})
                      .exitCode,
                  0);
@@ -157,11 +140,11 @@ private slots:
     }
 
     void checkAcceptsEveryShippedFile() {
-        QDir experiments(source("experiments"));
+        QDir experiments(sourceFile("experiments"));
         QStringList files;
         for (const QString& f : experiments.entryList({"*.json"}, QDir::Files))
             files << experiments.filePath(f);
-        QDir scenes(source("experiments/scenes"));
+        QDir scenes(sourceFile("experiments/scenes"));
         for (const QString& f : scenes.entryList({"*.json"}, QDir::Files))
             files << scenes.filePath(f);
         QVERIFY(files.size() >= 2);
@@ -179,7 +162,7 @@ private slots:
             "turned.json",
             QString(
                 R"({"extends": "%1", "name": "turned", "following": {"trials": [{"mode": "active", "object": {"shape": "rectangle", "rotation_deg": 20, "offset_mm": [150, 150]}}]}})")
-                .arg(source("experiments/paper.json")));
+                .arg(sourceFile("experiments/paper.json")));
         const Outcome o = runCli({"check", path});
         QCOMPARE(o.exitCode, 0);
         QVERIFY2(o.out.contains("ok"), qPrintable(o.out));
@@ -226,7 +209,8 @@ private slots:
         QTest::newRow("a scene is not an experiment") << "scene.json"
                                                       << R"({"object": {"shape": "rectangle"}})"
                                                       << "not an experiment file";
-        const QString paperScene = "\"" + source("experiments/scenes/paper_rectangle.json") + "\"";
+        const QString paperScene =
+            "\"" + sourceFile("experiments/scenes/paper_rectangle.json") + "\"";
         QTest::newRow("start pose off the object")
             << "start.json"
             << QString(
@@ -282,7 +266,7 @@ private slots:
                   QString(R"({"extends": "%1", "name": "on_the_stage", "training": {"data_sets": 2},
                 "following": {"trials": [{"mode": "active", "object": {"shape": "rectangle",
                 "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150], "top_height_mm": 10}}]}})")
-                      .arg(source("experiments/paper.json")));
+                      .arg(sourceFile("experiments/paper.json")));
         const QString out = dir_.filePath("on_the_stage");
         const Outcome o = runCli({"run", experiment, "--rig", rig, "--out", out, "--no-figures"});
         QVERIFY2(o.exitCode == 0, qPrintable(o.out + o.err));
@@ -350,8 +334,8 @@ private slots:
         QFETCH(QString, message);
         const QString path = write("bad_rig.json", rig);
         const QString out = dir_.filePath("bad_rig_out");
-        const Outcome o = runCli(
-            {"run", source("experiments/paper.json"), "--rig", path, "--out", out, "--no-figures"});
+        const Outcome o = runCli({"run", sourceFile("experiments/paper.json"), "--rig", path,
+                                  "--out", out, "--no-figures"});
         QCOMPARE(o.exitCode, 2);
         QVERIFY2(o.err.contains(path) && o.err.contains(message), qPrintable(o.err));
         QVERIFY(!o.out.contains("connecting"));
@@ -365,8 +349,8 @@ private slots:
         // The paper's trials are on five objects; one object is mounted on a real rig.
         const QString rig = write("sim_rig.json", R"({"stage": {"device": "simulated"}})");
         const QString out = dir_.filePath("five_objects");
-        const Outcome o = runCli(
-            {"run", source("experiments/paper.json"), "--rig", rig, "--out", out, "--no-figures"});
+        const Outcome o = runCli({"run", sourceFile("experiments/paper.json"), "--rig", rig,
+                                  "--out", out, "--no-figures"});
         QCOMPARE(o.exitCode, 2);
         QVERIFY2(o.err.contains("is not the object on the connected rig") ||
                      o.err.contains("at another place than the object on the connected rig"),
@@ -377,7 +361,8 @@ private slots:
     void killedRunKeepsEveryFinishedTap() {
         // A long run (many trials) killed part-way: the recording holds whole taps, in order,
         // except at most the one in flight.
-        const QString paperScene = "\"" + source("experiments/scenes/paper_rectangle.json") + "\"";
+        const QString paperScene =
+            "\"" + sourceFile("experiments/scenes/paper_rectangle.json") + "\"";
         const QString path =
             write("long.json", QString(R"({"name": "long", "scene": %1, "following": {"trials": [
             {"mode": "active", "object": {"shape": "rectangle", "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150]}, "repeats": 400}]}})")
@@ -427,7 +412,7 @@ private slots:
 
     void checkReadsTapRecordings() {
         const QString out = dir_.filePath("csvrun");
-        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", out, "--no-figures"})
+        QCOMPARE(runCli({"run", sourceFile("experiments/paper.json"), "--out", out, "--no-figures"})
                      .exitCode,
                  0);
         const Outcome good = runCli({"check", out + "/data/taps.csv"});
@@ -465,8 +450,8 @@ private slots:
         // Three whole runs: a row per seed, totals with 95 % intervals, and each seed's outcome
         // the same as that seed's own run.
         const QString out = dir_.filePath("rates");
-        const Outcome o = runCli(
-            {"seeds", source("experiments/paper.json"), "--from", "2", "--to", "4", "--out", out});
+        const Outcome o = runCli({"seeds", sourceFile("experiments/paper.json"), "--from", "2",
+                                  "--to", "4", "--out", out});
         QCOMPARE(o.exitCode, 0);
         QVERIFY2(o.out.contains("active trials completed"), qPrintable(o.out));
         QFile csv(out + "/rates.csv");
@@ -525,8 +510,8 @@ private slots:
         QCOMPARE(byte(16) << 24 | byte(17) << 16 | byte(18) << 8 | byte(19), 2000u);  // width
 
         const QString single = dir_.filePath("seed3");
-        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--out", single, "--seed", "3",
-                         "--no-figures"})
+        QCOMPARE(runCli({"run", sourceFile("experiments/paper.json"), "--out", single, "--seed",
+                         "3", "--no-figures"})
                      .exitCode,
                  0);
         QFile summary(single + "/summary.json");
@@ -542,15 +527,15 @@ private slots:
 
     void seedsRefusesABadRange() {
         const QString out = dir_.filePath("badrange");
-        const Outcome back = runCli(
-            {"seeds", source("experiments/paper.json"), "--from", "3", "--to", "1", "--out", out});
+        const Outcome back = runCli({"seeds", sourceFile("experiments/paper.json"), "--from", "3",
+                                     "--to", "1", "--out", out});
         QCOMPARE(back.exitCode, 2);
         QVERIFY2(back.err.contains("--from 3 is after --to 1"), qPrintable(back.err));
         const Outcome missing =
-            runCli({"seeds", source("experiments/paper.json"), "--from", "1", "--out", out});
+            runCli({"seeds", sourceFile("experiments/paper.json"), "--from", "1", "--out", out});
         QCOMPARE(missing.exitCode, 2);
         QVERIFY2(missing.err.contains("--from and --to"), qPrintable(missing.err));
-        const Outcome word = runCli({"seeds", source("experiments/paper.json"), "--from", "one",
+        const Outcome word = runCli({"seeds", sourceFile("experiments/paper.json"), "--from", "one",
                                      "--to", "2", "--out", out});
         QCOMPARE(word.exitCode, 2);
         QVERIFY(!QFile::exists(out + "/rates.csv"));
@@ -558,8 +543,8 @@ private slots:
 
     void seedsWithoutFiguresWritesOnlyTheTables() {
         const QString out = dir_.filePath("rates_nofig");
-        const Outcome o = runCli({"seeds", source("experiments/paper.json"), "--from", "5", "--to",
-                                  "5", "--out", out, "--no-figures"});
+        const Outcome o = runCli({"seeds", sourceFile("experiments/paper.json"), "--from", "5",
+                                  "--to", "5", "--out", out, "--no-figures"});
         QCOMPARE(o.exitCode, 0);
         QVERIFY(QFile::exists(out + "/rates.csv") && QFile::exists(out + "/rates.json"));
         QVERIFY(!QFile::exists(out + "/figures/seed_rates.png"));
@@ -572,7 +557,7 @@ private slots:
         QVERIFY(QFile::exists(recording));
         const QString out = dir_.filePath("analysis");
         const Outcome o =
-            runCli({"analyse", source("experiments/paper.json"), recording, "--out", out});
+            runCli({"analyse", sourceFile("experiments/paper.json"), recording, "--out", out});
         QVERIFY2(o.exitCode == 0, qPrintable(o.err));
         QVERIFY2(o.out.contains("360 recorded taps"), qPrintable(o.out));
         const QJsonObject run = readJson(dir_.filePath("paper/summary.json"));
@@ -592,7 +577,7 @@ private slots:
         // Other classifier settings on the same taps: another validation.
         const QString coarse = write("coarse.json", QString(R"({"extends": "%1",
             "classifier": {"bins": 10}})")
-                                                        .arg(source("experiments/paper.json")));
+                                                        .arg(sourceFile("experiments/paper.json")));
         const QString outCoarse = dir_.filePath("analysis_coarse");
         QCOMPARE(
             runCli({"analyse", coarse, recording, "--out", outCoarse, "--no-figures"}).exitCode, 0);
@@ -603,7 +588,7 @@ private slots:
         const QString swept = write("swept.json", QString(R"({"extends": "%1",
             "sweeps": {"compute": {"bins": [20, 100], "samples_per_tap": [25, 50]},
                        "perception": {"belief_thresholds": [0.5]}}})")
-                                                      .arg(source("experiments/paper.json")));
+                                                      .arg(sourceFile("experiments/paper.json")));
         const QString outSwept = dir_.filePath("analysis_swept");
         const Outcome s = runCli({"analyse", swept, recording, "--out", outSwept});
         QVERIFY2(s.exitCode == 0, qPrintable(s.err));
@@ -648,8 +633,8 @@ private slots:
         const QString recording = edit == "missing" ? dir_.filePath("nowhere/taps.csv")
                                                     : write("edited_taps.csv", kept.join('\n'));
         const QString out = dir_.filePath("refused_analysis");
-        const Outcome o = runCli(
-            {"analyse", source("experiments/paper.json"), recording, "--out", out, "--no-figures"});
+        const Outcome o = runCli({"analyse", sourceFile("experiments/paper.json"), recording,
+                                  "--out", out, "--no-figures"});
         QCOMPARE(o.exitCode, 2);
         QVERIFY2(o.err.contains(expected) && o.err.contains(recording), qPrintable(o.err));
         QVERIFY(!QFile::exists(out));  // nothing written
@@ -660,7 +645,8 @@ private slots:
         // experiment: every trial is served the recorded taps and retraces them to the same end.
         const QString run = dir_.filePath("paper");
         const QString out = dir_.filePath("replay");
-        const Outcome o = runCli({"replay", source("experiments/paper.json"), run, "--out", out});
+        const Outcome o =
+            runCli({"replay", sourceFile("experiments/paper.json"), run, "--out", out});
         QVERIFY2(o.exitCode == 0, qPrintable(o.err));
         const QJsonObject recorded = readJson(run + "/summary.json");
         const QJsonObject again = readJson(out + "/summary.json");
@@ -691,9 +677,10 @@ private slots:
     void replayWithOtherSettingsSaysWhereItLeft() {
         // Another smoothing on the same recording: a trial that decides otherwise leaves the
         // recording at that tap, says what both perceived and decided there, and keeps its taps.
-        const QString other = write("smoother.json", QString(R"({"extends": "%1",
+        const QString other =
+            write("smoother.json", QString(R"({"extends": "%1",
             "classifier": {"bins": 100, "smoothing": 0.1}})")
-                                                         .arg(source("experiments/paper.json")));
+                                       .arg(sourceFile("experiments/paper.json")));
         const QString out = dir_.filePath("replay_other");
         const Outcome o =
             runCli({"replay", other, dir_.filePath("paper"), "--out", out, "--no-figures"});
@@ -719,14 +706,14 @@ private slots:
         const QString out = dir_.filePath("refused_replay");
         // A trial the recording does not hold.
         const Outcome missing = runCli(
-            {"replay", source("experiments/polygons.json"), run, "--out", out, "--no-figures"});
+            {"replay", sourceFile("experiments/polygons.json"), run, "--out", out, "--no-figures"});
         QCOMPARE(missing.exitCode, 2);
         QVERIFY2(missing.err.contains("the recording holds no active") &&
                      missing.err.contains("replay it with the experiment the run was made with"),
                  qPrintable(missing.err));
         // A file where the run's folder belongs.
         const Outcome file = runCli(
-            {"replay", source("experiments/paper.json"), run + "/data/taps.csv", "--out", out});
+            {"replay", sourceFile("experiments/paper.json"), run + "/data/taps.csv", "--out", out});
         QCOMPARE(file.exitCode, 2);
         QVERIFY2(file.err.contains("not a folder"), qPrintable(file.err));
         // A run that followed no contour.
@@ -734,12 +721,12 @@ private slots:
         QVERIFY(QDir().mkpath(trainingOnly + "/data"));
         QVERIFY(QFile::copy(run + "/data/taps.csv", trainingOnly + "/data/taps.csv"));
         const Outcome none =
-            runCli({"replay", source("experiments/paper.json"), trainingOnly, "--out", out});
+            runCli({"replay", sourceFile("experiments/paper.json"), trainingOnly, "--out", out});
         QCOMPARE(none.exitCode, 2);
         QVERIFY2(none.err.contains("nothing to replay") && none.err.contains("analyse"),
                  qPrintable(none.err));
         QVERIFY(!QFile::exists(out));  // nothing written
-        const Outcome usage = runCli({"replay", source("experiments/paper.json")});
+        const Outcome usage = runCli({"replay", sourceFile("experiments/paper.json")});
         QCOMPARE(usage.exitCode, 2);
         QVERIFY2(usage.err.contains("needs a run's folder"), qPrintable(usage.err));
     }
@@ -748,8 +735,9 @@ private slots:
         QCOMPARE(runCli({}).exitCode, 2);
         QCOMPARE(runCli({"fly"}).exitCode, 2);
         QCOMPARE(runCli({"run"}).exitCode, 2);
-        QCOMPARE(runCli({"run", source("experiments/paper.json"), "--seed", "minus"}).exitCode, 2);
-        const Outcome noRecording = runCli({"analyse", source("experiments/paper.json")});
+        QCOMPARE(runCli({"run", sourceFile("experiments/paper.json"), "--seed", "minus"}).exitCode,
+                 2);
+        const Outcome noRecording = runCli({"analyse", sourceFile("experiments/paper.json")});
         QCOMPARE(noRecording.exitCode, 2);
         QVERIFY2(noRecording.err.contains("needs a recording"), qPrintable(noRecording.err));
         const Outcome help = runCli({"--help"});

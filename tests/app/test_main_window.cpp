@@ -40,6 +40,8 @@
 
 using namespace activetouch;
 using test::linesIn;
+using test::readJson;
+using test::sourceFile;
 
 namespace {
 /// What a seeds row lists as falling short: the active trials lost, then the paths misnamed.
@@ -48,10 +50,6 @@ QString shortfallsOf(const SeedOutcome& o) {
     for (const auto& f : o.failures) items << QString::fromStdString(f);
     for (const auto& m : o.misnamed()) items << QString::fromStdString(m);
     return items.join("; ");
-}
-
-QString source(const QString& relative) {
-    return QString::fromStdString(test::sourcePath(relative.toStdString()));
 }
 
 void click(QMainWindow& w, const char* actionName) {
@@ -63,12 +61,6 @@ void click(QMainWindow& w, const char* actionName) {
             return;
         }
     QFAIL("no button for the action");
-}
-
-QJsonObject readJson(const QString& path) {
-    QFile f(path);
-    if (!f.open(QIODevice::ReadOnly)) return {};
-    return QJsonDocument::fromJson(f.readAll()).object();
 }
 
 void writeJson(const QString& path, const QJsonObject& j) {
@@ -144,7 +136,7 @@ class TestMainWindow : public QObject {
     QString paperVariant(const QString& name, const QString& keys) {
         const QString path = dir_.filePath(name);
         writeJson(path, QJsonDocument::fromJson(QString(R"({"extends": "%1", %2})")
-                                                    .arg(source("experiments/paper.json"), keys)
+                                                    .arg(sourceFile("experiments/paper.json"), keys)
                                                     .toUtf8())
                             .object());
         return path;
@@ -158,7 +150,7 @@ private slots:
         window_->setOutputBase(dir_.filePath("runs"));
         window_->resize(1600, 1000);
         window_->show();
-        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+        QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
     }
 
     void runThePaperExperimentByClicking() {
@@ -347,7 +339,7 @@ private slots:
             "sweeps": {"perception": {"belief_thresholds": [0.5, 0.999999]},
                        "following": {"follow_steps_mm": [2, 3], "reposition_steps_mm": [1], "modes": ["active"]},
                        "compute": {"bins": [50, 100], "samples_per_tap": [25, 50]}}})")
-                    .arg(source("experiments/scenes/paper_rectangle.json"))
+                    .arg(sourceFile("experiments/scenes/paper_rectangle.json"))
                     .toUtf8());
         f.close();
         QVERIFY(window_->openExperiment(path));
@@ -380,7 +372,7 @@ private slots:
                 QVERIFY2(!title->text().contains('%'), qPrintable(title->text()));
             }
         QTRY_VERIFY(!window_->running());
-        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+        QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
     }
 
     void ratesOverSeedsRunFromTheWindow() {
@@ -572,13 +564,13 @@ private slots:
         QCOMPARE(after.object.shape, std::string("polygon"));
         QCOMPARE(after.object.outline().area(), 40.0 * 40.0);
         // Back to the paper's scene for the tests that follow.
-        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+        QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
     }
 
     void recordingsAreAnalysedFromTheWindow() {
         // The last run's recording (a seed's run, above), analysed with the same experiment:
         // the same validation from the taps alone, and no tap taken.
-        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+        QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
         const auto recordedRun = window_->lastRun();
         QVERIFY(recordedRun && recordedRun->rig == "simulated");
         QAction* analyse = window_->findChild<QAction*>("analyseRecording");
@@ -636,12 +628,12 @@ private slots:
                          qPrintable(p->emptyHint()));
             }
         }
-        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+        QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
     }
 
     void runsAreReplayedFromTheWindow() {
         // A whole run, replayed with the same experiment: every trial retraces its recorded taps.
-        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+        QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
         QSignalSpy ended(window_.get(), &MainWindow::runEnded);
         QVERIFY(window_->startRun(RunController::What::Everything));
         QVERIFY(ended.wait(60000));
@@ -686,7 +678,7 @@ private slots:
         QCOMPARE(shown, left);
 
         // A folder without a following recording is refused, the session kept.
-        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+        QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
         const auto before = window_->lastRun();
         QSignalSpy errors(window_.get(), &MainWindow::errorShown);
         const QString trainingOnly = dir_.filePath("training_only_run");
@@ -764,7 +756,7 @@ private slots:
         f.write(
             QString(
                 R"({"extends": "%1", "name": "turned", "following": {"trials": [{"mode": "active", "object": {"shape": "rectangle", "rotation_deg": 30, "offset_mm": [150, 150]}}]}})")
-                .arg(source("experiments/paper.json"))
+                .arg(sourceFile("experiments/paper.json"))
                 .toUtf8());
         f.close();
         auto* log = window_->findChild<QPlainTextEdit*>("log");
@@ -774,7 +766,7 @@ private slots:
         QVERIFY2(opened.contains("caution: /following/trials/0 (rectangle): 4 of 4 edges face") &&
                      opened.contains("30 deg off"),
                  qPrintable(opened));
-        QVERIFY(window_->openExperiment(source("experiments/paper.json")));
+        QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
         QVERIFY(
             !log->toPlainText().mid(log->toPlainText().lastIndexOf("opened")).contains("caution"));
     }
@@ -883,8 +875,8 @@ private slots:
 
     void runsTakeTheirTapsOnTheConnectedDevices() {
         // A short following experiment: one active trial on the mounted rectangle.
-        QJsonObject j = readJson(source("experiments/paper.json"));
-        j["scene"] = source("experiments/scenes/paper_rectangle.json");
+        QJsonObject j = readJson(sourceFile("experiments/paper.json"));
+        j["scene"] = sourceFile("experiments/scenes/paper_rectangle.json");
         QJsonObject following = j["following"].toObject();
         QJsonArray trials;
         QJsonObject trial = following["trials"].toArray().at(1).toObject();  // active rectangle

@@ -7,8 +7,12 @@
 #include "support/MockedUsbBrick.h"  // first: GLib before Qt
 // clang-format on
 
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QtTest>
 #include <chrono>
+#include <csignal>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -18,6 +22,8 @@
 #include "devices/emulators/EmulatedBench.h"
 #include "devices/rigs/RigAssembly.h"
 #include "devices/simulated/SimulatedWorld.h"
+#include "support/Cli.h"
+#include "support/Files.h"
 #include "support/Paths.h"
 
 using namespace activetouch;
@@ -445,6 +451,86 @@ private slots:
                     std::string::npos);
         }
         QCOMPARE(e.bench->yarp().readers(), 0);
+    }
+
+    void theHeadlessRunnerRunsOnTheWholeBenchARigFileNames() {
+        // activetouch-cli in a process of its own, on the devices a rig file names as a user
+        // writes it: the Yamaha controller on a pty, the NXT through libusb to the mocked USB bus
+        // this test serves, the fingertip over YARP on loopback. Twenty times real time.
+        Emulated e(20.0);
+        const QTemporaryDir dir;
+        const QString pty = QString::fromStdString(e.bench->stageSettings().serial.portName);
+        const yarp::YarpFingertipSettings tip = e.bench->fingertipSettings();
+        const QJsonObject rigFile{
+            {"description", "the emulated bench"},
+            {"stage", QJsonObject{{"device", "yamaha"}, {"port", pty}}},
+            {"tapper", QJsonObject{{"device", "nxt"},
+                                   {"usb_bus", 1},
+                                   {"usb_address", 2},
+                                   {"degrees_per_mm", e.bench->tapperSettings().degreesPerMm}}},
+            {"fingertip", QJsonObject{{"device", "yarp"},
+                                      {"name_server_port", tip.nameServerPort},
+                                      {"port", QString::fromStdString(tip.port)}}},
+            {"time_scale", e.bench->timeScale()}};
+        const QString rig = dir.filePath("bench_rig.json");
+        {
+            QFile f(rig);
+            QVERIFY(f.open(QIODevice::WriteOnly));
+            f.write(QJsonDocument(rigFile).toJson());
+        }
+        const QString experiment = dir.filePath("on_the_bench.json");
+        {
+            QFile f(experiment);
+            QVERIFY(f.open(QIODevice::WriteOnly));
+            f.write(QString(R"({"extends": "%1", "name": "on_the_bench",
+                "training": {"data_sets": 2},
+                "following": {"tap_cap_perimeters": 0.35, "trials": [{"mode": "active",
+                    "object": {"shape": "rectangle", "width_mm": 48, "height_mm": 58,
+                               "offset_mm": [150, 150], "top_height_mm": 10}}]}})")
+                        .arg(test::sourceFile("experiments/paper.json"))
+                        .toUtf8());
+        }
+        const QString out = dir.filePath("run");
+        const test::CliOutcome o =
+            test::runCli({"run", experiment, "--rig", rig, "--out", out, "--no-figures"});
+        QVERIFY2(o.exitCode == 0, qPrintable(o.out + o.err));
+        QVERIFY2(
+            o.out.contains("connecting stage: Yamaha RCX on " + pty + "; tapper: NXT over USB"),
+            qPrintable(o.out));
+        const QJsonObject s = test::readJson(out + "/summary.json");
+        QVERIFY2(s["rig"].toString().contains("NXT over USB"), qPrintable(s["rig"].toString()));
+        QCOMPARE(s["run_finished"].toBool(), true);
+        // Every training and test tap was the brick's motor pressing the emulated fingertip.
+        QCOMPARE(test::linesIn(out + "/data/taps.csv"), 1 + 2 * 72 * 50);
+        const QJsonObject trial = s["following"].toArray().at(0).toObject();
+        QVERIFY2(trial["taps"].toInt() >= 5, qPrintable(o.out));
+        QCOMPARE(test::linesIn(out + "/data/following_taps.csv"),
+                 1 + trial["taps"].toInt() * e.spec.scene.tap.samples);
+        QVERIFY(e.bench->brick().requestsHandled() > 2 * 72);
+        QVERIFY(e.retracted());
+        QVERIFY(!e.bench->rcx().moving());
+        QTRY_COMPARE(e.bench->yarp().readers(), 0);
+
+        // Ctrl-C part-way: the run stops after the tap in flight, the tapper retracts, the stage
+        // comes to rest, the fingertip is let go, and every tap taken is kept.
+        const QString stopped = dir.filePath("stopped");
+        QProcess p;
+        p.start(qEnvironmentVariable("ACTIVETOUCH_CLI"),
+                {"run", experiment, "--rig", rig, "--out", stopped, "--no-figures"});
+        QVERIFY(p.waitForStarted());
+        QTRY_VERIFY_WITH_TIMEOUT(test::linesIn(stopped + "/data/taps.csv") > 20 * 50, 120000);
+        ::kill(static_cast<pid_t>(p.processId()), SIGINT);
+        QVERIFY(p.waitForFinished(30000));
+        QCOMPARE(p.exitStatus(), QProcess::NormalExit);
+        QCOMPARE(p.exitCode(), 1);
+        QVERIFY(QString(p.readAllStandardError()).contains("stopped before the end"));
+        QCOMPARE(test::readJson(stopped + "/summary.json")["run_finished"].toBool(), false);
+        const int kept = test::linesIn(stopped + "/data/taps.csv");
+        QVERIFY2(kept > 20 * 50 && kept < 1 + 2 * 72 * 50 && (kept - 1) % 50 == 0,
+                 qPrintable(QString::number(kept)));
+        QVERIFY(e.retracted());
+        QVERIFY(!e.bench->rcx().moving());
+        QTRY_COMPARE(e.bench->yarp().readers(), 0);
     }
 };
 

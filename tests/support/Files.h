@@ -1,6 +1,8 @@
 #pragma once
 // Reading back what a run wrote.
 #include <QFile>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QString>
 
 namespace activetouch::test {
@@ -10,6 +12,13 @@ inline int linesIn(const QString& path) {
     QFile f(path);
     if (!f.open(QIODevice::ReadOnly)) return -1;
     return static_cast<int>(f.readAll().count('\n'));
+}
+
+/// The JSON object a file holds (empty if it cannot be read): a summary, a rates table.
+inline QJsonObject readJson(const QString& path) {
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly)) return {};
+    return QJsonDocument::fromJson(f.readAll()).object();
 }
 
 }  // namespace activetouch::test

@@ -1,6 +1,7 @@
 #pragma once
 // Where tests find the source tree (experiments/, resources/) and the built CLI; set per test by
 // CMake.
+#include <QString>
 #include <cstdlib>
 #include <string>
 
@@ -13,6 +14,10 @@ inline std::string sourceDir() {
 
 inline std::string sourcePath(const std::string& relative) {
     return sourceDir() + "/" + relative;
+}
+
+inline QString sourceFile(const QString& relative) {
+    return QString::fromStdString(sourcePath(relative.toStdString()));
 }
 
 }  // namespace activetouch::test
