@@ -37,7 +37,7 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
     auto* object = new QGroupBox(tr("Object"));
     auto* form = new QFormLayout(object);
     shape_ = new QComboBox;
-    shape_->addItems({"rectangle", "cross", "c", "l", "polygon"});
+    shape_->addItems({"rectangle", "cross", "C", "L", "polygon"});
     width_ = spin(1, 1000, 48, " mm");
     height_ = spin(1, 1000, 58, " mm");
     arm_ = spin(1, 1000, 20, " mm");
@@ -99,8 +99,8 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
         const bool library = shape != "polygon";
         width_->setEnabled(library);
         height_->setEnabled(library);
-        arm_->setEnabled(shape == "cross" || shape == "c" || shape == "l");
-        opening_->setEnabled(shape == "c");
+        arm_->setEnabled(shape == "cross" || shape == "C" || shape == "L");
+        opening_->setEnabled(shape == "C");
     };
     connect(shape_, &QComboBox::currentTextChanged, this, enableSizes);
     enableSizes(shape_->currentText());
@@ -149,7 +149,7 @@ SceneSpec ScenePanel::sceneFromPanel(const SceneSpec& base) const {
         o["width_mm"] = width_->value();
         o["height_mm"] = height_->value();
         if (o["shape"] != "rectangle") o["arm_mm"] = arm_->value();
-        if (o["shape"] == "c") o["opening_mm"] = opening_->value();
+        if (o["shape"] == "C") o["opening_mm"] = opening_->value();
     }
     o["rotation_deg"] = rotation_->value();
     o["offset_mm"] = {x_->value(), y_->value()};

@@ -2,6 +2,7 @@
 // The paper's test objects as outlines centred on their bounding box. The paper gives only the
 // rectangle's size (48 x 58 mm); the cross, C and L default to 60 x 60 mm with 20 mm arms and a
 // 20 mm C opening (DESIGN.md §2). Any scene may give its own polygon instead.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,11 +17,16 @@ struct ShapeSize {
     double opening = 20.0;  ///< gap of the C, mm
 };
 
-/// Names accepted by `libraryShape`: rectangle, cross, c, l.
+/// The library's shapes as they are named everywhere: rectangle, cross, C, L.
 const std::vector<std::string>& libraryShapeNames();
 
-/// Outline of a library shape centred at the origin. Throws std::invalid_argument with a
-/// sentence for an unknown name or sizes that make no outline (arm wider than the shape...).
+/// The library's name for `name` in any letter case ("c" -> "C"), or none if it names no
+/// library shape.
+std::optional<std::string> libraryShapeName(const std::string& name);
+
+/// Outline of a library shape (named in any letter case) centred at the origin. Throws
+/// std::invalid_argument with a sentence for an unknown name or sizes that make no outline (arm
+/// wider than the shape...).
 Polygon libraryShape(const std::string& name, const ShapeSize& size);
 
 /// The defaults DESIGN.md gives for each library shape.

@@ -88,16 +88,16 @@ ObjectSpec parseObject(const JsonFields& f) {
                    "a polygon object needs 'polygon_mm': a list of [x, y] vertices in mm");
         o.polygon = parseVertexList(f.raw("polygon_mm"), f.source(), f.placeOf("polygon_mm"));
     } else {
-        bool known = false;
-        for (const auto& n : libraryShapeNames()) known = known || n == o.shape;
-        if (!known)
+        const auto name = libraryShapeName(o.shape);
+        if (!name)
             f.fail("shape", "unknown shape '" + o.shape +
-                                "'; use rectangle, cross, c, l, or polygon with polygon_mm");
+                                "'; use rectangle, cross, C, L, or polygon with polygon_mm");
+        o.shape = *name;
         o.size = defaultShapeSize(o.shape);
         o.size.width = f.number("width_mm", 1.0, 1000.0, o.size.width);
         o.size.height = f.number("height_mm", 1.0, 1000.0, o.size.height);
         o.size.arm = f.number("arm_mm", 1.0, 1000.0, o.shape == "rectangle" ? 1.0 : o.size.arm);
-        o.size.opening = f.number("opening_mm", 1.0, 1000.0, o.shape == "c" ? o.size.opening : 1.0);
+        o.size.opening = f.number("opening_mm", 1.0, 1000.0, o.shape == "C" ? o.size.opening : 1.0);
         try {
             libraryShape(o.shape, o.size);
         } catch (const std::invalid_argument& e) {
@@ -263,7 +263,7 @@ Json objectToJson(const ObjectSpec& object) {
         o["width_mm"] = object.size.width;
         o["height_mm"] = object.size.height;
         if (object.shape != "rectangle") o["arm_mm"] = object.size.arm;
-        if (object.shape == "c") o["opening_mm"] = object.size.opening;
+        if (object.shape == "C") o["opening_mm"] = object.size.opening;
     }
     o["rotation_deg"] = object.rotationDeg;
     o["offset_mm"] = {object.offset.x, object.offset.y};

@@ -110,7 +110,7 @@ private slots:
         QStringList followed;
         for (const std::string& shape : recognitionConfusion(paper).labels)
             followed << QString::fromStdString(shape);
-        QCOMPARE(followed, (QStringList{"rectangle", "cross", "c", "l"}));
+        QCOMPARE(followed, (QStringList{"rectangle", "cross", "C", "L"}));
         QCustomPlot plot;
         QVERIFY(buildRecognitionFigure(plot, paper));
         const RunFigure& figure9 = *std::find_if(

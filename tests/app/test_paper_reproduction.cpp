@@ -100,7 +100,7 @@ private slots:
         // matches the trials it counts.
         const auto byLabel = rates_.activeCompletedByLabel();
         QCOMPARE(int(byLabel.size()), 4);
-        const char* shapes[] = {"rectangle", "cross", "c", "l"};
+        const char* shapes[] = {"rectangle", "cross", "C", "L"};
         Rate sum;
         for (std::size_t i = 0; i < byLabel.size(); ++i) {
             const auto& [label, rate] = byLabel[i];
@@ -161,7 +161,7 @@ private slots:
         o.activeTrials = o.activeCompleted = 8;
         o.recognition = true;
         for (int trial = 1; trial <= 8; ++trial)
-            o.namings.push_back({"rectangle", trial, trial == 1 ? "c" : "rectangle", "rectangle"});
+            o.namings.push_back({"rectangle", trial, trial == 1 ? "C" : "rectangle", "rectangle"});
         one.seeds.push_back(o);
         QCOMPARE(one.paperResult().count, 0);
         QCOMPARE(one.paperResultSmoothed().count, 1);
@@ -183,7 +183,7 @@ private slots:
         // Over the ten runs: every recognised path in one cell of each rule's table, its row the
         // shape it traced, the diagonal the paths named rightly.
         const RecognitionConfusion c = rates_.confusion();
-        QCOMPARE(c.labels, (std::vector<std::string>{"rectangle", "cross", "c", "l"}));
+        QCOMPARE(c.labels, (std::vector<std::string>{"rectangle", "cross", "C", "L"}));
         int rawRight = 0, smoothedRight = 0, rawAll = 0, smoothedAll = 0, misnamedPaths = 0;
         for (std::size_t i = 0; i < c.labels.size(); ++i)
             for (std::size_t j = 0; j < c.labels.size(); ++j) {
@@ -203,19 +203,19 @@ private slots:
         SeedRates one;
         SeedOutcome o;
         o.recognition = true;
-        o.namings = {{"rectangle", 1, "c", "rectangle"}, {"c", 1, "c", "c"}};
+        o.namings = {{"rectangle", 1, "C", "rectangle"}, {"C", 1, "C", "C"}};
         one.seeds.push_back(o);
         QCOMPARE(o.misnamed(),
                  (std::vector<std::string>{
-                     "rectangle trial 1: c by the paper's rule, rectangle smoothed"}));
+                     "rectangle trial 1: C by the paper's rule, rectangle smoothed"}));
         const RecognitionConfusion m = one.confusion();
-        QCOMPARE(m.labels, (std::vector<std::string>{"rectangle", "c"}));
+        QCOMPARE(m.labels, (std::vector<std::string>{"rectangle", "C"}));
         QCOMPARE(m.raw, (std::vector<std::vector<int>>{{0, 1}, {0, 1}}));
         QCOMPARE(m.smoothed, (std::vector<std::vector<int>>{{1, 0}, {0, 1}}));
-        QCOMPARE(m.misnamed(false), std::string("rectangle as c 1"));
+        QCOMPARE(m.misnamed(false), std::string("rectangle as C 1"));
         QCOMPARE(m.misnamed(true), std::string());
         const auto lines = describeRates(one);
-        QCOMPARE(std::count(lines.begin(), lines.end(), "  misnamed: rectangle as c 1"), 1);
+        QCOMPARE(std::count(lines.begin(), lines.end(), "  misnamed: rectangle as C 1"), 1);
         QCOMPARE(std::count_if(lines.begin(), lines.end(),
                                [](const std::string& l) { return l.find("misnamed:") == 2; }),
                  1);

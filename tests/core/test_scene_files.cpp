@@ -107,6 +107,28 @@ private slots:
         QCOMPARE(kernel.trials.size(), paper.trials.size());
     }
 
+    void libraryShapesAreNamedInAnyCaseAndShownAsThePaperNamesThem() {
+        // "c" and "C" are the same shape; figures, tables and files name it "C", as the paper.
+        write("good.json", kGoodScene);
+        const std::string path = write("cases.json", R"({"name": "cases", "scene": "good.json",
+            "following": {"trials": [
+                {"object": {"shape": "c", "offset_mm": [150, 150]}},
+                {"object": {"shape": "L", "offset_mm": [150, 150]}},
+                {"object": {"shape": "Cross", "offset_mm": [150, 150]}}]}})");
+        const ExperimentSpec e = loadExperiment(path);
+        QCOMPARE(int(e.trials.size()), 3);
+        QCOMPARE(e.trials[0].object.shape, std::string("C"));
+        QCOMPARE(e.trials[0].label, std::string("C"));
+        QCOMPARE(e.trials[1].object.shape, std::string("L"));
+        QCOMPARE(e.trials[2].object.shape, std::string("cross"));
+        QCOMPARE(e.trials[0].object.outline().area(),
+                 libraryShape("C", defaultShapeSize("C")).area());
+        std::string scene = kGoodScene;
+        scene.replace(scene.find("\"rectangle\""), 11, "\"l\"");
+        const SceneSpec s = loadScene(write("l.json", scene));
+        QCOMPARE(sceneToJson(s)["object"]["shape"].get<std::string>(), std::string("L"));
+    }
+
     void badSceneNamesFilePlaceAndProblem_data() {
         QTest::addColumn<QString>("text");
         QTest::addColumn<QString>("place");
