@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "app/run/OutputFiles.h"
+#include "core/geometry/ShapeLibrary.h"
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
 #include "core/validation/ClassRegions.h"
@@ -111,8 +112,13 @@ std::vector<const RecordedTrial*> replayedTrialsFor(const ExperimentSpec& spec,
     for (const TrialSpec& ts : spec.trials)
         for (int repeat = 0; repeat < ts.repeats; ++repeat) {
             const int trial = ++counters[ts.label + "/" + modeName(ts.mode)];
+            // A trial named after its library shape also matches a recording that spelt the
+            // name in another letter case ("c" for "C").
+            const bool shapeLabel = ts.label == ts.object.shape;
             const auto it = std::find_if(recorded.begin(), recorded.end(), [&](const auto& r) {
-                return r.label == ts.label && r.mode == ts.mode && r.trial == trial;
+                const bool sameLabel =
+                    r.label == ts.label || (shapeLabel && libraryShapeName(r.label) == ts.label);
+                return sameLabel && r.mode == ts.mode && r.trial == trial;
             });
             if (it == recorded.end())
                 throw InputError(name, "",

@@ -674,6 +674,37 @@ private slots:
         QVERIFY(QFileInfo(out + "/figures/figure8_active_paths.png").size() > 0);
     }
 
+    void replayReadsRecordingsThatSpeltShapesInLowerCase() {
+        // Recordings from before the library named its shapes C and L call their trials c and l.
+        const QString run = dir_.filePath("paper");
+        const QString older = dir_.filePath("lower_case_labels");
+        QVERIFY(QDir().mkpath(older + "/data"));
+        QVERIFY(QFile::copy(run + "/data/taps.csv", older + "/data/taps.csv"));
+        QFile in(run + "/data/following_taps.csv"), out(older + "/data/following_taps.csv");
+        QVERIFY(in.open(QIODevice::ReadOnly) && out.open(QIODevice::WriteOnly));
+        int lowered = 0;
+        while (!in.atEnd()) {
+            QByteArray line = in.readLine();
+            if (line.startsWith("C,") || line.startsWith("L,"))
+                line[0] = char(line[0] + 32), ++lowered;
+            out.write(line);
+        }
+        out.close();
+        QVERIFY(lowered > 0);
+        const QString replayed = dir_.filePath("lower_case_replay");
+        const Outcome o = runCli({"replay", sourceFile("experiments/paper.json"), older, "--out",
+                                  replayed, "--no-figures"});
+        QVERIFY2(o.exitCode == 0, qPrintable(o.err));
+        const QJsonArray before = readJson(run + "/summary.json")["following"].toArray(),
+                         after = readJson(replayed + "/summary.json")["following"].toArray();
+        QCOMPARE(after.size(), before.size());
+        for (int i = 0; i < after.size(); ++i) {
+            QCOMPARE(after[i]["shape"], before[i]["shape"]);
+            QCOMPARE(after[i]["taps"], before[i]["taps"]);
+            QCOMPARE(after[i]["reason"], before[i]["reason"]);
+        }
+    }
+
     void replayWithOtherSettingsSaysWhereItLeft() {
         // Another smoothing on the same recording: a trial that decides otherwise leaves the
         // recording at that tap, says what both perceived and decided there, and keeps its taps.
