@@ -40,13 +40,28 @@ namespace {
 
 constexpr int kOk = 0, kRunFailed = 1, kBadInput = 2;
 
-/// Set by Ctrl-C (SIGINT) or SIGTERM during a run on devices: the run stops after the tap in
-/// flight, leaves the tapper retracted and the stage still, and keeps every tap taken.
+/// Set by Ctrl-C (SIGINT) or SIGTERM on devices: while connecting, the stage's origin search is
+/// stopped; in the run, the run stops after the tap in flight, leaves the tapper retracted and
+/// the stage still, and keeps every tap taken.
 std::atomic<bool> gInterrupted{false};
 static_assert(std::atomic<bool>::is_always_lock_free);
 extern "C" void onInterrupt(int) {
     gInterrupted.store(true);
 }
+
+/// SIGINT and SIGTERM set gInterrupted while this lives.
+struct InterruptHandlers {
+    InterruptHandlers() {
+        std::signal(SIGINT, onInterrupt);
+        std::signal(SIGTERM, onInterrupt);
+    }
+    ~InterruptHandlers() {
+        std::signal(SIGINT, SIG_DFL);
+        std::signal(SIGTERM, SIG_DFL);
+    }
+    InterruptHandlers(const InterruptHandlers&) = delete;
+    InterruptHandlers& operator=(const InterruptHandlers&) = delete;
+};
 
 void printHelp() {
     std::printf(
@@ -61,7 +76,8 @@ void printHelp() {
         "      --rig takes the taps on the devices a rig file names instead (the Yamaha stage,\n"
         "      the NXT tapper with the fingertip over YARP, or a mix with simulated ones; see\n"
         "      the README): the scene's object must be the one mounted. Ctrl-C stops after the\n"
-        "      tap in flight, keeping every tap taken.\n"
+        "      tap in flight, keeping every tap taken (while connecting, it stops the stage's\n"
+        "      origin search).\n"
         "  activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>] [--no-figures]\n"
         "      Runs the experiment once per seed A..B (each a whole run: its own data sets,\n"
         "      training, valid range and trials) and reports the rates with 95 %% intervals:\n"
@@ -317,16 +333,30 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
             auto model = std::make_shared<const FingertipContactModel>(spec.scene.fingertip);
             std::printf("connecting %s\n", rigConfig->describe().c_str());
             std::fflush(stdout);
-            AssembledRig assembled(spec.scene, model, *rigConfig);
-            const ConnectedRig connected{assembled.rig(), spec.scene.object, rigConfig->describe()};
+            // From here Ctrl-C stops what the devices do (the origin search, then the run after
+            // the tap in flight) instead of ending the process.
+            const InterruptHandlers handlers;
+            rigConfig->yamaha.stopOriginSearch = &gInterrupted;
+            std::unique_ptr<AssembledRig> assembled;
+            try {
+                assembled = std::make_unique<AssembledRig>(spec.scene, model, *rigConfig);
+            } catch (const RigError& e) {
+                std::fprintf(stderr, "%s: %s\nNothing was recorded.\n",
+                             gInterrupted ? "stopped while connecting" : "could not connect",
+                             e.what());
+                return kRunFailed;
+            }
+            if (gInterrupted) {
+                assembled->shutdown();
+                std::fprintf(stderr, "stopped while connecting; nothing was recorded.\n");
+                return kRunFailed;
+            }
+            const ConnectedRig connected{assembled->rig(), spec.scene.object,
+                                         rigConfig->describe()};
             options.connected = &connected;
             options.cancel = &gInterrupted;
-            std::signal(SIGINT, onInterrupt);
-            std::signal(SIGTERM, onInterrupt);
             result = runExperiment(spec, options);
-            std::signal(SIGINT, SIG_DFL);
-            std::signal(SIGTERM, SIG_DFL);
-            assembled.shutdown();
+            assembled->shutdown();
         } else {
             result = runExperiment(spec, options);
         }

@@ -1,5 +1,6 @@
 #include "devices/yamaha/YamahaStage.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -83,14 +84,26 @@ std::optional<Reply> YamahaStage::await(const std::string& what, int timeoutMs, 
     }
 }
 
-void YamahaStage::expectOk(const std::string& line, int timeoutMs) {
+void YamahaStage::expectOk(const std::string& line, int timeoutMs,
+                           const std::atomic<bool>* stopWhen) {
     send(line);
     // One deadline for the whole exchange: a controller repeating RUN cannot hold us forever.
     const auto deadline = Clock::now() + std::chrono::milliseconds(timeoutMs);
+    constexpr int kStopCheckMs = 50;
     for (;;) {
+        if (stopWhen && stopWhen->load()) {
+            stop();
+            const std::string command = line.substr(0, line.find_last_not_of("\r\n") + 1);
+            throw RigError("Yamaha stage: '" + printable(command) +
+                           "' was stopped (ETX) before the controller reported it done; the "
+                           "stage stands where it stopped");
+        }
         const auto left =
             std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
-        const auto r = left > 0 ? await(line, static_cast<int>(left), true) : std::nullopt;
+        const int wait =
+            static_cast<int>(stopWhen ? std::min<long long>(left, kStopCheckMs) : left);
+        const auto r = left > 0 ? await(line, wait, true) : std::nullopt;
+        if (!r && stopWhen && Clock::now() < deadline) continue;  // a slice ended: check again
         if (!r)
             throw RigError("Yamaha stage: no answer to '" + printable(line) + "' within " +
                            std::to_string(timeoutMs) + " ms; check the cable, the port settings (" +
@@ -121,7 +134,8 @@ void YamahaStage::disconnect() {
 }
 
 void YamahaStage::home() {
-    expectOk(origin(), static_cast<int>(s_.originTimeout_s * 1000.0 / s_.timeScale) + 1000);
+    expectOk(origin(), static_cast<int>(s_.originTimeout_s * 1000.0 / s_.timeScale) + 1000,
+             s_.stopOriginSearch);
     queryPosition();
 }
 

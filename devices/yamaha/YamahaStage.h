@@ -3,6 +3,7 @@
 // search, absolute moves at a speed, the position query, arrival confirmed by polling the position
 // within a tolerance, soft limits checked before anything is sent, and stop (ETX). Every line in
 // both directions goes to the raw log; every wait has a bound.
+#include <atomic>
 #include <functional>
 #include <mutex>
 
@@ -25,6 +26,9 @@ struct YamahaStageSettings {
     double originTimeout_s = 60.0;
     double motionMargin_s = 2.0;  ///< added to the expected travel time
     double timeScale = 1.0;       ///< emulated controllers may run faster than real time
+    /// When this becomes true (Ctrl-C in the headless runner), an origin search in progress is
+    /// stopped with ETX and home() throws. Not owned; none: the search runs to its end.
+    const std::atomic<bool>* stopOriginSearch = nullptr;
 };
 
 class YamahaStage final : public Stage {
@@ -37,7 +41,8 @@ public:
     /// position. Throws RigError.
     void connect(bool searchOrigin = true);
     void disconnect();
-    /// Searches the origin (returns once the controller reports it done).
+    /// Searches the origin (returns once the controller reports it done). Throws RigError, also
+    /// when `stopOriginSearch` stops it.
     void home();
 
     void moveTo(Vec2 target) override;
@@ -56,7 +61,10 @@ private:
     /// The next meaningful reply within `timeoutMs`: garbage lines are logged and skipped, END
     /// lines are remembered and skipped unless `wantEnd`, errors throw RigError naming `what`.
     std::optional<Reply> await(const std::string& what, int timeoutMs, bool wantEnd = false);
-    void expectOk(const std::string& line, int timeoutMs);
+    /// Sends `line` and waits for OK (or END). If `stopWhen` becomes true first, stops the
+    /// stage (ETX) and throws.
+    void expectOk(const std::string& line, int timeoutMs,
+                  const std::atomic<bool>* stopWhen = nullptr);
     int motionTimeoutMs(double distance_mm) const;
 
     YamahaStageSettings s_;

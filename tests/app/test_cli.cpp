@@ -309,6 +309,66 @@ private slots:
         QVERIFY(!controller.moving());
     }
 
+    void ctrlCWhileTheStageSearchesItsOriginStopsIt() {
+        // A stage half a metre from its origin, in real time: the search takes a minute.
+        emu::FakeRcxSettings settings;
+        settings.start = {300.0, 150.0};
+        settings.origin_s = 60.0;
+        emu::FakeRcxController controller(settings);
+        controller.start();
+        const QString rig =
+            write("homing_rig.json", QString(R"({"stage": {"device": "yamaha",
+            "port": "%1"}})")
+                                         .arg(QString::fromStdString(controller.portName())));
+        const QString experiment =
+            write("homing.json",
+                  QString(R"({"extends": "%1", "name": "homing", "following": {"trials": [{"mode":
+            "active", "object": {"shape": "rectangle", "width_mm": 48, "height_mm": 58,
+            "offset_mm": [150, 150], "top_height_mm": 10}}]}})")
+                      .arg(sourceFile("experiments/paper.json")));
+        const QString out = dir_.filePath("homing");
+        QProcess p;
+        p.start(qEnvironmentVariable("ACTIVETOUCH_CLI"),
+                {"run", experiment, "--rig", rig, "--out", out, "--no-figures"});
+        QVERIFY(p.waitForStarted());
+        auto searching = [&] {
+            const auto c = controller.commands();
+            return std::find(c.begin(), c.end(), "ORIGIN") != c.end() && controller.moving();
+        };
+        QTRY_VERIFY_WITH_TIMEOUT(searching(), 20000);
+        ::kill(static_cast<pid_t>(p.processId()), SIGINT);
+        QVERIFY(p.waitForFinished(10000));  // not the minute the search would take
+        QCOMPARE(p.exitStatus(), QProcess::NormalExit);
+        QCOMPARE(p.exitCode(), 1);
+        const QString err = p.readAllStandardError();
+        QVERIFY2(err.contains("stopped while connecting") &&
+                     err.contains("'@ORIGIN' was stopped") && err.contains("Nothing was recorded"),
+                 qPrintable(err));
+        // The controller was told to stop (ETX), and the stage is still, short of its origin.
+        const auto commands = controller.commands();
+        QVERIFY(std::find(commands.begin(), commands.end(), "<ETX>") != commands.end());
+        QVERIFY(!controller.moving());
+        QVERIFY(!QFile::exists(out + "/data/taps.csv"));
+    }
+
+    void aStageThatCannotBeReachedIsNamedAndNothingIsRecorded() {
+        const QString rig = write("absent_rig.json",
+                                  R"({"stage": {"device": "yamaha", "port": "/dev/ttyNOSUCH9"}})");
+        const QString experiment =
+            write("absent.json",
+                  QString(R"({"extends": "%1", "name": "absent", "following": {"trials": [{"mode":
+            "active", "object": {"shape": "rectangle", "width_mm": 48, "height_mm": 58,
+            "offset_mm": [150, 150], "top_height_mm": 10}}]}})")
+                      .arg(sourceFile("experiments/paper.json")));
+        const QString out = dir_.filePath("absent");
+        const Outcome o = runCli({"run", experiment, "--rig", rig, "--out", out, "--no-figures"});
+        QCOMPARE(o.exitCode, 1);
+        QVERIFY2(o.err.contains("could not connect") && o.err.contains("/dev/ttyNOSUCH9") &&
+                     o.err.contains("Nothing was recorded"),
+                 qPrintable(o.err));
+        QVERIFY(!QFile::exists(out + "/data/taps.csv"));
+    }
+
     void rigFileMistakesAreNamedBeforeAnythingConnects_data() {
         QTest::addColumn<QString>("rig");
         QTest::addColumn<QString>("message");

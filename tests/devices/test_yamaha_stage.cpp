@@ -2,7 +2,9 @@
 // controller in both dialects: connect, origin, moves confirmed by position, and every serial
 // fault ending with the stage stopped and a sentence naming the problem.
 #include <QtTest>
+#include <atomic>
 #include <chrono>
+#include <thread>
 
 #include "devices/emulators/FakeRcxController.h"
 #include "devices/yamaha/YamahaStage.h"
@@ -155,6 +157,41 @@ private slots:
         } catch (const RigError& e) {
             QVERIFY(std::string(e.what()).find("/dev/does-not-exist-rcx") != std::string::npos);
         }
+    }
+
+    void anOriginSearchIsStoppedWhenAskedTo_data() { connectHomeAndMoveInBothDialects_data(); }
+    void anOriginSearchIsStoppedWhenAskedTo() {
+        // Ctrl-C in the headless runner while the stage homes: ETX, and home() says so.
+        QFETCH(int, dialect);
+        FakeRcxSettings f = Bench::settings(static_cast<Dialect>(dialect));
+        f.timeScale = 1.0;
+        f.origin_s = 60.0;
+        FakeRcxController controller(f);
+        controller.start();
+        std::atomic<bool> stopNow{false};
+        YamahaStageSettings s;
+        s.serial.portName = controller.portName();
+        s.dialect = static_cast<Dialect>(dialect);
+        s.stopOriginSearch = &stopNow;
+        YamahaStage stage(s);
+        std::thread ctrlC([&] {
+            for (int waited = 0; waited < 10000 && !controller.moving(); waited += 5)
+                std::this_thread::sleep_for(std::chrono::milliseconds(5));
+            stopNow = true;
+        });
+        try {
+            stage.connect(true);
+            ctrlC.join();
+            QFAIL("the origin search ran to its end");
+        } catch (const RigError& e) {
+            ctrlC.join();
+            QVERIFY2(std::string(e.what()).find("'@ORIGIN' was stopped (ETX)") != std::string::npos,
+                     e.what());
+        }
+        const auto commands = controller.commands();
+        QCOMPARE(commands.back(), std::string("<ETX>"));
+        QVERIFY(!controller.moving());
+        QVERIFY(distance(controller.position(), {0.0, 0.0}) > 1.0);  // short of the origin
     }
 
     void movesBeforeTheOriginSearchAreRefusedByTheController() {
