@@ -34,6 +34,17 @@ class TestCli : public QObject {
         return f.fileName();
     }
 
+    /// The paper's experiment with one active trial on the rectangle a rig holds, trained on two
+    /// data sets (one to train, one to validate).
+    QString rectangleOnTheRig() {
+        return write(
+            "on_the_stage.json",
+            QString(R"({"extends": "%1", "name": "on_the_stage", "training": {"data_sets": 2},
+                "following": {"trials": [{"mode": "active", "object": {"shape": "rectangle",
+                "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150], "top_height_mm": 10}}]}})")
+                .arg(sourceFile("experiments/paper.json")));
+    }
+
 private slots:
     void paperRunWritesSummaryDataAndFigures() {
         const QString out = dir_.filePath("paper");
@@ -261,12 +272,7 @@ private slots:
         QVERIFY2(checked.out.contains("ok (rig: stage: Yamaha RCX on " +
                                       QString::fromStdString(controller.portName())),
                  qPrintable(checked.out));
-        const QString experiment =
-            write("on_the_stage.json",
-                  QString(R"({"extends": "%1", "name": "on_the_stage", "training": {"data_sets": 2},
-                "following": {"trials": [{"mode": "active", "object": {"shape": "rectangle",
-                "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150], "top_height_mm": 10}}]}})")
-                      .arg(sourceFile("experiments/paper.json")));
+        const QString experiment = rectangleOnTheRig();
         const QString out = dir_.filePath("on_the_stage");
         const Outcome o = runCli({"run", experiment, "--rig", rig, "--out", out, "--no-figures"});
         QVERIFY2(o.exitCode == 0, qPrintable(o.out + o.err));
@@ -320,12 +326,7 @@ private slots:
             write("homing_rig.json", QString(R"({"stage": {"device": "yamaha",
             "port": "%1"}})")
                                          .arg(QString::fromStdString(controller.portName())));
-        const QString experiment =
-            write("homing.json",
-                  QString(R"({"extends": "%1", "name": "homing", "following": {"trials": [{"mode":
-            "active", "object": {"shape": "rectangle", "width_mm": 48, "height_mm": 58,
-            "offset_mm": [150, 150], "top_height_mm": 10}}]}})")
-                      .arg(sourceFile("experiments/paper.json")));
+        const QString experiment = rectangleOnTheRig();
         const QString out = dir_.filePath("homing");
         QProcess p;
         p.start(qEnvironmentVariable("ACTIVETOUCH_CLI"),
@@ -354,12 +355,7 @@ private slots:
     void aStageThatCannotBeReachedIsNamedAndNothingIsRecorded() {
         const QString rig = write("absent_rig.json",
                                   R"({"stage": {"device": "yamaha", "port": "/dev/ttyNOSUCH9"}})");
-        const QString experiment =
-            write("absent.json",
-                  QString(R"({"extends": "%1", "name": "absent", "following": {"trials": [{"mode":
-            "active", "object": {"shape": "rectangle", "width_mm": 48, "height_mm": 58,
-            "offset_mm": [150, 150], "top_height_mm": 10}}]}})")
-                      .arg(sourceFile("experiments/paper.json")));
+        const QString experiment = rectangleOnTheRig();
         const QString out = dir_.filePath("absent");
         const Outcome o = runCli({"run", experiment, "--rig", rig, "--out", out, "--no-figures"});
         QCOMPARE(o.exitCode, 1);
