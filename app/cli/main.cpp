@@ -346,8 +346,7 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
                              e.what());
                 return kRunFailed;
             }
-            if (gInterrupted) {
-                assembled->shutdown();
+            if (gInterrupted) {  // the rig lets the devices go as it ends
                 std::fprintf(stderr, "stopped while connecting; nothing was recorded.\n");
                 return kRunFailed;
             }

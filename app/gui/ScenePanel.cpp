@@ -11,6 +11,7 @@
 #include <QScrollArea>
 #include <QVBoxLayout>
 
+#include "core/geometry/ShapeLibrary.h"
 #include "devices/simulated/effects/Effect.h"
 
 namespace activetouch {
@@ -37,7 +38,9 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
     auto* object = new QGroupBox(tr("Object"));
     auto* form = new QFormLayout(object);
     shape_ = new QComboBox;
-    shape_->addItems({"rectangle", "cross", "C", "L", "polygon"});
+    for (const std::string& name : libraryShapeNames())
+        shape_->addItem(QString::fromStdString(name));
+    shape_->addItem("polygon");
     width_ = spin(1, 1000, 48, " mm");
     height_ = spin(1, 1000, 58, " mm");
     arm_ = spin(1, 1000, 20, " mm");

@@ -23,12 +23,11 @@ std::optional<std::string> libraryShapeName(const std::string& name) {
 }
 
 ShapeSize defaultShapeSize(const std::string& name) {
-    if (libraryShapeName(name) == "rectangle") return {48.0, 58.0, 0.0, 0.0};
+    if (name == "rectangle") return {48.0, 58.0, 0.0, 0.0};
     return {60.0, 60.0, 20.0, 20.0};
 }
 
-Polygon libraryShape(const std::string& given, const ShapeSize& s) {
-    const std::string name = libraryShapeName(given).value_or(given);
+Polygon libraryShape(const std::string& name, const ShapeSize& s) {
     const double w = s.width, h = s.height, a = s.arm;
     if (!(w > 0) || !(h > 0)) throw std::invalid_argument("width and height must be positive");
     const double x0 = -w / 2, y0 = -h / 2;
@@ -56,7 +55,7 @@ Polygon libraryShape(const std::string& given, const ShapeSize& s) {
             throw std::invalid_argument("the L's arm must be narrower than the shape");
         return Polygon({at(0, 0), at(w, 0), at(w, a), at(a, a), at(a, h), at(0, h)});
     }
-    throw std::invalid_argument("unknown shape '" + given +
+    throw std::invalid_argument("unknown shape '" + name +
                                 "'; use rectangle, cross, C, L or give a polygon");
 }
 

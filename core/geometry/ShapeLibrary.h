@@ -24,7 +24,7 @@ const std::vector<std::string>& libraryShapeNames();
 /// library shape.
 std::optional<std::string> libraryShapeName(const std::string& name);
 
-/// Outline of a library shape (named in any letter case) centred at the origin. Throws
+/// Outline of a library shape (named as libraryShapeNames() names it) centred at the origin. Throws
 /// std::invalid_argument with a sentence for an unknown name or sizes that make no outline (arm
 /// wider than the shape...).
 Polygon libraryShape(const std::string& name, const ShapeSize& size);

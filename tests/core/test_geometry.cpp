@@ -16,8 +16,8 @@ private slots:
         QTest::addColumn<int>("vertices");
         QTest::newRow("rectangle 48 x 58") << "rectangle" << 48.0 * 58.0 << 4;
         QTest::newRow("cross 60, arm 20") << "cross" << 3600.0 - 4 * 400.0 << 12;
-        QTest::newRow("C 60, arm 20, opening 20") << "c" << 3600.0 - 40.0 * 20.0 << 8;
-        QTest::newRow("L 60, arm 20") << "l" << 3600.0 - 40.0 * 40.0 << 6;
+        QTest::newRow("C 60, arm 20, opening 20") << "C" << 3600.0 - 40.0 * 20.0 << 8;
+        QTest::newRow("L 60, arm 20") << "L" << 3600.0 - 40.0 * 40.0 << 6;
     }
     void libraryShapeAreas() {
         QFETCH(QString, shape);
@@ -33,7 +33,7 @@ private slots:
 
     void containmentAndSignedDistance() {
         const Polygon l =
-            libraryShape("l", defaultShapeSize("l"));  // x, y in -30..30, notch top right
+            libraryShape("L", defaultShapeSize("L"));  // x, y in -30..30, notch top right
         QVERIFY(l.contains({-25, 25}));
         QVERIFY(l.contains({25, -25}));
         QVERIFY(!l.contains({10, 10}));              // inside the notch
@@ -59,7 +59,7 @@ private slots:
     }
 
     void arcLengthRoundTrip() {
-        const Polygon c = libraryShape("c", defaultShapeSize("c"));
+        const Polygon c = libraryShape("C", defaultShapeSize("C"));
         for (double s = 0; s < c.perimeter(); s += 7.3) {
             const auto q = c.nearestOutlinePoint(c.pointAtArcLength(s));
             QVERIFY(qAbs(q.arcLength - s) < 1e-9);

@@ -66,7 +66,7 @@ private slots:
     }
 
     void translationAndScaleDoNotMatter() {
-        const Polygon l = libraryShape("l", defaultShapeSize("l"));
+        const Polygon l = libraryShape("L", defaultShapeSize("L"));
         std::vector<Vec2> path = idealFollowingPath(l, 0.0, 2.0), moved;
         for (Vec2 v : path) moved.push_back(1.5 * v + Vec2{300, -40});
         QCOMPARE(histogramDistance(pathHistogram(path), pathHistogram(moved)), 0.0);
