@@ -264,6 +264,8 @@ void printReport(const RunResult& result, double wall, double figures_s,
         "valid range %d-%d mm\n",
         v.angleError_deg, v.positionError_mm, 100.0 * v.correctFraction, v.validRange.first,
         v.validRange.last);
+    if (const std::string note = followingClassifierNote(result); !note.empty())
+        std::printf("%s\n", note.c_str());
     if (const auto& m = result.measuredNoiseFloor)
         std::printf(
             "noise floor: %.1f counts (measured from %d taps that touched nothing; "

@@ -593,6 +593,8 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
                 .arg(r.validation.positionError_mm, 0, 'f', 3)
                 .arg(r.validation.validRange.first)
                 .arg(r.validation.validRange.last));
+    if (const std::string note = followingClassifierNote(r); !note.empty())
+        log(QString::fromStdString(note));
     for (const auto& t : r.trials)
         log(tr("%1 %2 trial %3: %4")
                 .arg(modeName(t.result.mode), QString::fromStdString(t.label))

@@ -439,6 +439,14 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     result.trustedPositions = {lo, hi};
     result.validOffsets.trustedLow = result.classes.offsetOf(lo) - half;
     result.validOffsets.trustedHigh = result.classes.offsetOf(hi) + half;
+    if (spec.training.retrainOnAllSets) {
+        // Validated on held-out sets, the classifier then learns from every tap taken: the trials
+        // get the test taps too, at no extra tap.
+        std::vector<LabelledTap> everySet;
+        for (const auto& t : result.taps) everySet.push_back({&t.record.tap, t.cls});
+        result.classifier =
+            HistogramClassifier::train(everySet, result.classes.classCount(), spec.classifier);
+    }
 
     if (recorded) {
         // A recording is analysed offline: its trials, if any, replay on the recorded taps, and
@@ -463,6 +471,14 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     result.runWall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return result;
+}
+
+std::string followingClassifierNote(const RunResult& r) {
+    if (!r.spec.training.retrainOnAllSets || !r.classifier.trained()) return {};
+    return "following classifier: trained again after validation on all " +
+           std::to_string(r.spec.training.dataSets) + " data sets (" +
+           std::to_string(r.taps.size()) +
+           " taps, test sets included); the validation above is the training sets' alone";
 }
 
 RunResult runFollowing(const RunResult& trained, const ExperimentSpec& specIn,
@@ -713,7 +729,8 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
                      {"training_sets", r.spec.training.trainingSets},
                      {"taps_per_class", r.spec.training.tapsPerClass},
                      {"test_offset_mm", r.spec.training.testOffset_mm},
-                     {"placement_jitter_mm", r.spec.training.placementJitter_mm}};
+                     {"placement_jitter_mm", r.spec.training.placementJitter_mm},
+                     {"retrain_on_all_sets", r.spec.training.retrainOnAllSets}};
     if (!r.validation.byClass.empty()) {
         const auto& v = r.validation;
         Json byClass = Json::array();

@@ -138,6 +138,10 @@ void checkRunnableOn(const ExperimentSpec& spec, const ObjectSpec& object);
 /// cannot be written.
 RunResult runExperiment(const ExperimentSpec& spec, const RunOptions& options);
 
+/// What the trials follow with when it is not the validated classifier: a sentence saying the
+/// classifier was trained again on every data set after validation, or empty.
+std::string followingClassifierNote(const RunResult& result);
+
 /// Runs only the following trials (and recognition) of `spec` with the classifier, class regions
 /// and valid range of an earlier run.
 RunResult runFollowing(const RunResult& trained, const ExperimentSpec& spec,

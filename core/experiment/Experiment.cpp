@@ -245,7 +245,7 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
     if (f.has("training")) {
         const JsonFields t = f.object("training");
         t.rejectUnknownKeys({"data_sets", "training_sets", "taps_per_class", "test_offset_mm",
-                             "placement_jitter_mm"});
+                             "placement_jitter_mm", "retrain_on_all_sets"});
         e.training.dataSets = t.integer("data_sets", 2, 1000, e.training.dataSets);
         if (t.has("training_sets")) {
             e.training.trainingSets.clear();
@@ -256,6 +256,7 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
         e.training.testOffset_mm = t.number("test_offset_mm", -5.0, 5.0, e.training.testOffset_mm);
         e.training.placementJitter_mm =
             t.number("placement_jitter_mm", 0.0, 5.0, e.training.placementJitter_mm);
+        e.training.retrainOnAllSets = t.flag("retrain_on_all_sets", e.training.retrainOnAllSets);
         if (auto p = e.training.problem(); !p.empty()) throw InputError(source, "/training", p);
     }
     if (f.has("validation")) {

@@ -20,6 +20,10 @@ struct TrainingProtocolSettings {
     int tapsPerClass = 1;
     double testOffset_mm = 0.0;       ///< test taps shifted along the edge normal
     double placementJitter_mm = 0.2;  ///< per-set object displacement, standard deviation per axis
+    /// After validation, train the classifier the trials follow with again on every data set,
+    /// test sets included: the validation (errors, valid range, trusted span) still comes from the
+    /// training sets against the test sets, but the loop gets every tap the protocol took.
+    bool retrainOnAllSets = false;
 
     bool isTrainingSet(int set) const;
     /// Why the settings cannot run, or empty.

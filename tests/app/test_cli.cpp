@@ -630,6 +630,21 @@ private slots:
         QVERIFY(in.open(QIODevice::ReadOnly) && copy.open(QIODevice::ReadOnly));
         QVERIFY(in.readAll() == copy.readAll());
 
+        // Retrained on every set for following: the same validation, and the run says what its
+        // trials would follow with.
+        const QString outRetrained = dir_.filePath("analysis_retrained");
+        const Outcome retrained = runCli({"analyse", sourceFile("experiments/paper_retrained.json"),
+                                          recording, "--out", outRetrained, "--no-figures"});
+        QVERIFY2(retrained.exitCode == 0, qPrintable(retrained.err));
+        QVERIFY2(retrained.out.contains("following classifier: trained again after validation on "
+                                        "all 5 data sets (360 taps, test sets included)"),
+                 qPrintable(retrained.out));
+        QVERIFY(!o.out.contains("following classifier"));
+        const QJsonObject r = readJson(outRetrained + "/summary.json");
+        QCOMPARE(r["validation"].toObject()["by_class"], run["validation"].toObject()["by_class"]);
+        QCOMPARE(r["training"].toObject()["retrain_on_all_sets"].toBool(), true);
+        QCOMPARE(run["training"].toObject()["retrain_on_all_sets"].toBool(true), false);
+
         // Other classifier settings on the same taps: another validation.
         const QString coarse = write("coarse.json", QString(R"({"extends": "%1",
             "classifier": {"bins": 10}})")

@@ -105,6 +105,16 @@ private slots:
         QCOMPARE(kernel.classifier.bins, paper.classifier.bins);
         QCOMPARE(kernel.classifier.smoothing, paper.classifier.smoothing);
         QCOMPARE(kernel.trials.size(), paper.trials.size());
+
+        QVERIFY(!paper.training.retrainOnAllSets);  // the paper follows with set 1's classifier
+        const ExperimentSpec retrained =
+            loadExperiment(test::sourcePath("experiments/paper_retrained.json"));
+        QVERIFY(retrained.training.retrainOnAllSets);
+        QCOMPARE(retrained.training.trainingSets, paper.training.trainingSets);
+        QCOMPARE(retrained.training.dataSets, paper.training.dataSets);
+        QCOMPARE(retrained.training.tapsPerClass, paper.training.tapsPerClass);
+        QCOMPARE(retrained.classifier.kernelSigma_bins, paper.classifier.kernelSigma_bins);
+        QCOMPARE(retrained.trials.size(), paper.trials.size());
     }
 
     void libraryShapesAreNamedInAnyCaseAndShownAsThePaperNamesThem() {
@@ -298,6 +308,9 @@ private slots:
             << "'kernel_sigma_bins' is 51, outside the allowed range";
         QTest::newRow("kernel as text") << head + R"("classifier": {"kernel_sigma_bins": "wide"}})"
                                         << "kernel_sigma_bins";
+        QTest::newRow("retraining as text")
+            << head + R"("training": {"retrain_on_all_sets": "yes"}})"
+            << "at /training/retrain_on_all_sets: expected true or false, found \"yes\"";
         QTest::newRow("scene file missing") << R"({"name": "x", "scene": "nope.json"})"
                                             << "does not exist";
         QTest::newRow("orientation with no edge")
