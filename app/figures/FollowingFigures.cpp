@@ -47,7 +47,7 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
         if (t.result.mode == mode &&
             std::find(labels.begin(), labels.end(), t.label) == labels.end())
             labels.push_back(t.label);
-    startFigure(plot, title);
+    startFigure(plot, title + classifierTitleNote(r, true));
     if (labels.empty()) return false;
     QCPLayoutGrid* panels = addFigureRow(plot, 1.0);
     const int columns = labels.size() > 2 ? 2 : static_cast<int>(labels.size());

@@ -15,7 +15,8 @@ namespace activetouch {
 
 struct RunResult;
 
-/// Paths of the trials in `mode`, one panel per shape. Returns false if there are none.
+/// Paths of the trials in `mode`, one panel per shape, under `title` and what the classifier the
+/// trials followed with adds to it (classifierTitleNote). Returns false if there are none.
 bool buildPathFigure(QCustomPlot& plot, const RunResult& result, FollowingMode mode,
                      const QString& title);
 

@@ -120,6 +120,15 @@ void buildTapFigure(QCustomPlot& plot, const RunResult& r) {
         legend->addItem(new QCPPlottableLegendItem(legend, plot.graph(k)));
 }
 
+QString classifierTitleNote(const RunResult& r, bool following) {
+    QString note;
+    if (const double kernel = r.spec.classifier.kernelSigma_bins; kernel > 0.0)
+        note += QString("; kernel %1 bins").arg(kernel);
+    if (following && r.spec.training.retrainOnAllSets)
+        note += QString("; trained on all %1 data sets").arg(r.spec.training.dataSets);
+    return note;
+}
+
 void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
     const ClassSet& cs = r.classes;
     const int O = static_cast<int>(cs.orientationsDeg.size());
@@ -138,16 +147,13 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
     const Heat heats[2] = {
         {"A  angle error", maxAngle, true, "angle error (deg)"},
         {"B  position error", maxPosition, false, "position error (mm, top colour = at or above)"}};
-    // A likelihood other than the paper's histogram is named, so that exported figures of two
-    // classifiers cannot be mistaken for each other.
-    const double kernel = r.spec.classifier.kernelSigma_bins;
     startFigure(plot, QString("Figure 6 - offline validation over %1 test taps: angle error %2 "
                               "deg, position error %3 mm; noise floor %4 counts%5")
                           .arg(r.validation.percepts.size())
                           .arg(r.validation.angleError_deg, 0, 'f', 1)
                           .arg(r.validation.positionError_mm, 0, 'f', 2)
                           .arg(r.noiseFloor_counts, 0, 'f', 1)
-                          .arg(kernel > 0.0 ? QString("; kernel %1 bins").arg(kernel) : QString()));
+                          .arg(classifierTitleNote(r, false)));
     QCPLayoutGrid* upper = addFigureRow(plot, 1.0);
     for (int h = 0; h < 2; ++h) {
         auto* rect =

@@ -2,11 +2,19 @@
 // The paper's Figure 5 (taps across each edge) and Figure 6 (angle and position errors per
 // orientation x position, and their averages over orientations with the valid range marked),
 // built into a QCustomPlot for the GUI or for export.
+#include <QString>
+
 class QCustomPlot;
 
 namespace activetouch {
 
 struct RunResult;
+
+/// What a figure's title adds when the classifier is not the paper's, so that exported figures of
+/// two classifiers cannot be mistaken for each other: "; kernel 2.5 bins" for a kernel-smoothed
+/// likelihood, and for figures of following (`following`) "; trained on all 5 data sets" when the
+/// trials followed with a classifier trained again after validation. Empty for the paper's.
+QString classifierTitleNote(const RunResult& result, bool following);
 
 /// Figure 5: data set 1's taps across each edge, one panel per orientation, pressures normalised
 /// to a maximum of one, one colour per taxel.

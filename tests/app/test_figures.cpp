@@ -103,6 +103,33 @@ private slots:
         QVERIFY2(named.endsWith("; kernel 2.5 bins"), qPrintable(named));
     }
 
+    void thePathFiguresNameTheClassifierTheTrialsFollowedWith() {
+        // Figures 7 and 8 of a run that followed with a kernel, trained again on every set after
+        // validation, say so; the paper's say nothing more; every title fits its figure.
+        auto titles = [](const RunResult& run) {
+            QStringList t;
+            for (const char* file : {"figure7_passive_paths", "figure8_active_paths"}) {
+                const RunFigure& f =
+                    *std::find_if(runFigures().begin(), runFigures().end(),
+                                  [&](const RunFigure& g) { return QString(g.file) == file; });
+                QCustomPlot plot;
+                if (!f.build(plot, run)) return QStringList();
+                layOutAt(plot, f.size);
+                test::checkLabelsFitTheirPanels(plot, file);
+                t << qobject_cast<QCPTextElement*>(plot.plotLayout()->element(0, 0))->text();
+            }
+            return t;
+        };
+        QCOMPARE(titles(runs_.front()), (QStringList{"Figure 7 - passive contour following (PCF)",
+                                                     "Figure 8 - active contour following (ACF)"}));
+        ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper_retrained.json"));
+        spec.classifier.kernelSigma_bins = 2.5;
+        const QStringList named = titles(runExperiment(spec, RunOptions{}));
+        QCOMPARE(named.size(), 2);
+        for (const QString& t : named)
+            QVERIFY2(t.endsWith("; kernel 2.5 bins; trained on all 5 data sets"), qPrintable(t));
+    }
+
     void recognitionRowsFollowTheConfusionTables() {
         // Figure 9 reads top to bottom in the order of the confusion tables shown beside it: the
         // templates' order, for the paper rectangle, cross, C, L.
