@@ -112,9 +112,11 @@ SeedOutcome seedOutcome(const RunResult& run) {
     o.positionError_mm = run.validation.positionError_mm;
     o.recognition = run.spec.recognition.enabled;
     for (const TrialRun& t : run.trials) {
+        const Tracing traced{1, t.result.coverage, t.result.meanContourDistance_mm};
         if (t.result.mode == FollowingMode::Passive) {
             ++o.passiveTrials;
             o.passiveLost += !t.result.completed();
+            if (t.result.completed()) o.passiveTracing.add(traced);
             continue;
         }
         ++o.activeTrials;
@@ -132,8 +134,15 @@ SeedOutcome seedOutcome(const RunResult& run) {
                 {t.label, t.trial, t.recognition.predicted, t.recognition.predictedSmoothed});
         o.completedTaps += static_cast<int>(t.result.taps.size());
         o.completedRobotTime_s += t.result.robotTime_s;
+        o.activeTracing.add(traced);
     }
     return o;
+}
+
+void Tracing::add(const Tracing& other) {
+    trials += other.trials;
+    coverageSum += other.coverageSum;
+    meanDistanceSum_mm += other.meanDistanceSum_mm;
 }
 
 namespace {
@@ -247,6 +256,13 @@ RatesByLabel SeedRates::activeCompletedByLabel() const {
     return byLabel;
 }
 
+Tracing SeedRates::tracing(FollowingMode mode) const {
+    Tracing sum;
+    for (const auto& s : seeds)
+        sum.add(mode == FollowingMode::Active ? s.activeTracing : s.passiveTracing);
+    return sum;
+}
+
 double SeedRates::tapsPerCompletedTrial() const {
     double taps = 0;
     for (const auto& s : seeds) taps += s.completedTaps;
@@ -264,6 +280,15 @@ double SeedRates::robotTimePerRun_s() const {
     for (const auto& s : seeds) t += s.runRobotTime_s;
     return seeds.empty() ? 0.0 : t / static_cast<double>(seeds.size());
 }
+
+namespace {
+Json tracingJson(const Tracing& t) {
+    return {{"trials", t.trials},
+            {"coverage_mean", t.trials > 0 ? Json(t.coverage()) : Json(nullptr)},
+            {"mean_contour_distance_mm_mean",
+             t.trials > 0 ? Json(t.meanDistance_mm()) : Json(nullptr)}};
+}
+}  // namespace
 
 Json seedRatesJson(const SeedRates& r) {
     Json seeds = Json::array();
@@ -311,6 +336,9 @@ Json seedRatesJson(const SeedRates& r) {
             {"taps_per_completed_trial", r.tapsPerCompletedTrial()},
             {"robot_time_per_completed_trial_s", r.robotTimePerCompletedTrial_s()},
             {"robot_time_per_run_s", r.robotTimePerRun_s()},
+            {"completed_tracing",
+             {{"active", tracingJson(r.tracing(FollowingMode::Active))},
+              {"passive", tracingJson(r.tracing(FollowingMode::Passive))}}},
             {"intervals", "Wilson score, 95 %"}};
 }
 
@@ -352,6 +380,17 @@ std::vector<std::string> describeRates(const SeedRates& r) {
                       "completed active trial: %.0f taps, %.0f s robot time; whole run %.0f s",
                       r.tapsPerCompletedTrial(), r.robotTimePerCompletedTrial_s(),
                       r.robotTimePerRun_s());
+        lines.push_back(buf);
+    }
+    // How closely the completed trials of each mode traced the contour, passive only if any got
+    // round.
+    for (const FollowingMode mode : {FollowingMode::Active, FollowingMode::Passive}) {
+        const Tracing t = r.tracing(mode);
+        if (t.trials == 0) continue;
+        std::snprintf(buf, sizeof buf,
+                      "completed %s trials: %.1f %% of the contour covered, mean distance %.2f "
+                      "mm (%d)",
+                      modeName(mode), 100.0 * t.coverage(), t.meanDistance_mm(), t.trials);
         lines.push_back(buf);
     }
     return lines;

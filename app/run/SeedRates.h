@@ -31,6 +31,16 @@ struct PathNaming {
     std::string raw, smoothed;  ///< named by the paper's rule and by the smoothed histograms
 };
 
+/// How closely completed trials traced the contour: how many, and the sums of their coverage
+/// and mean distance to the contour (a run's, or over runs).
+struct Tracing {
+    int trials = 0;
+    double coverageSum = 0.0, meanDistanceSum_mm = 0.0;
+    double coverage() const { return trials > 0 ? coverageSum / trials : 0.0; }
+    double meanDistance_mm() const { return trials > 0 ? meanDistanceSum_mm / trials : 0.0; }
+    void add(const Tracing& other);
+};
+
 /// One whole run's outcome.
 struct SeedOutcome {
     std::uint64_t seed = 0;
@@ -44,6 +54,9 @@ struct SeedOutcome {
     std::vector<std::string> failures;  ///< "cross trial 2: lost: ..." for each active trial lost
     std::vector<PathNaming> namings;    ///< each recognised completed active path
     RatesByLabel activeByLabel;
+    /// The completed trials of each mode: a passive trial that gets round does so without ever
+    /// correcting its offset from the edge, and these say how closely it traced the contour.
+    Tracing activeTracing, passiveTracing;
 
     /// Completed active paths recognition looked at, and of those the ones each rule named rightly.
     int recognitionTrials() const { return static_cast<int>(namings.size()); }
@@ -120,6 +133,7 @@ struct SeedRates {
     ShortOfPaper shortOfPaper() const;
     RecognitionConfusion confusion() const;
     RatesByLabel activeCompletedByLabel() const;
+    Tracing tracing(FollowingMode mode) const;  ///< of the completed trials in `mode`
     double tapsPerCompletedTrial() const;
     double robotTimePerCompletedTrial_s() const;
     double robotTimePerRun_s() const;
@@ -138,7 +152,8 @@ Json seedRatesJson(const SeedRates& rates);
 /// %)", or that there are none; with more than one trial label, active completion per label under
 /// the overall rate; under each recognition rate, which shapes it misnamed as which), in which
 /// parts the runs short of the paper's result fall short, then what a
-/// completed active trial and a whole run cost in taps and robot time.
+/// completed active trial and a whole run cost in taps and robot time, and how closely the
+/// completed trials of each mode traced the contour.
 std::vector<std::string> describeRates(const SeedRates& rates);
 
 }  // namespace activetouch

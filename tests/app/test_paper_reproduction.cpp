@@ -373,6 +373,57 @@ private slots:
         QVERIFY(a.count >= 78);
         QCOMPARE(retrained_.recognisedSmoothed().count, retrained_.recognisedSmoothed().total);
     }
+
+    void completedTrialsSayHowCloselyTheyTraced() {
+        // Over the ten paper runs: the completed trials of each mode, their mean coverage and
+        // distance to the contour, as the trials themselves give them.
+        for (const FollowingMode mode : {FollowingMode::Active, FollowingMode::Passive}) {
+            int n = 0;
+            double coverage = 0.0, distance = 0.0;
+            for (const auto& run : runs_)
+                for (const auto& t : run.trials)
+                    if (t.result.mode == mode && t.result.completed()) {
+                        ++n;
+                        coverage += t.result.coverage;
+                        distance += t.result.meanContourDistance_mm;
+                    }
+            const Tracing traced = rates_.tracing(mode);
+            QCOMPARE(traced.trials, n);
+            QVERIFY(n > 0);
+            QVERIFY(qFuzzyCompare(traced.coverage(), coverage / n));
+            QVERIFY(qFuzzyCompare(traced.meanDistance_mm(), distance / n));
+        }
+        QCOMPARE(rates_.tracing(FollowingMode::Active).trials, rates_.activeCompleted().count);
+        QCOMPARE(rates_.tracing(FollowingMode::Passive).trials,
+                 rates_.passiveLost().total - rates_.passiveLost().count);
+
+        // A passive trial that gets round never corrects its offset from the edge: with the
+        // classifier trained on every set it gets round more often, and traces the contour less
+        // closely and less completely than the active trials.
+        const Tracing active = retrained_.tracing(FollowingMode::Active),
+                      passive = retrained_.tracing(FollowingMode::Passive);
+        qInfo("retrained: completed active %.1f %% covered, %.2f mm; passive (%d) %.1f %%, %.2f mm",
+              100 * active.coverage(), active.meanDistance_mm(), passive.trials,
+              100 * passive.coverage(), passive.meanDistance_mm());
+        QVERIFY(passive.trials > 0);
+        QVERIFY(passive.coverage() < active.coverage());
+        QVERIFY(passive.meanDistance_mm() > active.meanDistance_mm());
+        const auto lines = describeRates(retrained_);
+        QVERIFY(std::any_of(lines.begin(), lines.end(), [](const std::string& l) {
+            return l.rfind("completed passive trials: ", 0) == 0;
+        }));
+
+        // No passive trial got round: no passive line, and nothing to average in rates.json.
+        SeedRates none;
+        none.seeds.push_back(rates_.seeds.front());
+        QCOMPARE(none.seeds.front().passiveTracing.trials, 0);
+        for (const auto& l : describeRates(none))
+            QVERIFY2(l.rfind("completed passive trials", 0) != 0, l.c_str());
+        const Json j = seedRatesJson(none)["completed_tracing"];
+        QVERIFY(j["passive"]["coverage_mean"].is_null());
+        QCOMPARE(j["active"]["trials"].get<int>(), 8);
+        QVERIFY(j["active"]["coverage_mean"].get<double>() > 0.9);
+    }
 };
 
 QTEST_APPLESS_MAIN(TestPaperReproduction)
