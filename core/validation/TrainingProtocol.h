@@ -22,7 +22,8 @@ struct TrainingProtocolSettings {
     double placementJitter_mm = 0.2;  ///< per-set object displacement, standard deviation per axis
     /// After validation, train the classifier the trials follow with again on every data set,
     /// test sets included: the validation (errors, valid range, trusted span) still comes from the
-    /// training sets against the test sets, but the loop gets every tap the protocol took.
+    /// training sets against the test sets, but the loop gets every tap the protocol took. Test
+    /// sets shifted off the grid (testOffset_mm) then train their classes at that shift.
     bool retrainOnAllSets = false;
 
     bool isTrainingSet(int set) const;
