@@ -16,7 +16,7 @@ void DeviceSession::interrupt() {
     std::lock_guard lock(rigMutex_);
     if (!rig_) return;
     if (auto* t = rig_->nxtTapper()) t->abort();
-    if (auto* s = rig_->yamaha()) s->stop();
+    if (auto* s = rig_->yamaha()) s->interrupt();
 }
 
 bool DeviceSession::connected() const {

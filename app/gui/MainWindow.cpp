@@ -257,7 +257,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
 }
 
 MainWindow::~MainWindow() {
-    runs_.stopAndWait(2000);
+    stopRunNow();
 }
 
 QList<PlotPanel*> MainWindow::plotPanels() const {
@@ -635,12 +635,16 @@ void MainWindow::updateActions() {
     exportAll_->setEnabled(!busy && last_ != nullptr);
 }
 
-void MainWindow::closeEvent(QCloseEvent* event) {
+void MainWindow::stopRunNow() {
     // A run in flight stops at once: the devices drop the tap or move in progress (a run on the
     // connected rig ends its trial there, keeping every finished tap); never wait long on it.
     runs_.cancel();
     devices_.session()->interrupt();
     runs_.stopAndWait(2000);
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+    stopRunNow();
     QSettings settings;
     settings.setValue("geometry", saveGeometry());
     settings.setValue("windowState", saveState());

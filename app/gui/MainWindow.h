@@ -88,6 +88,8 @@ protected:
     void closeEvent(QCloseEvent* event) override;
 
 private:
+    /// Cancels a run in flight and interrupts the devices under it, waiting briefly for it.
+    void stopRunNow();
     void showError(const QString& message);
     /// The experiment as shown, if one is open and it can run; otherwise says why.
     std::optional<ExperimentSpec> experimentToRun();

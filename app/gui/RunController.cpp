@@ -19,8 +19,11 @@ RunController::RunController(LiveFeed& live, QObject* parent) : QObject(parent),
 RunController::~RunController() {
     if (!thread_) return;
     // Once finished, the thread is ours to delete: its finished slot will not run after this.
-    // One still inside a tap after 2 s is left to end with the process, never destroyed running.
-    if (stopAndWait(2000)) delete thread_;
+    // The run refers to this controller and to the live feed, so it must end before they go;
+    // every device call it can be inside has a bound of its own, well within this one (a tap's
+    // deadline is seconds; an interrupted stage move ends at once). Only a run stuck past it is
+    // left to end with the process, never destroyed running.
+    if (stopAndWait(30000)) delete thread_;
 }
 
 void RunController::cancel() {

