@@ -446,6 +446,7 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
         for (const auto& t : result.taps) everySet.push_back({&t.record.tap, t.cls});
         result.classifier =
             HistogramClassifier::train(everySet, result.classes.classCount(), spec.classifier);
+        result.classifierRetrainedOnTaps = static_cast<int>(everySet.size());
     }
 
     if (recorded) {
@@ -474,10 +475,10 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
 }
 
 std::string followingClassifierNote(const RunResult& r) {
-    if (!r.spec.training.retrainOnAllSets || !r.classifier.trained()) return {};
+    if (r.classifierRetrainedOnTaps == 0) return {};
     return "following classifier: trained again after validation on all " +
            std::to_string(r.spec.training.dataSets) + " data sets (" +
-           std::to_string(r.taps.size()) +
+           std::to_string(r.classifierRetrainedOnTaps) +
            " taps, test sets included); the validation above is the training sets' alone";
 }
 

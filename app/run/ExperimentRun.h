@@ -58,6 +58,9 @@ struct RunResult {
     std::vector<std::string> activeEffects;
     std::vector<CollectedTap> taps;  ///< every tap, in order
     HistogramClassifier classifier;
+    /// How many taps `classifier` was trained on again after validation (every data set's, with
+    /// training.retrain_on_all_sets); 0: the trials follow with the validated classifier.
+    int classifierRetrainedOnTaps = 0;
     ValidationResult validation;
     ValidOffsets
         validOffsets;  ///< the valid range as offsets from the edge, used by the controller

@@ -361,8 +361,16 @@ private slots:
                 r.classifier.classify(t.record.tap) != paper.classifier.classify(t.record.tap);
         }
         QVERIFY2(changed > 0, "the trials follow with set 1's classifier");
-        QVERIFY(!followingClassifierNote(r).empty());
+        QCOMPARE(r.classifierRetrainedOnTaps, int(r.taps.size()));
+        QVERIFY2(
+            followingClassifierNote(r).find("on all 5 data sets (360 taps") != std::string::npos,
+            followingClassifierNote(r).c_str());
         QVERIFY(followingClassifierNote(paper).empty());
+        // Following again with that classifier (the window's "Run following") says the same.
+        ExperimentSpec oneTrial = spec;
+        oneTrial.trials.resize(1);
+        const RunResult again = runFollowing(r, oneTrial, RunOptions{});
+        QCOMPARE(followingClassifierNote(again), followingClassifierNote(r));
 
         // What it buys, over ten whole runs: active following completes at least as often as
         // with set 1's classifier and nearly always, for the same robot time in training.
