@@ -45,6 +45,24 @@ struct Bench {
     }
 };
 
+/// A controller in real time and stage settings that reach it: for tests that stop motion
+/// part-way.
+struct RealTimeController {
+    FakeRcxController controller;
+    YamahaStageSettings stage;
+    RealTimeController(Dialect dialect, double origin_s) : controller(realTime(dialect, origin_s)) {
+        controller.start();
+        stage.serial.portName = controller.portName();
+        stage.dialect = dialect;
+    }
+    static FakeRcxSettings realTime(Dialect dialect, double origin_s) {
+        FakeRcxSettings f = Bench::settings(dialect);
+        f.timeScale = 1.0;
+        f.origin_s = origin_s;
+        return f;
+    }
+};
+
 }  // namespace
 
 class TestYamahaStage : public QObject {
@@ -163,17 +181,11 @@ private slots:
     void anOriginSearchIsStoppedWhenAskedTo() {
         // Ctrl-C in the headless runner while the stage homes: ETX, and home() says so.
         QFETCH(int, dialect);
-        FakeRcxSettings f = Bench::settings(static_cast<Dialect>(dialect));
-        f.timeScale = 1.0;
-        f.origin_s = 60.0;
-        FakeRcxController controller(f);
-        controller.start();
+        RealTimeController rt(static_cast<Dialect>(dialect), 60.0);
+        FakeRcxController& controller = rt.controller;
         std::atomic<bool> stopNow{false};
-        YamahaStageSettings s;
-        s.serial.portName = controller.portName();
-        s.dialect = static_cast<Dialect>(dialect);
-        s.stopOriginSearch = &stopNow;
-        YamahaStage stage(s);
+        rt.stage.stopOriginSearch = &stopNow;
+        YamahaStage stage(rt.stage);
         std::thread ctrlC([&] {
             for (int waited = 0; waited < 10000 && !controller.moving(); waited += 5)
                 std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -201,16 +213,10 @@ private slots:
         // Closing the window mid-move: ETX, the move in progress ends with that reason instead of
         // waiting out its bound, and the stage takes no further command.
         QFETCH(int, dialect);
-        FakeRcxSettings f = Bench::settings(static_cast<Dialect>(dialect));
-        f.timeScale = 1.0;
-        f.origin_s = 0.05;
-        FakeRcxController controller(f);
-        controller.start();
-        YamahaStageSettings s;
-        s.serial.portName = controller.portName();
-        s.dialect = static_cast<Dialect>(dialect);
-        s.speedPercent = 1;  // a move of several seconds
-        YamahaStage stage(s);
+        RealTimeController rt(static_cast<Dialect>(dialect), 0.05);
+        FakeRcxController& controller = rt.controller;
+        rt.stage.speedPercent = 1;  // a move of several seconds
+        YamahaStage stage(rt.stage);
         stage.connect(true);
         const Vec2 target{100.0, 80.0};
         std::string moveError;
