@@ -124,7 +124,7 @@ QString classifierTitleNote(const RunResult& r, bool following) {
     QString note;
     if (const double kernel = r.spec.classifier.kernelSigma_bins; kernel > 0.0)
         note += QString("; kernel %1 bins").arg(kernel);
-    if (following && r.spec.training.retrainOnAllSets)
+    if (following && r.classifierRetrainedOnTaps > 0)
         note += QString("; trained on all %1 data sets").arg(r.spec.training.dataSets);
     return note;
 }

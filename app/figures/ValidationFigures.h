@@ -13,7 +13,8 @@ struct RunResult;
 /// What a figure's title adds when the classifier is not the paper's, so that exported figures of
 /// two classifiers cannot be mistaken for each other: "; kernel 2.5 bins" for a kernel-smoothed
 /// likelihood, and for figures of following (`following`) "; trained on all 5 data sets" when the
-/// trials followed with a classifier trained again after validation. Empty for the paper's.
+/// trials followed with a classifier trained again after validation
+/// (RunResult::classifierRetrainedOnTaps). Empty for the paper's.
 QString classifierTitleNote(const RunResult& result, bool following);
 
 /// Figure 5: data set 1's taps across each edge, one panel per orientation, pressures normalised

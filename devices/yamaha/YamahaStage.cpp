@@ -51,6 +51,10 @@ YamahaStage::~YamahaStage() {
 
 void YamahaStage::send(const std::string& line) {
     refuseIfInterrupted();
+    write(line);
+}
+
+void YamahaStage::write(const std::string& line) {
     if (log_) log_("->", printable(line));
     channel_.write(line);
 }
@@ -219,9 +223,7 @@ void YamahaStage::moveTo(Vec2 target) {
 
 bool YamahaStage::stop() noexcept {
     try {
-        const std::string etx = rcx::stop();
-        if (log_) log_("->", printable(etx));
-        channel_.write(etx);
+        write(rcx::stop());  // also after an interrupt: stopping is never refused
         return true;
     } catch (...) {
         return false;
