@@ -135,7 +135,9 @@ private slots:
         const double s25 =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         qInfo("25 frames in %.3f s (50 Hz: 0.5 s)", s25);
-        QVERIFY(s25 > 0.3);  // not faster than the stream
+        // Each frame the reader hands out is one the stream sent: none made up or handed out twice.
+        QVERIFY2(seq <= yarp.framesSent(),
+                 qPrintable(QString("frame %1 handed out, %2 sent").arg(seq).arg(yarp.framesSent())));
     }
 
     void aRawStreamIsCompensatedAfterCalibration() {
@@ -259,9 +261,12 @@ private slots:
         yarp.start();
         YarpFingertip tip(clientFor(yarp, s));
         tip.connect();
+        QTRY_COMPARE_WITH_TIMEOUT(yarp.readers(), 1, 5000);
         const auto t0 = std::chrono::steady_clock::now();
-        tip.disconnect();
-        QVERIFY(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(2));
+        tip.disconnect();  // returns: a hang fails the test at ctest's limit
+        qInfo("disconnected in %.3f s",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        QTRY_COMPARE_WITH_TIMEOUT(yarp.readers(), 0, 5000);  // the connection is closed, not left open
         double frame[12];
         QVERIFY_THROWS_EXCEPTION(RigError, tip.waitFrame(0, 10, frame));
     }
