@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Screenshots of every tab after a paper run, as a person sees them: builds, then runs the window
 # under Xvfb with --screenshots, which runs the whole paper experiment and a run over seeds 1-10 and
-# saves one PNG per tab, one of the device panels and one of the first lost active trial's replay.
+# saves one PNG per tab, one of the device panels, one of the protocol panel and one of the first
+# lost active trial's replay.
 # Usage: bash scripts/screenshots.sh [output dir, default results/screenshots]
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"

@@ -35,6 +35,7 @@
 #include "app/gui/FollowingTab.h"
 #include "app/gui/LiveView.h"
 #include "app/gui/PlotPanel.h"
+#include "app/gui/ProtocolPanel.h"
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
 #include "app/run/SeedRates.h"
@@ -150,8 +151,18 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     devicesDock->setObjectName("devicesDock");
     devicesDock->setWidget(devicesPanel_);
     addDockWidget(Qt::LeftDockWidgetArea, devicesDock);
-    tabifyDockWidget(sceneDock, devicesDock);
+    protocol_ = new ProtocolPanel;
+    auto* protocolDock = new QDockWidget(tr("Protocol"));
+    protocolDock->setObjectName("protocolDock");
+    protocolDock->setWidget(protocol_);
+    addDockWidget(Qt::LeftDockWidgetArea, protocolDock);
+    tabifyDockWidget(sceneDock, protocolDock);
+    tabifyDockWidget(protocolDock, devicesDock);
     sceneDock->raise();
+    connect(protocol_, &ProtocolPanel::resetRequested, this, [this] {
+        protocol_->showExperiment(spec_);
+        log(tr("protocol panel: the settings of %1 shown again").arg(experimentPath_));
+    });
     connect(devicesPanel_, &DevicesPanel::log, this, &MainWindow::log);
     connect(devicesPanel_, &DevicesPanel::failed, this, &MainWindow::showError);
     log_ = new QPlainTextEdit;
@@ -304,6 +315,7 @@ bool MainWindow::openExperiment(const QString& path) {
         experimentJson_ = j;
         experimentPath_ = path;
         scene_->showScene(spec_.scene);
+        protocol_->showExperiment(spec_);
         devicesPanel_->setScene(spec_.scene);
         setWindowTitle(tr("ActiveTouch Workbench - %1").arg(QFileInfo(path).fileName()));
         QSettings().setValue("lastExperiment", path);
@@ -320,20 +332,41 @@ bool MainWindow::openExperiment(const QString& path) {
     return false;
 }
 
+Json MainWindow::documentAsShown() const {
+    Json j = protocol_->patch(experimentJson_);
+    j["scene"] = sceneToJson(scene_->sceneFromPanel(spec_.scene));
+    return j;
+}
+
 ExperimentSpec MainWindow::experimentAsShown() const {
-    ExperimentSpec spec = spec_;
-    spec.scene = scene_->sceneFromPanel(spec_.scene);
-    validateEffects(spec.scene, FingertipContactModel(spec.scene.fingertip));
-    if (const std::string problem = trainingObjectProblem(spec); !problem.empty())
+    const SceneSpec scene = scene_->sceneFromPanel(spec_.scene);
+    validateEffects(scene, FingertipContactModel(scene.fingertip));
+    if (const std::string problem = trainingObjectProblem([&] {
+            ExperimentSpec e = spec_;
+            e.scene = scene;
+            return e;
+        }());
+        !problem.empty())
         throw InputError("scene panel", "object", "training on it: " + problem);
-    return spec;
+    const Json j = documentAsShown();
+    try {
+        ExperimentSpec spec = parseExperiment(j, spec_.source,
+                                              QFileInfo(experimentPath_).path().toStdString());
+        spec.scene.source = spec_.scene.source;
+        return spec;
+    } catch (const InputError& e) {
+        const QString field = protocol_->fieldAt(e.place());
+        throw InputError("protocol panel",
+                         field.isEmpty() ? e.place()
+                                         : field.toStdString() + " (" + e.place() + ")",
+                         e.problem());
+    }
 }
 
 bool MainWindow::saveExperiment(const QString& path) {
     try {
-        const ExperimentSpec spec = experimentAsShown();
-        Json j = experimentJson_;
-        j["scene"] = sceneToJson(spec.scene);
+        experimentAsShown();  // only what can run is written
+        const Json j = documentAsShown();
         QFile f(path);
         if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate))
             throw InputError(path.toStdString(), "",

@@ -25,6 +25,7 @@ class DevicesPanel;
 class FollowingTab;
 class LiveView;
 class PlotPanel;
+class ProtocolPanel;
 class ScenePanel;
 class SeedsTab;
 
@@ -38,9 +39,12 @@ public:
     bool openExperiment(const QString& path);
     /// Writes the experiment as shown (the scene panel's scene inline) to `path`.
     bool saveExperiment(const QString& path);
-    /// The experiment a run would use now: the loaded one with the scene panel applied.
-    /// Throws InputError if the panel does not describe a valid scene.
+    /// The experiment a run would use now: the loaded one with the scene and protocol panels
+    /// applied, read with the same checks as a file. Throws InputError naming the panel and its
+    /// field if what the panels show cannot run.
     ExperimentSpec experimentAsShown() const;
+    /// The experiment file's document as the panels show it (what Save as writes).
+    Json documentAsShown() const;
     bool startRun(RunController::What what);
     /// Runs the experiment as shown once per seed from `first` to `last` on the simulated rig
     /// (the "Rates over seeds" tab), writing into a new folder under the output base.
@@ -73,6 +77,7 @@ public:
     bool running() const { return runs_.running(); }
     QProgressBar* progressBar() const { return progress_; }
     ScenePanel* scenePanel() const { return scene_; }
+    ProtocolPanel* protocolPanel() const { return protocol_; }
     LiveView* liveView() const { return live_; }
     FollowingTab* followingTab() const { return following_; }
     SeedsTab* seedsTab() const { return seeds_; }
@@ -129,6 +134,7 @@ private:
     QTableWidget *confusionRaw_, *confusionSmoothed_;  ///< traced shape x named, each rule
     QLabel *confusionRawTitle_, *confusionSmoothedTitle_;
     ScenePanel* scene_;
+    ProtocolPanel* protocol_;
     DevicesPanel* devicesPanel_;
     QPlainTextEdit* log_;
     QProgressBar* progress_;

@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
                 if (auto* views = window.followingTab()->findChild<QTabWidget*>())
                     views->setCurrentIndex(views->count() - 1);
                 settle();
-                save(tabs + 2, "lost_trial_replay");
+                save(tabs + 3, "lost_trial_replay");
                 app.quit();
                 return;
             }
@@ -95,6 +95,12 @@ int main(int argc, char** argv) {
                 devices->raise();
                 settle();
                 save(tabs + 1, "devices");
+            }
+            // And the protocol panel, the experiment's settings beside the scene.
+            if (auto* protocol = window.findChild<QDockWidget*>("protocolDock")) {
+                protocol->raise();
+                settle();
+                save(tabs + 2, "protocol");
             }
             const std::optional<std::uint64_t> lost =
                 completed ? window.seedsTab()->firstSeedWithLostActiveTrial() : std::nullopt;

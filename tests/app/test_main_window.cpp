@@ -3,9 +3,11 @@
 // effect and see the next run use it; export every figure in every format; open bad files and
 // keep the session; drive the simulated devices from their panel; run the experiment over a range
 // of seeds, open one seed's run from its row, and cancel such a run, keeping every finished seed;
-// analyse a run's recording; resize the window and find paths and histograms still drawn at one
+// change the protocol in its panel, run it and save it, and be refused naming the field when it
+// cannot run; analyse a run's recording; resize the window and find paths and histograms still drawn at one
 // scale on both axes, and no legend hiding a value.
 #include <QComboBox>
+#include <QDoubleSpinBox>
 #include <QElapsedTimer>
 #include <QFontMetricsF>
 #include <QGroupBox>
@@ -13,11 +15,13 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLabel>
+#include <QLineEdit>
 #include <QMessageBox>
 #include <QPlainTextEdit>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QTableWidget>
 #include <QStandardPaths>
 #include <QStyleOptionGroupBox>
 #include <QTabWidget>
@@ -30,6 +34,7 @@
 #include "app/gui/LiveView.h"
 #include "app/gui/MainWindow.h"
 #include "app/gui/PlotPanel.h"
+#include "app/gui/ProtocolPanel.h"
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
 #include "devices/rigs/RigFile.h"
@@ -140,6 +145,20 @@ class TestMainWindow : public QObject {
                                                     .toUtf8())
                             .object());
         return path;
+    }
+
+    /// The protocol panel's widget for the experiment key `name` ("following_follow_step_mm").
+    template <class W>
+    W* protocolField(const char* name) {
+        return window_->protocolPanel()->findChild<W*>(QString("protocol_") + name);
+    }
+    QComboBox* trialMode(int row) {
+        auto* table = window_->protocolPanel()->findChild<QTableWidget*>("protocol_trials");
+        return table ? qobject_cast<QComboBox*>(table->cellWidget(row, 1)) : nullptr;
+    }
+    QSpinBox* trialRepeats(int row) {
+        auto* table = window_->protocolPanel()->findChild<QTableWidget*>("protocol_trials");
+        return table ? qobject_cast<QSpinBox*>(table->cellWidget(row, 2)) : nullptr;
     }
 
 private slots:
@@ -327,6 +346,136 @@ private slots:
         const auto& again = window_->lastRun()->activeEffects;
         QVERIFY(std::find(again.begin(), again.end(), "crosstalk") == again.end());
         QTRY_VERIFY(!window_->running());
+    }
+
+    void theProtocolPanelShowsWhatTheExperimentRunsWith() {
+        // Untouched, the panels give the experiment exactly as the file says, defaults included,
+        // with no value rounded on the way (paper_sequential's threshold is 1 - 1e-8).
+        for (const char* file : {"experiments/paper_sequential.json", "experiments/paper.json"}) {
+            QVERIFY(window_->openExperiment(sourceFile(file)));
+            const ExperimentSpec fromFile = loadExperiment(sourceFile(file).toStdString());
+            const ExperimentSpec shown = window_->experimentAsShown();
+            const FollowingSettings &a = shown.following, &b = fromFile.following;
+            QCOMPARE(a.followStep_mm, b.followStep_mm);
+            QCOMPARE(a.repositionStep_mm, b.repositionStep_mm);
+            QCOMPARE(a.airRetreatStep_mm, b.airRetreatStep_mm);
+            QCOMPARE(a.planeRetreatStep_mm, b.planeRetreatStep_mm);
+            QCOMPARE(a.orientationTrustMaxError_deg, b.orientationTrustMaxError_deg);
+            QCOMPARE(a.edgeConfirmationTaps, b.edgeConfirmationTaps);
+            QCOMPARE(a.beliefThreshold, b.beliefThreshold);
+            QCOMPARE(a.maxTapsPerDecision, b.maxTapsPerDecision);
+            QCOMPARE(a.lostInside_mm, b.lostInside_mm);
+            QCOMPARE(a.tapCapPerimeters, b.tapCapPerimeters);
+            QCOMPARE(shown.classifier.bins, fromFile.classifier.bins);
+            QCOMPARE(shown.classifier.smoothing, fromFile.classifier.smoothing);
+            QCOMPARE(shown.classifier.kernelSigma_bins, fromFile.classifier.kernelSigma_bins);
+            QCOMPARE(shown.training.trainingSets, fromFile.training.trainingSets);
+            QCOMPARE(shown.training.placementJitter_mm, fromFile.training.placementJitter_mm);
+            QCOMPARE(shown.validRangeWidth, fromFile.validRangeWidth);
+            QCOMPARE(shown.scene.seed, fromFile.scene.seed);
+            QCOMPARE(shown.recognition.enabled, fromFile.recognition.enabled);
+            QCOMPARE(shown.recognition.smoothingSigmaBins, fromFile.recognition.smoothingSigmaBins);
+            QCOMPARE(shown.trials.size(), fromFile.trials.size());
+            for (std::size_t i = 0; i < shown.trials.size(); ++i) {
+                QCOMPARE(shown.trials[i].mode, fromFile.trials[i].mode);
+                QCOMPARE(shown.trials[i].repeats, fromFile.trials[i].repeats);
+                QCOMPARE(shown.trials[i].label, fromFile.trials[i].label);
+            }
+        }
+        QCOMPARE(protocolField<QDoubleSpinBox>("following_belief_threshold")->value(), 0.0);
+        QCOMPARE(trialMode(0)->currentText(), QString("passive"));
+        QCOMPARE(trialMode(1)->currentText(), QString("active"));
+    }
+
+    void protocolSettingsChangedInThePanelAreRunAndSaved() {
+        window_->setPace(Pace::Fastest);
+        auto* follow = protocolField<QDoubleSpinBox>("following_follow_step_mm");
+        auto* seed = protocolField<QSpinBox>("seed");
+        QVERIFY(follow && seed && trialMode(1) && trialRepeats(1));
+        // Type the step as a person does; the active rectangle (row 2) runs passively, once.
+        follow->selectAll();
+        QTest::keyClicks(follow, "3.5");
+        QTest::keyClick(follow, Qt::Key_Return);
+        QCOMPARE(follow->value(), 3.5);
+        seed->setValue(4);
+        trialMode(1)->setCurrentIndex(trialMode(1)->findText("passive"));
+        trialRepeats(1)->setValue(1);
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QVERIFY(window_->startRun(RunController::What::Everything));
+        endsSuccessfully(*window_, ended);
+        const auto run = window_->lastRun();
+        QCOMPARE(run->spec.scene.seed, std::uint64_t(4));
+        int passiveRectangles = 0, activeRectangles = 0, followSteps = 0;
+        for (const TrialRun& t : run->trials) {
+            if (t.label == "rectangle")
+                ++(t.result.mode == FollowingMode::Passive ? passiveRectangles : activeRectangles);
+            for (const FollowedTap& tap : t.result.taps)
+                if (tap.decision.rule == RuleId::FollowInRange ||
+                    tap.decision.rule == RuleId::PassiveFollow) {
+                    QCOMPARE(norm(tap.decision.follow), 3.5);
+                    ++followSteps;
+                }
+        }
+        QCOMPARE(passiveRectangles, 3);
+        QCOMPARE(activeRectangles, 0);
+        QVERIFY(followSteps > 0);
+        const auto summary = readJson(window_->lastRunDirectory() + "/summary.json");
+        QCOMPARE(summary["seed"].toInt(), 4);
+
+        // Save as writes what the panels show; the saved file opens to the same settings.
+        const QString saved = dir_.filePath("protocol_edited.json");
+        QVERIFY(window_->saveExperiment(saved));
+        const ExperimentSpec reread = loadExperiment(saved.toStdString());
+        QCOMPARE(reread.following.followStep_mm, 3.5);
+        QCOMPARE(reread.scene.seed, std::uint64_t(4));
+        QCOMPARE(reread.trials[1].mode, FollowingMode::Passive);
+        QCOMPARE(reread.trials[1].repeats, 1);
+        QCOMPARE(reread.following.repositionStep_mm, 1.0);
+
+        // The file's own values come back at a click, and the next run uses them.
+        auto* reset = window_->protocolPanel()->findChild<QPushButton*>("protocol_reset");
+        QVERIFY(reset);
+        QTest::mouseClick(reset, Qt::LeftButton);
+        QCOMPARE(follow->value(), 2.0);
+        QCOMPARE(trialMode(1)->currentText(), QString("active"));
+        QCOMPARE(window_->experimentAsShown().following.followStep_mm, 2.0);
+        QCOMPARE(window_->experimentAsShown().scene.seed, std::uint64_t(1));
+    }
+
+    void protocolSettingsThatCannotRunAreRefusedNamingTheField() {
+        const auto before = window_->lastRun();
+        QSignalSpy errors(window_.get(), &MainWindow::errorShown);
+        auto refused = [&](const QString& field, const QString& problem) {
+            errors.clear();
+            QVERIFY(!window_->startRun(RunController::What::Everything));
+            QCOMPARE(errors.count(), 1);
+            const QString message = errors.takeFirst().at(0).toString();
+            QVERIFY2(message.contains("protocol panel") && message.contains(field) &&
+                         message.contains(problem),
+                     qPrintable(message));
+            QVERIFY(!window_->running());
+            QCOMPARE(window_->lastRun(), before);  // nothing ran, nothing replaced
+            closeErrorDialogs(*window_);
+        };
+        // Every trial passive leaves recognition of the active paths nothing to recognise.
+        auto* table = window_->protocolPanel()->findChild<QTableWidget*>("protocol_trials");
+        for (int row = 0; row < table->rowCount(); ++row)
+            trialMode(row)->setCurrentIndex(trialMode(row)->findText("passive"));
+        refused("Recognition: Of the trials", "no active trials to recognise");
+        // Recognising the passive paths instead can run.
+        auto* of = window_->protocolPanel()->findChild<QComboBox*>("protocol_recognition_of_mode");
+        of->setCurrentIndex(of->findText("passive"));
+        QCOMPARE(window_->experimentAsShown().recognition.ofMode, FollowingMode::Passive);
+        auto* sets = protocolField<QLineEdit>("training_training_sets");
+        QVERIFY(sets);
+        sets->setText("1, two");
+        refused("Training sets", "'two' is not a data set number");
+        sets->setText("6");
+        refused("Training and validation", "training set 6 does not exist (sets are 1..5)");
+        QTest::mouseClick(window_->protocolPanel()->findChild<QPushButton*>("protocol_reset"),
+                          Qt::LeftButton);
+        QCOMPARE(sets->text(), QString("1"));
+        QCOMPARE(window_->experimentAsShown().trials[1].mode, FollowingMode::Active);
     }
 
     void sweepsRunFromTheWindowAndShowTheirPlots() {

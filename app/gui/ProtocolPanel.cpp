@@ -1,0 +1,395 @@
+#include "app/gui/ProtocolPanel.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QHeaderView>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QSignalBlocker>
+#include <QSpinBox>
+#include <QTableWidget>
+#include <QVBoxLayout>
+#include <cmath>
+
+#include "core/classify/HistogramClassifier.h"
+
+namespace activetouch {
+namespace {
+
+/// A number box that shows a value as written (2, 0.01, 0.99999999) and keeps it exactly: the
+/// experiment's values must not be rounded to a spin box's decimals on their way to a run.
+class NumberBox : public QDoubleSpinBox {
+public:
+    NumberBox(double lo, double hi, double step) {
+        setDecimals(12);
+        setRange(lo, hi);
+        setSingleStep(step);
+        setKeyboardTracking(false);
+    }
+    QString textFromValue(double v) const override { return QString::number(v, 'g', 12); }
+    double valueFromText(const QString& text) const override {
+        return text.trimmed().toDouble();
+    }
+    QValidator::State validate(QString& input, int&) const override {
+        const QString t = input.trimmed();
+        if (t.isEmpty() || t == "-" || t == "." || t == "-." || t.endsWith('e') ||
+            t.endsWith('E') || t.endsWith("e-") || t.endsWith("E-"))
+            return QValidator::Intermediate;
+        bool ok = false;
+        const double v = t.toDouble(&ok);
+        if (!ok) return QValidator::Invalid;
+        return v >= minimum() && v <= maximum() ? QValidator::Acceptable
+                                                : QValidator::Intermediate;
+    }
+};
+
+}  // namespace
+
+ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
+    auto* outer = new QVBoxLayout(this);
+    auto* scroll = new QScrollArea;
+    scroll->setWidgetResizable(true);
+    outer->addWidget(scroll);
+    auto* content = new QWidget;
+    scroll->setWidget(content);
+    auto* layout = new QVBoxLayout(content);
+
+    auto* note = new QLabel(
+        tr("The experiment's settings beside its scene. Runs, seeds, analysis and replay use "
+           "what is shown here; Save as writes it."));
+    note->setWordWrap(true);
+    layout->addWidget(note);
+
+    auto group = [&](const QString& title) {
+        auto* box = new QGroupBox(title);
+        new QFormLayout(box);
+        layout->addWidget(box);
+        return box;
+    };
+    using E = const ExperimentSpec&;
+    const QString run = tr("Run");
+    auto* runBox = group(run);
+    addField(runBox, {"", "seed", run, tr("Seed"),
+                      tr("The run's seed: its data sets, noise and trials. The Rates over seeds "
+                         "tab runs a range of seeds."),
+                      Kind::Integer, 0, 2147483647, 1,
+                      [](E e) { return double(e.scene.seed); }});
+
+    const QString classifier = tr("Classifier");
+    auto* classifierBox = group(classifier);
+    addField(classifierBox, {"classifier", "bins", classifier, tr("Histogram bins"),
+                             tr("Bins per taxel over its trained range (paper: 100)"),
+                             Kind::Integer, 1, 100000, 10,
+                             [](E e) { return double(e.classifier.bins); }});
+    addField(classifierBox,
+             {"classifier", "smoothing", classifier, tr("Smoothing"),
+              tr("Count added to every bin of a likelihood histogram (chosen by the validation: "
+                 "0.01)"),
+              Kind::Number, 1e-12, 1e6, 0.01, [](E e) { return e.classifier.smoothing; }});
+    addField(classifierBox,
+             {"classifier", "kernel_sigma_bins", classifier, tr("Kernel width (bins)"),
+              tr("0: the paper's histogram; above 0 each training count is spread over its "
+                 "neighbouring bins by a Gaussian this wide"),
+              Kind::Number, 0.0, kMaxKernelSigma_bins, 0.5,
+              [](E e) { return e.classifier.kernelSigma_bins; }});
+
+    const QString training = tr("Training and validation");
+    auto* trainingBox = group(training);
+    addField(trainingBox, {"training", "data_sets", training, tr("Data sets"),
+                           tr("Taps at every class, once per data set (paper: 5)"),
+                           Kind::Integer, 2, 1000, 1,
+                           [](E e) { return double(e.training.dataSets); }});
+    trainingSets_ = new QLineEdit;
+    trainingSets_->setObjectName("protocol_training_training_sets");
+    trainingSets_->setToolTip(
+        tr("The data sets that train, numbered from 1, separated by commas; the others test "
+           "(paper: 1)"));
+    static_cast<QFormLayout*>(trainingBox->layout())->addRow(tr("Training sets"), trainingSets_);
+    connect(trainingSets_, &QLineEdit::editingFinished, this, &ProtocolPanel::changed);
+    addField(trainingBox, {"training", "taps_per_class", training, tr("Taps per class"),
+                           tr("Taps at each class in each data set (paper: 1)"), Kind::Integer,
+                           1, 1000, 1, [](E e) { return double(e.training.tapsPerClass); }});
+    addField(trainingBox,
+             {"training", "test_offset_mm", training, tr("Test sets off the grid (mm)"),
+              tr("Test taps shifted along the edge normal, off the training grid"), Kind::Number,
+              -5.0, 5.0, 0.1, [](E e) { return e.training.testOffset_mm; }});
+    addField(trainingBox,
+             {"training", "placement_jitter_mm", training, tr("Placement jitter (mm)"),
+              tr("Standard deviation of each data set's object displacement, per axis"),
+              Kind::Number, 0.0, 5.0, 0.1, [](E e) { return e.training.placementJitter_mm; }});
+    addField(trainingBox,
+             {"training", "retrain_on_all_sets", training, tr("Follow trained on every set"),
+              tr("After the validation, train the classifier the trials follow with again on "
+                 "every data set"),
+              Kind::Flag, 0, 1, 1, [](E e) { return e.training.retrainOnAllSets ? 1.0 : 0.0; }});
+    addField(trainingBox,
+             {"validation", "valid_range_positions", training, tr("Valid range (positions)"),
+              tr("Width of the window of positions the validation picks as the valid range "
+                 "(paper: 4)"),
+              Kind::Integer, 1, 200, 1, [](E e) { return double(e.validRangeWidth); }});
+
+    const QString following = tr("Following");
+    auto* followingBox = group(following);
+    struct Step {
+        const char* key;
+        QString label, tip;
+        double lo, hi, step;
+        double FollowingSettings::*member;
+    };
+    const std::vector<Step> steps{
+        {"follow_step_mm", tr("Follow step (mm)"),
+         tr("Along the perceived edge, every tap (paper: 2)"), 0.05, 50.0, 0.5,
+         &FollowingSettings::followStep_mm},
+        {"reposition_step_mm", tr("Reposition step (mm)"),
+         tr("Active: along the edge normal toward the valid range (paper: 1)"), 0.0, 50.0, 0.5,
+         &FollowingSettings::repositionStep_mm},
+        {"plane_step_mm", tr("Plane: outward (mm)"),
+         tr("Active, plane percept: outward along the last edge's normal"), 0.0, 50.0, 0.5,
+         &FollowingSettings::planeStep_mm},
+        {"plane_retreat_step_mm", tr("Plane: back (mm)"),
+         tr("Active, plane percept: back against the heading"), 0.0, 50.0, 0.5,
+         &FollowingSettings::planeRetreatStep_mm},
+        {"air_inward_step_mm", tr("Air: inward (mm)"),
+         tr("Active, air percept: inward along the last edge's normal"), 0.0, 50.0, 0.5,
+         &FollowingSettings::airInwardStep_mm},
+        {"air_retreat_step_mm", tr("Air: back (mm)"),
+         tr("Active, air percept: back against the heading"), 0.0, 50.0, 0.5,
+         &FollowingSettings::airRetreatStep_mm},
+        {"orientation_trust_max_error_deg", tr("Orientation trusted up to (deg)"),
+         tr("Active: use a percept's orientation only at positions whose mean validation angle "
+            "error is at most this; 180 trusts every edge percept, as the paper does"),
+         0.0, 180.0, 5.0, &FollowingSettings::orientationTrustMaxError_deg},
+        {"belief_threshold", tr("Belief threshold"),
+         tr("Sequential perception: 0 decides from each tap alone (the paper); a value in (0, 1) "
+            "taps again in place until the belief reaches it"),
+         0.0, 0.99999999, 0.01, &FollowingSettings::beliefThreshold},
+        {"completion_radius_mm", tr("Completed within (mm)"),
+         tr("Completed: back within this of the start after a full perimeter"), 0.1, 100.0, 0.5,
+         &FollowingSettings::completionRadius_mm},
+        {"lost_outside_mm", tr("Lost outside (mm)"),
+         tr("Lost when this far outside the contour"), 0.1, 1000.0, 1.0,
+         &FollowingSettings::lostOutside_mm},
+        {"lost_inside_mm", tr("Lost inside (mm)"), tr("Lost when this far inside the object"), 0.1,
+         1000.0, 1.0, &FollowingSettings::lostInside_mm},
+        {"tap_cap_perimeters", tr("Tap cap (perimeters)"),
+         tr("A trial ends after this many perimeters' worth of follow steps"), 0.1, 100.0, 0.5,
+         &FollowingSettings::tapCapPerimeters},
+        {"coverage_radius_mm", tr("Coverage radius (mm)"),
+         tr("A point of the contour is covered by a tap this close"), 0.1, 100.0, 0.5,
+         &FollowingSettings::coverageRadius_mm},
+    };
+    for (const Step& s : steps) {
+        const auto member = s.member;
+        addField(followingBox, {"following", s.key, following, s.label, s.tip, Kind::Number, s.lo,
+                                s.hi, s.step, [member](E e) { return e.following.*member; }});
+    }
+    addField(followingBox,
+             {"following", "edge_confirmation_taps", following, tr("Edge confirmed after (taps)"),
+              tr("Active: same-orientation edge percepts in a row before memory takes the edge "
+                 "as the last edge"),
+              Kind::Integer, 1, 100, 1,
+              [](E e) { return double(e.following.edgeConfirmationTaps); }});
+    addField(followingBox,
+             {"following", "max_taps_per_decision", following, tr("Taps per decision at most"),
+              tr("Sequential perception: taps gathered before deciding anyway"), Kind::Integer, 1,
+              1000, 1, [](E e) { return double(e.following.maxTapsPerDecision); }});
+    addField(followingBox,
+             {"following", "reposition_while_sensing", following, tr("Reposition while sensing"),
+              tr("Sequential perception, active: move toward the valid range between taps"),
+              Kind::Flag, 0, 1, 1,
+              [](E e) { return e.following.repositionWhileSensing ? 1.0 : 0.0; }});
+    addField(followingBox,
+             {"following", "lost_plane_or_air_taps", following, tr("Lost after plane/air taps"),
+              tr("Lost after this many plane or air decisions in a row"), Kind::Integer, 1,
+              100000, 1, [](E e) { return double(e.following.lostPlaneOrAirTaps); }});
+
+    auto* trialsBox = new QGroupBox(tr("Trials"));
+    auto* trialsLayout = new QVBoxLayout(trialsBox);
+    trials_ = new QTableWidget(0, 3);
+    trials_->setObjectName("protocol_trials");
+    trials_->setHorizontalHeaderLabels({tr("trial"), tr("mode"), tr("repeats")});
+    trials_->horizontalHeader()->setSectionResizeMode(0, QHeaderView::Stretch);
+    trials_->verticalHeader()->setVisible(false);
+    trials_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    trials_->setToolTip(tr("Each trial's object is the experiment file's; its mode and repeats "
+                           "can be changed here"));
+    trialsLayout->addWidget(trials_);
+    layout->addWidget(trialsBox);
+
+    recognition_ = new QGroupBox(tr("Recognition"));
+    recognition_->setObjectName("protocol_recognition");
+    recognition_->setCheckable(true);
+    recognition_->setToolTip(tr("Recognise the shapes from the traced paths (paper §3.4)"));
+    new QFormLayout(recognition_);
+    layout->addWidget(recognition_);
+    const QString recognition = tr("Recognition");
+    addField(recognition_, {"recognition", "bins", recognition, tr("Histogram bins"),
+                            tr("Bins along each axis of the path histogram (paper: 20)"),
+                            Kind::Integer, 2, 200, 1,
+                            [](E e) { return double(e.recognition.bins); }});
+    addField(recognition_,
+             {"recognition", "smoothing_sigma_bins", recognition, tr("Smoothed rule (bins)"),
+              tr("Width of the Gaussian that blurs the histograms for the rule reported beside "
+                 "the paper's"),
+              Kind::Number, 0.0, 20.0, 0.5,
+              [](E e) { return e.recognition.smoothingSigmaBins; }});
+    recognitionOf_ = new QComboBox;
+    recognitionOf_->setObjectName("protocol_recognition_of_mode");
+    recognitionOf_->addItems({"active", "passive"});
+    recognitionOf_->setToolTip(tr("Which trials' paths are recognised"));
+    static_cast<QFormLayout*>(recognition_->layout())->addRow(tr("Of the trials"), recognitionOf_);
+    connect(recognition_, &QGroupBox::toggled, this, &ProtocolPanel::changed);
+    connect(recognitionOf_, &QComboBox::currentIndexChanged, this, &ProtocolPanel::changed);
+
+    auto* reset = new QPushButton(tr("Show the file's values"));
+    reset->setObjectName("protocol_reset");
+    reset->setToolTip(tr("Show the experiment file's settings again, as opened"));
+    connect(reset, &QPushButton::clicked, this, &ProtocolPanel::resetRequested);
+    layout->addWidget(reset);
+    layout->addStretch();
+}
+
+void ProtocolPanel::addField(QGroupBox* box, Field f) {
+    QWidget* w = nullptr;
+    if (f.kind == Kind::Flag) {
+        auto* c = new QCheckBox;
+        connect(c, &QCheckBox::toggled, this, &ProtocolPanel::changed);
+        w = c;
+    } else if (f.kind == Kind::Integer) {
+        auto* s = new QSpinBox;
+        s->setRange(int(f.lo), int(f.hi));
+        s->setSingleStep(int(f.step));
+        s->setKeyboardTracking(false);
+        connect(s, &QSpinBox::valueChanged, this, &ProtocolPanel::changed);
+        w = s;
+    } else {
+        auto* s = new NumberBox(f.lo, f.hi, f.step);
+        connect(s, &QDoubleSpinBox::valueChanged, this, &ProtocolPanel::changed);
+        w = s;
+    }
+    w->setObjectName(QString::fromStdString("protocol_" + (f.section.empty() ? "" : f.section + "_") +
+                                            f.key));
+    w->setToolTip(f.tip);
+    static_cast<QFormLayout*>(box->layout())->addRow(f.label, w);
+    f.widget = w;
+    fields_.push_back(std::move(f));
+}
+
+double ProtocolPanel::valueOf(const Field& f) const {
+    if (f.kind == Kind::Flag) return static_cast<QCheckBox*>(f.widget)->isChecked() ? 1.0 : 0.0;
+    if (f.kind == Kind::Integer) return static_cast<QSpinBox*>(f.widget)->value();
+    return static_cast<QDoubleSpinBox*>(f.widget)->value();
+}
+
+void ProtocolPanel::setValueOf(const Field& f, double v) {
+    if (f.kind == Kind::Flag)
+        static_cast<QCheckBox*>(f.widget)->setChecked(v != 0.0);
+    else if (f.kind == Kind::Integer)
+        static_cast<QSpinBox*>(f.widget)->setValue(int(v));
+    else
+        static_cast<QDoubleSpinBox*>(f.widget)->setValue(v);
+}
+
+void ProtocolPanel::showExperiment(const ExperimentSpec& e) {
+    const QSignalBlocker block(this);
+    for (const Field& f : fields_) {
+        if (f.key == "valid_range_positions")
+            static_cast<QSpinBox*>(f.widget)->setMaximum(e.classes.positions);
+        setValueOf(f, f.value(e));
+    }
+    QStringList sets;
+    for (int s : e.training.trainingSets) sets << QString::number(s);
+    trainingSets_->setText(sets.join(", "));
+    recognition_->setChecked(e.recognition.enabled);
+    recognitionOf_->setCurrentIndex(e.recognition.ofMode == FollowingMode::Passive ? 1 : 0);
+    trials_->setRowCount(int(e.trials.size()));
+    for (int i = 0; i < int(e.trials.size()); ++i) {
+        const TrialSpec& t = e.trials[std::size_t(i)];
+        QString what = QString::fromStdString(t.label);
+        if (t.label != t.object.shape) what += " (" + QString::fromStdString(t.object.shape) + ")";
+        trials_->setItem(i, 0, new QTableWidgetItem(what));
+        auto* mode = new QComboBox;
+        mode->addItems({"active", "passive"});
+        mode->setCurrentIndex(t.mode == FollowingMode::Passive ? 1 : 0);
+        connect(mode, &QComboBox::currentIndexChanged, this, &ProtocolPanel::changed);
+        trials_->setCellWidget(i, 1, mode);
+        auto* repeats = new QSpinBox;
+        repeats->setRange(1, 1000);
+        repeats->setValue(t.repeats);
+        repeats->setKeyboardTracking(false);
+        connect(repeats, &QSpinBox::valueChanged, this, &ProtocolPanel::changed);
+        trials_->setCellWidget(i, 2, repeats);
+    }
+    trials_->setMinimumHeight(
+        std::min(8, std::max(1, int(e.trials.size()))) * trials_->verticalHeader()->defaultSectionSize() +
+        trials_->horizontalHeader()->height() + 4);
+}
+
+Json ProtocolPanel::patch(Json j) const {
+    for (const Field& f : fields_) {
+        if (f.section == "recognition" && !recognition_->isChecked()) continue;
+        Json& at = f.section.empty() ? j : j[f.section];
+        const double v = valueOf(f);
+        if (f.kind == Kind::Flag)
+            at[f.key] = v != 0.0;
+        else if (f.kind == Kind::Integer)
+            at[f.key] = static_cast<long long>(std::llround(v));
+        else
+            at[f.key] = v;
+    }
+    Json sets = Json::array();
+    for (const QString& part : trainingSets_->text().split(',', Qt::SkipEmptyParts)) {
+        bool ok = false;
+        const int set = part.trimmed().toInt(&ok);
+        if (!ok)
+            throw InputError("protocol panel", tr("Training and validation: Training sets").toStdString(),
+                             "'" + part.trimmed().toStdString() +
+                                 "' is not a data set number; list the training sets' numbers, "
+                                 "from 1, separated by commas");
+        sets.push_back(set);
+    }
+    if (sets.empty())
+        throw InputError("protocol panel", tr("Training and validation: Training sets").toStdString(),
+                         "no training set; list at least one data set number, such as 1");
+    j["training"]["training_sets"] = sets;
+    if (recognition_->isChecked())
+        j["recognition"]["of_mode"] = recognitionOf_->currentText().toStdString();
+    else
+        j.erase("recognition");
+    if (j.contains("following") && j["following"].contains("trials")) {
+        Json& trials = j["following"]["trials"];
+        for (int i = 0; i < trials_->rowCount() && i < int(trials.size()); ++i) {
+            trials[std::size_t(i)]["mode"] =
+                static_cast<QComboBox*>(trials_->cellWidget(i, 1))->currentText().toStdString();
+            trials[std::size_t(i)]["repeats"] = static_cast<QSpinBox*>(trials_->cellWidget(i, 2))->value();
+        }
+    }
+    return j;
+}
+
+QString ProtocolPanel::fieldAt(const std::string& pointer) const {
+    for (const Field& f : fields_) {
+        const std::string place = (f.section.empty() ? "" : "/" + f.section) + "/" + f.key;
+        if (pointer == place) return f.group + ": " + f.label;
+    }
+    if (pointer == "/training/training_sets") return tr("Training and validation: Training sets");
+    if (pointer.rfind("/training", 0) == 0) return tr("Training and validation");
+    if (pointer == "/recognition/of_mode") return tr("Recognition: Of the trials");
+    if (pointer.rfind("/recognition", 0) == 0) return tr("Recognition");
+    const std::string trials = "/following/trials/";
+    if (pointer.rfind(trials, 0) == 0) {
+        const int row = std::atoi(pointer.c_str() + trials.size());
+        if (row >= 0 && row < trials_->rowCount() && trials_->item(row, 0))
+            return tr("Trials: %1 (row %2)").arg(trials_->item(row, 0)->text()).arg(row + 1);
+        return tr("Trials");
+    }
+    if (pointer.rfind("/following", 0) == 0) return tr("Following");
+    return {};
+}
+
+}  // namespace activetouch

@@ -1,0 +1,67 @@
+#pragma once
+// The protocol panel: the experiment's settings beside its scene. The classifier, the training
+// protocol, the valid range's width, every step and limit of the perception-action loop, the
+// recognition rule, the seed, and each trial's mode and repeats — the values the experiment runs
+// with, defaults included. A run uses what the panel shows: the window writes the panel's values
+// into the experiment's document and reads it with the same checks as a file, so a setting the
+// file would refuse is refused naming the panel's field, and nothing runs.
+#include <QString>
+#include <QWidget>
+#include <functional>
+#include <vector>
+
+#include "core/experiment/Experiment.h"
+#include "core/io/JsonFields.h"
+
+class QCheckBox;
+class QComboBox;
+class QGroupBox;
+class QLineEdit;
+class QTableWidget;
+class QWidget;
+
+namespace activetouch {
+
+class ProtocolPanel : public QWidget {
+    Q_OBJECT
+public:
+    explicit ProtocolPanel(QWidget* parent = nullptr);
+
+    /// Shows the settings `experiment` runs with.
+    void showExperiment(const ExperimentSpec& experiment);
+    /// `document` (an experiment file's JSON, "extends" resolved) with the panel's values written
+    /// in; keys the panel does not show are kept as they are. Throws InputError naming the field
+    /// for a value that is not a number or a list of set numbers.
+    Json patch(Json document) const;
+    /// "Group: label" of the field at a JSON pointer the panel writes (or an enclosing one), for
+    /// messages; empty for a place the panel does not show.
+    QString fieldAt(const std::string& pointer) const;
+
+signals:
+    void changed();
+    /// The person asked to show the experiment's own values again.
+    void resetRequested();
+
+private:
+    enum class Kind { Number, Integer, Flag };
+    struct Field {
+        std::string section;  ///< top-level key ("" for the document itself)
+        std::string key;
+        QString group, label, tip;
+        Kind kind;
+        double lo, hi, step;
+        std::function<double(const ExperimentSpec&)> value;
+        QWidget* widget = nullptr;
+    };
+    void addField(QGroupBox* box, Field field);
+    double valueOf(const Field& f) const;
+    void setValueOf(const Field& f, double v);
+
+    std::vector<Field> fields_;
+    QLineEdit* trainingSets_;
+    QGroupBox* recognition_;
+    QComboBox* recognitionOf_;
+    QTableWidget* trials_;
+};
+
+}  // namespace activetouch
