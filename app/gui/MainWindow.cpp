@@ -350,15 +350,14 @@ ExperimentSpec MainWindow::experimentAsShown() const {
         throw InputError("scene panel", "object", "training on it: " + problem);
     const Json j = documentAsShown();
     try {
-        ExperimentSpec spec = parseExperiment(j, spec_.source,
-                                              QFileInfo(experimentPath_).path().toStdString());
+        ExperimentSpec spec =
+            parseExperiment(j, spec_.source, QFileInfo(experimentPath_).path().toStdString());
         spec.scene.source = spec_.scene.source;
         return spec;
     } catch (const InputError& e) {
         const QString field = protocol_->fieldAt(e.place());
         throw InputError("protocol panel",
-                         field.isEmpty() ? e.place()
-                                         : field.toStdString() + " (" + e.place() + ")",
+                         field.isEmpty() ? e.place() : field.toStdString() + " (" + e.place() + ")",
                          e.problem());
     }
 }

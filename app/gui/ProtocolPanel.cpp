@@ -9,13 +9,13 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
-#include <QScrollArea>
 #include <QSignalBlocker>
 #include <QSpinBox>
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <cmath>
 
+#include "app/gui/ScrolledColumn.h"
 #include "core/classify/HistogramClassifier.h"
 
 namespace activetouch {
@@ -32,9 +32,7 @@ public:
         setKeyboardTracking(false);
     }
     QString textFromValue(double v) const override { return QString::number(v, 'g', 12); }
-    double valueFromText(const QString& text) const override {
-        return text.trimmed().toDouble();
-    }
+    double valueFromText(const QString& text) const override { return text.trimmed().toDouble(); }
     QValidator::State validate(QString& input, int&) const override {
         const QString t = input.trimmed();
         if (t.isEmpty() || t == "-" || t == "." || t == "-." || t.endsWith('e') ||
@@ -43,21 +41,14 @@ public:
         bool ok = false;
         const double v = t.toDouble(&ok);
         if (!ok) return QValidator::Invalid;
-        return v >= minimum() && v <= maximum() ? QValidator::Acceptable
-                                                : QValidator::Intermediate;
+        return v >= minimum() && v <= maximum() ? QValidator::Acceptable : QValidator::Intermediate;
     }
 };
 
 }  // namespace
 
 ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
-    auto* outer = new QVBoxLayout(this);
-    auto* scroll = new QScrollArea;
-    scroll->setWidgetResizable(true);
-    outer->addWidget(scroll);
-    auto* content = new QWidget;
-    scroll->setWidget(content);
-    auto* layout = new QVBoxLayout(content);
+    QVBoxLayout* layout = scrolledColumn(this);
 
     auto* note = new QLabel(
         tr("The experiment's settings beside its scene. Runs, seeds, analysis and replay use "
@@ -77,15 +68,14 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
     addField(runBox, {"", "seed", run, tr("Seed"),
                       tr("The run's seed: its data sets, noise and trials. The Rates over seeds "
                          "tab runs a range of seeds."),
-                      Kind::Integer, 0, 2147483647, 1,
-                      [](E e) { return double(e.scene.seed); }});
+                      Kind::Integer, 0, 2147483647, 1, [](E e) { return double(e.scene.seed); }});
 
     const QString classifier = tr("Classifier");
     auto* classifierBox = group(classifier);
-    addField(classifierBox, {"classifier", "bins", classifier, tr("Histogram bins"),
-                             tr("Bins per taxel over its trained range (paper: 100)"),
-                             Kind::Integer, 1, 100000, 10,
-                             [](E e) { return double(e.classifier.bins); }});
+    addField(classifierBox,
+             {"classifier", "bins", classifier, tr("Histogram bins"),
+              tr("Bins per taxel over its trained range (paper: 100)"), Kind::Integer, 1, 100000,
+              10, [](E e) { return double(e.classifier.bins); }});
     addField(classifierBox,
              {"classifier", "smoothing", classifier, tr("Smoothing"),
               tr("Count added to every bin of a likelihood histogram (chosen by the validation: "
@@ -101,9 +91,8 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
     const QString training = tr("Training and validation");
     auto* trainingBox = group(training);
     addField(trainingBox, {"training", "data_sets", training, tr("Data sets"),
-                           tr("Taps at every class, once per data set (paper: 5)"),
-                           Kind::Integer, 2, 1000, 1,
-                           [](E e) { return double(e.training.dataSets); }});
+                           tr("Taps at every class, once per data set (paper: 5)"), Kind::Integer,
+                           2, 1000, 1, [](E e) { return double(e.training.dataSets); }});
     trainingSets_ = new QLineEdit;
     trainingSets_->setObjectName("protocol_training_training_sets");
     trainingSets_->setToolTip(
@@ -112,8 +101,8 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
     static_cast<QFormLayout*>(trainingBox->layout())->addRow(tr("Training sets"), trainingSets_);
     connect(trainingSets_, &QLineEdit::editingFinished, this, &ProtocolPanel::changed);
     addField(trainingBox, {"training", "taps_per_class", training, tr("Taps per class"),
-                           tr("Taps at each class in each data set (paper: 1)"), Kind::Integer,
-                           1, 1000, 1, [](E e) { return double(e.training.tapsPerClass); }});
+                           tr("Taps at each class in each data set (paper: 1)"), Kind::Integer, 1,
+                           1000, 1, [](E e) { return double(e.training.tapsPerClass); }});
     addField(trainingBox,
              {"training", "test_offset_mm", training, tr("Test sets off the grid (mm)"),
               tr("Test taps shifted along the edge normal, off the training grid"), Kind::Number,
@@ -171,9 +160,8 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
         {"completion_radius_mm", tr("Completed within (mm)"),
          tr("Completed: back within this of the start after a full perimeter"), 0.1, 100.0, 0.5,
          &FollowingSettings::completionRadius_mm},
-        {"lost_outside_mm", tr("Lost outside (mm)"),
-         tr("Lost when this far outside the contour"), 0.1, 1000.0, 1.0,
-         &FollowingSettings::lostOutside_mm},
+        {"lost_outside_mm", tr("Lost outside (mm)"), tr("Lost when this far outside the contour"),
+         0.1, 1000.0, 1.0, &FollowingSettings::lostOutside_mm},
         {"lost_inside_mm", tr("Lost inside (mm)"), tr("Lost when this far inside the object"), 0.1,
          1000.0, 1.0, &FollowingSettings::lostInside_mm},
         {"tap_cap_perimeters", tr("Tap cap (perimeters)"),
@@ -188,25 +176,25 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
         addField(followingBox, {"following", s.key, following, s.label, s.tip, Kind::Number, s.lo,
                                 s.hi, s.step, [member](E e) { return e.following.*member; }});
     }
-    addField(followingBox,
-             {"following", "edge_confirmation_taps", following, tr("Edge confirmed after (taps)"),
-              tr("Active: same-orientation edge percepts in a row before memory takes the edge "
-                 "as the last edge"),
-              Kind::Integer, 1, 100, 1,
-              [](E e) { return double(e.following.edgeConfirmationTaps); }});
+    addField(
+        followingBox,
+        {"following", "edge_confirmation_taps", following, tr("Edge confirmed after (taps)"),
+         tr("Active: same-orientation edge percepts in a row before memory takes the edge "
+            "as the last edge"),
+         Kind::Integer, 1, 100, 1, [](E e) { return double(e.following.edgeConfirmationTaps); }});
     addField(followingBox,
              {"following", "max_taps_per_decision", following, tr("Taps per decision at most"),
               tr("Sequential perception: taps gathered before deciding anyway"), Kind::Integer, 1,
               1000, 1, [](E e) { return double(e.following.maxTapsPerDecision); }});
-    addField(followingBox,
-             {"following", "reposition_while_sensing", following, tr("Reposition while sensing"),
-              tr("Sequential perception, active: move toward the valid range between taps"),
-              Kind::Flag, 0, 1, 1,
-              [](E e) { return e.following.repositionWhileSensing ? 1.0 : 0.0; }});
+    addField(
+        followingBox,
+        {"following", "reposition_while_sensing", following, tr("Reposition while sensing"),
+         tr("Sequential perception, active: move toward the valid range between taps"), Kind::Flag,
+         0, 1, 1, [](E e) { return e.following.repositionWhileSensing ? 1.0 : 0.0; }});
     addField(followingBox,
              {"following", "lost_plane_or_air_taps", following, tr("Lost after plane/air taps"),
-              tr("Lost after this many plane or air decisions in a row"), Kind::Integer, 1,
-              100000, 1, [](E e) { return double(e.following.lostPlaneOrAirTaps); }});
+              tr("Lost after this many plane or air decisions in a row"), Kind::Integer, 1, 100000,
+              1, [](E e) { return double(e.following.lostPlaneOrAirTaps); }});
 
     auto* trialsBox = new QGroupBox(tr("Trials"));
     auto* trialsLayout = new QVBoxLayout(trialsBox);
@@ -216,8 +204,9 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
     trials_->horizontalHeader()->setSectionResizeMode(0, QHeaderView::Stretch);
     trials_->verticalHeader()->setVisible(false);
     trials_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-    trials_->setToolTip(tr("Each trial's object is the experiment file's; its mode and repeats "
-                           "can be changed here"));
+    trials_->setToolTip(
+        tr("Each trial's object is the experiment file's; its mode and repeats "
+           "can be changed here"));
     trialsLayout->addWidget(trials_);
     layout->addWidget(trialsBox);
 
@@ -228,16 +217,15 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
     new QFormLayout(recognition_);
     layout->addWidget(recognition_);
     const QString recognition = tr("Recognition");
-    addField(recognition_, {"recognition", "bins", recognition, tr("Histogram bins"),
-                            tr("Bins along each axis of the path histogram (paper: 20)"),
-                            Kind::Integer, 2, 200, 1,
-                            [](E e) { return double(e.recognition.bins); }});
+    addField(recognition_,
+             {"recognition", "bins", recognition, tr("Histogram bins"),
+              tr("Bins along each axis of the path histogram (paper: 20)"), Kind::Integer, 2, 200,
+              1, [](E e) { return double(e.recognition.bins); }});
     addField(recognition_,
              {"recognition", "smoothing_sigma_bins", recognition, tr("Smoothed rule (bins)"),
               tr("Width of the Gaussian that blurs the histograms for the rule reported beside "
                  "the paper's"),
-              Kind::Number, 0.0, 20.0, 0.5,
-              [](E e) { return e.recognition.smoothingSigmaBins; }});
+              Kind::Number, 0.0, 20.0, 0.5, [](E e) { return e.recognition.smoothingSigmaBins; }});
     recognitionOf_ = new QComboBox;
     recognitionOf_->setObjectName("protocol_recognition_of_mode");
     recognitionOf_->addItems({"active", "passive"});
@@ -272,8 +260,8 @@ void ProtocolPanel::addField(QGroupBox* box, Field f) {
         connect(s, &QDoubleSpinBox::valueChanged, this, &ProtocolPanel::changed);
         w = s;
     }
-    w->setObjectName(QString::fromStdString("protocol_" + (f.section.empty() ? "" : f.section + "_") +
-                                            f.key));
+    w->setObjectName(
+        QString::fromStdString("protocol_" + (f.section.empty() ? "" : f.section + "_") + f.key));
     w->setToolTip(f.tip);
     static_cast<QFormLayout*>(box->layout())->addRow(f.label, w);
     f.widget = w;
@@ -325,9 +313,9 @@ void ProtocolPanel::showExperiment(const ExperimentSpec& e) {
         connect(repeats, &QSpinBox::valueChanged, this, &ProtocolPanel::changed);
         trials_->setCellWidget(i, 2, repeats);
     }
-    trials_->setMinimumHeight(
-        std::min(8, std::max(1, int(e.trials.size()))) * trials_->verticalHeader()->defaultSectionSize() +
-        trials_->horizontalHeader()->height() + 4);
+    trials_->setMinimumHeight(std::min(8, std::max(1, int(e.trials.size()))) *
+                                  trials_->verticalHeader()->defaultSectionSize() +
+                              trials_->horizontalHeader()->height() + 4);
 }
 
 Json ProtocolPanel::patch(Json j) const {
@@ -347,14 +335,16 @@ Json ProtocolPanel::patch(Json j) const {
         bool ok = false;
         const int set = part.trimmed().toInt(&ok);
         if (!ok)
-            throw InputError("protocol panel", tr("Training and validation: Training sets").toStdString(),
+            throw InputError("protocol panel",
+                             tr("Training and validation: Training sets").toStdString(),
                              "'" + part.trimmed().toStdString() +
                                  "' is not a data set number; list the training sets' numbers, "
                                  "from 1, separated by commas");
         sets.push_back(set);
     }
     if (sets.empty())
-        throw InputError("protocol panel", tr("Training and validation: Training sets").toStdString(),
+        throw InputError("protocol panel",
+                         tr("Training and validation: Training sets").toStdString(),
                          "no training set; list at least one data set number, such as 1");
     j["training"]["training_sets"] = sets;
     if (recognition_->isChecked())
@@ -366,7 +356,8 @@ Json ProtocolPanel::patch(Json j) const {
         for (int i = 0; i < trials_->rowCount() && i < int(trials.size()); ++i) {
             trials[std::size_t(i)]["mode"] =
                 static_cast<QComboBox*>(trials_->cellWidget(i, 1))->currentText().toStdString();
-            trials[std::size_t(i)]["repeats"] = static_cast<QSpinBox*>(trials_->cellWidget(i, 2))->value();
+            trials[std::size_t(i)]["repeats"] =
+                static_cast<QSpinBox*>(trials_->cellWidget(i, 2))->value();
         }
     }
     return j;

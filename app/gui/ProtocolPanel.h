@@ -18,7 +18,6 @@ class QComboBox;
 class QGroupBox;
 class QLineEdit;
 class QTableWidget;
-class QWidget;
 
 namespace activetouch {
 

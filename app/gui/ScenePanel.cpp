@@ -8,9 +8,9 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
-#include <QScrollArea>
 #include <QVBoxLayout>
 
+#include "app/gui/ScrolledColumn.h"
 #include "core/geometry/ShapeLibrary.h"
 #include "devices/simulated/effects/Effect.h"
 
@@ -27,13 +27,7 @@ QDoubleSpinBox* spin(double lo, double hi, double value, const QString& suffix, 
 }  // namespace
 
 ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
-    auto* outer = new QVBoxLayout(this);
-    auto* scroll = new QScrollArea;
-    scroll->setWidgetResizable(true);
-    outer->addWidget(scroll);
-    auto* content = new QWidget;
-    scroll->setWidget(content);
-    auto* layout = new QVBoxLayout(content);
+    QVBoxLayout* layout = scrolledColumn(this);
 
     auto* object = new QGroupBox(tr("Object"));
     auto* form = new QFormLayout(object);
