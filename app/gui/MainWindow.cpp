@@ -160,7 +160,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     tabifyDockWidget(protocolDock, devicesDock);
     sceneDock->raise();
     connect(protocol_, &ProtocolPanel::resetRequested, this, [this] {
-        protocol_->showExperiment(spec_);
+        protocol_->showExperiment(spec_, experimentJson_);
         log(tr("protocol panel: the settings of %1 shown again").arg(experimentPath_));
     });
     connect(devicesPanel_, &DevicesPanel::log, this, &MainWindow::log);
@@ -315,7 +315,7 @@ bool MainWindow::openExperiment(const QString& path) {
         experimentJson_ = j;
         experimentPath_ = path;
         scene_->showScene(spec_.scene);
-        protocol_->showExperiment(spec_);
+        protocol_->showExperiment(spec_, experimentJson_);
         devicesPanel_->setScene(spec_.scene);
         setWindowTitle(tr("ActiveTouch Workbench - %1").arg(QFileInfo(path).fileName()));
         QSettings().setValue("lastExperiment", path);
@@ -387,7 +387,7 @@ std::optional<ExperimentSpec> MainWindow::experimentToRun() {
     try {
         return experimentAsShown();
     } catch (const std::exception& e) {
-        showError(tr("The scene as shown cannot run: %1").arg(e.what()));
+        showError(tr("The experiment as shown cannot run: %1").arg(e.what()));
         return std::nullopt;
     }
 }

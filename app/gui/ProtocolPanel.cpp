@@ -5,6 +5,7 @@
 #include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QGroupBox>
+#include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
 #include <QLineEdit>
@@ -204,11 +205,48 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
     trials_->horizontalHeader()->setSectionResizeMode(0, QHeaderView::Stretch);
     trials_->verticalHeader()->setVisible(false);
     trials_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    trials_->setSelectionBehavior(QAbstractItemView::SelectRows);
+    trials_->setSelectionMode(QAbstractItemView::SingleSelection);
     trials_->setToolTip(
-        tr("Each trial's object is the experiment file's; its mode and repeats "
-           "can be changed here"));
+        tr("Each trial's object is the experiment file's; its mode and repeats can be changed "
+           "here, and a trial copied (say, to follow the same object passively too) or removed"));
     trialsLayout->addWidget(trials_);
+    auto* trialButtons = new QHBoxLayout;
+    auto* copyTrial = new QPushButton(tr("Copy trial"));
+    copyTrial->setObjectName("protocol_copy_trial");
+    copyTrial->setToolTip(
+        tr("Add a copy of the selected trial below it: the same object, mode "
+           "and repeats"));
+    auto* removeTrial = new QPushButton(tr("Remove trial"));
+    removeTrial->setObjectName("protocol_remove_trial");
+    trialButtons->addWidget(copyTrial);
+    trialButtons->addWidget(removeTrial);
+    trialButtons->addStretch();
+    trialsLayout->addLayout(trialButtons);
     layout->addWidget(trialsBox);
+    auto enableTrialButtons = [this, copyTrial, removeTrial] {
+        const bool selected = trials_->currentRow() >= 0 && !trials_->selectedItems().isEmpty();
+        copyTrial->setEnabled(selected);
+        removeTrial->setEnabled(selected);
+    };
+    connect(trials_, &QTableWidget::itemSelectionChanged, this, enableTrialButtons);
+    enableTrialButtons();
+    connect(copyTrial, &QPushButton::clicked, this, [this] {
+        const int row = trials_->currentRow();
+        if (row < 0) return;
+        trialEntries_.insert(trialEntries_.begin() + row + 1, trialEntries_[std::size_t(row)]);
+        addTrialRow(row + 1, trials_->item(row, 0)->text(), modeBox(row)->currentIndex() == 1,
+                    repeatsBox(row)->value());
+        trials_->selectRow(row + 1);
+        emit changed();
+    });
+    connect(removeTrial, &QPushButton::clicked, this, [this] {
+        const int row = trials_->currentRow();
+        if (row < 0) return;
+        trialEntries_.erase(trialEntries_.begin() + row);
+        trials_->removeRow(row);
+        emit changed();
+    });
 
     recognition_ = new QGroupBox(tr("Recognition"));
     recognition_->setObjectName("protocol_recognition");
@@ -283,7 +321,7 @@ void ProtocolPanel::setValueOf(const Field& f, double v) {
         static_cast<QDoubleSpinBox*>(f.widget)->setValue(v);
 }
 
-void ProtocolPanel::showExperiment(const ExperimentSpec& e) {
+void ProtocolPanel::showExperiment(const ExperimentSpec& e, const Json& document) {
     const QSignalBlocker block(this);
     for (const Field& f : fields_) {
         if (f.key == "valid_range_positions")
@@ -295,27 +333,43 @@ void ProtocolPanel::showExperiment(const ExperimentSpec& e) {
     trainingSets_->setText(sets.join(", "));
     recognition_->setChecked(e.recognition.enabled);
     recognitionOf_->setCurrentIndex(e.recognition.ofMode == FollowingMode::Passive ? 1 : 0);
-    trials_->setRowCount(int(e.trials.size()));
-    for (int i = 0; i < int(e.trials.size()); ++i) {
+    trialEntries_.clear();
+    if (document.contains("following") && document["following"].contains("trials"))
+        for (const Json& t : document["following"]["trials"]) trialEntries_.push_back(t);
+    trials_->setRowCount(0);
+    for (int i = 0; i < int(e.trials.size()) && i < int(trialEntries_.size()); ++i) {
         const TrialSpec& t = e.trials[std::size_t(i)];
         QString what = QString::fromStdString(t.label);
         if (t.label != t.object.shape) what += " (" + QString::fromStdString(t.object.shape) + ")";
-        trials_->setItem(i, 0, new QTableWidgetItem(what));
-        auto* mode = new QComboBox;
-        mode->addItems({"active", "passive"});
-        mode->setCurrentIndex(t.mode == FollowingMode::Passive ? 1 : 0);
-        connect(mode, &QComboBox::currentIndexChanged, this, &ProtocolPanel::changed);
-        trials_->setCellWidget(i, 1, mode);
-        auto* repeats = new QSpinBox;
-        repeats->setRange(1, 1000);
-        repeats->setValue(t.repeats);
-        repeats->setKeyboardTracking(false);
-        connect(repeats, &QSpinBox::valueChanged, this, &ProtocolPanel::changed);
-        trials_->setCellWidget(i, 2, repeats);
+        addTrialRow(i, what, t.mode == FollowingMode::Passive, t.repeats);
     }
     trials_->setMinimumHeight(std::min(8, std::max(1, int(e.trials.size()))) *
                                   trials_->verticalHeader()->defaultSectionSize() +
                               trials_->horizontalHeader()->height() + 4);
+}
+
+void ProtocolPanel::addTrialRow(int row, const QString& what, bool passive, int repeats) {
+    trials_->insertRow(row);
+    trials_->setItem(row, 0, new QTableWidgetItem(what));
+    auto* mode = new QComboBox;
+    mode->addItems({"active", "passive"});
+    mode->setCurrentIndex(passive ? 1 : 0);
+    connect(mode, &QComboBox::currentIndexChanged, this, &ProtocolPanel::changed);
+    trials_->setCellWidget(row, 1, mode);
+    auto* count = new QSpinBox;
+    count->setRange(1, 1000);
+    count->setValue(repeats);
+    count->setKeyboardTracking(false);
+    connect(count, &QSpinBox::valueChanged, this, &ProtocolPanel::changed);
+    trials_->setCellWidget(row, 2, count);
+}
+
+QComboBox* ProtocolPanel::modeBox(int row) const {
+    return static_cast<QComboBox*>(trials_->cellWidget(row, 1));
+}
+
+QSpinBox* ProtocolPanel::repeatsBox(int row) const {
+    return static_cast<QSpinBox*>(trials_->cellWidget(row, 2));
 }
 
 Json ProtocolPanel::patch(Json j) const {
@@ -351,14 +405,15 @@ Json ProtocolPanel::patch(Json j) const {
         j["recognition"]["of_mode"] = recognitionOf_->currentText().toStdString();
     else
         j.erase("recognition");
-    if (j.contains("following") && j["following"].contains("trials")) {
-        Json& trials = j["following"]["trials"];
-        for (int i = 0; i < trials_->rowCount() && i < int(trials.size()); ++i) {
-            trials[std::size_t(i)]["mode"] =
-                static_cast<QComboBox*>(trials_->cellWidget(i, 1))->currentText().toStdString();
-            trials[std::size_t(i)]["repeats"] =
-                static_cast<QSpinBox*>(trials_->cellWidget(i, 2))->value();
+    if (!trialEntries_.empty() || (j.contains("following") && j["following"].contains("trials"))) {
+        Json trials = Json::array();
+        for (int i = 0; i < trials_->rowCount(); ++i) {
+            Json t = trialEntries_[std::size_t(i)];
+            t["mode"] = modeBox(i)->currentText().toStdString();
+            t["repeats"] = repeatsBox(i)->value();
+            trials.push_back(std::move(t));
         }
+        j["following"]["trials"] = std::move(trials);
     }
     return j;
 }

@@ -17,6 +17,7 @@ class QCheckBox;
 class QComboBox;
 class QGroupBox;
 class QLineEdit;
+class QSpinBox;
 class QTableWidget;
 
 namespace activetouch {
@@ -26,8 +27,9 @@ class ProtocolPanel : public QWidget {
 public:
     explicit ProtocolPanel(QWidget* parent = nullptr);
 
-    /// Shows the settings `experiment` runs with.
-    void showExperiment(const ExperimentSpec& experiment);
+    /// Shows the settings `experiment` runs with; `document` is its file's JSON ("extends"
+    /// resolved), whose trials the panel's trial rows copy or remove whole.
+    void showExperiment(const ExperimentSpec& experiment, const Json& document);
     /// `document` (an experiment file's JSON, "extends" resolved) with the panel's values written
     /// in; keys the panel does not show are kept as they are. Throws InputError naming the field
     /// for a value that is not a number or a list of set numbers.
@@ -53,6 +55,9 @@ private:
         QWidget* widget = nullptr;
     };
     void addField(QGroupBox* box, Field field);
+    void addTrialRow(int row, const QString& what, bool passive, int repeats);
+    QComboBox* modeBox(int row) const;
+    QSpinBox* repeatsBox(int row) const;
     double valueOf(const Field& f) const;
     void setValueOf(const Field& f, double v);
 
@@ -61,6 +66,7 @@ private:
     QGroupBox* recognition_;
     QComboBox* recognitionOf_;
     QTableWidget* trials_;
+    std::vector<Json> trialEntries_;  ///< the document's trial objects, one per row
 };
 
 }  // namespace activetouch

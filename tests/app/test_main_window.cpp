@@ -4,8 +4,8 @@
 // keep the session; drive the simulated devices from their panel; run the experiment over a range
 // of seeds, open one seed's run from its row, and cancel such a run, keeping every finished seed;
 // change the protocol in its panel, run it and save it, and be refused naming the field when it
-// cannot run; analyse a run's recording; resize the window and find paths and histograms still drawn at one
-// scale on both axes, and no legend hiding a value.
+// cannot run; analyse a run's recording; resize the window and find paths and histograms still
+// drawn at one scale on both axes, and no legend hiding a value.
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
@@ -21,10 +21,10 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSpinBox>
-#include <QTableWidget>
 #include <QStandardPaths>
 #include <QStyleOptionGroupBox>
 #include <QTabWidget>
+#include <QTableWidget>
 #include <QTemporaryDir>
 #include <QToolButton>
 #include <QtTest>
@@ -442,6 +442,45 @@ private slots:
         QCOMPARE(window_->experimentAsShown().scene.seed, std::uint64_t(1));
     }
 
+    void trialsAreCopiedAndRemovedInTheProtocolPanel() {
+        // Follow the cross passively too: copy its trial, make the copy passive, once.
+        auto* table = window_->protocolPanel()->findChild<QTableWidget*>("protocol_trials");
+        auto* copy = window_->protocolPanel()->findChild<QPushButton*>("protocol_copy_trial");
+        auto* remove = window_->protocolPanel()->findChild<QPushButton*>("protocol_remove_trial");
+        QVERIFY(table && copy && remove);
+        const int rows = table->rowCount();
+        QCOMPARE(table->item(2, 0)->text(), QString("cross"));
+        table->selectRow(2);
+        QVERIFY(copy->isEnabled());
+        QTest::mouseClick(copy, Qt::LeftButton);
+        QCOMPARE(table->rowCount(), rows + 1);
+        QCOMPARE(table->item(3, 0)->text(), QString("cross"));
+        trialMode(3)->setCurrentIndex(trialMode(3)->findText("passive"));
+        trialRepeats(3)->setValue(1);
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QVERIFY(window_->startRun(RunController::What::Everything));
+        endsSuccessfully(*window_, ended);
+        int passiveCrosses = 0, activeCrosses = 0;
+        for (const TrialRun& t : window_->lastRun()->trials)
+            if (t.label == "cross")
+                ++(t.result.mode == FollowingMode::Passive ? passiveCrosses : activeCrosses);
+        QCOMPARE(passiveCrosses, 1);
+        QCOMPARE(activeCrosses, 2);
+        QVERIFY(!window_->lastRun()->trials.empty());
+        // Removing the copy gives the file's trials back.
+        table->selectRow(3);
+        QTest::mouseClick(remove, Qt::LeftButton);
+        QCOMPARE(table->rowCount(), rows);
+        const ExperimentSpec shown = window_->experimentAsShown();
+        const ExperimentSpec file = loadExperiment(window_->experimentPath().toStdString());
+        QCOMPARE(shown.trials.size(), file.trials.size());
+        for (std::size_t i = 0; i < file.trials.size(); ++i) {
+            QCOMPARE(shown.trials[i].label, file.trials[i].label);
+            QCOMPARE(shown.trials[i].mode, file.trials[i].mode);
+            QCOMPARE(shown.trials[i].repeats, file.trials[i].repeats);
+        }
+    }
+
     void protocolSettingsThatCannotRunAreRefusedNamingTheField() {
         const auto before = window_->lastRun();
         QSignalSpy errors(window_.get(), &MainWindow::errorShown);
@@ -472,9 +511,25 @@ private slots:
         refused("Training sets", "'two' is not a data set number");
         sets->setText("6");
         refused("Training and validation", "training set 6 does not exist (sets are 1..5)");
+        sets->setText("1");
+        auto* remove = window_->protocolPanel()->findChild<QPushButton*>("protocol_remove_trial");
+        while (table->rowCount() > 0) {
+            table->selectRow(0);
+            QTest::mouseClick(remove, Qt::LeftButton);
+        }
+        refused("Recognition: Of the trials", "no passive trials to recognise");
+        auto* recognition = window_->protocolPanel()->findChild<QGroupBox*>("protocol_recognition");
+        clickCheckBox(recognition);
+        QVERIFY(!recognition->isChecked());
+        // Without trials or recognition the experiment is its training and validation alone.
+        const ExperimentSpec trainingOnly = window_->experimentAsShown();
+        QVERIFY(trainingOnly.trials.empty());
+        QVERIFY(!trainingOnly.recognition.enabled);
         QTest::mouseClick(window_->protocolPanel()->findChild<QPushButton*>("protocol_reset"),
                           Qt::LeftButton);
         QCOMPARE(sets->text(), QString("1"));
+        QVERIFY(recognition->isChecked());
+        QCOMPARE(table->rowCount(), 5);  // the file's five trial entries
         QCOMPARE(window_->experimentAsShown().trials[1].mode, FollowingMode::Active);
     }
 
