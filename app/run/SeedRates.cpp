@@ -116,6 +116,9 @@ SeedOutcome seedOutcome(const RunResult& run) {
         if (t.result.mode == FollowingMode::Passive) {
             ++o.passiveTrials;
             o.passiveLost += !t.result.completed();
+            Rate& label = rateOf(o.passiveByLabel, t.label);
+            ++label.total;
+            label.count += !t.result.completed();
             if (t.result.completed()) o.passiveTracing.add(traced);
             continue;
         }
@@ -245,15 +248,21 @@ RecognitionConfusion SeedRates::confusion() const {
     for (const auto& o : seeds) namings.insert(namings.end(), o.namings.begin(), o.namings.end());
     return recognitionConfusion(namings);
 }
-RatesByLabel SeedRates::activeCompletedByLabel() const {
-    RatesByLabel byLabel;
+RatesByLabel SeedRates::byLabel(RatesByLabel SeedOutcome::*which) const {
+    RatesByLabel sums;
     for (const auto& s : seeds)
-        for (const auto& [label, rate] : s.activeByLabel) {
-            Rate& sum = rateOf(byLabel, label);
+        for (const auto& [label, rate] : s.*which) {
+            Rate& sum = rateOf(sums, label);
             sum.count += rate.count;
             sum.total += rate.total;
         }
-    return byLabel;
+    return sums;
+}
+RatesByLabel SeedRates::activeCompletedByLabel() const {
+    return byLabel(&SeedOutcome::activeByLabel);
+}
+RatesByLabel SeedRates::passiveLostByLabel() const {
+    return byLabel(&SeedOutcome::passiveByLabel);
 }
 
 Tracing SeedRates::tracing(FollowingMode mode) const {
@@ -310,18 +319,22 @@ Json seedRatesJson(const SeedRates& r) {
               s.paperResultApplies() ? Json(s.paperResultSmoothed()) : Json(nullptr)},
              {"active_failures", s.failures},
              {"misnamed_paths", s.misnamed()}});
-    Json byLabel = Json::array();
-    for (const auto& [label, rate] : r.activeCompletedByLabel()) {
-        Json entry = rateJson(rate);
-        entry["label"] = label;
-        byLabel.push_back(entry);
-    }
+    auto byLabel = [](const RatesByLabel& rates) {
+        Json list = Json::array();
+        for (const auto& [label, rate] : rates) {
+            Json entry = rateJson(rate);
+            entry["label"] = label;
+            list.push_back(entry);
+        }
+        return list;
+    };
     const RecognitionConfusion confusion = r.confusion();
     return {{"seeds", seeds},
             {"runs", r.seeds.size()},
             {"passive_lost", rateJson(r.passiveLost())},
+            {"passive_lost_by_label", byLabel(r.passiveLostByLabel())},
             {"active_completed", rateJson(r.activeCompleted())},
-            {"active_completed_by_label", byLabel},
+            {"active_completed_by_label", byLabel(r.activeCompletedByLabel())},
             {"recognised_raw", rateJson(r.recognisedRaw())},
             {"recognised_smoothed", rateJson(r.recognisedSmoothed())},
             {"recognition_confusion",
@@ -355,11 +368,14 @@ std::vector<std::string> describeRates(const SeedRates& r) {
                           100.0 * rate.low(), 100.0 * rate.high());
         lines.push_back(buf);
     };
+    auto perLabel = [&](const RatesByLabel& rates) {
+        if (rates.size() > 1)
+            for (const auto& [label, rate] : rates) line("  " + label, rate);
+    };
     line("passive trials lost", r.passiveLost());
+    perLabel(r.passiveLostByLabel());
     line("active trials completed", r.activeCompleted());
-    const auto byLabel = r.activeCompletedByLabel();
-    if (byLabel.size() > 1)
-        for (const auto& [label, rate] : byLabel) line("  " + label, rate);
+    perLabel(r.activeCompletedByLabel());
     const RecognitionConfusion confusion = r.confusion();
     line("recognised, paper's rule", r.recognisedRaw());
     if (const std::string m = confusion.misnamed(false); !m.empty())

@@ -53,7 +53,8 @@ struct SeedOutcome {
     double angleError_deg = 0.0, positionError_mm = 0.0;  ///< offline validation
     std::vector<std::string> failures;  ///< "cross trial 2: lost: ..." for each active trial lost
     std::vector<PathNaming> namings;    ///< each recognised completed active path
-    RatesByLabel activeByLabel;
+    RatesByLabel activeByLabel;   ///< active trials completed, per trial label
+    RatesByLabel passiveByLabel;  ///< passive trials lost, per trial label
     /// The completed trials of each mode: a passive trial that gets round does so without ever
     /// correcting its offset from the edge, and these say how closely it traced the contour.
     Tracing activeTracing, passiveTracing;
@@ -133,6 +134,9 @@ struct SeedRates {
     ShortOfPaper shortOfPaper() const;
     RecognitionConfusion confusion() const;
     RatesByLabel activeCompletedByLabel() const;
+    RatesByLabel passiveLostByLabel() const;
+    /// A per-label rate of every seed, summed per label in the order the labels first came.
+    RatesByLabel byLabel(RatesByLabel SeedOutcome::*which) const;
     Tracing tracing(FollowingMode mode) const;  ///< of the completed trials in `mode`
     double tapsPerCompletedTrial() const;
     double robotTimePerCompletedTrial_s() const;

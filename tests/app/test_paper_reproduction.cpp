@@ -139,6 +139,34 @@ private slots:
         for (const auto& l : describeRates(one)) QVERIFY2(l.rfind("  ", 0) != 0, l.c_str());
     }
 
+    void passiveRatesArePerShapeWhenSeveralShapesRunPassively() {
+        // The cross followed passively beside the rectangle: each label's passive rate, in the
+        // experiment's order, adds up to the whole and is printed under it.
+        ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
+        spec.trials[2].mode = FollowingMode::Passive;  // the cross
+        const SeedRates r = runSeeds(spec, 1, 3, "");
+        const auto byLabel = r.passiveLostByLabel();
+        QCOMPARE(int(byLabel.size()), 2);
+        QCOMPARE(byLabel[0].first, std::string("rectangle"));
+        QCOMPARE(byLabel[1].first, std::string("cross"));
+        QCOMPARE(byLabel[0].second.total, 6);
+        QCOMPARE(byLabel[1].second.total, 6);
+        QCOMPARE(byLabel[0].second.count + byLabel[1].second.count, r.passiveLost().count);
+        QCOMPARE(int(r.activeCompletedByLabel().size()), 3);  // no cross among the active
+        const auto lines = describeRates(r);
+        const auto passive = std::find_if(lines.begin(), lines.end(), [](const std::string& l) {
+            return l.rfind("passive trials lost", 0) == 0;
+        });
+        QVERIFY(passive != lines.end() && passive + 3 < lines.end());
+        QVERIFY2((passive + 1)->rfind("  rectangle", 0) == 0, (passive + 1)->c_str());
+        QVERIFY2((passive + 2)->rfind("  cross", 0) == 0, (passive + 2)->c_str());
+        QVERIFY2((passive + 3)->rfind("active trials completed", 0) == 0, (passive + 3)->c_str());
+        const Json j = seedRatesJson(r);
+        QCOMPARE(j["passive_lost_by_label"].size(), std::size_t(2));
+        QCOMPARE(j["passive_lost_by_label"][1]["label"].get<std::string>(), std::string("cross"));
+        QCOMPARE(j["passive_lost_by_label"][1]["count"].get<int>(), byLabel[1].second.count);
+    }
+
     void runsShortOfThePapersResultSayWhere() {
         // Each run short of the paper's result is counted under every part it misses, and the
         // smoothed recognition rule can only add whole runs, never remove them.
