@@ -167,6 +167,35 @@ private slots:
         QCOMPARE(j["passive_lost_by_label"][1]["count"].get<int>(), byLabel[1].second.count);
     }
 
+    void eightOrientationsFollowDiagonalEdges() {
+        // Finer angular resolution, as the paper's conclusion proposes: classes every 45 deg,
+        // trained on an octagon, follow the rectangle turned 45 deg and an octagon; the paper's
+        // four orientations, trained on its rectangle, lose most of those trials.
+        const ExperimentSpec eight =
+            loadExperiment(test::sourcePath("experiments/eight_orientations.json"));
+        QCOMPARE(eight.classes.orientationsDeg.size(), std::size_t(8));
+        ExperimentSpec four = eight;
+        four.classes.orientationsDeg = {270.0, 0.0, 90.0, 180.0};
+        four.scene = loadExperiment(test::sourcePath("experiments/paper.json")).scene;
+        const SeedRates r8 = runSeeds(eight, 1, 10, ""), r4 = runSeeds(four, 1, 10, "");
+        auto diagonal = [](const SeedRates& r) {
+            Rate sum;
+            for (const auto& [label, rate] : r.activeCompletedByLabel())
+                if (label == "diamond" || label == "octagon") {
+                    sum.count += rate.count;
+                    sum.total += rate.total;
+                }
+            return sum;
+        };
+        const Rate d8 = diagonal(r8), d4 = diagonal(r4);
+        qInfo("diamond and octagon completed: eight orientations %d of %d, four %d of %d", d8.count,
+              d8.total, d4.count, d4.total);
+        QCOMPARE(d8.total, 40);
+        QVERIFY(d8.count >= 36);
+        QVERIFY(d4.count <= 25);
+        QCOMPARE(r8.recognisedSmoothed().count, r8.recognisedSmoothed().total);
+    }
+
     void runsShortOfThePapersResultSayWhere() {
         // Each run short of the paper's result is counted under every part it misses, and the
         // smoothed recognition rule can only add whole runs, never remove them.
