@@ -276,11 +276,14 @@ void printReport(const RunResult& result, double wall, double figures_s,
             "noise floor: %.1f counts, the scene's (no class lies wholly in the air to "
             "measure it from)\n",
             result.noiseFloor_counts);
+    int labelWidth = 9;  // the columns line up whatever the trials are called
+    for (const auto& t : result.trials) labelWidth = std::max(labelWidth, int(t.label.size()));
     for (const auto& t : result.trials)
         std::printf(
-            "%-7s %-9s trial %d: %-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, "
+            "%-7s %-*s trial %d: %-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, "
             "contour distance mean %.2f max %.2f mm%s%s\n",
-            modeName(t.result.mode), t.label.c_str(), t.trial, trialEndName(t.result.end),
+            modeName(t.result.mode), labelWidth, t.label.c_str(), t.trial,
+            trialEndName(t.result.end),
             t.result.taps.size(), t.result.robotTime_s, 100.0 * t.result.coverage,
             t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
             t.recognised ? ", recognised as " : "",

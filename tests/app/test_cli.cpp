@@ -162,7 +162,12 @@ private slots:
         for (const QString& f : files) {
             const Outcome o = runCli({"check", f});
             QVERIFY2(o.exitCode == 0, qPrintable(f + ": " + o.err));
-            QVERIFY2(!o.err.contains("caution"), qPrintable(f + ": " + o.err));
+            // Curves face no trained orientation: that file is run knowingly, and cautioned about
+            // trial by trial; every other shipped file follows edges its classes face.
+            if (f.endsWith("/experiments/curves.json"))
+                QCOMPARE(o.err.count("caution: /following/trials/"), 3);
+            else
+                QVERIFY2(!o.err.contains("caution"), qPrintable(f + ": " + o.err));
         }
     }
 
