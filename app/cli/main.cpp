@@ -283,10 +283,9 @@ void printReport(const RunResult& result, double wall, double figures_s,
             "%-7s %-*s trial %d: %-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, "
             "contour distance mean %.2f max %.2f mm%s%s\n",
             modeName(t.result.mode), labelWidth, t.label.c_str(), t.trial,
-            trialEndName(t.result.end),
-            t.result.taps.size(), t.result.robotTime_s, 100.0 * t.result.coverage,
-            t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
-            t.recognised ? ", recognised as " : "",
+            trialEndName(t.result.end), t.result.taps.size(), t.result.robotTime_s,
+            100.0 * t.result.coverage, t.result.meanContourDistance_mm,
+            t.result.maxContourDistance_mm, t.recognised ? ", recognised as " : "",
             t.recognised ? t.recognition.predicted.c_str() : "");
     if (!result.templates.empty())
         std::printf("recognition: %.0f %% of %s paths (smoothed histograms: %.0f %%)\n",

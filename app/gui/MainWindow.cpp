@@ -355,6 +355,9 @@ ExperimentSpec MainWindow::experimentAsShown() const {
         spec.scene.source = spec_.scene.source;
         return spec;
     } catch (const InputError& e) {
+        // The protocol's classes may ask for edges the scene's object does not have.
+        if (e.place().rfind("/scene", 0) == 0)
+            throw InputError("scene panel", "object", e.problem());
         const QString field = protocol_->fieldAt(e.place());
         throw InputError("protocol panel",
                          field.isEmpty() ? e.place() : field.toStdString() + " (" + e.place() + ")",

@@ -91,6 +91,22 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
 
     const QString training = tr("Training and validation");
     auto* trainingBox = group(training);
+    orientations_ = new QLineEdit;
+    orientations_->setObjectName("protocol_classes_orientations_deg");
+    orientations_->setToolTip(
+        tr("The edge orientations the classifier knows: outward normals in degrees (lower 270, "
+           "right 0, upper 90, left 180), separated by commas. The scene's object needs an edge "
+           "facing each to train on: eight, every 45 deg, train on an octagon"));
+    static_cast<QFormLayout*>(trainingBox->layout())
+        ->addRow(tr("Edge orientations (deg)"), orientations_);
+    connect(orientations_, &QLineEdit::editingFinished, this, &ProtocolPanel::changed);
+    addField(trainingBox,
+             {"classes", "positions", training, tr("Positions across an edge"),
+              tr("Classes per orientation, from plane to air (paper: 18)"), Kind::Integer, 2, 200,
+              1, [](E e) { return double(e.classes.positions); }});
+    addField(trainingBox, {"classes", "position_step_mm", training, tr("Position step (mm)"),
+                           tr("Between neighbouring positions (paper: 1)"), Kind::Number, 0.05,
+                           10.0, 0.5, [](E e) { return e.classes.positionStep_mm; }});
     addField(trainingBox, {"training", "data_sets", training, tr("Data sets"),
                            tr("Taps at every class, once per data set (paper: 5)"), Kind::Integer,
                            2, 1000, 1, [](E e) { return double(e.training.dataSets); }});
@@ -324,13 +340,13 @@ void ProtocolPanel::setValueOf(const Field& f, double v) {
 void ProtocolPanel::showExperiment(const ExperimentSpec& e, const Json& document) {
     const QSignalBlocker block(this);
     for (const Field& f : fields_) {
-        if (f.key == "valid_range_positions")
-            static_cast<QSpinBox*>(f.widget)->setMaximum(e.classes.positions);
         setValueOf(f, f.value(e));
     }
-    QStringList sets;
+    QStringList sets, orientations;
     for (int s : e.training.trainingSets) sets << QString::number(s);
     trainingSets_->setText(sets.join(", "));
+    for (double deg : e.classes.orientationsDeg) orientations << QString::number(deg, 'g', 12);
+    orientations_->setText(orientations.join(", "));
     recognition_->setChecked(e.recognition.enabled);
     recognitionOf_->setCurrentIndex(e.recognition.ofMode == FollowingMode::Passive ? 1 : 0);
     trialEntries_.clear();
@@ -384,23 +400,11 @@ Json ProtocolPanel::patch(Json j) const {
         else
             at[f.key] = v;
     }
-    Json sets = Json::array();
-    for (const QString& part : trainingSets_->text().split(',', Qt::SkipEmptyParts)) {
-        bool ok = false;
-        const int set = part.trimmed().toInt(&ok);
-        if (!ok)
-            throw InputError("protocol panel",
-                             tr("Training and validation: Training sets").toStdString(),
-                             "'" + part.trimmed().toStdString() +
-                                 "' is not a data set number; list the training sets' numbers, "
-                                 "from 1, separated by commas");
-        sets.push_back(set);
-    }
-    if (sets.empty())
-        throw InputError("protocol panel",
-                         tr("Training and validation: Training sets").toStdString(),
-                         "no training set; list at least one data set number, such as 1");
-    j["training"]["training_sets"] = sets;
+    j["classes"]["orientations_deg"] =
+        numberList(orientations_, tr("Training and validation: Edge orientations (deg)"),
+                   "an angle in degrees", "90");
+    j["training"]["training_sets"] = numberList(
+        trainingSets_, tr("Training and validation: Training sets"), "a data set number", "1");
     if (recognition_->isChecked())
         j["recognition"]["of_mode"] = recognitionOf_->currentText().toStdString();
     else
@@ -418,12 +422,35 @@ Json ProtocolPanel::patch(Json j) const {
     return j;
 }
 
+Json ProtocolPanel::numberList(const QLineEdit* edit, const QString& field, const char* what,
+                               const char* example) const {
+    Json list = Json::array();
+    for (const QString& part : edit->text().split(',', Qt::SkipEmptyParts)) {
+        bool ok = false;
+        const double v = part.trimmed().toDouble(&ok);
+        if (!ok || !std::isfinite(v))
+            throw InputError("protocol panel", field.toStdString(),
+                             "'" + part.trimmed().toStdString() + "' is not " + what +
+                                 "; list numbers separated by commas, such as " + example);
+        if (v == std::floor(v) && std::abs(v) < 1e9)
+            list.push_back(static_cast<long long>(v));
+        else
+            list.push_back(v);
+    }
+    if (list.empty())
+        throw InputError("protocol panel", field.toStdString(),
+                         std::string("the list is empty; give at least one, such as ") + example);
+    return list;
+}
+
 QString ProtocolPanel::fieldAt(const std::string& pointer) const {
     for (const Field& f : fields_) {
         const std::string place = (f.section.empty() ? "" : "/" + f.section) + "/" + f.key;
         if (pointer == place) return f.group + ": " + f.label;
     }
     if (pointer == "/training/training_sets") return tr("Training and validation: Training sets");
+    if (pointer.rfind("/classes/orientations_deg", 0) == 0)
+        return tr("Training and validation: Edge orientations (deg)");
     if (pointer.rfind("/training", 0) == 0) return tr("Training and validation");
     if (pointer == "/recognition/of_mode") return tr("Recognition: Of the trials");
     if (pointer.rfind("/recognition", 0) == 0) return tr("Recognition");

@@ -59,10 +59,14 @@ private:
     QComboBox* modeBox(int row) const;
     QSpinBox* repeatsBox(int row) const;
     double valueOf(const Field& f) const;
+    /// The comma-separated numbers in `edit`; throws InputError naming `field` for one that is
+    /// not `what` (a number) or for an empty list.
+    Json numberList(const QLineEdit* edit, const QString& field, const char* what,
+                    const char* example) const;
     void setValueOf(const Field& f, double v);
 
     std::vector<Field> fields_;
-    QLineEdit* trainingSets_;
+    QLineEdit *trainingSets_, *orientations_;
     QGroupBox* recognition_;
     QComboBox* recognitionOf_;
     QTableWidget* trials_;

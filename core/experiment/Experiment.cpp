@@ -249,8 +249,13 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
         e.training.dataSets = t.integer("data_sets", 2, 1000, e.training.dataSets);
         if (t.has("training_sets")) {
             e.training.trainingSets.clear();
-            for (double s : t.numbers("training_sets", 1, 1000))
+            for (double s : t.numbers("training_sets", 1, 1000)) {
+                if (s != std::floor(s))
+                    t.fail("training_sets", "data set " + numberText(s) +
+                                                " is not a whole number; sets are numbered 1, 2, "
+                                                "3 ...");
                 e.training.trainingSets.push_back(static_cast<int>(s));
+            }
         }
         e.training.tapsPerClass = t.integer("taps_per_class", 1, 1000, e.training.tapsPerClass);
         e.training.testOffset_mm = t.number("test_offset_mm", -5.0, 5.0, e.training.testOffset_mm);

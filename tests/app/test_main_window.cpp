@@ -481,6 +481,39 @@ private slots:
         }
     }
 
+    void eightOrientationsAreSetByClicking() {
+        // Eight orientations need a training object facing each: the rectangle is refused, naming
+        // the scene panel; with the octagon loaded there, the run trains and follows with eight.
+        auto* orientations = protocolField<QLineEdit>("classes_orientations_deg");
+        QVERIFY(orientations);
+        QCOMPARE(orientations->text(), QString("270, 0, 90, 180"));
+        orientations->setText("270, 315, 0, 45, 90, 135, 180, 225");
+        QSignalSpy errors(window_.get(), &MainWindow::errorShown);
+        QVERIFY(!window_->startRun(RunController::What::Everything));
+        QCOMPARE(errors.count(), 1);
+        const QString message = errors.takeFirst().at(0).toString();
+        QVERIFY2(message.contains("scene panel") &&
+                     message.contains("the training object has no edge facing 315 deg"),
+                 qPrintable(message));
+        closeErrorDialogs(*window_);
+        QVERIFY(
+            window_->scenePanel()->loadPolygonFrom(sourceFile("experiments/scenes/octagon.json")));
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QVERIFY(window_->startRun(RunController::What::Everything));
+        endsSuccessfully(*window_, ended);
+        const auto run = window_->lastRun();
+        QCOMPARE(run->classes.orientationsDeg.size(), std::size_t(8));
+        QCOMPARE(int(run->validation.byClass.size()), 8 * 18);
+        orientations->setText("270, up");
+        QVERIFY(!window_->startRun(RunController::What::Everything));
+        QVERIFY2(errors.takeLast().at(0).toString().contains(
+                     "Edge orientations (deg): 'up' is not an angle in degrees"),
+                 "the bad angle is named");
+        closeErrorDialogs(*window_);
+        QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
+        QCOMPARE(orientations->text(), QString("270, 0, 90, 180"));
+    }
+
     void protocolSettingsThatCannotRunAreRefusedNamingTheField() {
         const auto before = window_->lastRun();
         QSignalSpy errors(window_.get(), &MainWindow::errorShown);

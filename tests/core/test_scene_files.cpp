@@ -296,6 +296,9 @@ private slots:
         QTest::newRow("training set beyond the data sets")
             << head + R"("training": {"data_sets": 3, "training_sets": [4]}})"
             << "does not exist";
+        QTest::newRow("training set not a whole number")
+            << head + R"("training": {"data_sets": 3, "training_sets": [1.5]}})"
+            << "data set 1.5 is not a whole number";
         QTest::newRow("every set trains")
             << head + R"("training": {"data_sets": 2, "training_sets": [1, 2]}})"
             << "leave at least one set to test";
