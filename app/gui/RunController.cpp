@@ -48,6 +48,19 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
         emit failed(tr("Following needs a trained classifier: run training and validation first."));
         return false;
     }
+    if (what == What::FollowingOnly && !recorded) {
+        // Following alone uses the classifier the last run trained; settings that would train
+        // another one must not be shown as if they were followed with.
+        if (const auto changed = trainingSettingsChanged(*trained, specIn); !changed.empty()) {
+            QStringList lines;
+            for (const auto& c : changed) lines << QString::fromStdString(c);
+            emit failed(tr("Run following follows with the classifier the last run trained, and "
+                           "the experiment as shown would train another (%1). Run training & "
+                           "validation, or the whole protocol, to train with these settings.")
+                            .arg(lines.join("; ")));
+            return false;
+        }
+    }
     ExperimentSpec spec = specIn;
     if (what == What::TrainingOnly) spec.trials.clear();
     if (connected) {

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "app/run/OutputFiles.h"
+#include "core/common/NumberText.h"
 #include "core/geometry/ShapeLibrary.h"
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
@@ -480,6 +481,41 @@ std::string followingClassifierNote(const RunResult& r) {
            std::to_string(r.spec.training.dataSets) + " data sets (" +
            std::to_string(r.classifierRetrainedOnTaps) +
            " taps, test sets included); the validation above is the training sets' alone";
+}
+
+std::vector<std::string> trainingSettingsChanged(const RunResult& trained,
+                                                 const ExperimentSpec& spec) {
+    std::vector<std::string> changed;
+    auto list = [](const auto& values) {
+        std::string text;
+        for (const auto& v : values) text += (text.empty() ? "" : ", ") + numberText(double(v));
+        return text;
+    };
+    auto compare = [&](const char* what, const std::string& then, const std::string& now) {
+        if (then != now) changed.push_back(std::string(what) + ": " + then + " -> " + now);
+    };
+    auto number = [](double v) { return numberText(v); };
+    const ExperimentSpec& t = trained.spec;
+    compare("edge orientations (deg)", list(t.classes.orientationsDeg),
+            list(spec.classes.orientationsDeg));
+    compare("positions", number(t.classes.positions), number(spec.classes.positions));
+    compare("position step (mm)", number(t.classes.positionStep_mm),
+            number(spec.classes.positionStep_mm));
+    compare("histogram bins", number(t.classifier.bins), number(spec.classifier.bins));
+    compare("smoothing", number(t.classifier.smoothing), number(spec.classifier.smoothing));
+    compare("kernel width (bins)", number(t.classifier.kernelSigma_bins),
+            number(spec.classifier.kernelSigma_bins));
+    compare("data sets", number(t.training.dataSets), number(spec.training.dataSets));
+    compare("training sets", list(t.training.trainingSets), list(spec.training.trainingSets));
+    compare("taps per class", number(t.training.tapsPerClass), number(spec.training.tapsPerClass));
+    compare("test sets off the grid (mm)", number(t.training.testOffset_mm),
+            number(spec.training.testOffset_mm));
+    compare("placement jitter (mm)", number(t.training.placementJitter_mm),
+            number(spec.training.placementJitter_mm));
+    compare("trained on every set", t.training.retrainOnAllSets ? "yes" : "no",
+            spec.training.retrainOnAllSets ? "yes" : "no");
+    compare("valid range (positions)", number(t.validRangeWidth), number(spec.validRangeWidth));
+    return changed;
 }
 
 RunResult runFollowing(const RunResult& trained, const ExperimentSpec& specIn,

@@ -145,6 +145,12 @@ RunResult runExperiment(const ExperimentSpec& spec, const RunOptions& options);
 /// classifier was trained again on every data set after validation, or empty.
 std::string followingClassifierNote(const RunResult& result);
 
+/// The settings that decide what a classifier is — classes, classifier, training protocol, valid
+/// range width — in which `spec` differs from those `trained` was trained with, one "what: then ->
+/// now" line each; empty when following `spec` with `trained`'s classifier follows as it says.
+std::vector<std::string> trainingSettingsChanged(const RunResult& trained,
+                                                 const ExperimentSpec& spec);
+
 /// Runs only the following trials (and recognition) of `spec` with the classifier, class regions
 /// and valid range of an earlier run.
 RunResult runFollowing(const RunResult& trained, const ExperimentSpec& spec,

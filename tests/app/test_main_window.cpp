@@ -481,6 +481,34 @@ private slots:
         }
     }
 
+    void runFollowingRefusesSettingsItsClassifierWasNotTrainedWith() {
+        // The last run's classifier follows; a following setting changed in the panel is used, a
+        // training setting is refused by name rather than shown as if it had been followed with.
+        QVERIFY(window_->lastRun() && window_->lastRun()->classifier.trained());
+        const auto trained = window_->lastRun();
+        auto* smoothing = protocolField<QDoubleSpinBox>("classifier_smoothing");
+        smoothing->setValue(0.5);
+        QSignalSpy errors(window_.get(), &MainWindow::errorShown);
+        QVERIFY(!window_->startRun(RunController::What::FollowingOnly));
+        QCOMPARE(errors.count(), 1);
+        const QString message = errors.takeFirst().at(0).toString();
+        QVERIFY2(message.contains("smoothing: 0.01 -> 0.5") &&
+                     message.contains("Run training & validation"),
+                 qPrintable(message));
+        QCOMPARE(window_->lastRun(), trained);
+        closeErrorDialogs(*window_);
+        smoothing->setValue(0.01);
+        auto* follow = protocolField<QDoubleSpinBox>("following_follow_step_mm");
+        follow->setValue(3.0);
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QVERIFY(window_->startRun(RunController::What::FollowingOnly));
+        endsSuccessfully(*window_, ended);
+        QCOMPARE(window_->lastRun()->spec.following.followStep_mm, 3.0);
+        QVERIFY(window_->lastRun()->taps.empty());  // no training taps: the trained classifier
+        QVERIFY(!window_->lastRun()->trials.empty());
+        follow->setValue(2.0);
+    }
+
     void eightOrientationsAreSetByClicking() {
         // Eight orientations need a training object facing each: the rectangle is refused, naming
         // the scene panel; with the octagon loaded there, the run trains and follows with eight.

@@ -196,6 +196,21 @@ private slots:
         QCOMPARE(r8.recognisedSmoothed().count, r8.recognisedSmoothed().total);
     }
 
+    void followingAloneNamesTheTrainingSettingsItWouldIgnore() {
+        const RunResult& trained = runs_.front();
+        ExperimentSpec spec = trained.spec;
+        QVERIFY(trainingSettingsChanged(trained, spec).empty());
+        spec.following.followStep_mm = 4.0;  // following settings are the trials' own
+        spec.scene.seed = 7;
+        QVERIFY(trainingSettingsChanged(trained, spec).empty());
+        spec.classes.orientationsDeg = {270.0, 0.0};
+        spec.training.retrainOnAllSets = true;
+        const auto changed = trainingSettingsChanged(trained, spec);
+        QCOMPARE(changed.size(), std::size_t(2));
+        QCOMPARE(changed[0], std::string("edge orientations (deg): 270, 0, 90, 180 -> 270, 0"));
+        QCOMPARE(changed[1], std::string("trained on every set: no -> yes"));
+    }
+
     void runsShortOfThePapersResultSayWhere() {
         // Each run short of the paper's result is counted under every part it misses, and the
         // smoothed recognition rule can only add whole runs, never remove them.
