@@ -121,6 +121,31 @@ void SerialLineChannel::write(const std::string& bytes) {
         Qt::QueuedConnection);
 }
 
+bool SerialLineChannel::writeNow(const std::string& bytes, int timeoutMs) {
+    {
+        std::lock_guard lock(mutex_);
+        if (!failure_.empty()) throw RigError(failure_);
+        if (!open_) throw RigError("serial port " + settings_.portName + " is not open");
+    }
+    auto done = std::make_shared<std::promise<bool>>();
+    auto result = done->get_future();
+    auto writeAll = [this, done, data = QByteArray::fromStdString(bytes), timeoutMs] {
+        bool written = false;
+        if (port_ && port_->isOpen()) {
+            port_->write(data);
+            port_->flush();
+            written = port_->bytesToWrite() == 0 || port_->waitForBytesWritten(timeoutMs);
+        }
+        done->set_value(written);
+    };
+    if (QThread::currentThread() == context_->thread())
+        writeAll();
+    else
+        QMetaObject::invokeMethod(context_, writeAll, Qt::QueuedConnection);
+    return result.wait_for(std::chrono::milliseconds(timeoutMs)) == std::future_status::ready &&
+           result.get();
+}
+
 std::optional<std::string> SerialLineChannel::readLine(int timeoutMs) {
     std::unique_lock lock(mutex_);
     cv_.wait_for(lock, std::chrono::milliseconds(timeoutMs),

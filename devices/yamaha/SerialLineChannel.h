@@ -36,6 +36,10 @@ public:
 
     /// Queues bytes for the port. Throws RigError if the port is closed or has vanished.
     void write(const std::string& bytes);
+    /// Writes bytes and returns once the port has handed them to the operating system (at most
+    /// `timeoutMs`), so that a process ending right after still sends them: for a stop, which
+    /// must reach the controller. False if they were not written in time. Throws as write().
+    bool writeNow(const std::string& bytes, int timeoutMs);
     /// The next line (without CR LF), waiting at most `timeoutMs`; nothing on timeout. Throws
     /// RigError if the port has vanished.
     std::optional<std::string> readLine(int timeoutMs);

@@ -54,9 +54,11 @@ void YamahaStage::send(const std::string& line) {
     write(line);
 }
 
-void YamahaStage::write(const std::string& line) {
+bool YamahaStage::write(const std::string& line, bool now) {
     if (log_) log_("->", printable(line));
+    if (now) return channel_.writeNow(line, 1000);
     channel_.write(line);
+    return true;
 }
 
 std::optional<Reply> YamahaStage::await(const std::string& what, int timeoutMs, bool wantEnd) {
@@ -223,8 +225,9 @@ void YamahaStage::moveTo(Vec2 target) {
 
 bool YamahaStage::stop() noexcept {
     try {
-        write(rcx::stop());  // also after an interrupt: stopping is never refused
-        return true;
+        // Also after an interrupt: stopping is never refused. It is written out before this
+        // returns, so a process that ends right after (Ctrl-C, closing) still stops the stage.
+        return write(rcx::stop(), true);
     } catch (...) {
         return false;
     }

@@ -63,8 +63,9 @@ public:
 private:
     /// Logs and writes `line`; RigError if interrupt() was called.
     void send(const std::string& line);
-    /// Logs and writes `line`, whatever came before.
-    void write(const std::string& line);
+    /// Logs and writes `line`, whatever came before; `now`: returns once it has left the process
+    /// (at most a second), false if it has not.
+    bool write(const std::string& line, bool now = false);
     /// The next meaningful reply within `timeoutMs`: garbage lines are logged and skipped, END
     /// lines are remembered and skipped unless `wantEnd`, errors throw RigError naming `what`.
     std::optional<Reply> await(const std::string& what, int timeoutMs, bool wantEnd = false);

@@ -350,10 +350,15 @@ private slots:
         QVERIFY2(err.contains("stopped while connecting") &&
                      err.contains("'@ORIGIN' was stopped") && err.contains("Nothing was recorded"),
                  qPrintable(err));
-        // The controller was told to stop (ETX), and the stage is still, short of its origin.
-        const auto commands = controller.commands();
-        QVERIFY(std::find(commands.begin(), commands.end(), "<ETX>") != commands.end());
-        QVERIFY(!controller.moving());
+        // The controller was told to stop (ETX) and the stage is still, short of its origin: the
+        // stop left the process before it ended (the emulator reads it from the pty in its own
+        // time).
+        auto stopped = [&] {
+            const auto c = controller.commands();
+            return std::find(c.begin(), c.end(), "<ETX>") != c.end();
+        };
+        QTRY_VERIFY_WITH_TIMEOUT(stopped(), 5000);
+        QTRY_VERIFY_WITH_TIMEOUT(!controller.moving(), 5000);
         QVERIFY(!QFile::exists(out + "/data/taps.csv"));
     }
 
