@@ -201,9 +201,9 @@ private slots:
             QVERIFY2(std::string(e.what()).find("'@ORIGIN' was stopped (ETX)") != std::string::npos,
                      e.what());
         }
-        const auto commands = controller.commands();
-        QCOMPARE(commands.back(), std::string("<ETX>"));
-        QVERIFY(!controller.moving());
+        // The stop has left the stage's port; the emulator reads it in its own time.
+        QTRY_VERIFY_WITH_TIMEOUT(controller.commands().back() == "<ETX>", 5000);
+        QTRY_VERIFY_WITH_TIMEOUT(!controller.moving(), 5000);
         QVERIFY(distance(controller.position(), {0.0, 0.0}) > 1.0);  // short of the origin
     }
 
@@ -235,7 +235,7 @@ private slots:
         move.join();
         QVERIFY2(moveError.find("stopped (ETX; the application is closing)") != std::string::npos,
                  moveError.c_str());
-        QVERIFY(!controller.moving());
+        QTRY_VERIFY_WITH_TIMEOUT(!controller.moving(), 5000);
         QVERIFY(distance(controller.position(), target) > 1.0);  // short of the target
         const auto commands = controller.commands();
         QVERIFY(std::find(commands.begin(), commands.end(), "<ETX>") != commands.end());
