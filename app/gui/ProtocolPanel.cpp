@@ -30,7 +30,6 @@ public:
         setDecimals(12);
         setRange(lo, hi);
         setSingleStep(step);
-        setKeyboardTracking(false);
     }
     QString textFromValue(double v) const override { return QString::number(v, 'g', 12); }
     double valueFromText(const QString& text) const override { return text.trimmed().toDouble(); }
@@ -306,7 +305,6 @@ void ProtocolPanel::addField(QGroupBox* box, Field f) {
         auto* s = new QSpinBox;
         s->setRange(int(f.lo), int(f.hi));
         s->setSingleStep(int(f.step));
-        s->setKeyboardTracking(false);
         connect(s, &QSpinBox::valueChanged, this, &ProtocolPanel::changed);
         w = s;
     } else {
@@ -375,7 +373,6 @@ void ProtocolPanel::addTrialRow(int row, const QString& what, bool passive, int 
     auto* count = new QSpinBox;
     count->setRange(1, 1000);
     count->setValue(repeats);
-    count->setKeyboardTracking(false);
     connect(count, &QSpinBox::valueChanged, this, &ProtocolPanel::changed);
     trials_->setCellWidget(row, 2, count);
 }

@@ -392,10 +392,11 @@ private slots:
         auto* follow = protocolField<QDoubleSpinBox>("following_follow_step_mm");
         auto* seed = protocolField<QSpinBox>("seed");
         QVERIFY(follow && seed && trialMode(1) && trialRepeats(1));
-        // Type the step as a person does; the active rectangle (row 2) runs passively, once.
+        // Type the step as a person does, and run without leaving the box; the active
+        // rectangle (row 2) runs passively, once.
+        follow->setFocus();
         follow->selectAll();
         QTest::keyClicks(follow, "3.5");
-        QTest::keyClick(follow, Qt::Key_Return);
         QCOMPARE(follow->value(), 3.5);
         seed->setValue(4);
         trialMode(1)->setCurrentIndex(trialMode(1)->findText("passive"));
