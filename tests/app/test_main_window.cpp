@@ -161,6 +161,20 @@ class TestMainWindow : public QObject {
         return table ? qobject_cast<QSpinBox*>(table->cellWidget(row, 2)) : nullptr;
     }
 
+    /// Starting `what` is refused with one error saying each of `parts`: nothing runs and the
+    /// last run stays the last run.
+    void expectRefused(RunController::What what, const QStringList& parts) {
+        const auto before = window_->lastRun();
+        QSignalSpy errors(window_.get(), &MainWindow::errorShown);
+        QVERIFY(!window_->startRun(what));
+        QCOMPARE(errors.count(), 1);
+        const QString message = errors.takeFirst().at(0).toString();
+        for (const QString& part : parts) QVERIFY2(message.contains(part), qPrintable(message));
+        QVERIFY(!window_->running());
+        QCOMPARE(window_->lastRun(), before);
+        closeErrorDialogs(*window_);
+    }
+
 private slots:
     void initTestCase() {
         QStandardPaths::setTestModeEnabled(true);  // settings go to a test location
@@ -489,15 +503,9 @@ private slots:
         const auto trained = window_->lastRun();
         auto* smoothing = protocolField<QDoubleSpinBox>("classifier_smoothing");
         smoothing->setValue(0.5);
-        QSignalSpy errors(window_.get(), &MainWindow::errorShown);
-        QVERIFY(!window_->startRun(RunController::What::FollowingOnly));
-        QCOMPARE(errors.count(), 1);
-        const QString message = errors.takeFirst().at(0).toString();
-        QVERIFY2(message.contains("smoothing: 0.01 -> 0.5") &&
-                     message.contains("Run training & validation"),
-                 qPrintable(message));
+        expectRefused(RunController::What::FollowingOnly,
+                      {"smoothing: 0.01 -> 0.5", "Run training & validation"});
         QCOMPARE(window_->lastRun(), trained);
-        closeErrorDialogs(*window_);
         smoothing->setValue(0.01);
         auto* follow = protocolField<QDoubleSpinBox>("following_follow_step_mm");
         follow->setValue(3.0);
@@ -517,14 +525,8 @@ private slots:
         QVERIFY(orientations);
         QCOMPARE(orientations->text(), QString("270, 0, 90, 180"));
         orientations->setText("270, 315, 0, 45, 90, 135, 180, 225");
-        QSignalSpy errors(window_.get(), &MainWindow::errorShown);
-        QVERIFY(!window_->startRun(RunController::What::Everything));
-        QCOMPARE(errors.count(), 1);
-        const QString message = errors.takeFirst().at(0).toString();
-        QVERIFY2(message.contains("scene panel") &&
-                     message.contains("the training object has no edge facing 315 deg"),
-                 qPrintable(message));
-        closeErrorDialogs(*window_);
+        expectRefused(RunController::What::Everything,
+                      {"scene panel", "the training object has no edge facing 315 deg"});
         QVERIFY(
             window_->scenePanel()->loadPolygonFrom(sourceFile("experiments/scenes/octagon.json")));
         QSignalSpy ended(window_.get(), &MainWindow::runEnded);
@@ -534,29 +536,15 @@ private slots:
         QCOMPARE(run->classes.orientationsDeg.size(), std::size_t(8));
         QCOMPARE(int(run->validation.byClass.size()), 8 * 18);
         orientations->setText("270, up");
-        QVERIFY(!window_->startRun(RunController::What::Everything));
-        QVERIFY2(errors.takeLast().at(0).toString().contains(
-                     "Edge orientations (deg): 'up' is not an angle in degrees"),
-                 "the bad angle is named");
-        closeErrorDialogs(*window_);
+        expectRefused(RunController::What::Everything,
+                      {"Edge orientations (deg): 'up' is not an angle in degrees"});
         QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
         QCOMPARE(orientations->text(), QString("270, 0, 90, 180"));
     }
 
     void protocolSettingsThatCannotRunAreRefusedNamingTheField() {
-        const auto before = window_->lastRun();
-        QSignalSpy errors(window_.get(), &MainWindow::errorShown);
         auto refused = [&](const QString& field, const QString& problem) {
-            errors.clear();
-            QVERIFY(!window_->startRun(RunController::What::Everything));
-            QCOMPARE(errors.count(), 1);
-            const QString message = errors.takeFirst().at(0).toString();
-            QVERIFY2(message.contains("protocol panel") && message.contains(field) &&
-                         message.contains(problem),
-                     qPrintable(message));
-            QVERIFY(!window_->running());
-            QCOMPARE(window_->lastRun(), before);  // nothing ran, nothing replaced
-            closeErrorDialogs(*window_);
+            expectRefused(RunController::What::Everything, {"protocol panel", field, problem});
         };
         // Every trial passive leaves recognition of the active paths nothing to recognise.
         auto* table = window_->protocolPanel()->findChild<QTableWidget*>("protocol_trials");
