@@ -104,12 +104,14 @@ void SerialLineChannel::close() {
     cv_.notify_all();
 }
 
+void SerialLineChannel::requireOpen() const {
+    std::lock_guard lock(mutex_);
+    if (!failure_.empty()) throw RigError(failure_);
+    if (!open_) throw RigError("serial port " + settings_.portName + " is not open");
+}
+
 void SerialLineChannel::write(const std::string& bytes) {
-    {
-        std::lock_guard lock(mutex_);
-        if (!failure_.empty()) throw RigError(failure_);
-        if (!open_) throw RigError("serial port " + settings_.portName + " is not open");
-    }
+    requireOpen();
     QMetaObject::invokeMethod(
         context_,
         [this, data = QByteArray::fromStdString(bytes)] {
@@ -122,11 +124,7 @@ void SerialLineChannel::write(const std::string& bytes) {
 }
 
 bool SerialLineChannel::writeNow(const std::string& bytes, int timeoutMs) {
-    {
-        std::lock_guard lock(mutex_);
-        if (!failure_.empty()) throw RigError(failure_);
-        if (!open_) throw RigError("serial port " + settings_.portName + " is not open");
-    }
+    requireOpen();
     auto done = std::make_shared<std::promise<bool>>();
     auto result = done->get_future();
     auto writeAll = [this, done, data = QByteArray::fromStdString(bytes), timeoutMs] {

@@ -48,6 +48,8 @@ public:
     const std::string& portName() const { return settings_.portName; }
 
 private:
+    /// Throws RigError if the port is closed or has vanished.
+    void requireOpen() const;
     void received(const QByteArray& bytes);
     void failed(const std::string& why);
 
