@@ -332,27 +332,24 @@ bool MainWindow::openExperiment(const QString& path) {
     return false;
 }
 
-Json MainWindow::documentAsShown() const {
-    Json j = protocol_->patch(experimentJson_);
-    j["scene"] = sceneToJson(scene_->sceneFromPanel(spec_.scene));
-    return j;
+ExperimentSpec MainWindow::experimentAsShown() const {
+    return experimentAsShown(nullptr);
 }
 
-ExperimentSpec MainWindow::experimentAsShown() const {
-    const SceneSpec scene = scene_->sceneFromPanel(spec_.scene);
+ExperimentSpec MainWindow::experimentAsShown(Json* document) const {
+    ExperimentSpec onPanelScene = spec_;
+    onPanelScene.scene = scene_->sceneFromPanel(spec_.scene);
+    const SceneSpec& scene = onPanelScene.scene;
     validateEffects(scene, FingertipContactModel(scene.fingertip));
-    if (const std::string problem = trainingObjectProblem([&] {
-            ExperimentSpec e = spec_;
-            e.scene = scene;
-            return e;
-        }());
-        !problem.empty())
+    if (const std::string problem = trainingObjectProblem(onPanelScene); !problem.empty())
         throw InputError("scene panel", "object", "training on it: " + problem);
-    const Json j = documentAsShown();
+    Json j = protocol_->patch(experimentJson_);
+    j["scene"] = sceneToJson(scene);
     try {
         ExperimentSpec spec =
             parseExperiment(j, spec_.source, QFileInfo(experimentPath_).path().toStdString());
         spec.scene.source = spec_.scene.source;
+        if (document) *document = std::move(j);
         return spec;
     } catch (const InputError& e) {
         // The protocol's classes may ask for edges the scene's object does not have.
@@ -367,8 +364,8 @@ ExperimentSpec MainWindow::experimentAsShown() const {
 
 bool MainWindow::saveExperiment(const QString& path) {
     try {
-        experimentAsShown();  // only what can run is written
-        const Json j = documentAsShown();
+        Json j;
+        experimentAsShown(&j);  // only what can run is written
         QFile f(path);
         if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate))
             throw InputError(path.toStdString(), "",

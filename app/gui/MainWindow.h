@@ -43,8 +43,6 @@ public:
     /// applied, read with the same checks as a file. Throws InputError naming the panel and its
     /// field if what the panels show cannot run.
     ExperimentSpec experimentAsShown() const;
-    /// The experiment file's document as the panels show it (what Save as writes).
-    Json documentAsShown() const;
     bool startRun(RunController::What what);
     /// Runs the experiment as shown once per seed from `first` to `last` on the simulated rig
     /// (the "Rates over seeds" tab), writing into a new folder under the output base.
@@ -96,6 +94,9 @@ private:
     /// Cancels a run in flight and interrupts the devices under it, waiting briefly for it.
     void stopRunNow();
     void showError(const QString& message);
+    /// experimentAsShown(), also giving the experiment file's document as the panels show it
+    /// (what Save as writes) when `document` is given.
+    ExperimentSpec experimentAsShown(Json* document) const;
     /// The experiment as shown, if one is open and it can run; otherwise says why.
     std::optional<ExperimentSpec> experimentToRun();
     /// Analyses the recorded taps in the file `path`, or (`replay`) replays the run recorded in

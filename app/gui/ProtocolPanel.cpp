@@ -15,6 +15,7 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <cmath>
+#include <map>
 
 #include "app/gui/ScrolledColumn.h"
 #include "core/classify/HistogramClassifier.h"
@@ -140,57 +141,57 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
 
     const QString following = tr("Following");
     auto* followingBox = group(following);
+    // The file's numbers, with the ranges it may give (followingNumbers); here their labels.
     struct Step {
-        const char* key;
         QString label, tip;
-        double lo, hi, step;
-        double FollowingSettings::*member;
+        double step;
     };
-    const std::vector<Step> steps{
-        {"follow_step_mm", tr("Follow step (mm)"),
-         tr("Along the perceived edge, every tap (paper: 2)"), 0.05, 50.0, 0.5,
-         &FollowingSettings::followStep_mm},
-        {"reposition_step_mm", tr("Reposition step (mm)"),
-         tr("Active: along the edge normal toward the valid range (paper: 1)"), 0.0, 50.0, 0.5,
-         &FollowingSettings::repositionStep_mm},
-        {"plane_step_mm", tr("Plane: outward (mm)"),
-         tr("Active, plane percept: outward along the last edge's normal"), 0.0, 50.0, 0.5,
-         &FollowingSettings::planeStep_mm},
-        {"plane_retreat_step_mm", tr("Plane: back (mm)"),
-         tr("Active, plane percept: back against the heading"), 0.0, 50.0, 0.5,
-         &FollowingSettings::planeRetreatStep_mm},
-        {"air_inward_step_mm", tr("Air: inward (mm)"),
-         tr("Active, air percept: inward along the last edge's normal"), 0.0, 50.0, 0.5,
-         &FollowingSettings::airInwardStep_mm},
-        {"air_retreat_step_mm", tr("Air: back (mm)"),
-         tr("Active, air percept: back against the heading"), 0.0, 50.0, 0.5,
-         &FollowingSettings::airRetreatStep_mm},
-        {"orientation_trust_max_error_deg", tr("Orientation trusted up to (deg)"),
-         tr("Active: use a percept's orientation only at positions whose mean validation angle "
-            "error is at most this; 180 trusts every edge percept, as the paper does"),
-         0.0, 180.0, 5.0, &FollowingSettings::orientationTrustMaxError_deg},
-        {"belief_threshold", tr("Belief threshold"),
-         tr("Sequential perception: 0 decides from each tap alone (the paper); a value in (0, 1) "
-            "taps again in place until the belief reaches it"),
-         0.0, 0.99999999, 0.01, &FollowingSettings::beliefThreshold},
-        {"completion_radius_mm", tr("Completed within (mm)"),
-         tr("Completed: back within this of the start after a full perimeter"), 0.1, 100.0, 0.5,
-         &FollowingSettings::completionRadius_mm},
-        {"lost_outside_mm", tr("Lost outside (mm)"), tr("Lost when this far outside the contour"),
-         0.1, 1000.0, 1.0, &FollowingSettings::lostOutside_mm},
-        {"lost_inside_mm", tr("Lost inside (mm)"), tr("Lost when this far inside the object"), 0.1,
-         1000.0, 1.0, &FollowingSettings::lostInside_mm},
-        {"tap_cap_perimeters", tr("Tap cap (perimeters)"),
-         tr("A trial ends after this many perimeters' worth of follow steps"), 0.1, 100.0, 0.5,
-         &FollowingSettings::tapCapPerimeters},
-        {"coverage_radius_mm", tr("Coverage radius (mm)"),
-         tr("A point of the contour is covered by a tap this close"), 0.1, 100.0, 0.5,
-         &FollowingSettings::coverageRadius_mm},
+    const std::map<std::string, Step> steps{
+        {"follow_step_mm",
+         {tr("Follow step (mm)"), tr("Along the perceived edge, every tap (paper: 2)"), 0.5}},
+        {"reposition_step_mm",
+         {tr("Reposition step (mm)"),
+          tr("Active: along the edge normal toward the valid range (paper: 1)"), 0.5}},
+        {"plane_step_mm",
+         {tr("Plane: outward (mm)"),
+          tr("Active, plane percept: outward along the last edge's normal"), 0.5}},
+        {"plane_retreat_step_mm",
+         {tr("Plane: back (mm)"), tr("Active, plane percept: back against the heading"), 0.5}},
+        {"air_inward_step_mm",
+         {tr("Air: inward (mm)"), tr("Active, air percept: inward along the last edge's normal"),
+          0.5}},
+        {"air_retreat_step_mm",
+         {tr("Air: back (mm)"), tr("Active, air percept: back against the heading"), 0.5}},
+        {"orientation_trust_max_error_deg",
+         {tr("Orientation trusted up to (deg)"),
+          tr("Active: use a percept's orientation only at positions whose mean validation angle "
+             "error is at most this; 180 trusts every edge percept, as the paper does"),
+          5.0}},
+        {"belief_threshold",
+         {tr("Belief threshold"),
+          tr("Sequential perception: 0 decides from each tap alone (the paper); a value in (0, "
+             "1) taps again in place until the belief reaches it"),
+          0.01}},
+        {"completion_radius_mm",
+         {tr("Completed within (mm)"),
+          tr("Completed: back within this of the start after a full perimeter"), 0.5}},
+        {"lost_outside_mm",
+         {tr("Lost outside (mm)"), tr("Lost when this far outside the contour"), 1.0}},
+        {"lost_inside_mm",
+         {tr("Lost inside (mm)"), tr("Lost when this far inside the object"), 1.0}},
+        {"tap_cap_perimeters",
+         {tr("Tap cap (perimeters)"),
+          tr("A trial ends after this many perimeters' worth of follow steps"), 0.5}},
+        {"coverage_radius_mm",
+         {tr("Coverage radius (mm)"), tr("A point of the contour is covered by a tap this close"),
+          0.5}},
     };
-    for (const Step& s : steps) {
-        const auto member = s.member;
-        addField(followingBox, {"following", s.key, following, s.label, s.tip, Kind::Number, s.lo,
-                                s.hi, s.step, [member](E e) { return e.following.*member; }});
+    for (const FollowingNumber& n : followingNumbers()) {
+        const auto it = steps.find(n.key);
+        const Step s = it != steps.end() ? it->second : Step{QString(n.key), QString(), 1.0};
+        const auto member = n.member;
+        addField(followingBox, {"following", n.key, following, s.label, s.tip, Kind::Number, n.lo,
+                                n.hi, s.step, [member](E e) { return e.following.*member; }});
     }
     addField(
         followingBox,

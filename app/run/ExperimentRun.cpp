@@ -494,27 +494,28 @@ std::vector<std::string> trainingSettingsChanged(const RunResult& trained,
     auto compare = [&](const char* what, const std::string& then, const std::string& now) {
         if (then != now) changed.push_back(std::string(what) + ": " + then + " -> " + now);
     };
-    auto number = [](double v) { return numberText(v); };
     const ExperimentSpec& t = trained.spec;
     compare("edge orientations (deg)", list(t.classes.orientationsDeg),
             list(spec.classes.orientationsDeg));
-    compare("positions", number(t.classes.positions), number(spec.classes.positions));
-    compare("position step (mm)", number(t.classes.positionStep_mm),
-            number(spec.classes.positionStep_mm));
-    compare("histogram bins", number(t.classifier.bins), number(spec.classifier.bins));
-    compare("smoothing", number(t.classifier.smoothing), number(spec.classifier.smoothing));
-    compare("kernel width (bins)", number(t.classifier.kernelSigma_bins),
-            number(spec.classifier.kernelSigma_bins));
-    compare("data sets", number(t.training.dataSets), number(spec.training.dataSets));
+    compare("positions", numberText(t.classes.positions), numberText(spec.classes.positions));
+    compare("position step (mm)", numberText(t.classes.positionStep_mm),
+            numberText(spec.classes.positionStep_mm));
+    compare("histogram bins", numberText(t.classifier.bins), numberText(spec.classifier.bins));
+    compare("smoothing", numberText(t.classifier.smoothing), numberText(spec.classifier.smoothing));
+    compare("kernel width (bins)", numberText(t.classifier.kernelSigma_bins),
+            numberText(spec.classifier.kernelSigma_bins));
+    compare("data sets", numberText(t.training.dataSets), numberText(spec.training.dataSets));
     compare("training sets", list(t.training.trainingSets), list(spec.training.trainingSets));
-    compare("taps per class", number(t.training.tapsPerClass), number(spec.training.tapsPerClass));
-    compare("test sets off the grid (mm)", number(t.training.testOffset_mm),
-            number(spec.training.testOffset_mm));
-    compare("placement jitter (mm)", number(t.training.placementJitter_mm),
-            number(spec.training.placementJitter_mm));
+    compare("taps per class", numberText(t.training.tapsPerClass),
+            numberText(spec.training.tapsPerClass));
+    compare("test sets off the grid (mm)", numberText(t.training.testOffset_mm),
+            numberText(spec.training.testOffset_mm));
+    compare("placement jitter (mm)", numberText(t.training.placementJitter_mm),
+            numberText(spec.training.placementJitter_mm));
     compare("trained on every set", t.training.retrainOnAllSets ? "yes" : "no",
             spec.training.retrainOnAllSets ? "yes" : "no");
-    compare("valid range (positions)", number(t.validRangeWidth), number(spec.validRangeWidth));
+    compare("valid range (positions)", numberText(t.validRangeWidth),
+            numberText(spec.validRangeWidth));
     return changed;
 }
 

@@ -8,6 +8,26 @@ const char* modeName(FollowingMode m) {
     return m == FollowingMode::Active ? "active" : "passive";
 }
 
+const std::vector<FollowingNumber>& followingNumbers() {
+    using S = FollowingSettings;
+    static const std::vector<FollowingNumber> numbers{
+        {"follow_step_mm", 0.05, 50.0, &S::followStep_mm},
+        {"reposition_step_mm", 0.0, 50.0, &S::repositionStep_mm},
+        {"plane_step_mm", 0.0, 50.0, &S::planeStep_mm},
+        {"plane_retreat_step_mm", 0.0, 50.0, &S::planeRetreatStep_mm},
+        {"air_inward_step_mm", 0.0, 50.0, &S::airInwardStep_mm},
+        {"air_retreat_step_mm", 0.0, 50.0, &S::airRetreatStep_mm},
+        {"orientation_trust_max_error_deg", 0.0, 180.0, &S::orientationTrustMaxError_deg},
+        {"belief_threshold", 0.0, 0.99999999, &S::beliefThreshold},
+        {"completion_radius_mm", 0.1, 100.0, &S::completionRadius_mm},
+        {"lost_outside_mm", 0.1, 1000.0, &S::lostOutside_mm},
+        {"lost_inside_mm", 0.1, 1000.0, &S::lostInside_mm},
+        {"tap_cap_perimeters", 0.1, 100.0, &S::tapCapPerimeters},
+        {"coverage_radius_mm", 0.1, 100.0, &S::coverageRadius_mm},
+    };
+    return numbers;
+}
+
 std::string FollowingSettings::problem() const {
     auto positive = [](double v) { return std::isfinite(v) && v > 0; };
     if (!positive(followStep_mm)) return "follow_step_mm must be positive";

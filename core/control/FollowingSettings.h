@@ -2,6 +2,7 @@
 // The settings of the perception-action loop and of a trial's termination (DESIGN.md §2). Every
 // step length of the rules table is one of these numbers.
 #include <string>
+#include <vector>
 
 namespace activetouch {
 
@@ -38,5 +39,15 @@ struct FollowingSettings {
 
     std::string problem() const;
 };
+
+/// A number of the following settings as an experiment file gives it ("following": {key: ...}):
+/// its key, the range a file may give, and the setting it sets.
+struct FollowingNumber {
+    const char* key;
+    double lo, hi;
+    double FollowingSettings::*member;
+};
+/// Every number of the following settings, in the order files list them.
+const std::vector<FollowingNumber>& followingNumbers();
 
 }  // namespace activetouch

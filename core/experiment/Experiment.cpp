@@ -36,24 +36,12 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
          "reposition_while_sensing", "completion_radius_mm", "lost_outside_mm", "lost_inside_mm",
          "lost_plane_or_air_taps", "tap_cap_perimeters", "coverage_radius_mm", "trials"});
     FollowingSettings& s = e.following;
-    s.followStep_mm = f.number("follow_step_mm", 0.05, 50.0, s.followStep_mm);
-    s.repositionStep_mm = f.number("reposition_step_mm", 0.0, 50.0, s.repositionStep_mm);
-    s.planeStep_mm = f.number("plane_step_mm", 0.0, 50.0, s.planeStep_mm);
-    s.planeRetreatStep_mm = f.number("plane_retreat_step_mm", 0.0, 50.0, s.planeRetreatStep_mm);
-    s.airInwardStep_mm = f.number("air_inward_step_mm", 0.0, 50.0, s.airInwardStep_mm);
-    s.airRetreatStep_mm = f.number("air_retreat_step_mm", 0.0, 50.0, s.airRetreatStep_mm);
-    s.orientationTrustMaxError_deg =
-        f.number("orientation_trust_max_error_deg", 0.0, 180.0, s.orientationTrustMaxError_deg);
+    for (const FollowingNumber& n : followingNumbers())
+        s.*n.member = f.number(n.key, n.lo, n.hi, s.*n.member);
     s.edgeConfirmationTaps = f.integer("edge_confirmation_taps", 1, 100, s.edgeConfirmationTaps);
-    s.beliefThreshold = f.number("belief_threshold", 0.0, 0.99999999, s.beliefThreshold);
     s.maxTapsPerDecision = f.integer("max_taps_per_decision", 1, 1000, s.maxTapsPerDecision);
     s.repositionWhileSensing = f.flag("reposition_while_sensing", s.repositionWhileSensing);
-    s.completionRadius_mm = f.number("completion_radius_mm", 0.1, 100.0, s.completionRadius_mm);
-    s.lostOutside_mm = f.number("lost_outside_mm", 0.1, 1000.0, s.lostOutside_mm);
-    s.lostInside_mm = f.number("lost_inside_mm", 0.1, 1000.0, s.lostInside_mm);
     s.lostPlaneOrAirTaps = f.integer("lost_plane_or_air_taps", 1, 100000, s.lostPlaneOrAirTaps);
-    s.tapCapPerimeters = f.number("tap_cap_perimeters", 0.1, 100.0, s.tapCapPerimeters);
-    s.coverageRadius_mm = f.number("coverage_radius_mm", 0.1, 100.0, s.coverageRadius_mm);
     if (!f.has("trials")) return;
     const Json& list = f.raw("trials");
     if (!list.is_array())
