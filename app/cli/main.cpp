@@ -81,9 +81,11 @@ void printHelp() {
         "  activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>] [--no-figures]\n"
         "      Runs the experiment once per seed A..B (each a whole run: its own data sets,\n"
         "      training, valid range and trials) and reports the rates with 95 %% intervals:\n"
-        "      passive trials lost, active trials completed (and per trial label), active\n"
-        "      paths recognised by both rules (and which shapes each misnamed as which), runs\n"
-        "      with the paper's result whole. Writes <dir>/rates.csv (a row per seed, appended\n"
+        "      passive trials lost (and lost at a corner), active trials completed (and per\n"
+        "      trial label), where the trials that did not complete got furthest, the convex\n"
+        "      and concave corners each mode got round, active paths recognised by both rules\n"
+        "      (and which shapes each misnamed as which), runs with the paper's result whole.\n"
+        "      Writes <dir>/rates.csv (a row per seed, appended\n"
         "      as each finishes), <dir>/rates.json (with the recognition confusion)\n"
         "      and <dir>/figures/seed_rates.{png,pdf,svg} (each seed's outcome and the rates so\n"
         "      far with their intervals). --out defaults to results/<experiment name>_seeds.\n"
@@ -281,12 +283,13 @@ void printReport(const RunResult& result, double wall, double figures_s,
     for (const auto& t : result.trials)
         std::printf(
             "%-7s %-*s trial %d: %-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, "
-            "contour distance mean %.2f max %.2f mm%s%s\n",
+            "contour distance mean %.2f max %.2f mm%s%s%s\n",
             modeName(t.result.mode), labelWidth, t.label.c_str(), t.trial,
             trialEndName(t.result.end), t.result.taps.size(), t.result.robotTime_s,
             100.0 * t.result.coverage, t.result.meanContourDistance_mm,
             t.result.maxContourDistance_mm, t.recognised ? ", recognised as " : "",
-            t.recognised ? t.recognition.predicted.c_str() : "");
+            t.recognised ? t.recognition.predicted.c_str() : "",
+            t.result.completed() ? "" : (", furthest " + describePlace(t.result.furthest)).c_str());
     if (!result.templates.empty())
         std::printf("recognition: %.0f %% of %s paths (smoothed histograms: %.0f %%)\n",
                     100.0 * result.recognitionAccuracy, modeName(spec.recognition.ofMode),

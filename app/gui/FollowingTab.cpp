@@ -37,11 +37,12 @@ FollowingTab::FollowingTab(QWidget* parent)
     paths->setStretchFactor(1, 2);
     views->addTab(paths, tr("Paths: active and passive"));
     auto* lower = new QSplitter(Qt::Horizontal);
-    table_ = new QTableWidget(0, 9);
+    table_ = new QTableWidget(0, 10);
     table_->setObjectName("followingTrials");
     table_->setHorizontalHeaderLabels({tr("shape"), tr("mode"), tr("trial"), tr("result"),
                                        tr("taps"), tr("robot\ntime (s)"), tr("coverage\n(%)"),
-                                       tr("mean dist.\n(mm)"), tr("max dist.\n(mm)")});
+                                       tr("mean dist.\n(mm)"), tr("max dist.\n(mm)"),
+                                       tr("not completed:\ngot furthest")});
     table_->verticalHeader()->setVisible(false);
     table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
@@ -114,7 +115,10 @@ void FollowingTab::showRun(std::shared_ptr<const RunResult> result) {
                                 QString::number(t.result.robotTime_s, 'f', 0),
                                 QString::number(100 * t.result.coverage, 'f', 0),
                                 QString::number(t.result.meanContourDistance_mm, 'f', 2),
-                                QString::number(t.result.maxContourDistance_mm, 'f', 2)};
+                                QString::number(t.result.maxContourDistance_mm, 'f', 2),
+                                t.result.completed()
+                                    ? QString()
+                                    : QString::fromStdString(describePlace(t.result.furthest))};
         // Active trials are meant to complete: one that did not is marked, and the replay opens
         // on the first of them.
         const bool lostActive = t.result.mode == FollowingMode::Active && !t.result.completed();

@@ -605,14 +605,25 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
         f = openOutputTable((data / "following_trials.csv").string());
         std::fprintf(f,
                      "shape,mode,trial,completed,end,taps,robot_time_s,coverage,mean_contour_"
-                     "distance_mm,max_contour_distance_mm,progress_mm,start_x_mm,start_y_mm\n");
-        for (const auto& t : r.trials)
-            std::fprintf(f, "%s,%s,%d,%d,%s,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
-                         t.label.c_str(), modeName(t.result.mode), t.trial,
-                         t.result.completed() ? 1 : 0, trialEndName(t.result.end),
-                         t.result.taps.size(), t.result.robotTime_s, t.result.coverage,
-                         t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
-                         t.result.progress_mm, t.start.x, t.start.y);
+                     "distance_mm,max_contour_distance_mm,progress_mm,start_x_mm,start_y_mm,"
+                     "furthest_progress_mm,furthest_x_mm,furthest_y_mm,furthest_place,corner_x_mm,"
+                     "corner_y_mm,past_corner_mm,convex_corners_rounded,concave_corners_rounded\n");
+        for (const auto& t : r.trials) {
+            const ContourPlace& at = t.result.furthest;
+            std::fprintf(
+                f, "%s,%s,%d,%d,%s,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s,",
+                t.label.c_str(), modeName(t.result.mode), t.trial, t.result.completed() ? 1 : 0,
+                trialEndName(t.result.end), t.result.taps.size(), t.result.robotTime_s,
+                t.result.coverage, t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
+                t.result.progress_mm, t.start.x, t.start.y, t.result.furthestProgress_mm,
+                at.point.x, at.point.y, placeKindName(at.kind));
+            if (at.kind == PlaceKind::AwayFromCorners)
+                std::fprintf(f, ",,");
+            else
+                std::fprintf(f, "%.6g,%.6g,%.6g", at.corner.x, at.corner.y, at.pastCorner_mm);
+            std::fprintf(f, ",%d,%d\n", t.result.cornersRounded.convex,
+                         t.result.cornersRounded.concave);
+        }
         std::fclose(f);
         f = openOutputTable((data / "following_paths.csv").string());
         std::fprintf(f,
@@ -734,6 +745,24 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
     std::fclose(f);
 }
 
+namespace {
+
+/// Where a trial got furthest along the contour: the point, its progress and its place.
+Json placeJson(const TrialResult& t) {
+    const ContourPlace& at = t.furthest;
+    Json j{{"progress_mm", t.furthestProgress_mm},
+           {"point_mm", {at.point.x, at.point.y}},
+           {"place", placeKindName(at.kind)},
+           {"description", describePlace(at)}};
+    if (at.kind != PlaceKind::AwayFromCorners) {
+        j["corner_mm"] = {at.corner.x, at.corner.y};
+        j["past_corner_mm"] = at.pastCorner_mm;
+    }
+    return j;
+}
+
+}  // namespace
+
 Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
     const ClassSet& cs = r.classes;
     Json j;
@@ -831,7 +860,11 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
                              {"mean_contour_distance_mm", t.result.meanContourDistance_mm},
                              {"max_contour_distance_mm", t.result.maxContourDistance_mm},
                              {"progress_mm", t.result.progress_mm},
-                             {"start_mm", {t.start.x, t.start.y}}});
+                             {"start_mm", {t.start.x, t.start.y}},
+                             {"furthest", placeJson(t.result)},
+                             {"corners_rounded",
+                              {{"convex", t.result.cornersRounded.convex},
+                               {"concave", t.result.cornersRounded.concave}}}});
         if (t.recordedTaps >= 0) following.back()["recorded_taps"] = t.recordedTaps;
     }
     j["following"] = following;

@@ -116,6 +116,9 @@ SeedOutcome seedOutcome(const RunResult& run) {
         if (t.result.mode == FollowingMode::Passive) {
             ++o.passiveTrials;
             o.passiveLost += !t.result.completed();
+            o.passiveLostAtCorner +=
+                !t.result.completed() && t.result.furthest.kind != PlaceKind::AwayFromCorners;
+            o.passiveCorners.add(t.result);
             Rate& label = rateOf(o.passiveByLabel, t.label);
             ++label.total;
             label.count += !t.result.completed();
@@ -123,6 +126,7 @@ SeedOutcome seedOutcome(const RunResult& run) {
             continue;
         }
         ++o.activeTrials;
+        o.activeCorners.add(t.result);
         Rate& label = rateOf(o.activeByLabel, t.label);
         ++label.total;
         label.count += t.result.completed();
@@ -140,6 +144,31 @@ SeedOutcome seedOutcome(const RunResult& run) {
         o.activeTracing.add(traced);
     }
     return o;
+}
+
+void CornerTally::add(const TrialResult& t) {
+    rounded.convex += t.cornersRounded.convex;
+    rounded.concave += t.cornersRounded.concave;
+    if (t.completed()) return;
+    switch (t.furthest.kind) {
+        case PlaceKind::ConvexCorner:
+            ++endedConvex;
+            break;
+        case PlaceKind::ConcaveCorner:
+            ++endedConcave;
+            break;
+        case PlaceKind::AwayFromCorners:
+            ++endedAway;
+            break;
+    }
+}
+
+void CornerTally::add(const CornerTally& o) {
+    endedConvex += o.endedConvex;
+    endedConcave += o.endedConcave;
+    endedAway += o.endedAway;
+    rounded.convex += o.rounded.convex;
+    rounded.concave += o.rounded.concave;
 }
 
 void Tracing::add(const Tracing& other) {
@@ -172,7 +201,7 @@ Rate sumOver(const std::vector<SeedOutcome>& seeds, Rate (*part)(const SeedOutco
 
 Json shortJson(const ShortOfPaper& s) {
     return {{"runs", s.runs},
-            {"passive_trial_not_lost", s.passiveNotLost},
+            {"passive_trial_not_lost_at_a_corner", s.passiveNotLost},
             {"active_trial_lost", s.activeLost},
             {"path_misnamed_paper_rule", s.misnamedRaw}};
 }
@@ -196,6 +225,9 @@ double Rate::high() const {
 Rate passiveLostIn(const SeedOutcome& s) {
     return {s.passiveLost, s.passiveTrials};
 }
+Rate passiveLostAtCornerIn(const SeedOutcome& s) {
+    return {s.passiveLostAtCorner, s.passiveTrials};
+}
 Rate activeCompletedIn(const SeedOutcome& s) {
     return {s.activeCompleted, s.activeTrials};
 }
@@ -217,6 +249,9 @@ Rate paperResultSmoothedIn(const SeedOutcome& s) {
 Rate SeedRates::passiveLost() const {
     return sumOver(seeds, passiveLostIn);
 }
+Rate SeedRates::passiveLostAtCorner() const {
+    return sumOver(seeds, passiveLostAtCornerIn);
+}
 Rate SeedRates::activeCompleted() const {
     return sumOver(seeds, activeCompletedIn);
 }
@@ -237,7 +272,7 @@ ShortOfPaper SeedRates::shortOfPaper() const {
     for (const auto& o : seeds) {
         if (!o.paperResultApplies() || o.paperResult()) continue;
         ++s.runs;
-        s.passiveNotLost += o.passiveLost < o.passiveTrials;
+        s.passiveNotLost += o.passiveLostAtCorner < o.passiveTrials;
         s.activeLost += o.activeCompleted < o.activeTrials;
         s.misnamedRaw += o.recognisedRaw() < o.recognitionTrials();
     }
@@ -272,6 +307,13 @@ Tracing SeedRates::tracing(FollowingMode mode) const {
     return sum;
 }
 
+CornerTally SeedRates::corners(FollowingMode mode) const {
+    CornerTally sum;
+    for (const auto& s : seeds)
+        sum.add(mode == FollowingMode::Active ? s.activeCorners : s.passiveCorners);
+    return sum;
+}
+
 double SeedRates::tapsPerCompletedTrial() const {
     double taps = 0;
     for (const auto& s : seeds) taps += s.completedTaps;
@@ -297,6 +339,14 @@ Json tracingJson(const Tracing& t) {
             {"mean_contour_distance_mm_mean",
              t.trials > 0 ? Json(t.meanDistance_mm()) : Json(nullptr)}};
 }
+Json cornersJson(const CornerTally& t) {
+    return {{"not_completed_got_furthest_near",
+             {{"convex_corner", t.endedConvex},
+              {"concave_corner", t.endedConcave},
+              {"away_from_corners", t.endedAway}}},
+            {"convex_corners_rounded", rateJson(t.convexRounded())},
+            {"concave_corners_rounded", rateJson(t.concaveRounded())}};
+}
 }  // namespace
 
 Json seedRatesJson(const SeedRates& r) {
@@ -306,6 +356,7 @@ Json seedRatesJson(const SeedRates& r) {
             {{"seed", s.seed},
              {"passive_trials", s.passiveTrials},
              {"passive_lost", s.passiveLost},
+             {"passive_lost_at_a_corner", s.passiveLostAtCorner},
              {"active_trials", s.activeTrials},
              {"active_completed", s.activeCompleted},
              {"recognition_trials", s.recognitionTrials()},
@@ -333,6 +384,7 @@ Json seedRatesJson(const SeedRates& r) {
             {"runs", r.seeds.size()},
             {"passive_lost", rateJson(r.passiveLost())},
             {"passive_lost_by_label", byLabel(r.passiveLostByLabel())},
+            {"passive_lost_at_a_corner", rateJson(r.passiveLostAtCorner())},
             {"active_completed", rateJson(r.activeCompleted())},
             {"active_completed_by_label", byLabel(r.activeCompletedByLabel())},
             {"recognised_raw", rateJson(r.recognisedRaw())},
@@ -349,6 +401,12 @@ Json seedRatesJson(const SeedRates& r) {
             {"taps_per_completed_trial", r.tapsPerCompletedTrial()},
             {"robot_time_per_completed_trial_s", r.robotTimePerCompletedTrial_s()},
             {"robot_time_per_run_s", r.robotTimePerRun_s()},
+            {"corners",
+             {{"active", cornersJson(r.corners(FollowingMode::Active))},
+              {"passive", cornersJson(r.corners(FollowingMode::Passive))},
+              {"near",
+               "the furthest point along the contour within half the classes' window of "
+               "a corner"}}},
             {"completed_tracing",
              {{"active", tracingJson(r.tracing(FollowingMode::Active))},
               {"passive", tracingJson(r.tracing(FollowingMode::Passive))}}},
@@ -358,15 +416,11 @@ Json seedRatesJson(const SeedRates& r) {
 std::vector<std::string> describeRates(const SeedRates& r) {
     std::vector<std::string> lines;
     char buf[200];
+    // Rate lines are written last, their counts as wide as the widest (four digits at least).
+    std::vector<std::pair<std::size_t, std::pair<std::string, Rate>>> rateLines;
     auto line = [&](const std::string& what, const Rate& rate) {
-        if (rate.total == 0)
-            std::snprintf(buf, sizeof buf, "%-34s  none in this experiment", what.c_str());
-        else
-            std::snprintf(buf, sizeof buf,
-                          "%-34s %4d / %-4d %5.1f %%  (95 %% interval %5.1f-%5.1f %%)",
-                          what.c_str(), rate.count, rate.total, 100.0 * rate.fraction(),
-                          100.0 * rate.low(), 100.0 * rate.high());
-        lines.push_back(buf);
+        rateLines.push_back({lines.size(), {what, rate}});
+        lines.emplace_back();
     };
     auto perLabel = [&](const RatesByLabel& rates) {
         if (rates.size() > 1)
@@ -374,8 +428,25 @@ std::vector<std::string> describeRates(const SeedRates& r) {
     };
     line("passive trials lost", r.passiveLost());
     perLabel(r.passiveLostByLabel());
+    line("passive trials lost at a corner", r.passiveLostAtCorner());
     line("active trials completed", r.activeCompleted());
     perLabel(r.activeCompletedByLabel());
+    // Where the active trials that did not complete got stuck, and how often each kind of corner
+    // was got round in each mode.
+    if (const CornerTally c = r.corners(FollowingMode::Active); c.notCompleted() > 0) {
+        std::snprintf(buf, sizeof buf,
+                      "  not completed, furthest near a convex corner %d, a concave corner %d, "
+                      "no corner %d",
+                      c.endedConvex, c.endedConcave, c.endedAway);
+        lines.push_back(buf);
+    }
+    for (const FollowingMode mode : {FollowingMode::Active, FollowingMode::Passive}) {
+        const CornerTally c = r.corners(mode);
+        const std::string m = modeName(mode);
+        if (c.convexRounded().total > 0) line("convex corners got round, " + m, c.convexRounded());
+        if (c.concaveRounded().total > 0)
+            line("concave corners got round, " + m, c.concaveRounded());
+    }
     const RecognitionConfusion confusion = r.confusion();
     line("recognised, paper's rule", r.recognisedRaw());
     if (const std::string m = confusion.misnamed(false); !m.empty())
@@ -387,7 +458,8 @@ std::vector<std::string> describeRates(const SeedRates& r) {
     line("runs whole, smoothed histograms", r.paperResultSmoothed());
     if (const ShortOfPaper s = r.shortOfPaper(); s.runs > 0) {
         std::snprintf(buf, sizeof buf,
-                      "runs short: %d (passive not lost %d, active lost %d, path misnamed %d)",
+                      "runs short: %d (passive not lost at a corner %d, active lost %d, path "
+                      "misnamed %d)",
                       s.runs, s.passiveNotLost, s.activeLost, s.misnamedRaw);
         lines.push_back(buf);
     }
@@ -409,6 +481,20 @@ std::vector<std::string> describeRates(const SeedRates& r) {
                       modeName(mode), 100.0 * t.coverage(), t.meanDistance_mm(), t.trials);
         lines.push_back(buf);
     }
+    int digits = 4;
+    for (const auto& [at, rate] : rateLines)
+        digits = std::max(digits, static_cast<int>(std::to_string(rate.second.total).size()));
+    for (const auto& [at, entry] : rateLines) {
+        const auto& [what, rate] = entry;
+        if (rate.total == 0)
+            std::snprintf(buf, sizeof buf, "%-34s  none in this experiment", what.c_str());
+        else
+            std::snprintf(buf, sizeof buf,
+                          "%-34s %*d / %-*d %5.1f %%  (95 %% interval %5.1f-%5.1f %%)",
+                          what.c_str(), digits, rate.count, digits, rate.total,
+                          100.0 * rate.fraction(), 100.0 * rate.low(), 100.0 * rate.high());
+        lines[at] = buf;
+    }
     return lines;
 }
 
@@ -423,7 +509,8 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
         fs::remove(fs::path(outDir) / "rates.json", ec);  // never mistaken for this run's
         file.reset(openOutputTable((fs::path(outDir) / "rates.csv").string()));
         std::fprintf(file.get(),
-                     "seed,passive_trials,passive_lost,active_trials,active_completed,"
+                     "seed,passive_trials,passive_lost,passive_lost_at_a_corner,active_trials,"
+                     "active_completed,"
                      "recognition_trials,recognised_raw,recognised_smoothed,completed_taps,"
                      "completed_robot_time_s,"
                      "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
@@ -442,12 +529,12 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
                                    : o.paperResultSmoothed() ? "1"
                                                              : "0";
             std::fprintf(
-                file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s\n",
+                file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s\n",
                 static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
-                o.activeTrials, o.activeCompleted, o.recognitionTrials(), o.recognisedRaw(),
-                o.recognisedSmoothed(), o.completedTaps, o.completedRobotTime_s, o.runRobotTime_s,
-                o.angleError_deg, o.positionError_mm, paper, smoothed, csvField(o.failures).c_str(),
-                csvField(o.misnamed()).c_str());
+                o.passiveLostAtCorner, o.activeTrials, o.activeCompleted, o.recognitionTrials(),
+                o.recognisedRaw(), o.recognisedSmoothed(), o.completedTaps, o.completedRobotTime_s,
+                o.runRobotTime_s, o.angleError_deg, o.positionError_mm, paper, smoothed,
+                csvField(o.failures).c_str(), csvField(o.misnamed()).c_str());
             std::fflush(file.get());
         }
         if (seedDone && !seedDone(o)) break;

@@ -41,10 +41,24 @@ struct Tracing {
     void add(const Tracing& other);
 };
 
+/// Where the trials of one mode that did not complete got furthest (near which kind of corner,
+/// or away from corners), and the corners its trials got round: of the corners a trial met, the
+/// ones it went past and the one it did not get beyond.
+struct CornerTally {
+    int endedConvex = 0, endedConcave = 0, endedAway = 0;  ///< trials not completed
+    CornerCount rounded;
+    void add(const TrialResult& trial);
+    void add(const CornerTally& other);
+    int notCompleted() const { return endedConvex + endedConcave + endedAway; }
+    Rate convexRounded() const { return {rounded.convex, rounded.convex + endedConvex}; }
+    Rate concaveRounded() const { return {rounded.concave, rounded.concave + endedConcave}; }
+};
+
 /// One whole run's outcome.
 struct SeedOutcome {
     std::uint64_t seed = 0;
     int passiveTrials = 0, passiveLost = 0;
+    int passiveLostAtCorner = 0;  ///< lost where it got no further than near a corner
     int activeTrials = 0, activeCompleted = 0;
     bool recognition = false;           ///< the experiment recognises shapes from the paths
     int completedTaps = 0;              ///< taps of the completed active trials
@@ -53,11 +67,12 @@ struct SeedOutcome {
     double angleError_deg = 0.0, positionError_mm = 0.0;  ///< offline validation
     std::vector<std::string> failures;  ///< "cross trial 2: lost: ..." for each active trial lost
     std::vector<PathNaming> namings;    ///< each recognised completed active path
-    RatesByLabel activeByLabel;   ///< active trials completed, per trial label
-    RatesByLabel passiveByLabel;  ///< passive trials lost, per trial label
+    RatesByLabel activeByLabel;         ///< active trials completed, per trial label
+    RatesByLabel passiveByLabel;        ///< passive trials lost, per trial label
     /// The completed trials of each mode: a passive trial that gets round does so without ever
     /// correcting its offset from the edge, and these say how closely it traced the contour.
     Tracing activeTracing, passiveTracing;
+    CornerTally activeCorners, passiveCorners;
 
     /// Completed active paths recognition looked at, and of those the ones each rule named rightly.
     int recognitionTrials() const { return static_cast<int>(namings.size()); }
@@ -76,9 +91,9 @@ struct SeedOutcome {
     bool paperResultSmoothed() const {
         return paperFollowing() && recognisedSmoothed() == recognitionTrials();
     }
-    /// The paper's parts, every passive trial lost and every active trial completed.
+    /// The paper's parts, every passive trial lost at a corner and every active trial completed.
     bool paperFollowing() const {
-        return paperResultApplies() && passiveLost == passiveTrials &&
+        return paperResultApplies() && passiveLostAtCorner == passiveTrials &&
                activeCompleted == activeTrials;
     }
 };
@@ -87,7 +102,7 @@ struct SeedOutcome {
 /// fall short in several).
 struct ShortOfPaper {
     int runs = 0;            ///< runs without the paper's result whole
-    int passiveNotLost = 0;  ///< a passive trial completed or ran to its tap cap
+    int passiveNotLost = 0;  ///< a passive trial completed, or was lost away from corners
     int activeLost = 0;      ///< an active trial did not complete
     int misnamedRaw = 0;     ///< a completed active path misnamed by the paper's rule
 };
@@ -117,6 +132,7 @@ RecognitionConfusion recognitionConfusion(const RunResult& run);
 
 /// One run's part in each rate: its count and its total, which SeedRates sums over runs.
 Rate passiveLostIn(const SeedOutcome& run);
+Rate passiveLostAtCornerIn(const SeedOutcome& run);  ///< of its passive trials
 Rate activeCompletedIn(const SeedOutcome& run);
 Rate recognisedRawIn(const SeedOutcome& run);       ///< of its recognised completed active paths
 Rate recognisedSmoothedIn(const SeedOutcome& run);  ///< of its recognised completed active paths
@@ -126,6 +142,7 @@ Rate paperResultSmoothedIn(const SeedOutcome& run);  ///< as paperResultIn, smoo
 struct SeedRates {
     std::vector<SeedOutcome> seeds;
     Rate passiveLost() const;
+    Rate passiveLostAtCorner() const;  ///< of passive trials
     Rate activeCompleted() const;
     Rate recognisedRaw() const;        ///< of completed active paths
     Rate recognisedSmoothed() const;   ///< of completed active paths
@@ -137,7 +154,8 @@ struct SeedRates {
     RatesByLabel passiveLostByLabel() const;
     /// A per-label rate of every seed, summed per label in the order the labels first came.
     RatesByLabel byLabel(RatesByLabel SeedOutcome::*which) const;
-    Tracing tracing(FollowingMode mode) const;  ///< of the completed trials in `mode`
+    Tracing tracing(FollowingMode mode) const;      ///< of the completed trials in `mode`
+    CornerTally corners(FollowingMode mode) const;  ///< of the trials in `mode`
     double tapsPerCompletedTrial() const;
     double robotTimePerCompletedTrial_s() const;
     double robotTimePerRun_s() const;

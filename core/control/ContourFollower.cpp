@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/classify/SequentialPerception.h"
+#include "core/common/NumberText.h"
 #include "core/control/ContactDetection.h"
 #include "core/control/MotorCommand.h"
 
@@ -32,6 +33,101 @@ const char* trialEndName(TrialEnd e) {
             return "cancelled";
     }
     return "";
+}
+
+const char* placeKindName(PlaceKind kind) {
+    switch (kind) {
+        case PlaceKind::ConvexCorner:
+            return "convex corner";
+        case PlaceKind::ConcaveCorner:
+            return "concave corner";
+        case PlaceKind::AwayFromCorners:
+            break;
+    }
+    return "away from corners";
+}
+
+CornerCriteria cornerCriteria(const ClassSet& classes) {
+    // The smallest angle between two trained orientations; a single orientation has no corner
+    // it could tell apart.
+    double gap = 360.0;
+    const auto& o = classes.orientationsDeg;
+    for (std::size_t i = 0; i < o.size(); ++i)
+        for (std::size_t j = i + 1; j < o.size(); ++j)
+            if (const double d = angleDifferenceDeg(o[i], o[j]); d > 0) gap = std::min(gap, d);
+    return {0.5 * gap, 0.5 * classes.positions * classes.positionStep_mm};
+}
+
+namespace {
+
+bool isCorner(const Polygon& outline, std::size_t i, const CornerCriteria& criteria) {
+    return std::abs(outline.turnDeg(i)) >= criteria.minTurn_deg;
+}
+
+/// `a` wrapped into [0, period).
+double wrapped(double a, double period) {
+    a = std::fmod(a, period);
+    return a < 0 ? a + period : a;
+}
+
+std::string pointText(Vec2 p) {
+    auto tenth = [](double v) { return numberText(std::round(v * 10.0) / 10.0 + 0.0); };
+    std::string text = "(";
+    text += tenth(p.x);
+    text += ", ";
+    text += tenth(p.y);
+    text += ")";
+    return text;
+}
+
+}  // namespace
+
+ContourPlace contourPlace(const Polygon& outline, Vec2 point, double arc,
+                          const CornerCriteria& criteria) {
+    ContourPlace place;
+    place.point = point;
+    const double perimeter = outline.perimeter();
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+        if (!isCorner(outline, i, criteria)) continue;
+        const double d = distance(point, outline.vertex(i));
+        if (d > criteria.reach_mm || d >= nearest) continue;
+        nearest = d;
+        place.kind = outline.turnDeg(i) > 0 ? PlaceKind::ConvexCorner : PlaceKind::ConcaveCorner;
+        place.corner = outline.vertex(i);
+        double along = wrapped(arc - outline.arcLengthOfVertex(i), perimeter);
+        if (along > perimeter / 2) along -= perimeter;
+        place.pastCorner_mm = along;
+    }
+    return place;
+}
+
+std::string describePlace(const ContourPlace& place) {
+    if (place.kind == PlaceKind::AwayFromCorners)
+        return std::string("away from corners, at ") + pointText(place.point);
+    const std::string corner =
+        std::string("the ") + placeKindName(place.kind) + " " + pointText(place.corner);
+    const double mm = std::round(std::abs(place.pastCorner_mm));
+    std::string text = mm == 0.0 ? "at " : numberText(mm);
+    if (mm != 0.0) text += place.pastCorner_mm > 0 ? " mm past " : " mm short of ";
+    text += corner;
+    return text;
+}
+
+void judgePlaces(const Polygon& outline, double startArc, const CornerCriteria& criteria,
+                 TrialResult& r) {
+    double furthest = 0.0;  // the start, where the first tap is taken
+    for (const auto& t : r.taps) furthest = std::max(furthest, t.progress_mm);
+    r.furthestProgress_mm = furthest;
+    const double arc = startArc + furthest;
+    r.furthest = contourPlace(outline, outline.pointAtArcLength(arc), arc, criteria);
+    r.cornersRounded = {};
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+        if (!isCorner(outline, i, criteria)) continue;
+        const double ahead = wrapped(outline.arcLengthOfVertex(i) - startArc, outline.perimeter());
+        if (!r.completed() && furthest <= ahead + criteria.reach_mm) continue;
+        ++(outline.turnDeg(i) > 0 ? r.cornersRounded.convex : r.cornersRounded.concave);
+    }
 }
 
 std::vector<Vec2> TrialResult::path() const {
@@ -126,7 +222,8 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
     memory.heading = followDirection(setup.startEdgeDeg);
     Vec2 pose = setup.start;
     double progress = 0.0;
-    double lastArc = outline.nearestOutlinePoint(pose).arcLength;
+    const double startArc = outline.nearestOutlinePoint(pose).arcLength;
+    double lastArc = startArc;
     result.end = TrialEnd::TapCap;
 
     try {
@@ -207,13 +304,15 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
         result.end = TrialEnd::DeviceError;
         result.detail = e.what();
     }
+    result.progress_mm = progress;
+    judgePlaces(outline, startArc, cornerCriteria(classes), result);
     if (result.detail.empty()) {
         char buf[160];
         std::snprintf(buf, sizeof buf, "%s after %zu taps, %.0f of %.0f mm of contour",
                       trialEndName(result.end), result.taps.size(), progress, perimeter);
         result.detail = buf;
+        if (!result.completed()) result.detail += "; furthest " + describePlace(result.furthest);
     }
-    result.progress_mm = progress;
     result.robotTime_s = rig.clock.now_s() - startTime;
     measurePath(outline, result.path(), s.coverageRadius_mm, result);
     return result;

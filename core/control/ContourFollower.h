@@ -37,6 +37,40 @@ enum class TrialEnd {
 };
 const char* trialEndName(TrialEnd e);
 
+/// Where on the contour a point lies, for judging trials (never used by the loop): near a
+/// corner, or away from corners.
+enum class PlaceKind { AwayFromCorners, ConvexCorner, ConcaveCorner };
+const char* placeKindName(PlaceKind kind);  ///< "away from corners", "convex corner", ...
+
+/// What counts as a corner, from the perceptual classes: a vertex where the outline turns by at
+/// least half the smallest angle between trained orientations (45 degrees for the paper's four;
+/// the bends of a 64-gon circle are no corners), and "near" it means within half the classes'
+/// window (9 mm for 18 positions at 1 mm), where the fingertip's taps reach it.
+struct CornerCriteria {
+    double minTurn_deg = 45.0;
+    double reach_mm = 9.0;
+};
+CornerCriteria cornerCriteria(const ClassSet& classes);
+
+struct ContourPlace {
+    PlaceKind kind = PlaceKind::AwayFromCorners;
+    Vec2 point;                  ///< the point on the outline
+    Vec2 corner;                 ///< the nearest corner's vertex (corner kinds)
+    double pastCorner_mm = 0.0;  ///< along the contour from the corner: + past it, - short of it
+};
+
+/// The place of outline point `point` (at arc length `arc`): the nearest corner within the
+/// reach, else away from corners.
+ContourPlace contourPlace(const Polygon& outline, Vec2 point, double arc,
+                          const CornerCriteria& criteria);
+
+/// "3 mm past the convex corner (174, 121)", "away from corners, at (150, 121)".
+std::string describePlace(const ContourPlace& place);
+
+struct CornerCount {
+    int convex = 0, concave = 0;
+};
+
 struct TrialResult {
     FollowingMode mode = FollowingMode::Active;
     TrialEnd end = TrialEnd::TapCap;
@@ -47,6 +81,13 @@ struct TrialResult {
     double meanContourDistance_mm = 0.0;
     double maxContourDistance_mm = 0.0;
     double progress_mm = 0.0;
+    /// The furthest the tip got along the contour (the largest progress of any tap), and that
+    /// place on the outline: where a trial that did not complete was last making headway.
+    double furthestProgress_mm = 0.0;
+    ContourPlace furthest;
+    /// Corners the tip got round: went past by more than the reach (every corner, once, for a
+    /// completed trial).
+    CornerCount cornersRounded;
 
     bool completed() const { return end == TrialEnd::Completed; }
     std::vector<Vec2> path() const;
@@ -76,6 +117,11 @@ std::string startProblem(const Polygon& outline, Vec2 start, const FollowingSett
 TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const ClassSet& classes,
                      const Polygon& outline, const TrialSetup& setup,
                      const std::function<bool(const FollowedTap&)>& onTap = {});
+
+/// Where the trial got furthest and which corners it got round, from its taps' progress;
+/// `startArc` is the arc length of the start pose's nearest outline point.
+void judgePlaces(const Polygon& outline, double startArc, const CornerCriteria& criteria,
+                 TrialResult& result);
 
 /// Coverage and contour distances of a path against an outline.
 void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double coverageRadius,

@@ -151,6 +151,12 @@ Vec2 Polygon::pointAtArcLength(double s) const {
     return vertex(i) + t * (vertex(i + 1) - vertex(i));
 }
 
+double Polygon::turnDeg(std::size_t i) const {
+    const std::size_t n = vertices_.size();
+    const Vec2 in = vertex(i) - vertex(i + n - 1), out = vertex(i + 1) - vertex(i);
+    return std::atan2(cross(in, out), dot(in, out)) * 180.0 / M_PI;
+}
+
 Vec2 Polygon::outwardNormal(std::size_t edge) const {
     const Vec2 d = vertex(edge + 1) - vertex(edge);
     const double l = norm(d);

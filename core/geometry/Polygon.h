@@ -49,6 +49,13 @@ public:
     /// The outline point at arc length `s` (wrapped to the perimeter).
     Vec2 pointAtArcLength(double s) const;
 
+    /// Arc length of vertex i, counter-clockwise from vertex 0.
+    double arcLengthOfVertex(std::size_t i) const { return cumulativeLength_[i % size()]; }
+
+    /// How far the outline turns at vertex i, degrees in (-180, 180): positive where it turns
+    /// left (a convex corner, counter-clockwise), negative where it turns right (concave).
+    double turnDeg(std::size_t i) const;
+
     /// Outward unit normal of edge i (from vertex i to vertex i + 1).
     Vec2 outwardNormal(std::size_t edge) const;
 

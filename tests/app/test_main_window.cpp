@@ -930,6 +930,16 @@ private slots:
             for (int c = 0; c < table->columnCount(); ++c)
                 shown += table->item(r, c) && table->item(r, c)->text() == "left the recording";
         QCOMPARE(shown, left);
+        // Each trial that did not complete says where it got furthest, as the CLI does.
+        const int furthest = table->columnCount() - 1;
+        QCOMPARE(table->horizontalHeaderItem(furthest)->text(),
+                 QString("not completed:\ngot furthest"));
+        for (int r = 0; r < table->rowCount(); ++r) {
+            const TrialResult& t = window_->lastRun()->trials[std::size_t(r)].result;
+            QCOMPARE(table->item(r, furthest)->text(),
+                     t.completed() ? QString() : QString::fromStdString(describePlace(t.furthest)));
+            if (!t.completed()) QVERIFY(!table->item(r, furthest)->text().isEmpty());
+        }
 
         // A folder without a following recording is refused, the session kept.
         QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));

@@ -63,6 +63,111 @@ private slots:
         // It went wrong at the lower right corner, after following the lower edge.
         const Vec2 last = t.taps.back().record.pose;
         QVERIFY2(last.x > 174.0, qPrintable(QString("lost at (%1, %2)").arg(last.x).arg(last.y)));
+        // The trial says so: it got no further than that corner, and round none.
+        QCOMPARE(int(t.furthest.kind), int(PlaceKind::ConvexCorner));
+        QCOMPARE(t.furthest.corner, (Vec2{174, 121}));
+        QCOMPARE(t.cornersRounded.convex + t.cornersRounded.concave, 0);
+        QVERIFY2(t.detail.find("furthest") != std::string::npos &&
+                     t.detail.find("the convex corner (174, 121)") != std::string::npos,
+                 t.detail.c_str());
+    }
+
+    void placesOnTheContourAreJudgedFromTheOutline() {
+        // The L (60 x 60, arm 20, at the origin): five convex corners and one concave, at
+        // (-10, -10). Near means within half the classes' window, 9 mm for the paper's 18 x 1 mm.
+        const Polygon l = libraryShape("L", defaultShapeSize("L"));
+        const CornerCriteria c = cornerCriteria(paperClassesWithRegions());
+        QCOMPARE(c.reach_mm, 9.0);
+        QCOMPARE(c.minTurn_deg, 45.0);
+        int convex = 0, concave = 0;
+        for (std::size_t i = 0; i < l.size(); ++i) {
+            const double turn = l.turnDeg(i);
+            QVERIFY(std::abs(std::abs(turn) - 90.0) < 1e-9);
+            ++(turn > 0 ? convex : concave);
+            QVERIFY(std::abs(l.arcLengthOfVertex(i) -
+                             l.nearestOutlinePoint(l.vertex(i)).arcLength) < 1e-9 ||
+                    i == 0);
+        }
+        QCOMPARE(convex, 5);
+        QCOMPARE(concave, 1);
+        auto placeOf = [&](Vec2 p) {
+            const auto o = l.nearestOutlinePoint(p);
+            return contourPlace(l, o.point, o.arcLength, c);
+        };
+        // Counter-clockwise, the tip comes along the top of the horizontal arm (leftward) to the
+        // concave corner, then goes up the inner vertical edge.
+        const ContourPlace shortOf = placeOf({-5, -10});
+        QCOMPARE(int(shortOf.kind), int(PlaceKind::ConcaveCorner));
+        QCOMPARE(shortOf.corner, (Vec2{-10, -10}));
+        QCOMPARE(shortOf.pastCorner_mm, -5.0);
+        QCOMPARE(describePlace(shortOf),
+                 std::string("5 mm short of the concave corner (-10, -10)"));
+        const ContourPlace past = placeOf({-10, -4});
+        QCOMPARE(int(past.kind), int(PlaceKind::ConcaveCorner));
+        QCOMPARE(past.pastCorner_mm, 6.0);
+        QCOMPARE(describePlace(past), std::string("6 mm past the concave corner (-10, -10)"));
+        // Exactly at a convex corner; within the reach and just beyond it.
+        QCOMPARE(describePlace(placeOf({-30, -30})),
+                 std::string("at the convex corner (-30, -30)"));
+        QCOMPARE(int(placeOf({-30, -21.5}).kind), int(PlaceKind::ConvexCorner));     // 8.5 mm
+        QCOMPARE(int(placeOf({-30, -20.9}).kind), int(PlaceKind::AwayFromCorners));  // 9.1 mm
+        const ContourPlace away = placeOf({-30, 0});  // 30 mm from (-30, 30) and (-30, -30)
+        QCOMPARE(int(away.kind), int(PlaceKind::AwayFromCorners));
+        QCOMPARE(describePlace(away), std::string("away from corners, at (-30, 0)"));
+
+        // Gentle bends are no corners: a 64-gon circle has none for four orientations, and eight
+        // orientations count the octagon's 45 degree turns.
+        std::vector<Vec2> circle;
+        for (int i = 0; i < 64; ++i) circle.push_back(15.0 * directionFromDegrees(i * 360.0 / 64));
+        const Polygon round(circle);
+        QCOMPARE(int(contourPlace(round, round.vertex(3), round.arcLengthOfVertex(3), c).kind),
+                 int(PlaceKind::AwayFromCorners));
+        ClassSet eight;
+        eight.orientationsDeg = {0, 45, 90, 135, 180, 225, 270, 315};
+        QCOMPARE(cornerCriteria(eight).minTurn_deg, 22.5);
+        ClassSet one;
+        one.orientationsDeg = {270};
+        QCOMPARE(cornerCriteria(one).minTurn_deg, 180.0);  // nothing is a corner
+    }
+
+    void cornersRoundedAreCountedFromProgress() {
+        // A 40 x 40 square started in the middle of its lower edge: corners 20, 60, 100 and 140
+        // mm ahead. A corner counts as got round once the tip went more than 9 mm past it.
+        const Polygon square({{0, 0}, {40, 0}, {40, 40}, {0, 40}});
+        const CornerCriteria c{45.0, 9.0};
+        const double startArc = 20.0;
+        auto judged = [&](std::vector<double> progress, TrialEnd end) {
+            TrialResult r;
+            r.end = end;
+            for (double p : progress) {
+                FollowedTap t;
+                t.progress_mm = p;
+                r.taps.push_back(t);
+            }
+            judgePlaces(square, startArc, c, r);
+            return r;
+        };
+        TrialResult r = judged({0, 2, 4, 29, 27}, TrialEnd::LostOutside);  // 9 mm past: not round
+        QCOMPARE(r.furthestProgress_mm, 29.0);
+        QCOMPARE(r.furthest.point, (Vec2{40, 9}));
+        QCOMPARE(int(r.furthest.kind), int(PlaceKind::ConvexCorner));
+        QCOMPARE(r.furthest.pastCorner_mm, 9.0);
+        QCOMPARE(r.cornersRounded.convex, 0);
+        r = judged({0, 29.5, 70}, TrialEnd::LostPlaneOrAir);
+        QCOMPARE(r.cornersRounded.convex, 2);
+        QCOMPARE(r.furthest.point, (Vec2{30, 40}));  // 10 mm past (40, 40): beyond its reach
+        QCOMPARE(int(r.furthest.kind), int(PlaceKind::AwayFromCorners));
+        // Backwards from the start: the furthest point is the start itself.
+        r = judged({0, -2, -4}, TrialEnd::LostOutside);
+        QCOMPARE(r.furthest.point, (Vec2{20, 0}));
+        QCOMPARE(int(r.furthest.kind), int(PlaceKind::AwayFromCorners));
+        // A completed trial got round every corner once, however far it went.
+        r = judged({0, 80, 161}, TrialEnd::Completed);
+        QCOMPARE(r.cornersRounded.convex, 4);
+        QCOMPARE(r.cornersRounded.concave, 0);
+        r = judged({}, TrialEnd::DeviceError);  // no tap: it got no further than the start
+        QCOMPARE(r.furthestProgress_mm, 0.0);
+        QCOMPARE(r.cornersRounded.convex, 0);
     }
 
     void everyEndingIsReportedWithItsTaps_data() {
