@@ -515,6 +515,7 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
                 std::printf(", recognised %d (smoothed %d) of %d", o.recognisedRaw(),
                             o.recognisedSmoothed(), o.recognitionTrials());
             std::printf("\n");
+            for (const auto& f : o.passiveShortfalls) std::printf("    %s\n", f.c_str());
             for (const auto& f : o.failures) std::printf("    %s\n", f.c_str());
             for (const auto& m : o.misnamed()) std::printf("    %s\n", m.c_str());
             std::fflush(stdout);

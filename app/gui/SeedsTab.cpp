@@ -74,7 +74,7 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     table_->setHorizontalHeaderLabels(
         {tr("seed"), tr("passive\nlost"), tr("active\ncompleted"), tr("recognised\n(paper's rule)"),
          tr("recognised\n(smoothed)"), tr("angle error\n(deg)"), tr("paper's result\nwhole"),
-         tr("active trials lost,\npaths misnamed")});
+         tr("passive not lost at a corner,\nactive trials lost, paths misnamed")});
     for (int c = 0; c < 7; ++c)
         table_->horizontalHeader()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
     table_->horizontalHeader()->setSectionResizeMode(7, QHeaderView::Stretch);
@@ -162,11 +162,16 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     auto fraction = [](int count, int total) {
         return total > 0 ? QString("%1 / %2").arg(count).arg(total) : QString("-");
     };
-    QStringList shortfalls;  // the active trials lost, then the paths misnamed
+    // The passive trials not lost at a corner, the active trials lost, then the paths misnamed.
+    QStringList shortfalls;
+    for (const auto& f : o.passiveShortfalls) shortfalls << QString::fromStdString(f);
     for (const auto& f : o.failures) shortfalls << QString::fromStdString(f);
     for (const auto& m : o.misnamed()) shortfalls << QString::fromStdString(m);
     table_->setItem(row, 0, cell(QString::number(o.seed)));
-    table_->setItem(row, 1, cell(fraction(o.passiveLost, o.passiveTrials)));
+    QString passive = fraction(o.passiveLost, o.passiveTrials);
+    if (o.passiveLostAtCorner < o.passiveLost)
+        passive += tr(" (%1 at a corner)").arg(o.passiveLostAtCorner);
+    table_->setItem(row, 1, cell(passive));
     table_->setItem(row, 2, cell(fraction(o.activeCompleted, o.activeTrials)));
     table_->setItem(row, 3, cell(fraction(o.recognisedRaw(), o.recognitionTrials())));
     table_->setItem(row, 4, cell(fraction(o.recognisedSmoothed(), o.recognitionTrials())));

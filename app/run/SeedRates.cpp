@@ -119,6 +119,9 @@ SeedOutcome seedOutcome(const RunResult& run) {
             o.passiveLostAtCorner +=
                 !t.result.completed() && t.result.furthest.kind != PlaceKind::AwayFromCorners;
             o.passiveCorners.add(t.result);
+            if (t.result.completed() || t.result.furthest.kind == PlaceKind::AwayFromCorners)
+                o.passiveShortfalls.push_back("passive " + t.label + " trial " +
+                                              std::to_string(t.trial) + ": " + t.result.detail);
             Rate& label = rateOf(o.passiveByLabel, t.label);
             ++label.total;
             label.count += !t.result.completed();
@@ -369,6 +372,7 @@ Json seedRatesJson(const SeedRates& r) {
              {"paper_result_smoothed",
               s.paperResultApplies() ? Json(s.paperResultSmoothed()) : Json(nullptr)},
              {"active_failures", s.failures},
+             {"passive_not_lost_at_a_corner", s.passiveShortfalls},
              {"misnamed_paths", s.misnamed()}});
     auto byLabel = [](const RatesByLabel& rates) {
         Json list = Json::array();
@@ -514,7 +518,8 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
                      "recognition_trials,recognised_raw,recognised_smoothed,completed_taps,"
                      "completed_robot_time_s,"
                      "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
-                     "paper_result,paper_result_smoothed,active_failures,misnamed_paths\n");
+                     "paper_result,paper_result_smoothed,active_failures,misnamed_paths,"
+                     "passive_not_lost_at_a_corner\n");
         std::fflush(file.get());
     }
     for (std::uint64_t seed = first; seed <= last; ++seed) {
@@ -529,12 +534,13 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
                                    : o.paperResultSmoothed() ? "1"
                                                              : "0";
             std::fprintf(
-                file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s\n",
+                file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s,%s\n",
                 static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
                 o.passiveLostAtCorner, o.activeTrials, o.activeCompleted, o.recognitionTrials(),
                 o.recognisedRaw(), o.recognisedSmoothed(), o.completedTaps, o.completedRobotTime_s,
                 o.runRobotTime_s, o.angleError_deg, o.positionError_mm, paper, smoothed,
-                csvField(o.failures).c_str(), csvField(o.misnamed()).c_str());
+                csvField(o.failures).c_str(), csvField(o.misnamed()).c_str(),
+                csvField(o.passiveShortfalls).c_str());
             std::fflush(file.get());
         }
         if (seedDone && !seedDone(o)) break;

@@ -66,9 +66,11 @@ struct SeedOutcome {
     double runRobotTime_s = 0.0;        ///< the whole run, training included
     double angleError_deg = 0.0, positionError_mm = 0.0;  ///< offline validation
     std::vector<std::string> failures;  ///< "cross trial 2: lost: ..." for each active trial lost
-    std::vector<PathNaming> namings;    ///< each recognised completed active path
-    RatesByLabel activeByLabel;         ///< active trials completed, per trial label
-    RatesByLabel passiveByLabel;        ///< passive trials lost, per trial label
+    /// "passive rectangle trial 2: completed ..." for each passive trial not lost at a corner.
+    std::vector<std::string> passiveShortfalls;
+    std::vector<PathNaming> namings;  ///< each recognised completed active path
+    RatesByLabel activeByLabel;       ///< active trials completed, per trial label
+    RatesByLabel passiveByLabel;      ///< passive trials lost, per trial label
     /// The completed trials of each mode: a passive trial that gets round does so without ever
     /// correcting its offset from the edge, and these say how closely it traced the contour.
     Tracing activeTracing, passiveTracing;

@@ -524,7 +524,8 @@ private slots:
         QVERIFY(csv.open(QIODevice::ReadOnly));
         const QStringList rows = QString(csv.readAll()).trimmed().split('\n');
         QCOMPARE(rows.size(), 4);  // header + seeds 2, 3, 4
-        QVERIFY(rows[0].endsWith(",paper_result_smoothed,active_failures,misnamed_paths"));
+        QVERIFY(rows[0].endsWith(
+            ",paper_result_smoothed,active_failures,misnamed_paths,passive_not_lost_at_a_corner"));
         QVERIFY(
             rows[0].startsWith("seed,passive_trials,passive_lost,passive_lost_at_a_corner,"
                                "active_trials,"));

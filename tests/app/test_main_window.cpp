@@ -52,6 +52,7 @@ namespace {
 /// What a seeds row lists as falling short: the active trials lost, then the paths misnamed.
 QString shortfallsOf(const SeedOutcome& o) {
     QStringList items;
+    for (const auto& f : o.passiveShortfalls) items << QString::fromStdString(f);
     for (const auto& f : o.failures) items << QString::fromStdString(f);
     for (const auto& m : o.misnamed()) items << QString::fromStdString(m);
     return items.join("; ");

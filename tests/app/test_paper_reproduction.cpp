@@ -72,6 +72,24 @@ private slots:
         QVERIFY(lost >= 18);
         QCOMPARE(rates_.passiveLostAtCorner().count, lost);
         QCOMPARE(rates_.passiveLostAtCorner().total, 20);
+
+        // A passive trial lost away from the corners is not the paper's result: the run falls
+        // short and says which trial.
+        RunResult run = runs_.front();
+        QVERIFY(seedOutcome(run).paperResult());
+        for (auto& t : run.trials)
+            if (t.result.mode == FollowingMode::Passive && t.trial == 2)
+                t.result.furthest.kind = PlaceKind::AwayFromCorners;
+        SeedRates one;
+        one.seeds.push_back(seedOutcome(run));
+        const SeedOutcome& o = one.seeds.front();
+        QCOMPARE(o.passiveLost, 2);
+        QCOMPARE(o.passiveLostAtCorner, 1);
+        QVERIFY(!o.paperResult());
+        QCOMPARE(one.shortOfPaper().passiveNotLost, 1);
+        QCOMPARE(o.passiveShortfalls.size(), std::size_t(1));
+        QVERIFY2(o.passiveShortfalls[0].rfind("passive rectangle trial 2: lost", 0) == 0,
+                 o.passiveShortfalls[0].c_str());
         // The default seed shows the paper's result: both passive trials lost.
         for (const auto& t : runs_.front().trials)
             if (t.result.mode == FollowingMode::Passive) QVERIFY(!t.result.completed());
