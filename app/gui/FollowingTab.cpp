@@ -191,6 +191,13 @@ void FollowingTab::replay(int index, int tap) {
     for (int i = 0; i <= tap; ++i)
         done.push_back(t.result.taps[static_cast<std::size_t>(i)].record.pose);
     curve(done, false, QPen(QColor(31, 119, 180), 1), 4);
+    // A trial that did not complete: where along the contour it got furthest, a hollow diamond.
+    if (!t.result.completed()) {
+        const QColor orange(255, 127, 14);
+        QCPCurve* furthest = curve({t.result.furthest.point}, false, QPen(orange, 2), 0);
+        furthest->setScatterStyle(
+            QCPScatterStyle(QCPScatterStyle::ssDiamond, QPen(orange, 2), QBrush(Qt::NoBrush), 14));
+    }
     const FollowedTap& f = t.result.taps[static_cast<std::size_t>(tap)];
     curve({f.record.pose}, false, QPen(QColor(214, 39, 40), 2), 10);
     curve({f.record.pose, f.record.pose + f.decision.move()}, false,
@@ -214,7 +221,12 @@ void FollowingTab::replay(int index, int tap) {
                        .arg(f.percept.posterior, 0, 'f', 3)
                        .arg(rule.name, rule.when, rule.then)
                        .arg(f.progress_mm, 0, 'f', 0)
-                       .arg(std::abs(f.contourDistance_mm), 0, 'f', 1));
+                       .arg(std::abs(f.contourDistance_mm), 0, 'f', 1) +
+                   (t.result.completed()
+                        ? QString()
+                        : tr(" The trial got furthest (diamond) %1, at progress %2 mm.")
+                              .arg(QString::fromStdString(describePlace(t.result.furthest)))
+                              .arg(t.result.furthestProgress_mm, 0, 'f', 0)));
 }
 
 QString FollowingTab::replayText() const {

@@ -723,6 +723,10 @@ private slots:
         QVERIFY2(following->replayText().startsWith(
                      QString("Tap %1 of %1 ").arg(run->trials[lost].result.taps.size())),
                  qPrintable(following->replayText()));
+        // The lost trial's replay says where it got furthest along the contour.
+        QVERIFY2(following->replayText().contains(
+                     QString::fromStdString(describePlace(run->trials[lost].result.furthest))),
+                 qPrintable(following->replayText()));
 
         // Double-clicking another row runs its seed.
         const int other = row == 0 ? 1 : 0;
