@@ -66,6 +66,7 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
         Vec2 lo{1e9, 1e9}, hi{-1e9, -1e9};
         bool outlineDrawn = false;
         QCPCurve* firstEnd = nullptr;
+        std::vector<Vec2> furthest;  // of the trials that did not complete, drawn over the paths
         for (const auto& t : r.trials) {
             if (t.result.mode != mode || t.label != labels[i]) continue;
             if (!outlineDrawn) {
@@ -98,6 +99,7 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
                                                      Qt::NoBrush, 13));
                 end->setName("where the trial ended");
                 if (!firstEnd) firstEnd = end;
+                furthest.push_back(t.result.furthest.point);
             }
             for (Vec2 v : t.result.path()) {
                 lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
@@ -105,6 +107,15 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
             }
         }
         if (firstEnd) legend->addItem(new QCPPlottableLegendItem(legend, firstEnd));
+        if (!furthest.empty()) {
+            // The contour points those trials got furthest to before they went astray.
+            auto* marks = polyline(rect, furthest, false);
+            marks->setLineStyle(QCPCurve::lsNone);
+            marks->setScatterStyle(QCPScatterStyle(
+                QCPScatterStyle::ssDiamond, QPen(QColor(255, 127, 14), 2.5), Qt::NoBrush, 13));
+            marks->setName("furthest along the contour");
+            legend->addItem(new QCPPlottableLegendItem(legend, marks));
+        }
         // Room above the paths for the legend.
         const double margin = 8.0;
         setEqualAspectRanges(rect, QCPRange(lo.x - margin, hi.x + margin),

@@ -73,11 +73,28 @@ private slots:
         }
         QCOMPARE(marks, 2);
         QCOMPARE(inLegend, 1);
+        // And where along the contour each got furthest: one series over the paths, both points.
+        std::vector<Vec2> furthest;
+        for (int i = 0; i < plot.plottableCount(); ++i)
+            if (auto* c = qobject_cast<QCPCurve*>(plot.plottable(i));
+                c && c->name() == "furthest along the contour") {
+                QCOMPARE(i, plot.plottableCount() - 1);  // drawn last, over every path
+                for (auto d = c->data()->begin(); d != c->data()->end(); ++d)
+                    furthest.push_back({d->key, d->value});
+            }
+        QCOMPARE(int(furthest.size()), 2);
+        for (const auto& t : paper.trials)
+            if (t.result.mode == FollowingMode::Passive)
+                QVERIFY(std::any_of(furthest.begin(), furthest.end(), [&](Vec2 p) {
+                    return distance(p, t.result.furthest.point) < 1e-9;
+                }));
         // Every active trial of seed 1 completed: no marks there.
         QCustomPlot active;
         QVERIFY(buildPathFigure(active, paper, FollowingMode::Active, "active"));
-        for (int i = 0; i < active.plottableCount(); ++i)
+        for (int i = 0; i < active.plottableCount(); ++i) {
             QVERIFY(active.plottable(i)->name() != "where the trial ended");
+            QVERIFY(active.plottable(i)->name() != "furthest along the contour");
+        }
     }
 
     void theErrorFigureNamesALikelihoodOtherThanThePapers() {
