@@ -169,8 +169,8 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     for (const auto& m : o.misnamed()) shortfalls << QString::fromStdString(m);
     table_->setItem(row, 0, cell(QString::number(o.seed)));
     QString passive = fraction(o.passiveLost, o.passiveTrials);
-    if (o.passiveLostAtCorner < o.passiveLost)
-        passive += tr(" (%1 at a corner)").arg(o.passiveLostAtCorner);
+    if (o.passiveLostAtCorner() < o.passiveLost)
+        passive += tr(" (%1 at a corner)").arg(o.passiveLostAtCorner());
     table_->setItem(row, 1, cell(passive));
     table_->setItem(row, 2, cell(fraction(o.activeCompleted, o.activeTrials)));
     table_->setItem(row, 3, cell(fraction(o.recognisedRaw(), o.recognitionTrials())));

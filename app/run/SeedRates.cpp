@@ -116,8 +116,6 @@ SeedOutcome seedOutcome(const RunResult& run) {
         if (t.result.mode == FollowingMode::Passive) {
             ++o.passiveTrials;
             o.passiveLost += !t.result.completed();
-            o.passiveLostAtCorner +=
-                !t.result.completed() && t.result.furthest.kind != PlaceKind::AwayFromCorners;
             o.passiveCorners.add(t.result);
             if (t.result.completed() || t.result.furthest.kind == PlaceKind::AwayFromCorners)
                 o.passiveShortfalls.push_back("passive " + t.label + " trial " +
@@ -229,7 +227,7 @@ Rate passiveLostIn(const SeedOutcome& s) {
     return {s.passiveLost, s.passiveTrials};
 }
 Rate passiveLostAtCornerIn(const SeedOutcome& s) {
-    return {s.passiveLostAtCorner, s.passiveTrials};
+    return {s.passiveLostAtCorner(), s.passiveTrials};
 }
 Rate activeCompletedIn(const SeedOutcome& s) {
     return {s.activeCompleted, s.activeTrials};
@@ -275,7 +273,7 @@ ShortOfPaper SeedRates::shortOfPaper() const {
     for (const auto& o : seeds) {
         if (!o.paperResultApplies() || o.paperResult()) continue;
         ++s.runs;
-        s.passiveNotLost += o.passiveLostAtCorner < o.passiveTrials;
+        s.passiveNotLost += o.passiveLostAtCorner() < o.passiveTrials;
         s.activeLost += o.activeCompleted < o.activeTrials;
         s.misnamedRaw += o.recognisedRaw() < o.recognitionTrials();
     }
@@ -359,7 +357,7 @@ Json seedRatesJson(const SeedRates& r) {
             {{"seed", s.seed},
              {"passive_trials", s.passiveTrials},
              {"passive_lost", s.passiveLost},
-             {"passive_lost_at_a_corner", s.passiveLostAtCorner},
+             {"passive_lost_at_a_corner", s.passiveLostAtCorner()},
              {"active_trials", s.activeTrials},
              {"active_completed", s.activeCompleted},
              {"recognition_trials", s.recognitionTrials()},
@@ -536,7 +534,7 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
             std::fprintf(
                 file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s,%s\n",
                 static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
-                o.passiveLostAtCorner, o.activeTrials, o.activeCompleted, o.recognitionTrials(),
+                o.passiveLostAtCorner(), o.activeTrials, o.activeCompleted, o.recognitionTrials(),
                 o.recognisedRaw(), o.recognisedSmoothed(), o.completedTaps, o.completedRobotTime_s,
                 o.runRobotTime_s, o.angleError_deg, o.positionError_mm, paper, smoothed,
                 csvField(o.failures).c_str(), csvField(o.misnamed()).c_str(),

@@ -58,7 +58,6 @@ struct CornerTally {
 struct SeedOutcome {
     std::uint64_t seed = 0;
     int passiveTrials = 0, passiveLost = 0;
-    int passiveLostAtCorner = 0;  ///< lost where it got no further than near a corner
     int activeTrials = 0, activeCompleted = 0;
     bool recognition = false;           ///< the experiment recognises shapes from the paths
     int completedTaps = 0;              ///< taps of the completed active trials
@@ -75,6 +74,10 @@ struct SeedOutcome {
     /// correcting its offset from the edge, and these say how closely it traced the contour.
     Tracing activeTracing, passiveTracing;
     CornerTally activeCorners, passiveCorners;
+    /// Passive trials lost where they got no further than near a corner.
+    int passiveLostAtCorner() const {
+        return passiveCorners.endedConvex + passiveCorners.endedConcave;
+    }
 
     /// Completed active paths recognition looked at, and of those the ones each rule named rightly.
     int recognitionTrials() const { return static_cast<int>(namings.size()); }
@@ -95,7 +98,7 @@ struct SeedOutcome {
     }
     /// The paper's parts, every passive trial lost at a corner and every active trial completed.
     bool paperFollowing() const {
-        return paperResultApplies() && passiveLostAtCorner == passiveTrials &&
+        return paperResultApplies() && passiveLostAtCorner() == passiveTrials &&
                activeCompleted == activeTrials;
     }
 };

@@ -84,7 +84,7 @@ private slots:
         one.seeds.push_back(seedOutcome(run));
         const SeedOutcome& o = one.seeds.front();
         QCOMPARE(o.passiveLost, 2);
-        QCOMPARE(o.passiveLostAtCorner, 1);
+        QCOMPARE(o.passiveLostAtCorner(), 1);
         QVERIFY(!o.paperResult());
         QCOMPARE(one.shortOfPaper().passiveNotLost, 1);
         QCOMPARE(o.passiveShortfalls.size(), std::size_t(1));
@@ -275,7 +275,7 @@ private slots:
         QCOMPARE(s.runs, rates_.paperResult().total - rates_.paperResult().count);
         int passive = 0, active = 0, misnamed = 0;
         for (const SeedOutcome& o : rates_.seeds) {
-            passive += o.passiveLostAtCorner < o.passiveTrials;
+            passive += o.passiveLostAtCorner() < o.passiveTrials;
             active += o.activeCompleted < o.activeTrials;
             misnamed += o.recognisedRaw() < o.recognitionTrials();
         }
@@ -289,7 +289,7 @@ private slots:
         // smoothed histograms, and the summary says which part it missed.
         SeedRates one;
         SeedOutcome o;
-        o.passiveTrials = o.passiveLost = o.passiveLostAtCorner = 2;
+        o.passiveTrials = o.passiveLost = o.passiveCorners.endedConvex = 2;
         o.activeTrials = o.activeCompleted = 8;
         o.recognition = true;
         for (int trial = 1; trial <= 8; ++trial)
