@@ -90,9 +90,12 @@ private slots:
         QCOMPARE(o.passiveShortfalls.size(), std::size_t(1));
         QVERIFY2(o.passiveShortfalls[0].rfind("passive rectangle trial 2: lost", 0) == 0,
                  o.passiveShortfalls[0].c_str());
-        // The default seed shows the paper's result: both passive trials lost.
+        // The default seed shows the paper's result: both passive trials lost at a corner.
         for (const auto& t : runs_.front().trials)
-            if (t.result.mode == FollowingMode::Passive) QVERIFY(!t.result.completed());
+            if (t.result.mode == FollowingMode::Passive) {
+                QVERIFY(!t.result.completed());
+                QCOMPARE(int(t.result.furthest.kind), int(PlaceKind::ConvexCorner));
+            }
     }
 
     void cornersSayWhereTrialsStop() {
