@@ -82,13 +82,14 @@ void printHelp() {
         "      Runs the experiment once per seed A..B (each a whole run: its own data sets,\n"
         "      training, valid range and trials) and reports the rates with 95 %% intervals:\n"
         "      passive trials lost (and lost at a corner), active trials completed (and per\n"
-        "      trial label), where the trials that did not complete got furthest, the convex\n"
-        "      and concave corners each mode got round, active paths recognised by both rules\n"
-        "      (and which shapes each misnamed as which), runs with the paper's result whole.\n"
-        "      Writes <dir>/rates.csv (a row per seed, appended\n"
-        "      as each finishes), <dir>/rates.json (with the recognition confusion)\n"
-        "      and <dir>/figures/seed_rates.{png,pdf,svg} (each seed's outcome and the rates so\n"
-        "      far with their intervals). --out defaults to results/<experiment name>_seeds.\n"
+        "      trial label, and per valid range the runs picked), where the trials that did\n"
+        "      not complete got furthest, the convex and concave corners each mode got round,\n"
+        "      active paths recognised by both rules (and which shapes each misnamed as\n"
+        "      which), runs with the paper's result whole. Writes <dir>/rates.csv (a row per\n"
+        "      seed, appended as each finishes), <dir>/rates.json (with the recognition\n"
+        "      confusion) and <dir>/figures/seed_rates.{png,pdf,svg} (each seed's outcome and\n"
+        "      the rates so far with their intervals). --out defaults to\n"
+        "      results/<experiment name>_seeds.\n"
         "  activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>] [--no-figures]\n"
         "      Re-analyses recorded training and test taps (a run's data/taps.csv, from the\n"
         "      simulated or the real rig) with the experiment's classes, classifier, training\n"
@@ -263,9 +264,9 @@ void printReport(const RunResult& result, double wall, double figures_s,
     const auto& v = result.validation;
     std::printf(
         "validation: angle error %.2f deg, position error %.3f mm, class accuracy %.1f %%, "
-        "valid range %d-%d mm\n",
-        v.angleError_deg, v.positionError_mm, 100.0 * v.correctFraction, v.validRange.first,
-        v.validRange.last);
+        "%s\n",
+        v.angleError_deg, v.positionError_mm, 100.0 * v.correctFraction,
+        v.validRange.text().c_str());
     if (const std::string note = followingClassifierNote(result); !note.empty())
         std::printf("%s\n", note.c_str());
     if (const auto& m = result.measuredNoiseFloor)

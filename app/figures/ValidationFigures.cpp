@@ -61,7 +61,7 @@ void shadeValidRange(QCPAxisRect* rect, const RunResult& r, double yMax) {
     label->position->setAxisRect(rect);
     label->position->setCoords(0.5 * (vr.first + vr.last), yMax * 0.97);
     label->setPositionAlignment(Qt::AlignTop | Qt::AlignHCenter);
-    label->setText(QString("valid range %1-%2 mm").arg(vr.first).arg(vr.last));
+    label->setText(QString::fromStdString(vr.text()));
     label->setColor(QColor(30, 110, 45));
 }
 

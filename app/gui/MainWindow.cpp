@@ -620,11 +620,10 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
     progress_->setFormat(tr("%1: %2 taps").arg(state).arg(taps));
     status_->setText(tr("%1, results in %2").arg(state, dir));
     if (!r.validation.byClass.empty())
-        log(tr("validation: angle error %1 deg, position error %2 mm, valid range %3-%4 mm")
+        log(tr("validation: angle error %1 deg, position error %2 mm, %3")
                 .arg(r.validation.angleError_deg, 0, 'f', 2)
                 .arg(r.validation.positionError_mm, 0, 'f', 3)
-                .arg(r.validation.validRange.first)
-                .arg(r.validation.validRange.last));
+                .arg(QString::fromStdString(r.validation.validRange.text())));
     if (const std::string note = followingClassifierNote(r); !note.empty())
         log(QString::fromStdString(note));
     for (const auto& t : r.trials)

@@ -70,17 +70,18 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     // figure beside it (the status bar and the log name the folder too).
     summary_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
     ll->addWidget(summary_);
-    table_ = new QTableWidget(0, 8);
+    table_ = new QTableWidget(0, 9);
     table_->setHorizontalHeaderLabels(
         {tr("seed"), tr("passive\nlost"), tr("active\ncompleted"), tr("recognised\n(paper's rule)"),
-         tr("recognised\n(smoothed)"), tr("angle error\n(deg)"), tr("paper's result\nwhole"),
+         tr("recognised\n(smoothed)"), tr("angle error\n(deg)"), tr("valid range\n(mm)"),
+         tr("paper's result\nwhole"),
          tr("passive not lost at a corner,\nactive trials lost, paths misnamed")});
-    for (int c = 0; c < 7; ++c)
+    for (int c = 0; c < 8; ++c)
         table_->horizontalHeader()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
-    table_->horizontalHeader()->setSectionResizeMode(7, QHeaderView::Stretch);
+    table_->horizontalHeader()->setSectionResizeMode(8, QHeaderView::Stretch);
     // The shortfalls are read from their start, as the cells beneath are, when the column is
     // narrower than its heading.
-    table_->horizontalHeaderItem(7)->setTextAlignment(Qt::AlignLeft | Qt::AlignVCenter);
+    table_->horizontalHeaderItem(8)->setTextAlignment(Qt::AlignLeft | Qt::AlignVCenter);
     table_->setWordWrap(false);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     table_->setSelectionBehavior(QAbstractItemView::SelectRows);
@@ -176,13 +177,14 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     table_->setItem(row, 3, cell(fraction(o.recognisedRaw(), o.recognitionTrials())));
     table_->setItem(row, 4, cell(fraction(o.recognisedSmoothed(), o.recognitionTrials())));
     table_->setItem(row, 5, cell(QString::number(o.angleError_deg, 'f', 2)));
-    table_->setItem(row, 6,
+    table_->setItem(row, 6, cell(QString("%1-%2").arg(o.validRange.first).arg(o.validRange.last)));
+    table_->setItem(row, 7,
                     cell(!o.paperResultApplies() ? QString("-")
                          : o.paperResult()       ? tr("yes")
                                                  : tr("no")));
     auto* shortfall = new QTableWidgetItem(shortfalls.join("; "));
     shortfall->setToolTip(shortfalls.join("\n"));
-    table_->setItem(row, 7, shortfall);
+    table_->setItem(row, 8, shortfall);
     // A run that lost an active trial is red; one that only misnamed a path (paper's rule), amber.
     const bool lostActive = o.activeCompleted < o.activeTrials,
                misnamedRaw = o.recognisedRaw() < o.recognitionTrials();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <utility>
 
@@ -110,6 +111,7 @@ SeedOutcome seedOutcome(const RunResult& run) {
     o.runRobotTime_s = run.robotTime_s;
     o.angleError_deg = run.validation.angleError_deg;
     o.positionError_mm = run.validation.positionError_mm;
+    o.validRange = run.validation.validRange;
     o.recognition = run.spec.recognition.enabled;
     for (const TrialRun& t : run.trials) {
         const Tracing traced{1, t.result.coverage, t.result.meanContourDistance_mm};
@@ -300,6 +302,21 @@ RatesByLabel SeedRates::activeCompletedByLabel() const {
 RatesByLabel SeedRates::passiveLostByLabel() const {
     return byLabel(&SeedOutcome::passiveByLabel);
 }
+std::vector<std::pair<std::string, std::pair<int, Rate>>> SeedRates::activeCompletedByValidRange()
+    const {
+    std::map<std::pair<int, int>, std::pair<std::string, std::pair<int, Rate>>> byRange;
+    for (const auto& s : seeds) {
+        if (s.activeTrials == 0) continue;
+        auto& [label, entry] = byRange[{s.validRange.first, s.validRange.last}];
+        label = s.validRange.text();
+        ++entry.first;
+        entry.second.count += s.activeCompleted;
+        entry.second.total += s.activeTrials;
+    }
+    std::vector<std::pair<std::string, std::pair<int, Rate>>> list;
+    for (auto& [range, entry] : byRange) list.push_back(entry);
+    return list;
+}
 
 Tracing SeedRates::tracing(FollowingMode mode) const {
     Tracing sum;
@@ -340,6 +357,16 @@ Json tracingJson(const Tracing& t) {
             {"mean_contour_distance_mm_mean",
              t.trials > 0 ? Json(t.meanDistance_mm()) : Json(nullptr)}};
 }
+Json byValidRange(const SeedRates& r) {
+    Json list = Json::array();
+    for (const auto& [label, entry] : r.activeCompletedByValidRange()) {
+        Json j = rateJson(entry.second);
+        j["valid_range"] = label;
+        j["runs"] = entry.first;
+        list.push_back(j);
+    }
+    return list;
+}
 Json cornersJson(const CornerTally& t) {
     return {{"not_completed_got_furthest_near",
              {{"convex_corner", t.endedConvex},
@@ -365,6 +392,7 @@ Json seedRatesJson(const SeedRates& r) {
              {"recognised_smoothed", s.recognisedSmoothed()},
              {"validation_angle_error_deg", s.angleError_deg},
              {"validation_position_error_mm", s.positionError_mm},
+             {"valid_range_positions", {s.validRange.first, s.validRange.last}},
              {"run_robot_time_s", s.runRobotTime_s},
              {"paper_result", s.paperResultApplies() ? Json(s.paperResult()) : Json(nullptr)},
              {"paper_result_smoothed",
@@ -387,6 +415,7 @@ Json seedRatesJson(const SeedRates& r) {
             {"passive_lost", rateJson(r.passiveLost())},
             {"passive_lost_by_label", byLabel(r.passiveLostByLabel())},
             {"passive_lost_at_a_corner", rateJson(r.passiveLostAtCorner())},
+            {"active_completed_by_valid_range", byValidRange(r)},
             {"active_completed", rateJson(r.activeCompleted())},
             {"active_completed_by_label", byLabel(r.activeCompletedByLabel())},
             {"recognised_raw", rateJson(r.recognisedRaw())},
@@ -448,6 +477,15 @@ std::vector<std::string> describeRates(const SeedRates& r) {
         if (c.convexRounded().total > 0) line("convex corners got round, " + m, c.convexRounded());
         if (c.concaveRounded().total > 0)
             line("concave corners got round, " + m, c.concaveRounded());
+    }
+    // Where the validation put the valid range decides where the active tip runs, so completion
+    // is given per valid range when the runs picked more than one.
+    if (const auto byRange = r.activeCompletedByValidRange(); byRange.size() > 1) {
+        lines.push_back("active trials completed by the valid range each run picked:");
+        for (const auto& [label, entry] : byRange)
+            line("  " + label.substr(std::string("valid range ").size()) + ", " +
+                     std::to_string(entry.first) + (entry.first == 1 ? " run" : " runs"),
+                 entry.second);
     }
     const RecognitionConfusion confusion = r.confusion();
     line("recognised, paper's rule", r.recognisedRaw());
@@ -516,6 +554,7 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
                      "recognition_trials,recognised_raw,recognised_smoothed,completed_taps,"
                      "completed_robot_time_s,"
                      "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
+                     "valid_range_positions,"
                      "paper_result,paper_result_smoothed,active_failures,misnamed_paths,"
                      "passive_not_lost_at_a_corner\n");
         std::fflush(file.get());
@@ -532,13 +571,14 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
                                    : o.paperResultSmoothed() ? "1"
                                                              : "0";
             std::fprintf(
-                file.get(), "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s,%s\n",
+                file.get(),
+                "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%d-%d,%s,%s,%s,%s,%s\n",
                 static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
                 o.passiveLostAtCorner(), o.activeTrials, o.activeCompleted, o.recognitionTrials(),
                 o.recognisedRaw(), o.recognisedSmoothed(), o.completedTaps, o.completedRobotTime_s,
-                o.runRobotTime_s, o.angleError_deg, o.positionError_mm, paper, smoothed,
-                csvField(o.failures).c_str(), csvField(o.misnamed()).c_str(),
-                csvField(o.passiveShortfalls).c_str());
+                o.runRobotTime_s, o.angleError_deg, o.positionError_mm, o.validRange.first,
+                o.validRange.last, paper, smoothed, csvField(o.failures).c_str(),
+                csvField(o.misnamed()).c_str(), csvField(o.passiveShortfalls).c_str());
             std::fflush(file.get());
         }
         if (seedDone && !seedDone(o)) break;

@@ -64,6 +64,7 @@ struct SeedOutcome {
     double completedRobotTime_s = 0.0;  ///< their robot time
     double runRobotTime_s = 0.0;        ///< the whole run, training included
     double angleError_deg = 0.0, positionError_mm = 0.0;  ///< offline validation
+    ValidRange validRange;                                ///< the positions the validation picked
     std::vector<std::string> failures;  ///< "cross trial 2: lost: ..." for each active trial lost
     /// "passive rectangle trial 2: completed ..." for each passive trial not lost at a corner.
     std::vector<std::string> passiveShortfalls;
@@ -157,6 +158,9 @@ struct SeedRates {
     RecognitionConfusion confusion() const;
     RatesByLabel activeCompletedByLabel() const;
     RatesByLabel passiveLostByLabel() const;
+    /// Active trials completed over the runs whose validation picked each valid range (as the
+    /// run prints it), lowest positions first; and how many runs picked it.
+    std::vector<std::pair<std::string, std::pair<int, Rate>>> activeCompletedByValidRange() const;
     /// A per-label rate of every seed, summed per label in the order the labels first came.
     RatesByLabel byLabel(RatesByLabel SeedOutcome::*which) const;
     Tracing tracing(FollowingMode mode) const;      ///< of the completed trials in `mode`

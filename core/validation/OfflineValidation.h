@@ -2,6 +2,7 @@
 // Offline validation (paper Figures 5, 6; DESIGN.md §2): classify every test tap and measure,
 // per (orientation, position), the mean angle error (deg) and position error (mm); average over
 // orientations with +-1 std; derive the valid range for repositioning from those errors.
+#include <string>
 #include <vector>
 
 #include "core/classify/HistogramClassifier.h"
@@ -44,6 +45,10 @@ struct ClassError {
 struct ValidRange {
     int first = 1, last = 1;  ///< class positions, inclusive
     double score = 0.0;
+    /// "valid range 8-11 mm", as runs print it (positions, which are millimetres at 1 mm steps).
+    std::string text() const {
+        return "valid range " + std::to_string(first) + "-" + std::to_string(last) + " mm";
+    }
 };
 ValidRange deriveValidRange(const std::vector<double>& angleByPosition,
                             const std::vector<double>& positionByPosition, int width);

@@ -660,8 +660,10 @@ private slots:
                      QString("%1 / %2").arg(o.passiveLost).arg(o.passiveTrials));
             QCOMPARE(table->item(i, 2)->text(),
                      QString("%1 / %2").arg(o.activeCompleted).arg(o.activeTrials));
-            QCOMPARE(table->item(i, 6)->text(), QString(o.paperResult() ? "yes" : "no"));
-            QCOMPARE(table->item(i, 7)->text(), shortfallsOf(o));
+            QCOMPARE(table->item(i, 6)->text(),
+                     QString("%1-%2").arg(o.validRange.first).arg(o.validRange.last));
+            QCOMPARE(table->item(i, 7)->text(), QString(o.paperResult() ? "yes" : "no"));
+            QCOMPARE(table->item(i, 8)->text(), shortfallsOf(o));
         }
         for (const Rate& r : {direct.activeCompleted(), direct.passiveLost()})
             QVERIFY2(tab->summaryText().contains(QString("%1 / %2").arg(r.count).arg(r.total)),
@@ -712,7 +714,7 @@ private slots:
         const SeedOutcome again = seedOutcome(*run);
         QCOMPARE(QString("%1 / %2").arg(again.activeCompleted).arg(again.activeTrials),
                  table->item(row, 2)->text());
-        QCOMPARE(table->item(row, 7)->text(), shortfallsOf(again));
+        QCOMPARE(table->item(row, 8)->text(), shortfallsOf(again));
         std::size_t lost = 0;
         while (run->trials[lost].result.mode != FollowingMode::Active ||
                run->trials[lost].result.completed())

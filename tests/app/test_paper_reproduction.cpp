@@ -140,6 +140,44 @@ private slots:
         }));
     }
 
+    void completionIsGivenPerValidRange() {
+        // Each run's validation picks its own valid range; completion is summed over the runs that
+        // picked each one, every run and trial counted once, labelled as the run prints it.
+        const auto byRange = rates_.activeCompletedByValidRange();
+        int runs = 0;
+        Rate sum;
+        for (const auto& [label, entry] : byRange) {
+            runs += entry.first;
+            sum.count += entry.second.count;
+            sum.total += entry.second.total;
+            QCOMPARE(entry.second.total, 8 * entry.first);
+        }
+        QCOMPARE(runs, 10);
+        QCOMPARE(sum.count, rates_.activeCompleted().count);
+        QCOMPARE(sum.total, rates_.activeCompleted().total);
+        const ValidRange& first = runs_.front().validation.validRange;
+        QCOMPARE(rates_.seeds.front().validRange.first, first.first);
+        QVERIFY(std::any_of(byRange.begin(), byRange.end(),
+                            [&](const auto& e) { return e.first == first.text(); }));
+        std::vector<int> firsts;  // each range's first position: increasing
+        for (const auto& [label, entry] : byRange)
+            for (const SeedOutcome& o : rates_.seeds)
+                if (o.validRange.text() == label) {
+                    firsts.push_back(o.validRange.first);
+                    break;
+                }
+        QCOMPARE(firsts.size(), byRange.size());
+        QVERIFY(std::is_sorted(firsts.begin(), firsts.end()));
+        const Json j = seedRatesJson(rates_);
+        QCOMPARE(j["active_completed_by_valid_range"].size(), byRange.size());
+        QCOMPARE(j["seeds"][0]["valid_range_positions"][0].get<int>(), first.first);
+        const auto lines = describeRates(rates_);
+        const bool several = byRange.size() > 1;
+        QCOMPARE(std::count(lines.begin(), lines.end(),
+                            "active trials completed by the valid range each run picked:"),
+                 several ? 1 : 0);
+    }
+
     void activeCompletesTheFourShapes() {
         const Rate a = rates_.activeCompleted();
         for (const auto& run : runs_)
