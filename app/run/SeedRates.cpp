@@ -302,19 +302,18 @@ RatesByLabel SeedRates::activeCompletedByLabel() const {
 RatesByLabel SeedRates::passiveLostByLabel() const {
     return byLabel(&SeedOutcome::passiveByLabel);
 }
-std::vector<std::pair<std::string, std::pair<int, Rate>>> SeedRates::activeCompletedByValidRange()
-    const {
-    std::map<std::pair<int, int>, std::pair<std::string, std::pair<int, Rate>>> byRange;
+std::vector<ValidRangeRate> SeedRates::activeCompletedByValidRange() const {
+    std::map<std::pair<int, int>, ValidRangeRate> byRange;
     for (const auto& s : seeds) {
         if (s.activeTrials == 0) continue;
-        auto& [label, entry] = byRange[{s.validRange.first, s.validRange.last}];
-        label = s.validRange.text();
-        ++entry.first;
-        entry.second.count += s.activeCompleted;
-        entry.second.total += s.activeTrials;
+        ValidRangeRate& r = byRange[{s.validRange.first, s.validRange.last}];
+        r.range = s.validRange;
+        ++r.runs;
+        r.activeCompleted.count += s.activeCompleted;
+        r.activeCompleted.total += s.activeTrials;
     }
-    std::vector<std::pair<std::string, std::pair<int, Rate>>> list;
-    for (auto& [range, entry] : byRange) list.push_back(entry);
+    std::vector<ValidRangeRate> list;
+    for (const auto& [positions, r] : byRange) list.push_back(r);
     return list;
 }
 
@@ -359,10 +358,10 @@ Json tracingJson(const Tracing& t) {
 }
 Json byValidRange(const SeedRates& r) {
     Json list = Json::array();
-    for (const auto& [label, entry] : r.activeCompletedByValidRange()) {
-        Json j = rateJson(entry.second);
-        j["valid_range"] = label;
-        j["runs"] = entry.first;
+    for (const ValidRangeRate& v : r.activeCompletedByValidRange()) {
+        Json j = rateJson(v.activeCompleted);
+        j["valid_range_positions"] = {v.range.first, v.range.last};
+        j["runs"] = v.runs;
         list.push_back(j);
     }
     return list;
@@ -415,9 +414,9 @@ Json seedRatesJson(const SeedRates& r) {
             {"passive_lost", rateJson(r.passiveLost())},
             {"passive_lost_by_label", byLabel(r.passiveLostByLabel())},
             {"passive_lost_at_a_corner", rateJson(r.passiveLostAtCorner())},
-            {"active_completed_by_valid_range", byValidRange(r)},
             {"active_completed", rateJson(r.activeCompleted())},
             {"active_completed_by_label", byLabel(r.activeCompletedByLabel())},
+            {"active_completed_by_valid_range", byValidRange(r)},
             {"recognised_raw", rateJson(r.recognisedRaw())},
             {"recognised_smoothed", rateJson(r.recognisedSmoothed())},
             {"recognition_confusion",
@@ -482,10 +481,10 @@ std::vector<std::string> describeRates(const SeedRates& r) {
     // is given per valid range when the runs picked more than one.
     if (const auto byRange = r.activeCompletedByValidRange(); byRange.size() > 1) {
         lines.push_back("active trials completed by the valid range each run picked:");
-        for (const auto& [label, entry] : byRange)
-            line("  " + label.substr(std::string("valid range ").size()) + ", " +
-                     std::to_string(entry.first) + (entry.first == 1 ? " run" : " runs"),
-                 entry.second);
+        for (const ValidRangeRate& v : byRange)
+            line("  " + std::to_string(v.range.first) + "-" + std::to_string(v.range.last) +
+                     " mm, " + std::to_string(v.runs) + (v.runs == 1 ? " run" : " runs"),
+                 v.activeCompleted);
     }
     const RecognitionConfusion confusion = r.confusion();
     line("recognised, paper's rule", r.recognisedRaw());

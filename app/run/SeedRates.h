@@ -145,6 +145,13 @@ Rate recognisedSmoothedIn(const SeedOutcome& run);  ///< of its recognised compl
 Rate paperResultIn(const SeedOutcome& run);  ///< 1 of 1 or 0 of 1; 0 of 0 where it does not apply
 Rate paperResultSmoothedIn(const SeedOutcome& run);  ///< as paperResultIn, smoothed recognition
 
+/// The runs whose validation picked one valid range, and their active trials completed.
+struct ValidRangeRate {
+    ValidRange range;
+    int runs = 0;
+    Rate activeCompleted;
+};
+
 struct SeedRates {
     std::vector<SeedOutcome> seeds;
     Rate passiveLost() const;
@@ -158,9 +165,9 @@ struct SeedRates {
     RecognitionConfusion confusion() const;
     RatesByLabel activeCompletedByLabel() const;
     RatesByLabel passiveLostByLabel() const;
-    /// Active trials completed over the runs whose validation picked each valid range (as the
-    /// run prints it), lowest positions first; and how many runs picked it.
-    std::vector<std::pair<std::string, std::pair<int, Rate>>> activeCompletedByValidRange() const;
+    /// Active trials completed over the runs whose validation picked each valid range, lowest
+    /// positions first.
+    std::vector<ValidRangeRate> activeCompletedByValidRange() const;
     /// A per-label rate of every seed, summed per label in the order the labels first came.
     RatesByLabel byLabel(RatesByLabel SeedOutcome::*which) const;
     Tracing tracing(FollowingMode mode) const;      ///< of the completed trials in `mode`

@@ -146,11 +146,11 @@ private slots:
         const auto byRange = rates_.activeCompletedByValidRange();
         int runs = 0;
         Rate sum;
-        for (const auto& [label, entry] : byRange) {
-            runs += entry.first;
-            sum.count += entry.second.count;
-            sum.total += entry.second.total;
-            QCOMPARE(entry.second.total, 8 * entry.first);
+        for (const ValidRangeRate& v : byRange) {
+            runs += v.runs;
+            sum.count += v.activeCompleted.count;
+            sum.total += v.activeCompleted.total;
+            QCOMPARE(v.activeCompleted.total, 8 * v.runs);
         }
         QCOMPARE(runs, 10);
         QCOMPARE(sum.count, rates_.activeCompleted().count);
@@ -158,16 +158,9 @@ private slots:
         const ValidRange& first = runs_.front().validation.validRange;
         QCOMPARE(rates_.seeds.front().validRange.first, first.first);
         QVERIFY(std::any_of(byRange.begin(), byRange.end(),
-                            [&](const auto& e) { return e.first == first.text(); }));
-        std::vector<int> firsts;  // each range's first position: increasing
-        for (const auto& [label, entry] : byRange)
-            for (const SeedOutcome& o : rates_.seeds)
-                if (o.validRange.text() == label) {
-                    firsts.push_back(o.validRange.first);
-                    break;
-                }
-        QCOMPARE(firsts.size(), byRange.size());
-        QVERIFY(std::is_sorted(firsts.begin(), firsts.end()));
+                            [&](const ValidRangeRate& v) { return v.range.first == first.first; }));
+        for (std::size_t i = 1; i < byRange.size(); ++i)  // in the order of their positions
+            QVERIFY(byRange[i - 1].range.first < byRange[i].range.first);
         const Json j = seedRatesJson(rates_);
         QCOMPARE(j["active_completed_by_valid_range"].size(), byRange.size());
         QCOMPARE(j["seeds"][0]["valid_range_positions"][0].get<int>(), first.first);
