@@ -177,7 +177,7 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     table_->setItem(row, 3, cell(fraction(o.recognisedRaw(), o.recognitionTrials())));
     table_->setItem(row, 4, cell(fraction(o.recognisedSmoothed(), o.recognitionTrials())));
     table_->setItem(row, 5, cell(QString::number(o.angleError_deg, 'f', 2)));
-    table_->setItem(row, 6, cell(QString("%1-%2").arg(o.validRange.first).arg(o.validRange.last)));
+    table_->setItem(row, 6, cell(QString::fromStdString(o.validRange.span())));
     table_->setItem(row, 7,
                     cell(!o.paperResultApplies() ? QString("-")
                          : o.paperResult()       ? tr("yes")

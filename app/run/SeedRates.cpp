@@ -119,7 +119,7 @@ SeedOutcome seedOutcome(const RunResult& run) {
             ++o.passiveTrials;
             o.passiveLost += !t.result.completed();
             o.passiveCorners.add(t.result);
-            if (t.result.completed() || t.result.furthest.kind == PlaceKind::AwayFromCorners)
+            if (!t.result.stoppedAtCorner())
                 o.passiveShortfalls.push_back("passive " + t.label + " trial " +
                                               std::to_string(t.trial) + ": " + t.result.detail);
             Rate& label = rateOf(o.passiveByLabel, t.label);
@@ -482,8 +482,8 @@ std::vector<std::string> describeRates(const SeedRates& r) {
     if (const auto byRange = r.activeCompletedByValidRange(); byRange.size() > 1) {
         lines.push_back("active trials completed by the valid range each run picked:");
         for (const ValidRangeRate& v : byRange)
-            line("  " + std::to_string(v.range.first) + "-" + std::to_string(v.range.last) +
-                     " mm, " + std::to_string(v.runs) + (v.runs == 1 ? " run" : " runs"),
+            line("  " + v.range.span() + " mm, " + std::to_string(v.runs) +
+                     (v.runs == 1 ? " run" : " runs"),
                  v.activeCompleted);
     }
     const RecognitionConfusion confusion = r.confusion();
@@ -569,15 +569,15 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
             const char* smoothed = !o.paperResultApplies()   ? ""
                                    : o.paperResultSmoothed() ? "1"
                                                              : "0";
-            std::fprintf(
-                file.get(),
-                "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%d-%d,%s,%s,%s,%s,%s\n",
-                static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
-                o.passiveLostAtCorner(), o.activeTrials, o.activeCompleted, o.recognitionTrials(),
-                o.recognisedRaw(), o.recognisedSmoothed(), o.completedTaps, o.completedRobotTime_s,
-                o.runRobotTime_s, o.angleError_deg, o.positionError_mm, o.validRange.first,
-                o.validRange.last, paper, smoothed, csvField(o.failures).c_str(),
-                csvField(o.misnamed()).c_str(), csvField(o.passiveShortfalls).c_str());
+            std::fprintf(file.get(),
+                         "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s,%s,%s\n",
+                         static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
+                         o.passiveLostAtCorner(), o.activeTrials, o.activeCompleted,
+                         o.recognitionTrials(), o.recognisedRaw(), o.recognisedSmoothed(),
+                         o.completedTaps, o.completedRobotTime_s, o.runRobotTime_s,
+                         o.angleError_deg, o.positionError_mm, o.validRange.span().c_str(), paper,
+                         smoothed, csvField(o.failures).c_str(), csvField(o.misnamed()).c_str(),
+                         csvField(o.passiveShortfalls).c_str());
             std::fflush(file.get());
         }
         if (seedDone && !seedDone(o)) break;

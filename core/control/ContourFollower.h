@@ -90,6 +90,10 @@ struct TrialResult {
     CornerCount cornersRounded;
 
     bool completed() const { return end == TrialEnd::Completed; }
+    /// Did not complete, and got no further than near a corner.
+    bool stoppedAtCorner() const {
+        return !completed() && furthest.kind != PlaceKind::AwayFromCorners;
+    }
     std::vector<Vec2> path() const;
 };
 

@@ -45,10 +45,10 @@ struct ClassError {
 struct ValidRange {
     int first = 1, last = 1;  ///< class positions, inclusive
     double score = 0.0;
-    /// "valid range 8-11 mm", as runs print it (positions, which are millimetres at 1 mm steps).
-    std::string text() const {
-        return "valid range " + std::to_string(first) + "-" + std::to_string(last) + " mm";
-    }
+    /// "8-11": the positions (millimetres at the paper's 1 mm steps).
+    std::string span() const { return std::to_string(first) + "-" + std::to_string(last); }
+    /// "valid range 8-11 mm", as runs print it.
+    std::string text() const { return "valid range " + span() + " mm"; }
 };
 ValidRange deriveValidRange(const std::vector<double>& angleByPosition,
                             const std::vector<double>& positionByPosition, int width);
