@@ -1,7 +1,6 @@
 #include "app/run/OutputFiles.h"
 
 #include <filesystem>
-#include <fstream>
 
 namespace activetouch {
 
@@ -16,23 +15,26 @@ void ensureOutputDirectory(const std::string& dir) {
             "cannot create the output folder (" + ec.message() + "); choose a writable --out");
 }
 
-std::FILE* openOutputTable(const std::string& path) {
-    std::FILE* f = std::fopen(path.c_str(), "w");
-    if (!f)
-        throw InputError(path, "", "cannot write the file; check the output folder is writable");
-    return f;
-}
-
 void writeJsonAtomically(const std::string& path, const Json& doc) {
     const std::string temp = path + ".partial";
-    {
-        std::ofstream out(temp);
-        if (!out)
-            throw InputError(temp, "",
-                             "cannot write the file; check the output folder is writable");
-        out << doc.dump(2) << '\n';
+    try {
+        OutputFile out(temp);
+        const std::string text = doc.dump(2);
+        out.print("%s\n", text.c_str());
+        out.close();
+    } catch (const InputError&) {
+        std::error_code ignored;
+        fs::remove(temp, ignored);
+        throw;
     }
-    fs::rename(temp, path);
+    std::error_code ec;
+    fs::rename(temp, path, ec);
+    if (ec) {
+        fs::remove(temp, ec);
+        throw InputError(
+            path, "",
+            "cannot replace the file (" + ec.message() + "); check the output folder is writable");
+    }
 }
 
 }  // namespace activetouch

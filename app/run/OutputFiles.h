@@ -1,20 +1,18 @@
 #pragma once
-// Writing a run's artefacts: the output folder, tables, and JSON documents written atomically (a
-// reader either finds the whole document or none). Each failure is an InputError naming the file
-// and what to do.
-#include <cstdio>
+// Writing a run's artefacts: the output folder, tables (core/io/OutputFile.h), and JSON documents
+// written atomically (a reader either finds the whole document or none). Each failure is an
+// InputError naming the file and what to do.
 #include <string>
 
 #include "core/io/JsonFields.h"
+#include "core/io/OutputFile.h"
 
 namespace activetouch {
 
 void ensureOutputDirectory(const std::string& dir);
 
-/// Opens `path` for writing; the caller closes it.
-std::FILE* openOutputTable(const std::string& path);
-
-/// Writes `doc` to `path` through `path`.partial and a rename.
+/// Writes `doc` to `path` through `path`.partial and a rename; if writing fails, `path` is left as
+/// it was and the partial file is removed.
 void writeJsonAtomically(const std::string& path, const Json& doc);
 
 }  // namespace activetouch

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include "app/run/OutputFiles.h"
@@ -541,22 +542,22 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
                    const std::string& outDir,
                    const std::function<bool(const SeedOutcome&)>& seedDone) {
     SeedRates rates;
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(nullptr, &std::fclose);
+    std::optional<OutputFile> file;
     if (!outDir.empty()) {
         ensureOutputDirectory(outDir);
         std::error_code ec;
         fs::remove(fs::path(outDir) / "rates.json", ec);  // never mistaken for this run's
-        file.reset(openOutputTable((fs::path(outDir) / "rates.csv").string()));
-        std::fprintf(file.get(),
-                     "seed,passive_trials,passive_lost,passive_lost_at_a_corner,active_trials,"
-                     "active_completed,"
-                     "recognition_trials,recognised_raw,recognised_smoothed,completed_taps,"
-                     "completed_robot_time_s,"
-                     "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
-                     "valid_range_positions,"
-                     "paper_result,paper_result_smoothed,active_failures,misnamed_paths,"
-                     "passive_not_lost_at_a_corner\n");
-        std::fflush(file.get());
+        file.emplace((fs::path(outDir) / "rates.csv").string());
+        file->print(
+            "seed,passive_trials,passive_lost,passive_lost_at_a_corner,active_trials,"
+            "active_completed,"
+            "recognition_trials,recognised_raw,recognised_smoothed,completed_taps,"
+            "completed_robot_time_s,"
+            "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
+            "valid_range_positions,"
+            "paper_result,paper_result_smoothed,active_failures,misnamed_paths,"
+            "passive_not_lost_at_a_corner\n");
+        file->flush();
     }
     for (std::uint64_t seed = first; seed <= last; ++seed) {
         RunOptions options;
@@ -569,22 +570,21 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
             const char* smoothed = !o.paperResultApplies()   ? ""
                                    : o.paperResultSmoothed() ? "1"
                                                              : "0";
-            std::fprintf(file.get(),
-                         "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s,%s,%s\n",
-                         static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
-                         o.passiveLostAtCorner(), o.activeTrials, o.activeCompleted,
-                         o.recognitionTrials(), o.recognisedRaw(), o.recognisedSmoothed(),
-                         o.completedTaps, o.completedRobotTime_s, o.runRobotTime_s,
-                         o.angleError_deg, o.positionError_mm, o.validRange.span().c_str(), paper,
-                         smoothed, csvField(o.failures).c_str(), csvField(o.misnamed()).c_str(),
-                         csvField(o.passiveShortfalls).c_str());
-            std::fflush(file.get());
+            file->print("%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s,%s,%s\n",
+                        static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
+                        o.passiveLostAtCorner(), o.activeTrials, o.activeCompleted,
+                        o.recognitionTrials(), o.recognisedRaw(), o.recognisedSmoothed(),
+                        o.completedTaps, o.completedRobotTime_s, o.runRobotTime_s, o.angleError_deg,
+                        o.positionError_mm, o.validRange.span().c_str(), paper, smoothed,
+                        csvField(o.failures).c_str(), csvField(o.misnamed()).c_str(),
+                        csvField(o.passiveShortfalls).c_str());
+            file->flush();
         }
         if (seedDone && !seedDone(o)) break;
         if (seed == last) break;  // last may be the largest seed
     }
     if (file) {
-        file.reset();
+        file->close();
         writeJsonAtomically((fs::path(outDir) / "rates.json").string(), seedRatesJson(rates));
     }
     return rates;

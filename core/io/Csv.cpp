@@ -4,8 +4,16 @@
 #include <cmath>
 
 #include "core/common/InputError.h"
+#include "core/io/OutputFile.h"
 
 namespace activetouch {
+
+void writeTapTableHeader(OutputFile& file, const char* const* columns, int count, int taxels) {
+    for (int i = 0; i < count; ++i) file.print("%s%s", i ? "," : "", columns[i]);
+    for (int k = 0; k < taxels; ++k) file.print(",taxel_%d", k);
+    file.put('\n');
+    file.flush();
+}
 
 std::vector<std::string> splitCsvLine(const std::string& line) {
     std::vector<std::string> out;

@@ -1,11 +1,18 @@
 #pragma once
-// What the project's CSV readers share: splitting a line (the project writes no quoted fields)
-// and reading a finite number from a field, with an error that names the file, line and column.
+// What the project's CSV readers and tap writers share: splitting a line (the project writes no
+// quoted fields), reading a finite number from a field, with an error that names the file, line
+// and column, and the header of a table with a row per (tap, sample).
 #include <istream>
 #include <string>
 #include <vector>
 
 namespace activetouch {
+
+class OutputFile;
+
+/// Writes the header of a table with a row per (tap, sample): the `count` fixed `columns`, then
+/// taxel_0 .. taxel_{taxels-1}; flushes it.
+void writeTapTableHeader(OutputFile& file, const char* const* columns, int count, int taxels);
 
 /// The fields of one line, split at every comma; a trailing '\r' goes.
 std::vector<std::string> splitCsvLine(const std::string& line);

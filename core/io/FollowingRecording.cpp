@@ -50,19 +50,9 @@ enum Column {
 
 }  // namespace
 
-FollowingRecording::FollowingRecording(const std::string& path, int taxels) : taxels_(taxels) {
-    file_ = std::fopen(path.c_str(), "w");
-    if (!file_)
-        throw InputError(path, "",
-                         "cannot create the file; check the output folder exists and is writable");
-    for (int i = 0; i < kFixed; ++i) std::fprintf(file_, "%s%s", i ? "," : "", kFixedColumns[i]);
-    for (int k = 0; k < taxels; ++k) std::fprintf(file_, ",taxel_%d", k);
-    std::fputc('\n', file_);
-    std::fflush(file_);
-}
-
-FollowingRecording::~FollowingRecording() {
-    if (file_) std::fclose(file_);
+FollowingRecording::FollowingRecording(const std::string& path, int taxels)
+    : file_(path), taxels_(taxels) {
+    writeTapTableHeader(file_, kFixedColumns, kFixed, taxels);
 }
 
 void FollowingRecording::append(const std::string& label, FollowingMode mode, int trial,
@@ -71,18 +61,17 @@ void FollowingRecording::append(const std::string& label, FollowingMode mode, in
     const Vec2 move = t.decision.move();
     const std::string shapeClass = t.percept.shapeClass();
     for (int s = 0; s < r.tap.sampleCount(); ++s) {
-        std::fprintf(
-            file_,
+        file_.print(
             "%s,%s,%d,%d,%.17g,%.17g,%.17g,%s,%d,%s,%g,%d,%g,%.10g,%s,%.17g,%.17g,%.10g,%.10g,%d",
             label.c_str(), modeName(mode), trial, tapIndex, r.pose.x, r.pose.y, r.startTime_s,
             r.ending == TapEnding::ContactReflex ? "reflex" : "stroke_limit", t.contact ? 1 : 0,
             shapeClass.c_str(), t.percept.orientationDeg, t.percept.position, t.percept.offset_mm,
             t.percept.posterior, ruleFor(t.decision.rule).name, move.x, move.y, t.progress_mm,
             t.contourDistance_mm, s);
-        for (int k = 0; k < taxels_; ++k) std::fprintf(file_, ",%.17g", r.tap.at(s, k));
-        std::fputc('\n', file_);
+        for (int k = 0; k < taxels_; ++k) file_.print(",%.17g", r.tap.at(s, k));
+        file_.put('\n');
     }
-    std::fflush(file_);
+    file_.flush();
 }
 
 namespace {

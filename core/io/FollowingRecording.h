@@ -2,19 +2,19 @@
 // The recording of contour-following trials: every tap with its pose, time, samples, percept and
 // decision, appended and flushed as it is taken, so a run that dies loses at most the tap in
 // flight. Long format: one row per (tap, sample), one column per taxel.
-#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "core/control/ContourFollower.h"
+#include "core/io/OutputFile.h"
 
 namespace activetouch {
 
 class FollowingRecording {
 public:
-    /// Opens (truncating) `path`; throws InputError if it cannot be written.
+    /// Opens (truncating) `path`; throws InputError if it cannot be written, and from
+    /// `append` if a write fails (OutputFile).
     FollowingRecording(const std::string& path, int taxels);
-    ~FollowingRecording();
     FollowingRecording(const FollowingRecording&) = delete;
     FollowingRecording& operator=(const FollowingRecording&) = delete;
 
@@ -22,7 +22,7 @@ public:
                 const FollowedTap& tap);
 
 private:
-    std::FILE* file_ = nullptr;
+    OutputFile file_;
     int taxels_;
 };
 

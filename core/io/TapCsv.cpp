@@ -16,32 +16,21 @@ constexpr int kFixed = 10;
 
 }  // namespace
 
-TapCsvWriter::TapCsvWriter(const std::string& path, int taxels) : path_(path), taxels_(taxels) {
-    file_ = std::fopen(path.c_str(), "w");
-    if (!file_)
-        throw InputError(path, "",
-                         "cannot create the file; check the output folder exists and is writable");
-    for (int i = 0; i < kFixed; ++i) std::fprintf(file_, "%s%s", i ? "," : "", kFixedColumns[i]);
-    for (int k = 0; k < taxels; ++k) std::fprintf(file_, ",taxel_%d", k);
-    std::fputc('\n', file_);
-    std::fflush(file_);
-}
-
-TapCsvWriter::~TapCsvWriter() {
-    if (file_) std::fclose(file_);
+TapCsvWriter::TapCsvWriter(const std::string& path, int taxels) : file_(path), taxels_(taxels) {
+    writeTapTableHeader(file_, kFixedColumns, kFixed, taxels);
 }
 
 void TapCsvWriter::append(const CollectedTap& c, const ClassSet& classes) {
     const TapRecord& r = c.record;
     const char* ending = r.ending == TapEnding::ContactReflex ? "reflex" : "stroke_limit";
     for (int t = 0; t < r.tap.sampleCount(); ++t) {
-        std::fprintf(file_, "%d,%d,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%s,%d", c.dataSet, c.cls,
-                     classes.orientationDegOf(c.cls), classes.positionOf(c.cls), c.trueOffset_mm,
-                     r.pose.x, r.pose.y, r.startTime_s, ending, t);
-        for (int k = 0; k < taxels_; ++k) std::fprintf(file_, ",%.17g", r.tap.at(t, k));
-        std::fputc('\n', file_);
+        file_.print("%d,%d,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%s,%d", c.dataSet, c.cls,
+                    classes.orientationDegOf(c.cls), classes.positionOf(c.cls), c.trueOffset_mm,
+                    r.pose.x, r.pose.y, r.startTime_s, ending, t);
+        for (int k = 0; k < taxels_; ++k) file_.print(",%.17g", r.tap.at(t, k));
+        file_.put('\n');
     }
-    std::fflush(file_);
+    file_.flush();
 }
 
 std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& classes,

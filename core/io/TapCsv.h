@@ -5,10 +5,10 @@
 //
 // Columns: set,class,orientation_deg,position,true_offset_mm,pose_x_mm,pose_y_mm,robot_time_s,
 //          ending,sample,taxel_0..taxel_{K-1}
-#include <cstdio>
 #include <string>
 #include <vector>
 
+#include "core/io/OutputFile.h"
 #include "core/tap/ClassSet.h"
 #include "core/validation/TrainingProtocol.h"
 
@@ -16,17 +16,16 @@ namespace activetouch {
 
 class TapCsvWriter {
 public:
-    /// Opens (truncating) `path`; throws InputError if it cannot be written.
+    /// Opens (truncating) `path`; throws InputError if it cannot be written, and from
+    /// `append` if a write fails (OutputFile).
     TapCsvWriter(const std::string& path, int taxels);
-    ~TapCsvWriter();
     TapCsvWriter(const TapCsvWriter&) = delete;
     TapCsvWriter& operator=(const TapCsvWriter&) = delete;
 
     void append(const CollectedTap& tap, const ClassSet& classes);
 
 private:
-    std::FILE* file_ = nullptr;
-    std::string path_;
+    OutputFile file_;
     int taxels_;
 };
 

@@ -1,6 +1,8 @@
 // The headless runner as a user drives it: runs write complete artefacts; a run's recording
 // re-analysed gives its validation again; bad input gets exit code 2, a message naming the file,
 // the place and the problem, and nothing written.
+#include <sys/resource.h>
+
 #include <QDir>
 #include <QFile>
 #include <QJsonArray>
@@ -13,6 +15,7 @@
 
 #include "devices/emulators/FakeRcxController.h"
 #include "support/Cli.h"
+#include "support/FileSizeLimit.h"
 #include "support/Files.h"
 #include "support/Paths.h"
 
@@ -474,6 +477,28 @@ private slots:
         QVERIFY2(checked.out.contains(QString("ok (%1 taps").arg(complete)) ||
                      checked.out.contains(QString("ok (%1 taps").arg(complete - 1)),
                  qPrintable(checked.out));
+    }
+
+    void aRunThatCannotWriteStopsNamingTheFileAndKeepsItsTaps() {
+        // Files may grow to 3 MB: the training taps (2.3 MB) fit, the trials' recording fills up
+        // part-way, as a disk filling during a run would. The run stops with the file and the
+        // reason, claims no result, and every tap recorded before stays readable.
+        const QString out = dir_.filePath("full");
+        const Outcome o =
+            runCli({"run", sourceFile("experiments/paper.json"), "--out", out, "--no-figures"},
+                   [] { test::limitFileSize(3000000); });
+        QCOMPARE(o.exitCode, 2);
+        QVERIFY2(o.err.contains(out + "/data/following_taps.csv: cannot write the file (File too "
+                                      "large)"),
+                 qPrintable(o.err));
+        QVERIFY(!QFile::exists(out + "/summary.json"));
+        const Outcome taps = runCli({"check", out + "/data/taps.csv"});
+        QCOMPARE(taps.exitCode, 0);
+        QVERIFY2(taps.out.contains("360 taps"), qPrintable(taps.out));
+        const Outcome following = runCli({"check", out + "/data/following_taps.csv"});
+        QCOMPARE(following.exitCode, 0);
+        QVERIFY2(following.out.contains("ok (") && following.out.contains("cut"),
+                 qPrintable(following.out));
     }
 
     void checkReadsTapRecordings() {

@@ -1,7 +1,9 @@
 // Tap files: what is written reads back exactly, a file cut short by a stopped run keeps its
-// finished taps and says what was cut, and a broken file is refused with its line.
+// finished taps and says what was cut, a write that fails (a full disk) stops the writer naming
+// the file and keeps the taps written before, and a broken file is refused with its line.
 #include <QTemporaryDir>
 #include <QtTest>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -9,10 +11,26 @@
 #include "core/common/InputError.h"
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
+#include "support/FileSizeLimit.h"
 
 using namespace activetouch;
+using test::FileSizeLimit;
 
 namespace {
+/// `write` fails naming `path` and the system's `reason`.
+void expectWriteRefused(const std::function<void()>& write, const std::string& path,
+                        const QString& reason) {
+    try {
+        write();
+        QFAIL("the failed write went unreported");
+    } catch (const InputError& e) {
+        const QString m = e.what();
+        QVERIFY2(m.contains(QString::fromStdString(path)), qPrintable(m));
+        QVERIFY2(m.contains("cannot write the file (" + reason + ")"), qPrintable(m));
+        QVERIFY2(m.contains("what was written before stays in the file"), qPrintable(m));
+    }
+}
+
 /// `read` refuses the broken file (bad.csv) naming it, `line` and `problem`.
 void expectRefusedAt(const std::function<void()>& read, int line, const QString& problem) {
     try {
@@ -69,7 +87,6 @@ class TestTapCsv : public QObject {
         return bad;
     }
 
-    /// Two trials of a following recording: three taps, then two.
     /// A copy of the file at `path` as a run stopped while writing leaves it: its first `lines`
     /// lines and `more` characters of the next.
     std::string cutAfter(const std::string& path, std::size_t lines, std::size_t more,
@@ -83,6 +100,7 @@ class TestTapCsv : public QObject {
         return cut;
     }
 
+    /// Two trials of a following recording: three taps, then two.
     std::string writeFollowing() {
         const std::string path = dir_.filePath("following.csv").toStdString();
         FollowingRecording w(path, 12);
@@ -291,6 +309,55 @@ private slots:
         expectRefusedAt([&] { readTapCsv(copy, classes_); }, 1,
                         "this is a contour-following recording; the training taps are in the "
                         "run's data/taps.csv");
+    }
+
+    void aWriteThatFailsStopsTheWriterAndKeepsWhatWasWritten() {
+        // A disk that fills while taps are recorded: the tap that does not fit is refused naming
+        // the file and why, and every tap written before it reads back whole.
+        const auto taps = someTaps();
+        const std::string one = dir_.filePath("one_tap.csv").toStdString();
+        { TapCsvWriter(one, 12).append(taps[0], classes_); }
+        const auto oneTap = std::filesystem::file_size(one);
+        const std::string path = dir_.filePath("full.csv").toStdString();
+        {
+            TapCsvWriter w(path, 12);
+            w.append(taps[0], classes_);
+            FileSizeLimit limit(oneTap + 1000);  // room for a few rows of the second tap
+            expectWriteRefused([&] { w.append(taps[1], classes_); }, path, "File too large");
+        }
+        std::string cut;
+        const auto kept = readTapCsv(path, classes_, &cut);
+        QCOMPARE(int(kept.size()), 1);
+        QVERIFY(kept.front().record.tap.samples == taps[0].record.tap.samples);
+        QVERIFY2(!cut.empty(), "the tap cut short is reported");
+
+        const std::string following = dir_.filePath("full_following.csv").toStdString();
+        {
+            FollowingRecording w(following, 12);
+            FollowedTap t;
+            t.record = taps[0].record;
+            t.decision = {RuleId::FollowInRange, {2.0, 0.0}, {}};
+            w.append("rectangle", FollowingMode::Active, 1, 0, t);
+            FileSizeLimit limit(std::filesystem::file_size(following) + 1000);
+            expectWriteRefused([&] { w.append("rectangle", FollowingMode::Active, 1, 1, t); },
+                               following, "File too large");
+        }
+        const auto c = checkFollowingRecording(following);
+        QCOMPARE(c.taps, 1);
+        QVERIFY(!c.cutOff.empty());
+    }
+
+    void aFullDiskIsNamedBeforeTheFirstTap() {
+        // /dev/full takes no byte: the header already fails, before any tap is taken.
+        if (!QFileInfo::exists("/dev/full")) QSKIP("this system has no /dev/full");
+        expectWriteRefused([] { TapCsvWriter("/dev/full", 12); }, "/dev/full",
+                           "No space left on device");
+        expectWriteRefused([] { FollowingRecording("/dev/full", 12); }, "/dev/full",
+                           "No space left on device");
+        OutputFile table("/dev/full");
+        table.print("a,b\n");
+        expectWriteRefused([&] { table.close(); }, "/dev/full", "No space left on device");
+        table.close();  // once closed, nothing more to report
     }
 
     void emptyAndMissingFiles() {

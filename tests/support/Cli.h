@@ -3,6 +3,7 @@
 #include <QProcess>
 #include <QString>
 #include <QStringList>
+#include <functional>
 
 namespace activetouch::test {
 
@@ -11,8 +12,12 @@ struct CliOutcome {
     QString out, err;
 };
 
-inline CliOutcome runCli(const QStringList& args) {
+/// Runs the runner with `args`; `childSetUp`, if given, runs in the child before the runner
+/// starts (to set a resource limit, say).
+inline CliOutcome runCli(const QStringList& args,
+                         const std::function<void()>& childSetUp = nullptr) {
     QProcess p;
+    if (childSetUp) p.setChildProcessModifier(childSetUp);
     p.start(qEnvironmentVariable("ACTIVETOUCH_CLI"), args);
     p.waitForFinished(300000);
     return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(),
