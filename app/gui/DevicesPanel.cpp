@@ -3,7 +3,6 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
-#include <QFile>
 #include <QFileDialog>
 #include <QFormLayout>
 #include <QGridLayout>
@@ -16,6 +15,7 @@
 #include <QSpinBox>
 #include <QVBoxLayout>
 
+#include "app/gui/WholeFile.h"
 #include "devices/nxt/NxtUsbTransport.h"
 #include "devices/rigs/RigFile.h"
 
@@ -292,15 +292,12 @@ bool DevicesPanel::saveRigFile(const QString& path) {
                "a rig file can name; pick the simulated devices or the NXT, then save."));
         return false;
     }
-    QFile f(path);
-    if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) {
-        emit failed(tr("Could not write the rig file %1: %2").arg(path, f.errorString()));
-        return false;
-    }
-    const std::string text = rigFileJson(c.config).dump(2) + "\n";
-    if (f.write(text.data(), static_cast<qint64>(text.size())) != qint64(text.size()) ||
-        !f.flush()) {
-        emit failed(tr("Could not write the rig file %1: %2").arg(path, f.errorString()));
+    const QString why =
+        writeFileWhole(path, QByteArray::fromStdString(rigFileJson(c.config).dump(2) + "\n"));
+    if (!why.isEmpty()) {
+        emit failed(tr("Could not write the rig file %1 (%2); free space on its disk or choose a "
+                       "writable place. The file is as it was.")
+                        .arg(path, why));
         return false;
     }
     emit log(tr("rig file saved: %1 (activetouch-cli run <experiment> --rig %1)").arg(path));

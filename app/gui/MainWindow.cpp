@@ -6,7 +6,6 @@
 #include <QDateTime>
 #include <QDir>
 #include <QDockWidget>
-#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QGroupBox>
@@ -38,6 +37,7 @@
 #include "app/gui/ProtocolPanel.h"
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
+#include "app/gui/WholeFile.h"
 #include "app/run/SeedRates.h"
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
@@ -366,11 +366,12 @@ bool MainWindow::saveExperiment(const QString& path) {
     try {
         Json j;
         experimentAsShown(&j);  // only what can run is written
-        QFile f(path);
-        if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate))
+        const QString failed = writeFileWhole(path, QByteArray::fromStdString(j.dump(2) + "\n"));
+        if (!failed.isEmpty())
             throw InputError(path.toStdString(), "",
-                             "cannot write the file; choose a writable place");
-        f.write(QByteArray::fromStdString(j.dump(2) + "\n"));
+                             "cannot write the file (" + failed.toStdString() +
+                                 "); free space on its disk or choose a writable place; the "
+                                 "file is as it was");
         log(tr("saved %1").arg(path));
         return true;
     } catch (const std::exception& e) {

@@ -5,7 +5,6 @@
 #include <QComboBox>
 #include <QDialog>
 #include <QDialogButtonBox>
-#include <QFile>
 #include <QFileDialog>
 #include <QFormLayout>
 #include <QMenu>
@@ -14,6 +13,7 @@
 #include <QVBoxLayout>
 #include <stdexcept>
 
+#include "app/gui/WholeFile.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
@@ -98,11 +98,8 @@ QStringList PlotPanel::exportTo(const QString& basePath, const QStringList& form
 }
 
 void PlotPanel::exportCsv(const QString& path) const {
-    QFile file(path);
-    if (!file.open(QIODevice::WriteOnly | QIODevice::Truncate | QIODevice::Text))
-        throw std::runtime_error("cannot write " + path.toStdString() +
-                                 "; check the folder is writable");
-    QTextStream out(&file);
+    QByteArray bytes;
+    QTextStream out(&bytes);
     out << "plottable,name,x,y,value\n";
     for (int i = 0; i < plot_->plottableCount(); ++i) {
         QCPAbstractPlottable* p = plot_->plottable(i);
@@ -131,8 +128,12 @@ void PlotPanel::exportCsv(const QString& path) const {
                 out << i << ",error bars,," << ',' << e->data()->at(k).errorPlus << '\n';
         }
     }
-    if (out.status() != QTextStream::Ok)
-        throw std::runtime_error("could not write all of " + path.toStdString());
+    out.flush();
+    const QString failed = writeFileWhole(path, bytes);
+    if (!failed.isEmpty())
+        throw std::runtime_error("could not write " + path.toStdString() + " (" +
+                                 failed.toStdString() +
+                                 "); free space on its disk or choose a writable place");
 }
 
 void PlotPanel::copyToClipboard() {

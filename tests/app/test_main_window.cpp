@@ -6,6 +6,8 @@
 // change the protocol in its panel, run it and save it, and be refused naming the field when it
 // cannot run; analyse a run's recording; resize the window and find paths and histograms still
 // drawn at one scale on both axes, and no legend hiding a value.
+#include <sys/resource.h>
+
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
@@ -28,6 +30,7 @@
 #include <QTemporaryDir>
 #include <QToolButton>
 #include <QtTest>
+#include <csignal>
 
 #include "app/gui/DevicesPanel.h"
 #include "app/gui/FollowingTab.h"
@@ -40,6 +43,7 @@
 #include "devices/rigs/RigFile.h"
 #include "qcustomplot.h"
 #include "support/FigureChecks.h"
+#include "support/FileSizeLimit.h"
 #include "support/Files.h"
 #include "support/Paths.h"
 
@@ -275,6 +279,30 @@ private slots:
             p->exportCsv(base + ".csv");
             if (filledByARun(p)) QVERIFY2(linesIn(base + ".csv") > 1, qPrintable(p->name()));
         }
+        // A plot's data that the disk cannot take whole is refused, naming the file and why, and
+        // leaves the file as it was.
+        PlotPanel* first = window_->plotPanels().front();
+        const QString kept = dir_.filePath("export/" + first->name() + ".csv");
+        QFile before(kept);
+        QVERIFY(before.open(QIODevice::ReadOnly));
+        const QByteArray keptText = before.readAll();
+        before.close();
+        QVERIFY(keptText.size() > 100);
+        {
+            QString message;
+            try {
+                test::FileSizeLimit limit(100);
+                first->exportCsv(kept);
+            } catch (const std::exception& e) {
+                message = e.what();
+            }
+            QVERIFY2(message.contains(kept) && message.contains("could not write"),
+                     qPrintable(message));
+        }
+        QVERIFY(before.open(QIODevice::ReadOnly));
+        QCOMPARE(before.readAll(), keptText);
+        before.close();
+
         const QStringList all = window_->exportAllFigures(dir_.filePath("all"));
         QVERIFY(all.size() >= 6);
         for (const QString& f : all) QVERIFY(QFileInfo(f).size() > 0);
@@ -447,6 +475,32 @@ private slots:
         QCOMPARE(reread.trials[1].mode, FollowingMode::Passive);
         QCOMPARE(reread.trials[1].repeats, 1);
         QCOMPARE(reread.following.repositionStep_mm, 1.0);
+
+        // A save that cannot be written whole (here files may not grow past 100 bytes, as on a
+        // full disk) says so, naming the file and why, and leaves the saved file as it was.
+        QFile before(saved);
+        QVERIFY(before.open(QIODevice::ReadOnly));
+        const QByteArray savedText = before.readAll();
+        before.close();
+        follow->setValue(2.5);
+        {
+            QSignalSpy errors(window_.get(), &MainWindow::errorShown);
+            bool ok = true;
+            {
+                test::FileSizeLimit limit(100);
+                ok = window_->saveExperiment(saved);
+            }
+            QVERIFY(!ok);
+            QCOMPARE(errors.count(), 1);
+            const QString message = errors.takeFirst().at(0).toString();
+            QVERIFY2(message.contains(saved) && message.contains("the file is as it was"),
+                     qPrintable(message));
+            closeErrorDialogs(*window_);
+        }
+        QVERIFY(before.open(QIODevice::ReadOnly));
+        QCOMPARE(before.readAll(), savedText);
+        before.close();
+        follow->setValue(3.5);
 
         // The file's own values come back at a click, and the next run uses them.
         auto* reset = window_->protocolPanel()->findChild<QPushButton*>("protocol_reset");
