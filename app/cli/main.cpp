@@ -394,12 +394,12 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return kBadInput;
     } catch (const RigError& e) {
-        std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data/taps.csv.\n",
-                     e.what(), outDir.c_str());
+        std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data.\n", e.what(),
+                     outDir.c_str());
         return kRunFailed;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data/taps.csv.\n",
-                     e.what(), outDir.c_str());
+        std::fprintf(stderr, "run failed: %s\nEvery tap taken so far is in %s/data.\n", e.what(),
+                     outDir.c_str());
         return kRunFailed;
     }
 }

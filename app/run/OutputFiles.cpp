@@ -22,7 +22,7 @@ void writeJsonAtomically(const std::string& path, const Json& doc) {
         const std::string text = doc.dump(2);
         out.print("%s\n", text.c_str());
         out.close();
-    } catch (const InputError&) {
+    } catch (...) {  // the partial file is no document
         std::error_code ignored;
         fs::remove(temp, ignored);
         throw;

@@ -1,7 +1,8 @@
 #pragma once
 // Writing a run's artefacts: the output folder, tables (core/io/OutputFile.h), and JSON documents
-// written atomically (a reader either finds the whole document or none). Each failure is an
-// InputError naming the file and what to do.
+// written atomically (a reader either finds the whole document or none). Each failure names the
+// file and what to do: an InputError for a folder or file that cannot be created, a WriteError
+// for one that cannot be written whole.
 #include <string>
 
 #include "core/io/JsonFields.h"

@@ -13,7 +13,7 @@ namespace activetouch {
 class FollowingRecording {
 public:
     /// Opens (truncating) `path`; throws InputError if it cannot be written, and from
-    /// `append` if a write fails (OutputFile).
+    /// `append` a WriteError if a write fails.
     FollowingRecording(const std::string& path, int taxels);
     FollowingRecording(const FollowingRecording&) = delete;
     FollowingRecording& operator=(const FollowingRecording&) = delete;

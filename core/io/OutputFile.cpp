@@ -25,7 +25,7 @@ void OutputFile::noteFailure() {
 }
 
 void OutputFile::raise() {
-    throw InputError(path_, "",
+    throw WriteError(path_,
                      std::string("cannot write the file (") + std::strerror(error_) +
                          "); free space on its disk or choose another output folder, and run "
                          "again (what was written before stays in the file)");

@@ -1,12 +1,25 @@
 #pragma once
 // A file the project writes: opened truncated, written through printf-style calls and flushed
 // when the caller says. A failed write (a full disk, a drive gone) is never silent: the next
-// flush or close throws an InputError naming the file and the system's reason, so a run stops
+// flush or close throws a WriteError naming the file and the system's reason, so a run stops
 // instead of recording less than it reports. What was flushed before stays in the file.
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
 namespace activetouch {
+
+/// A file that could not be written whole. Not bad input: the run that wrote it failed, and what
+/// it wrote before stays in the file.
+class WriteError : public std::runtime_error {
+public:
+    WriteError(std::string path, const std::string& problem)
+        : std::runtime_error(path + ": " + problem), path_(std::move(path)) {}
+    const std::string& path() const { return path_; }
+
+private:
+    std::string path_;
+};
 
 class OutputFile {
 public:
@@ -19,9 +32,9 @@ public:
 
     void print(const char* format, ...) __attribute__((format(printf, 2, 3)));
     void put(char c);
-    /// Hands what was written to the system; throws InputError if any write so far failed.
+    /// Hands what was written to the system; throws WriteError if any write so far failed.
     void flush();
-    /// Flushes and closes; throws InputError if any write failed. Closing again does nothing;
+    /// Flushes and closes; throws WriteError if any write failed. Closing again does nothing;
     /// writes after closing fail.
     void close();
     const std::string& path() const { return path_; }

@@ -17,7 +17,7 @@ namespace activetouch {
 class TapCsvWriter {
 public:
     /// Opens (truncating) `path`; throws InputError if it cannot be written, and from
-    /// `append` if a write fails (OutputFile).
+    /// `append` a WriteError if a write fails.
     TapCsvWriter(const std::string& path, int taxels);
     TapCsvWriter(const TapCsvWriter&) = delete;
     TapCsvWriter& operator=(const TapCsvWriter&) = delete;

@@ -487,9 +487,11 @@ private slots:
         const Outcome o =
             runCli({"run", sourceFile("experiments/paper.json"), "--out", out, "--no-figures"},
                    [] { test::limitFileSize(3000000); });
-        QCOMPARE(o.exitCode, 2);
-        QVERIFY2(o.err.contains(out + "/data/following_taps.csv: cannot write the file (File too "
-                                      "large)"),
+        QCOMPARE(o.exitCode, 1);
+        QVERIFY2(o.err.contains("run failed: " + out +
+                                "/data/following_taps.csv: cannot write the file (File too large)"),
+                 qPrintable(o.err));
+        QVERIFY2(o.err.contains("Every tap taken so far is in " + out + "/data."),
                  qPrintable(o.err));
         QVERIFY(!QFile::exists(out + "/summary.json"));
         const Outcome taps = runCli({"check", out + "/data/taps.csv"});

@@ -23,7 +23,7 @@ void expectWriteRefused(const std::function<void()>& write, const std::string& p
     try {
         write();
         QFAIL("the failed write went unreported");
-    } catch (const InputError& e) {
+    } catch (const WriteError& e) {
         const QString m = e.what();
         QVERIFY2(m.contains(QString::fromStdString(path)), qPrintable(m));
         QVERIFY2(m.contains("cannot write the file (" + reason + ")"), qPrintable(m));
