@@ -108,6 +108,13 @@ ObjectSpec parseObject(const JsonFields& f) {
     o.rotationDeg = f.number("rotation_deg", -360.0, 360.0, 0.0);
     o.offset = f.point("offset_mm", o.offset);
     o.height_mm = f.number("top_height_mm", 0.1, 500.0, o.height_mm);
+    try {
+        o.outline();  // placed, the outline must still be one the geometry can work with
+    } catch (const std::invalid_argument& e) {
+        throw InputError(f.source(), f.placeOf("offset_mm"),
+                         "placed at (" + numberText(o.offset.x) + ", " + numberText(o.offset.y) +
+                             ") mm, the object's outline is not usable: " + e.what());
+    }
     return o;
 }
 

@@ -186,6 +186,11 @@ private slots:
             << swap("[150, 150]", "[640, 150]") << "/object"
             << "the object (x 616..664, y 121..179 mm) does not fit inside the stage travel "
                "(0..650, 0..300 mm)";
+        // So far off that no outline survives: named at the offset, not inside the geometry.
+        QTest::newRow("object a thousand kilometres off")
+            << swap("[150, 150]", "[150, 1e9]") << "/object/offset_mm"
+            << "placed at (150, 1000000000) mm, the object's outline is not usable: vertex 0 "
+               "(126, 1e+09) lies more than 1 km from the origin";
         QTest::newRow("object above retract height")
             << swap("\"top_height_mm\": 10", "\"top_height_mm\": 20") << "/object/top_height_mm"
             << "retract height";
