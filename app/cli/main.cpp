@@ -24,6 +24,7 @@
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
 #include "app/run/ExperimentRun.h"
+#include "app/run/PairedComparison.h"
 #include "app/run/SeedRates.h"
 #include "core/experiment/Experiment.h"
 #include "core/io/FollowingRecording.h"
@@ -90,6 +91,15 @@ void printHelp() {
         "      confusion) and <dir>/figures/seed_rates.{png,pdf,svg} (each seed's outcome and\n"
         "      the rates so far with their intervals). --out defaults to\n"
         "      results/<experiment name>_seeds.\n"
+        "  activetouch-cli compare <a.json> <b.json> --from A --to B [--out <dir>]\n"
+        "      Runs both experiments once per seed A..B and compares them trial by trial: a\n"
+        "      seed gives both the same data sets and the same noise on each trial, so where\n"
+        "      they differ in a setting, the trials whose outcomes differ show its effect.\n"
+        "      Prints each outcome's rate in a and in b, the trials only one completed (or\n"
+        "      lost at a corner, or recognised), the difference with its 95 %% interval and\n"
+        "      McNemar's exact p, and the robot time per run. Writes <dir>/compare.csv (a row\n"
+        "      per paired trial, appended as each seed finishes) and <dir>/compare.json.\n"
+        "      --out defaults to results/<a>_vs_<b>.\n"
         "  activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>] [--no-figures]\n"
         "      Re-analyses recorded training and test taps (a run's data/taps.csv, from the\n"
         "      simulated or the real rig) with the experiment's classes, classifier, training\n"
@@ -235,8 +245,33 @@ RunArguments parseRunArguments(const std::vector<std::string>& args, const char*
         return fail(std::string(command) +
                     (std::string(command) == "replay"
                          ? " needs a run's folder after the experiment, e.g. results/paper"
+                     : std::string(command) == "compare"
+                         ? " needs a second experiment to compare with, e.g. "
+                           "experiments/paper_kernel.json"
                          : " needs a recording of training and test taps after the experiment, "
                            "e.g. results/paper/data/taps.csv"));
+    return r;
+}
+
+/// The seeds --from and --to give, or why they give none.
+struct SeedRange {
+    std::uint64_t first = 0, last = 0;
+    std::string error;
+};
+
+/// `example` is the command with a range, e.g. "seeds --from 1 --to 10".
+SeedRange seedRangeOf(const RunArguments& parsed, const std::string& example) {
+    SeedRange r;
+    const std::string command = example.substr(0, example.find(' '));
+    if (!parsed.seeds.count("--from") || !parsed.seeds.count("--to")) {
+        r.error = command + " needs --from and --to, e.g. " + example.substr(command.size() + 1);
+        return r;
+    }
+    r.first = parsed.seeds.at("--from");
+    r.last = parsed.seeds.at("--to");
+    if (r.first > r.last)
+        r.error = "--from " + std::to_string(r.first) + " is after --to " + std::to_string(r.last) +
+                  "; give the first seed first";
     return r;
 }
 
@@ -495,35 +530,32 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     if (!parsed.error.empty()) return usageError(parsed.error);
     const std::string& experimentPath = parsed.experimentPath;
     std::string outDir = parsed.outDir;
-    std::optional<std::uint64_t> from, to;
-    if (parsed.seeds.count("--from")) from = parsed.seeds.at("--from");
-    if (parsed.seeds.count("--to")) to = parsed.seeds.at("--to");
-    if (!from || !to) return usageError("seeds needs --from and --to, e.g. --from 1 --to 10");
-    if (*from > *to)
-        return usageError("--from " + std::to_string(*from) + " is after --to " +
-                          std::to_string(*to) + "; give the first seed first");
+    const SeedRange range = seedRangeOf(parsed, "seeds --from 1 --to 10");
+    if (!range.error.empty()) return usageError(range.error);
     const auto loaded = loadForRun(experimentPath);
     if (!loaded) return kBadInput;
     const ExperimentSpec& spec = *loaded;
     if (outDir.empty()) outDir = (fs::path("results") / (spec.name + "_seeds")).string();
     try {
         const auto start = std::chrono::steady_clock::now();
-        const SeedRates rates = runSeeds(spec, *from, *to, outDir, [](const SeedOutcome& o) {
-            std::printf("seed %llu: passive lost %d/%d, active completed %d/%d",
-                        static_cast<unsigned long long>(o.seed), o.passiveLost, o.passiveTrials,
-                        o.activeCompleted, o.activeTrials);
-            if (o.recognition)
-                std::printf(", recognised %d (smoothed %d) of %d", o.recognisedRaw(),
-                            o.recognisedSmoothed(), o.recognitionTrials());
-            std::printf("\n");
-            for (const auto& f : o.passiveShortfalls) std::printf("    %s\n", f.c_str());
-            for (const auto& f : o.failures) std::printf("    %s\n", f.c_str());
-            for (const auto& m : o.misnamed()) std::printf("    %s\n", m.c_str());
-            std::fflush(stdout);
-            return true;
-        });
+        const SeedRates rates =
+            runSeeds(spec, range.first, range.last, outDir, [](const SeedOutcome& o) {
+                std::printf("seed %llu: passive lost %d/%d, active completed %d/%d",
+                            static_cast<unsigned long long>(o.seed), o.passiveLost, o.passiveTrials,
+                            o.activeCompleted, o.activeTrials);
+                if (o.recognition)
+                    std::printf(", recognised %d (smoothed %d) of %d", o.recognisedRaw(),
+                                o.recognisedSmoothed(), o.recognitionTrials());
+                std::printf("\n");
+                for (const auto& f : o.passiveShortfalls) std::printf("    %s\n", f.c_str());
+                for (const auto& f : o.failures) std::printf("    %s\n", f.c_str());
+                for (const auto& m : o.misnamed()) std::printf("    %s\n", m.c_str());
+                std::fflush(stdout);
+                return true;
+            });
         std::printf("\n%s over %zu seeds (%llu-%llu):\n", spec.name.c_str(), rates.seeds.size(),
-                    static_cast<unsigned long long>(*from), static_cast<unsigned long long>(*to));
+                    static_cast<unsigned long long>(range.first),
+                    static_cast<unsigned long long>(range.last));
         for (const std::string& line : describeRates(rates)) std::printf("%s\n", line.c_str());
         double figures_s = 0.0;
         if (parsed.figures)
@@ -540,6 +572,54 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
         return kBadInput;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "run failed: %s\nThe seeds finished so far are in %s/rates.csv.\n",
+                     e.what(), outDir.c_str());
+        return kRunFailed;
+    }
+}
+
+int commandCompare(const std::vector<std::string>& args) {
+    const RunArguments parsed = parseRunArguments(args, "compare", {"--from", "--to"}, false, true);
+    if (!parsed.error.empty()) return usageError(parsed.error);
+    const SeedRange range = seedRangeOf(parsed, "compare --from 1 --to 100");
+    if (!range.error.empty()) return usageError(range.error);
+    const auto a = loadForRun(parsed.experimentPath);
+    if (!a) return kBadInput;
+    const auto b = loadForRun(parsed.recordingPath);
+    if (!b) return kBadInput;
+    std::string outDir = parsed.outDir;
+    if (outDir.empty()) outDir = (fs::path("results") / (a->name + "_vs_" + b->name)).string();
+    try {
+        const auto start = std::chrono::steady_clock::now();
+        const PairedComparison c = comparePaired(
+            *a, *b, range.first, range.last, outDir,
+            [](std::uint64_t seed, const std::vector<PairedTrial>& pairs) {
+                int differ = 0;
+                for (const PairedTrial& p : pairs)
+                    differ += p.outcomeA != p.outcomeB || p.namedA != p.namedB;
+                std::printf("seed %llu: %zu trials paired, %d ended differently\n",
+                            static_cast<unsigned long long>(seed), pairs.size(), differ);
+                for (const PairedTrial& p : pairs)
+                    if (p.outcomeA != p.outcomeB || p.namedA != p.namedB)
+                        std::printf("    %s %s trial %d: a %s%s%s, b %s%s%s\n", modeName(p.mode),
+                                    p.label.c_str(), p.trial, p.outcomeA.c_str(),
+                                    p.namedA.empty() ? "" : ", named ", p.namedA.c_str(),
+                                    p.outcomeB.c_str(), p.namedB.empty() ? "" : ", named ",
+                                    p.namedB.c_str());
+                std::fflush(stdout);
+                return true;
+            });
+        std::printf("\n");
+        for (const std::string& line : describeComparison(c)) std::printf("%s\n", line.c_str());
+        std::printf("wall time %.1f s; results in %s\n",
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                    outDir.c_str());
+        return kOk;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr,
+                     "compare failed: %s\nThe seeds finished so far are in %s/compare.csv.\n",
                      e.what(), outDir.c_str());
         return kRunFailed;
     }
@@ -622,7 +702,8 @@ int main(int argc, char** argv) {
     if (command == "analyse" || command == "analyze")
         return commandAnalyse(args, argc, argv, false);
     if (command == "replay") return commandAnalyse(args, argc, argv, true);
+    if (command == "compare") return commandCompare(args);
     if (command == "check") return commandCheck(args);
     return usageError("unknown command '" + command +
-                      "'; use run, seeds, analyse, replay or check");
+                      "'; use run, seeds, compare, analyse, replay or check");
 }

@@ -15,6 +15,17 @@ void ensureOutputDirectory(const std::string& dir) {
             "cannot create the output folder (" + ec.message() + "); choose a writable --out");
 }
 
+void startAppendedTable(std::optional<OutputFile>& table, const std::string& dir,
+                        const std::string& tableName, const std::string& documentName,
+                        const char* header) {
+    ensureOutputDirectory(dir);
+    std::error_code ec;
+    fs::remove(fs::path(dir) / documentName, ec);
+    table.emplace((fs::path(dir) / tableName).string());
+    table->print("%s", header);
+    table->flush();
+}
+
 void writeJsonAtomically(const std::string& path, const Json& doc) {
     const std::string temp = path + ".partial";
     try {

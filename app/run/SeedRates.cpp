@@ -32,7 +32,8 @@ std::size_t indexOf(std::vector<std::string>& labels, const std::string& label) 
     return labels.size() - 1;
 }
 
-/// `items` joined by "; " as one quoted CSV field.
+}  // namespace
+
 std::string csvField(const std::vector<std::string>& items) {
     std::string joined;
     for (const auto& item : items) joined += (joined.empty() ? "" : "; ") + item;
@@ -40,7 +41,6 @@ std::string csvField(const std::vector<std::string>& items) {
     for (const char c : joined) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
     return quoted + '"';
 }
-}  // namespace
 
 int SeedOutcome::recognisedRaw() const {
     return static_cast<int>(std::count_if(namings.begin(), namings.end(),
@@ -210,6 +210,8 @@ Json shortJson(const ShortOfPaper& s) {
             {"path_misnamed_paper_rule", s.misnamedRaw}};
 }
 
+}  // namespace
+
 Json rateJson(const Rate& r) {
     if (r.total == 0) return {{"count", 0}, {"total", 0}, {"rate", nullptr}, {"ci95", nullptr}};
     return {{"count", r.count},
@@ -217,7 +219,6 @@ Json rateJson(const Rate& r) {
             {"rate", r.fraction()},
             {"ci95", {r.low(), r.high()}}};
 }
-}  // namespace
 
 double Rate::low() const {
     return total > 0 ? std::max(0.0, wilsonCentre(*this) - wilsonHalfWidth(*this)) : 0.0;
@@ -543,12 +544,9 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
                    const std::function<bool(const SeedOutcome&)>& seedDone) {
     SeedRates rates;
     std::optional<OutputFile> file;
-    if (!outDir.empty()) {
-        ensureOutputDirectory(outDir);
-        std::error_code ec;
-        fs::remove(fs::path(outDir) / "rates.json", ec);  // never mistaken for this run's
-        file.emplace((fs::path(outDir) / "rates.csv").string());
-        file->print(
+    if (!outDir.empty())
+        startAppendedTable(
+            file, outDir, "rates.csv", "rates.json",
             "seed,passive_trials,passive_lost,passive_lost_at_a_corner,active_trials,"
             "active_completed,"
             "recognition_trials,recognised_raw,recognised_smoothed,completed_taps,"
@@ -557,8 +555,6 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
             "valid_range_positions,"
             "paper_result,paper_result_smoothed,active_failures,misnamed_paths,"
             "passive_not_lost_at_a_corner\n");
-        file->flush();
-    }
     for (std::uint64_t seed = first; seed <= last; ++seed) {
         RunOptions options;
         options.seed = seed;

@@ -20,6 +20,12 @@ struct Rate {
     double high() const;
 };
 
+/// `items` joined by "; " as one quoted CSV field (quotes inside doubled).
+std::string csvField(const std::vector<std::string>& items);
+
+/// {"count", "total", "rate", "ci95": [low, high]}; rate and ci95 null where the total is 0.
+Json rateJson(const Rate& r);
+
 /// Active trials completed per trial label (a shape, or the label a trial gives), in the order
 /// the labels first appear.
 using RatesByLabel = std::vector<std::pair<std::string, Rate>>;

@@ -624,6 +624,72 @@ private slots:
         QCOMPARE(rows[2].split(',')[5].toInt(), singleCompleted);
     }
 
+    void compareRunsTwoExperimentsTrialByTrial() {
+        // The paper against its kernel variant on seeds 3 and 4: a row per paired trial, the
+        // rates of each side and the disagreements, in the order the paper runs its trials.
+        const QString out = dir_.filePath("compare");
+        const Outcome o = runCli({"compare", sourceFile("experiments/paper.json"),
+                                  sourceFile("experiments/paper_kernel.json"), "--from", "3",
+                                  "--to", "4", "--out", out});
+        QCOMPARE(o.exitCode, 0);
+        QVERIFY2(o.out.contains("A = paper, B = paper_kernel, 2 seeds, trial by trial:"),
+                 qPrintable(o.out));
+        QVERIFY2(o.out.contains("active trials completed") && o.out.contains("McNemar p"),
+                 qPrintable(o.out));
+        const QStringList rows = QString::fromUtf8([&] {
+                                     QFile f(out + "/compare.csv");
+                                     f.open(QIODevice::ReadOnly);
+                                     return f.readAll();
+                                 }())
+                                     .split('\n', Qt::SkipEmptyParts);
+        QCOMPARE(rows.size(), 1 + 2 * 10);
+        QCOMPARE(rows[0], QString("seed,mode,label,trial,outcome_a,outcome_b,named_a,named_b"));
+        QVERIFY2(rows[1].startsWith("3,passive,\"rectangle\",1,"), qPrintable(rows[1]));
+        QVERIFY2(rows[3].startsWith("3,active,\"rectangle\",1,completed,"), qPrintable(rows[3]));
+        const QJsonObject c = readJson(out + "/compare.json");
+        QCOMPARE(c["seeds"].toInt(), 2);
+        const QJsonObject active = c["active_completed"].toObject();
+        QCOMPARE(active["pairs"].toInt(), 16);
+        QCOMPARE(active["both"].toInt() + active["only_a"].toInt() + active["only_b"].toInt() +
+                     active["neither"].toInt(),
+                 16);
+        QVERIFY(active["mcnemar_p"].toDouble() > 0.0 && active["mcnemar_p"].toDouble() <= 1.0);
+        // Each side's count is what that experiment's own seeds run gives.
+        const QString seedsOut = dir_.filePath("compare_seeds");
+        QCOMPARE(runCli({"seeds", sourceFile("experiments/paper_kernel.json"), "--from", "3",
+                         "--to", "4", "--out", seedsOut, "--no-figures"})
+                     .exitCode,
+                 0);
+        const QJsonObject kernel = readJson(seedsOut + "/rates.json");
+        QCOMPARE(active["b"].toObject()["count"].toInt(),
+                 kernel["active_completed"].toObject()["count"].toInt());
+    }
+
+    void compareRefusesWhatItCannotPair() {
+        const QString out = dir_.filePath("compare_bad");
+        const Outcome one =
+            runCli({"compare", sourceFile("experiments/paper.json"), "--from", "1", "--to", "2"});
+        QCOMPARE(one.exitCode, 2);
+        QVERIFY2(one.err.contains("compare needs a second experiment"), qPrintable(one.err));
+        const Outcome noRange = runCli({"compare", sourceFile("experiments/paper.json"),
+                                        sourceFile("experiments/paper_kernel.json")});
+        QCOMPARE(noRange.exitCode, 2);
+        QVERIFY2(noRange.err.contains("--from and --to"), qPrintable(noRange.err));
+        // An experiment whose trials the paper does not have: nothing to compare.
+        const QString other =
+            write("other_trials.json",
+                  QString(R"({"extends": "%1", "name": "other_trials", "following": {"trials": [
+                {"label": "mine", "mode": "active", "object": {"shape": "rectangle",
+                "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150]}}]}})")
+                      .arg(sourceFile("experiments/paper.json")));
+        const Outcome none = runCli({"compare", sourceFile("experiments/paper.json"), other,
+                                     "--from", "1", "--to", "2", "--out", out});
+        QCOMPARE(none.exitCode, 2);
+        QVERIFY2(none.err.contains("no trial of 'other_trials' has a namesake in 'paper'"),
+                 qPrintable(none.err));
+        QVERIFY(!QFile::exists(out + "/compare.csv"));
+    }
+
     void seedsRefusesABadRange() {
         const QString out = dir_.filePath("badrange");
         const Outcome back = runCli({"seeds", sourceFile("experiments/paper.json"), "--from", "3",

@@ -7,10 +7,13 @@
 // kernel-smoothed likelihood (experiments/paper_kernel.json) completes more at no extra tap, and
 // so does following with a classifier trained again on every data set after validation
 // (experiments/paper_retrained.json), which passive following gains from too (over seeds 1-100:
-// 97.5 %, 97.5 %, 99.5 %, 98.5 % and 99.6 %; `activetouch-cli seeds` prints them).
+// 97.5 %, 97.5 %, 99.5 %, 98.5 % and 99.6 %; `activetouch-cli seeds` prints them). Two
+// experiments compared trial by trial over the same seeds give each side's own rates, and
+// McNemar's test on the trials they ended differently.
 #include <QtTest>
 
 #include "app/run/ExperimentRun.h"
+#include "app/run/PairedComparison.h"
 #include "app/run/SeedRates.h"
 #include "support/Paths.h"
 
@@ -494,6 +497,84 @@ private slots:
         // Training and validation tap the same poses as the paper's: any difference in robot
         // time per run is the trials'.
         QVERIFY(kernel_.robotTimePerRun_s() < 1.1 * rates_.robotTimePerRun_s());
+    }
+
+    void pairedRatesAreExact() {
+        // McNemar's exact test on the pairs that disagree, against hand-worked binomial tails.
+        PairedRate r;
+        QCOMPARE(r.mcnemarP(), 1.0);  // nothing compared, nothing different
+        for (int i = 0; i < 5; ++i) r.add(false, true);
+        QCOMPARE(r.mcnemarP(), 2.0 / 32.0);  // 0 of 5 one way: 2 * (1/2)^5
+        r.add(true, false);
+        for (int i = 0; i < 4; ++i) r.add(false, true);
+        QCOMPARE(r.onlyA, 1);
+        QCOMPARE(r.onlyB, 9);
+        QVERIFY(qAbs(r.mcnemarP() - 2.0 * 11.0 / 1024.0) < 1e-12);  // 1 of 10: 2 * (1 + 10) / 2^10
+        for (int i = 0; i < 90; ++i) r.add(i < 80, i < 80);
+        QCOMPARE(r.pairs(), 100);
+        QCOMPARE(r.a().count, 81);
+        QCOMPARE(r.b().count, 89);
+        QCOMPARE(r.difference(), 0.08);
+        // Agresti and Min's interval: half a pair in each cell, n' = 102, discordant 1.5 and 9.5.
+        const double d = 8.0 / 102.0, se = std::sqrt(11.0 - 64.0 / 102.0) / 102.0;
+        QVERIFY(qAbs(r.differenceLow() - (d - 1.959963984540054 * se)) < 1e-12);
+        QVERIFY(qAbs(r.differenceHigh() - (d + 1.959963984540054 * se)) < 1e-12);
+        QVERIFY(r.differenceLow() > 0.0);  // 9 against 1 is a difference at 95 %
+        // Evenly split disagreements: no evidence either way.
+        PairedRate even;
+        for (int i = 0; i < 3; ++i) {
+            even.add(true, false);
+            even.add(false, true);
+        }
+        QCOMPARE(even.mcnemarP(), 1.0);
+        QCOMPARE(even.difference(), 0.0);
+        QVERIFY(even.differenceLow() < 0.0 && even.differenceHigh() > 0.0);
+        // Hundreds of disagreements stay finite in the log domain.
+        PairedRate many;
+        for (int i = 0; i < 600; ++i) many.add(i % 3 == 0, i % 3 != 0);
+        QVERIFY(many.mcnemarP() > 0.0 && many.mcnemarP() < 1e-10);
+    }
+
+    void anExperimentComparedWithItselfDiffersNowhere() {
+        PairedComparison c;
+        std::vector<PairedTrial> pairs;
+        for (const RunResult& run : runs_) addSeed(c, run, run, &pairs);
+        QCOMPARE(c.seeds, 10);
+        QCOMPARE(c.unpairedTrials, 0);
+        QCOMPARE(c.activeCompleted.pairs(), 80);
+        QCOMPARE(c.passiveLostAtCorner.pairs(), 20);
+        QCOMPARE(c.paperResult.pairs(), 10);
+        QCOMPARE(int(pairs.size()), 100);
+        for (const PairedRate* r :
+             {&c.activeCompleted, &c.passiveLostAtCorner, &c.recognisedRaw, &c.paperResult}) {
+            QCOMPARE(r->onlyA + r->onlyB, 0);
+            QCOMPARE(r->mcnemarP(), 1.0);
+        }
+        for (const PairedTrial& p : pairs) QCOMPARE(p.outcomeA, p.outcomeB);
+        QCOMPARE(c.robotTimeDifferenceSd_s(), 0.0);
+    }
+
+    void comparingTwoExperimentsPairsTheirSeedsRates() {
+        // The paper against its kernel variant, trial by trial over the same seeds: each side's
+        // totals are that experiment's own rates, and every trial the two ended differently is
+        // among the disagreements.
+        const PairedComparison c = comparePaired(
+            loadExperiment(test::sourcePath("experiments/paper.json")),
+            loadExperiment(test::sourcePath("experiments/paper_kernel.json")), 1, 10, "");
+        QCOMPARE(c.seeds, 10);
+        QCOMPARE(c.activeCompleted.a().count, rates_.activeCompleted().count);
+        QCOMPARE(c.activeCompleted.b().count, kernel_.activeCompleted().count);
+        QCOMPARE(c.activeCompleted.pairs(), 80);
+        QCOMPARE(c.passiveLostAtCorner.a().count, rates_.passiveLostAtCorner().count);
+        QCOMPARE(c.passiveLostAtCorner.b().count, kernel_.passiveLostAtCorner().count);
+        QCOMPARE(c.paperResult.a().count, rates_.paperResult().count);
+        QCOMPARE(c.paperResult.b().count, kernel_.paperResult().count);
+        QCOMPARE(c.activeCompleted.onlyB - c.activeCompleted.onlyA,
+                 kernel_.activeCompleted().count - rates_.activeCompleted().count);
+        QCOMPARE(c.meanRobotTimeA_s(), rates_.robotTimePerRun_s());
+        QCOMPARE(c.meanRobotTimeB_s(), kernel_.robotTimePerRun_s());
+        // The two share their training taps: some trials end alike, some do not.
+        QVERIFY(c.activeCompleted.both > 70);
     }
 
     void retrainingOnEverySetFollowsWithEveryTapTaken() {

@@ -1,0 +1,267 @@
+#include "app/run/PairedComparison.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <tuple>
+
+#include "app/run/OutputFiles.h"
+#include "core/common/InputError.h"
+
+namespace activetouch {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kZ = 1.959963984540054;  // two-sided 95 %
+
+/// The interval's centre and half-width: Agresti and Min (2005), half a pair added to each cell.
+std::pair<double, double> adjustedDifference(const PairedRate& r) {
+    const double n = r.pairs() + 2.0;
+    const double onlyA = r.onlyA + 0.5, onlyB = r.onlyB + 0.5;
+    const double d = (onlyB - onlyA) / n;
+    const double variance =
+        std::max(0.0, (onlyA + onlyB) - (onlyB - onlyA) * (onlyB - onlyA) / n) / (n * n);
+    return {d, kZ * std::sqrt(variance)};
+}
+
+std::string trialOutcome(const TrialResult& t) {
+    if (t.completed()) return "completed";
+    return std::string(t.stoppedAtCorner() ? "lost at a corner (" : "lost away from corners (") +
+           trialEndName(t.end) + ")";
+}
+
+/// The shape the paper's rule named a completed path, or nothing (a trial lost or not recognised).
+std::string namedPath(const TrialRun& t) {
+    return t.recognised && t.result.completed() ? t.recognition.predicted : std::string();
+}
+
+using TrialKey = std::tuple<FollowingMode, std::string, int>;
+
+std::map<TrialKey, const TrialRun*> trialsByKey(const RunResult& run) {
+    std::map<TrialKey, const TrialRun*> out;
+    for (const TrialRun& t : run.trials) out[{t.result.mode, t.label, t.trial}] = &t;
+    return out;
+}
+
+std::string percentText(double fraction) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * fraction);
+    return buf;
+}
+
+std::string signedPercentText(double fraction) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%+.1f %%", 100.0 * fraction);
+    return buf;
+}
+
+Json pairedRateJson(const PairedRate& r) {
+    return {{"pairs", r.pairs()},
+            {"a", rateJson(r.a())},
+            {"b", rateJson(r.b())},
+            {"both", r.both},
+            {"only_a", r.onlyA},
+            {"only_b", r.onlyB},
+            {"neither", r.neither},
+            {"difference_b_minus_a", r.pairs() ? Json(r.difference()) : Json(nullptr)},
+            {"difference_ci95",
+             r.pairs() ? Json{r.differenceLow(), r.differenceHigh()} : Json(nullptr)},
+            {"mcnemar_p", r.mcnemarP()}};
+}
+
+}  // namespace
+
+void PairedRate::add(bool a, bool b) {
+    if (a && b)
+        ++both;
+    else if (a)
+        ++onlyA;
+    else if (b)
+        ++onlyB;
+    else
+        ++neither;
+}
+
+double PairedRate::difference() const {
+    return pairs() > 0 ? double(onlyB - onlyA) / pairs() : 0.0;
+}
+
+double PairedRate::differenceLow() const {
+    const auto [d, half] = adjustedDifference(*this);
+    return std::max(-1.0, d - half);
+}
+
+double PairedRate::differenceHigh() const {
+    const auto [d, half] = adjustedDifference(*this);
+    return std::min(1.0, d + half);
+}
+
+double PairedRate::mcnemarP() const {
+    const int n = onlyA + onlyB;
+    if (n == 0) return 1.0;
+    const int k = std::min(onlyA, onlyB);
+    // P(X <= k) for X ~ Binomial(n, 1/2), summed in the log domain; doubled for two sides.
+    double tail = 0.0;
+    for (int i = 0; i <= k; ++i)
+        tail += std::exp(std::lgamma(n + 1.0) - std::lgamma(i + 1.0) - std::lgamma(n - i + 1.0) -
+                         n * std::log(2.0));
+    return std::min(1.0, 2.0 * tail);
+}
+
+double PairedComparison::robotTimeDifferenceSd_s() const {
+    if (seeds < 2) return 0.0;
+    const double mean = (robotTimeSumB_s - robotTimeSumA_s) / seeds;
+    return std::sqrt(std::max(0.0, (robotTimeDiffSquares - seeds * mean * mean) / (seeds - 1)));
+}
+
+void addSeed(PairedComparison& c, const RunResult& a, const RunResult& b,
+             std::vector<PairedTrial>* trials) {
+    ++c.seeds;
+    c.robotTimeSumA_s += a.robotTime_s;
+    c.robotTimeSumB_s += b.robotTime_s;
+    const double diff = b.robotTime_s - a.robotTime_s;
+    c.robotTimeDiffSquares += diff * diff;
+    const auto inA = trialsByKey(a), inB = trialsByKey(b);
+    for (const TrialRun& run : a.trials) {  // in the order experiment A runs them
+        const TrialRun* ta = &run;
+        const auto found = inB.find({run.result.mode, run.label, run.trial});
+        if (found == inB.end()) {
+            ++c.unpairedTrials;
+            continue;
+        }
+        const TrialRun& tb = *found->second;
+        const TrialResult &ra = ta->result, &rb = tb.result;
+        if (ra.mode == FollowingMode::Active) {
+            c.activeCompleted.add(ra.completed(), rb.completed());
+            if (ra.completed() && rb.completed() && ta->recognised && tb.recognised)
+                c.recognisedRaw.add(ta->recognition.predicted == ta->label,
+                                    tb.recognition.predicted == tb.label);
+        } else {
+            c.passiveLostAtCorner.add(ra.stoppedAtCorner(), rb.stoppedAtCorner());
+        }
+        if (trials)
+            trials->push_back({a.spec.scene.seed, ra.mode, ta->label, ta->trial, trialOutcome(ra),
+                               trialOutcome(rb), namedPath(*ta), namedPath(tb)});
+    }
+    for (const auto& entry : inB)
+        if (!inA.count(entry.first)) ++c.unpairedTrials;
+    const SeedOutcome oa = seedOutcome(a), ob = seedOutcome(b);
+    if (oa.paperResultApplies() && ob.paperResultApplies())
+        c.paperResult.add(oa.paperResult(), ob.paperResult());
+}
+
+PairedComparison comparePaired(
+    const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t first, std::uint64_t last,
+    const std::string& outDir,
+    const std::function<bool(std::uint64_t, const std::vector<PairedTrial>&)>& seedDone) {
+    PairedComparison c;
+    c.nameA = a.name;
+    c.nameB = b.name;
+    bool shared = false;
+    for (const TrialSpec& ta : a.trials)
+        for (const TrialSpec& tb : b.trials)
+            shared = shared || (ta.label == tb.label && ta.mode == tb.mode);
+    if (!shared)
+        throw InputError(b.name, "/following/trials",
+                         "no trial of '" + b.name + "' has a namesake in '" + a.name +
+                             "' (the same label and mode); compare experiments that follow the "
+                             "same trials");
+    std::optional<OutputFile> table;
+    if (!outDir.empty())
+        startAppendedTable(table, outDir, "compare.csv", "compare.json",
+                           "seed,mode,label,trial,outcome_a,outcome_b,named_a,named_b\n");
+    for (std::uint64_t seed = first; seed <= last; ++seed) {
+        RunOptions options;
+        options.seed = seed;
+        const RunResult ra = runExperiment(a, options);
+        const RunResult rb = runExperiment(b, options);
+        std::vector<PairedTrial> pairs;
+        addSeed(c, ra, rb, &pairs);
+        if (table) {
+            for (const PairedTrial& p : pairs)
+                table->print("%llu,%s,%s,%d,%s,%s,%s,%s\n", static_cast<unsigned long long>(p.seed),
+                             modeName(p.mode), csvField({p.label}).c_str(), p.trial,
+                             p.outcomeA.c_str(), p.outcomeB.c_str(), p.namedA.c_str(),
+                             p.namedB.c_str());
+            table->flush();
+        }
+        if (seedDone && !seedDone(seed, pairs)) break;
+        if (seed == last) break;  // last may be the largest seed
+    }
+    if (table) {
+        table->close();
+        writeJsonAtomically((fs::path(outDir) / "compare.json").string(), pairedComparisonJson(c));
+    }
+    return c;
+}
+
+Json pairedComparisonJson(const PairedComparison& c) {
+    return {{"a", c.nameA},
+            {"b", c.nameB},
+            {"seeds", c.seeds},
+            {"unpaired_trials", c.unpairedTrials},
+            {"active_completed", pairedRateJson(c.activeCompleted)},
+            {"passive_lost_at_a_corner", pairedRateJson(c.passiveLostAtCorner)},
+            {"recognised_raw", pairedRateJson(c.recognisedRaw)},
+            {"paper_result", pairedRateJson(c.paperResult)},
+            {"robot_time_per_run_s",
+             {{"a", c.meanRobotTimeA_s()},
+              {"b", c.meanRobotTimeB_s()},
+              {"difference_b_minus_a", c.meanRobotTimeB_s() - c.meanRobotTimeA_s()},
+              {"difference_sd", c.robotTimeDifferenceSd_s()}}}};
+}
+
+std::vector<std::string> describeComparison(const PairedComparison& c) {
+    std::vector<std::string> lines;
+    char buf[320];
+    std::snprintf(buf, sizeof buf, "A = %s, B = %s, %d seeds, trial by trial:", c.nameA.c_str(),
+                  c.nameB.c_str(), c.seeds);
+    lines.push_back(buf);
+    std::snprintf(buf, sizeof buf, "  %-41s %-20s %-20s %6s %6s  %-28s %s", "", "A", "B", "only A",
+                  "only B", "B - A (95 % interval)", "McNemar p");
+    lines.push_back(buf);
+    auto row = [&](const char* what, const PairedRate& r) {
+        if (r.pairs() == 0) return;
+        auto rate = [](const Rate& x) {
+            return std::to_string(x.count) + "/" + std::to_string(x.total) + " " +
+                   percentText(x.fraction());
+        };
+        const std::string diff = signedPercentText(r.difference()) + " (" +
+                                 signedPercentText(r.differenceLow()) + " to " +
+                                 signedPercentText(r.differenceHigh()) + ")";
+        std::snprintf(buf, sizeof buf, "  %-41s %-20s %-20s %6d %6d  %-28s %.3g", what,
+                      rate(r.a()).c_str(), rate(r.b()).c_str(), r.onlyA, r.onlyB, diff.c_str(),
+                      r.mcnemarP());
+        lines.push_back(buf);
+    };
+    row("active trials completed", c.activeCompleted);
+    row("passive trials lost at a corner", c.passiveLostAtCorner);
+    row("completed paths recognised (paper's rule)", c.recognisedRaw);
+    row("runs with the paper's result whole", c.paperResult);
+    std::snprintf(
+        buf, sizeof buf, "  %-41s %-20s %-20s B - A %+.1f min per run (sd %.1f min over the seeds)",
+        "robot time per run",
+        (std::to_string(static_cast<int>(std::lround(c.meanRobotTimeA_s() / 60.0))) + " min")
+            .c_str(),
+        (std::to_string(static_cast<int>(std::lround(c.meanRobotTimeB_s() / 60.0))) + " min")
+            .c_str(),
+        (c.meanRobotTimeB_s() - c.meanRobotTimeA_s()) / 60.0, c.robotTimeDifferenceSd_s() / 60.0);
+    lines.push_back(buf);
+    if (c.recognisedRaw.pairs() > 0)
+        lines.push_back("  (recognition compared over the active trials both completed)");
+    if (c.unpairedTrials > 0) {
+        std::snprintf(buf, sizeof buf,
+                      "  %d trials only one experiment has (label, mode or repeat) are not "
+                      "compared",
+                      c.unpairedTrials);
+        lines.push_back(buf);
+    }
+    return lines;
+}
+
+}  // namespace activetouch

@@ -1,0 +1,84 @@
+#pragma once
+// Two experiments compared on the same seeds and the same trials. A seed gives both experiments
+// the same data sets and the same noise on each trial's world, so where they differ only in a
+// setting (the classifier's kernel, a controller rule), comparing them trial by trial shows the
+// setting's effect with far less noise than two rates with overlapping intervals: only the pairs
+// whose outcomes differ carry information (McNemar's test).
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "app/run/SeedRates.h"
+
+namespace activetouch {
+
+/// One yes/no outcome (a trial completed, say) over pairs of the same trial in experiments A and
+/// B: how many pairs each said yes in, and in which they disagreed.
+struct PairedRate {
+    int both = 0, onlyA = 0, onlyB = 0, neither = 0;
+    void add(bool a, bool b);
+    int pairs() const { return both + onlyA + onlyB + neither; }
+    Rate a() const { return {both + onlyA, pairs()}; }
+    Rate b() const { return {both + onlyB, pairs()}; }
+    /// B's rate minus A's, as a fraction of the pairs.
+    double difference() const;
+    /// The difference's 95 % interval (Agresti and Min's adjusted interval for paired
+    /// proportions: half a pair added to each cell), within -1..1.
+    double differenceLow() const;
+    double differenceHigh() const;
+    /// McNemar's exact two-sided p-value: how likely disagreements this lopsided (onlyA against
+    /// onlyB) are if the two experiments did equally well. 1 where they never disagree.
+    double mcnemarP() const;
+};
+
+/// A trial of one seed's run in both experiments, as each ended.
+struct PairedTrial {
+    std::uint64_t seed = 0;
+    FollowingMode mode = FollowingMode::Active;
+    std::string label;
+    int trial = 1;
+    /// "completed", "lost at a corner" or "lost away from corners", with the reason it ended.
+    std::string outcomeA, outcomeB;
+    std::string namedA, namedB;  ///< the shape the paper's rule named a completed path, or ""
+};
+
+struct PairedComparison {
+    std::string nameA, nameB;
+    int seeds = 0;
+    PairedRate activeCompleted;      ///< active trials both experiments ran
+    PairedRate passiveLostAtCorner;  ///< passive trials both ran
+    /// Active trials both completed and recognised: named rightly by the paper's rule.
+    PairedRate recognisedRaw;
+    PairedRate paperResult;  ///< runs (seeds) where both have the paper's parts
+    /// Trials only one experiment has (a label, mode or repeat the other lacks); not compared.
+    int unpairedTrials = 0;
+    double robotTimeSumA_s = 0.0, robotTimeSumB_s = 0.0;  ///< whole runs
+    double robotTimeDiffSquares = 0.0;                    ///< sum of (B - A)^2 per seed
+    double meanRobotTimeA_s() const { return seeds ? robotTimeSumA_s / seeds : 0.0; }
+    double meanRobotTimeB_s() const { return seeds ? robotTimeSumB_s / seeds : 0.0; }
+    /// The standard deviation over seeds of B's robot time minus A's, per run.
+    double robotTimeDifferenceSd_s() const;
+};
+
+/// Adds one seed: `a` and `b` are the two experiments' runs with that seed. Trials pair by mode,
+/// label and repeat; `trials` (if given) gets each pair.
+void addSeed(PairedComparison& c, const RunResult& a, const RunResult& b,
+             std::vector<PairedTrial>* trials = nullptr);
+
+/// Runs `a` and `b` once per seed first..last and compares them. With `outDir`, writes
+/// compare.csv (a row per paired trial, appended as each seed finishes) and compare.json (the
+/// comparison, written last). `seedDone` hears each seed's pairs; returning false stops after it.
+/// Throws InputError, before any run, if the experiments share no trial (label and mode).
+PairedComparison comparePaired(
+    const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t first, std::uint64_t last,
+    const std::string& outDir,
+    const std::function<bool(std::uint64_t, const std::vector<PairedTrial>&)>& seedDone = {});
+
+Json pairedComparisonJson(const PairedComparison& c);
+
+/// The comparison as lines of text: each outcome's rate in A and in B, the pairs where they
+/// differ, the difference with its interval and McNemar's p.
+std::vector<std::string> describeComparison(const PairedComparison& c);
+
+}  // namespace activetouch
