@@ -33,7 +33,12 @@ void writeJsonAtomically(const std::string& path, const Json& doc) {
         const std::string text = doc.dump(2);
         out.print("%s\n", text.c_str());
         out.close();
-    } catch (...) {  // the partial file is no document
+    } catch (const WriteError& e) {  // the partial file is no document: named by its own path
+        std::error_code ignored;
+        fs::remove(temp, ignored);
+        throw WriteError(path, e.reason(),
+                         "free space on its disk or choose another output folder, and run again");
+    } catch (...) {
         std::error_code ignored;
         fs::remove(temp, ignored);
         throw;
@@ -41,10 +46,11 @@ void writeJsonAtomically(const std::string& path, const Json& doc) {
     std::error_code ec;
     fs::rename(temp, path, ec);
     if (ec) {
+        const std::string reason = ec.message();
         fs::remove(temp, ec);
-        throw InputError(
-            path, "",
-            "cannot replace the file (" + ec.message() + "); check the output folder is writable");
+        throw WriteError(path, reason,
+                         "check that the output folder is writable and that nothing else stands "
+                         "at that path");
     }
 }
 

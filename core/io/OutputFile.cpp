@@ -25,10 +25,9 @@ void OutputFile::noteFailure() {
 }
 
 void OutputFile::raise() {
-    throw WriteError(path_,
-                     std::string("cannot write the file (") + std::strerror(error_) +
-                         "); free space on its disk or choose another output folder, and run "
-                         "again (what was written before stays in the file)");
+    throw WriteError(path_, std::strerror(error_),
+                     "free space on its disk or choose another output folder, and run again "
+                     "(what was written before stays in the file)");
 }
 
 void OutputFile::print(const char* format, ...) {

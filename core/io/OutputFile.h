@@ -13,12 +13,16 @@ namespace activetouch {
 /// it wrote before stays in the file.
 class WriteError : public std::runtime_error {
 public:
-    WriteError(std::string path, const std::string& problem)
-        : std::runtime_error(path + ": " + problem), path_(std::move(path)) {}
+    /// `reason`: the system's, e.g. "No space left on device"; `advice`: what to do.
+    WriteError(std::string path, std::string reason, const std::string& advice)
+        : std::runtime_error(path + ": cannot write the file (" + reason + "); " + advice),
+          path_(std::move(path)),
+          reason_(std::move(reason)) {}
     const std::string& path() const { return path_; }
+    const std::string& reason() const { return reason_; }
 
 private:
-    std::string path_;
+    std::string path_, reason_;
 };
 
 class OutputFile {

@@ -503,6 +503,22 @@ private slots:
                  qPrintable(following.out));
     }
 
+    void aSummaryThatCannotReplaceWhatIsThereFailsTheRun() {
+        // A folder (not empty) where summary.json would go: the run's tables and taps are
+        // written, the summary cannot be, and the run says so rather than leave a .partial.
+        const QString out = dir_.filePath("summary_blocked");
+        QVERIFY(QDir().mkpath(out + "/summary.json/kept"));
+        const Outcome o =
+            runCli({"run", sourceFile("experiments/paper.json"), "--out", out, "--no-figures"});
+        QCOMPARE(o.exitCode, 1);
+        QVERIFY2(o.err.contains(out + "/summary.json: cannot write the file (Is a directory)"),
+                 qPrintable(o.err));
+        QVERIFY(!QFile::exists(out + "/summary.json.partial"));
+        const Outcome taps = runCli({"check", out + "/data/taps.csv"});
+        QCOMPARE(taps.exitCode, 0);
+        QVERIFY2(taps.out.contains("360 taps"), qPrintable(taps.out));
+    }
+
     void checkReadsTapRecordings() {
         const QString out = dir_.filePath("csvrun");
         QCOMPARE(runCli({"run", sourceFile("experiments/paper.json"), "--out", out, "--no-figures"})
