@@ -30,6 +30,7 @@
 #include "app/figures/SeedFigures.h"
 #include "app/figures/SweepFigures.h"
 #include "app/figures/ValidationFigures.h"
+#include "app/gui/ComparisonTab.h"
 #include "app/gui/DevicesPanel.h"
 #include "app/gui/FollowingTab.h"
 #include "app/gui/LiveView.h"
@@ -123,6 +124,15 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     connect(seeds_, &SeedsTab::runRequested, this,
             [this](std::uint64_t first, std::uint64_t last) { startSeeds(first, last); });
     connect(seeds_, &SeedsTab::seedRunRequested, this, &MainWindow::startSeedRun);
+    comparison_ = new ComparisonTab;
+    tabs_->addTab(comparison_, tr("Compare"));
+    connect(comparison_, &ComparisonTab::compareRequested, this,
+            [this](std::uint64_t first, std::uint64_t last) {
+                const QString path = QFileDialog::getOpenFileName(
+                    this, tr("Compare with the experiment (B)"), QFileInfo(experimentPath_).path(),
+                    tr("Experiments (*.json)"));
+                if (!path.isEmpty()) startComparison(path, first, last);
+            });
     setCentralWidget(tabs_);
     const QString training =
         tr("Click Run whole protocol, or Run training & validation, to tap the "
@@ -251,8 +261,14 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     connect(&runs_, &RunController::finished, this, &MainWindow::showRun);
     connect(&runs_, &RunController::seedFinished, seeds_, &SeedsTab::addSeed);
     connect(&runs_, &RunController::seedsFinished, this, &MainWindow::showSeeds);
+    connect(&runs_, &RunController::comparisonSeedFinished, comparison_,
+            [this](quint64 seed, const std::vector<PairedTrial>& pairs) {
+                comparison_->addSeed(seed, pairs);
+            });
+    connect(&runs_, &RunController::comparisonFinished, this, &MainWindow::showComparison);
     connect(&runs_, &RunController::failed, this, [this](const QString& m) {
         seeds_->interrupted();
+        comparison_->interrupted();
         showError(m);
         emit runEnded(false);
     });
@@ -304,12 +320,21 @@ void MainWindow::showError(const QString& message) {
     emit errorShown(message);
 }
 
+namespace {
+/// The experiment file at `path`, read with every check a run makes; its document in `j`.
+ExperimentSpec readExperimentChecked(const QString& path, Json& j) {
+    j = readExperimentFile(path.toStdString());
+    ExperimentSpec spec =
+        parseExperiment(j, path.toStdString(), QFileInfo(path).path().toStdString());
+    validateEffects(spec.scene, FingertipContactModel(spec.scene.fingertip));
+    return spec;
+}
+}  // namespace
+
 bool MainWindow::openExperiment(const QString& path) {
     try {
-        const Json j = readExperimentFile(path.toStdString());
-        ExperimentSpec spec =
-            parseExperiment(j, path.toStdString(), QFileInfo(path).path().toStdString());
-        validateEffects(spec.scene, FingertipContactModel(spec.scene.fingertip));
+        Json j;
+        ExperimentSpec spec = readExperimentChecked(path, j);
         // Only a fully valid file replaces the session.
         spec_ = spec;
         experimentJson_ = j;
@@ -534,6 +559,59 @@ bool MainWindow::startSeeds(std::uint64_t first, std::uint64_t last) {
     return true;
 }
 
+bool MainWindow::startComparison(const QString& otherPath, std::uint64_t first,
+                                 std::uint64_t last) {
+    const auto toRun = experimentToRun();
+    if (!toRun) return false;
+    ExperimentSpec other;
+    try {
+        Json j;
+        other = readExperimentChecked(otherPath, j);
+        checkComparable(*toRun, other);
+    } catch (const std::exception& e) {
+        showError(tr("Could not compare with %1:\n%2").arg(otherPath, e.what()));
+        return false;
+    }
+    const QString a = QString::fromStdString(toRun->name), b = QString::fromStdString(other.name);
+    const QString dir = newRunDirectory(a + "_vs_" + b);
+    if (!runs_.startComparison(*toRun, other, first, last, dir)) return false;
+    countingSeeds_ = true;
+    lastComparisonDir_ = dir;
+    comparison_->begin(a, b, first, last);
+    tabs_->setCurrentWidget(comparison_);
+    progress_->setRange(0, static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX)));
+    progress_->setValue(0);
+    log(tr("comparison started: %1 (A) against %2 (B, %3), seeds %4-%5, trial by trial, writing "
+           "%6")
+            .arg(a, b, otherPath)
+            .arg(first)
+            .arg(last)
+            .arg(dir));
+    updateActions();
+    return true;
+}
+
+void MainWindow::showComparison(std::shared_ptr<const PairedComparison> comparison,
+                                const QString& dir, bool cancelled) {
+    comparison_->finish(*comparison, dir, cancelled);
+    const QString state = cancelled ? tr("cancelled") : tr("finished");
+    progress_->setFormat(tr("comparison %1: %2 seeds").arg(state).arg(comparison->seeds));
+    status_->setText(tr("comparison %1, results in %2").arg(state, dir));
+    const PairedRate& active = comparison->activeCompleted;
+    log(tr("comparison %1 after %2 seeds: active completed %3 (A) and %4 (B) of %5, %6 only by "
+           "A, %7 only by B (McNemar p %8); compare.csv and compare.json in %9")
+            .arg(state)
+            .arg(comparison->seeds)
+            .arg(active.a().count)
+            .arg(active.b().count)
+            .arg(active.pairs())
+            .arg(active.onlyA)
+            .arg(active.onlyB)
+            .arg(active.mcnemarP(), 0, 'g', 3)
+            .arg(dir));
+    emit runEnded(!cancelled);
+}
+
 void MainWindow::showSeeds(std::shared_ptr<const SeedRates> rates, const QString& dir,
                            bool cancelled) {
     seeds_->finish(dir, cancelled);
@@ -664,6 +742,7 @@ void MainWindow::updateActions() {
     runFollowing_->setEnabled(!busy && ready && last_ && last_->classifier.trained());
     cancel_->setEnabled(busy);
     seeds_->setRunnable(!busy && ready);
+    comparison_->setRunnable(!busy && ready);
     exportAll_->setEnabled(!busy && last_ != nullptr);
 }
 

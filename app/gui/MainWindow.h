@@ -28,6 +28,7 @@ class PlotPanel;
 class ProtocolPanel;
 class ScenePanel;
 class SeedsTab;
+class ComparisonTab;
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
@@ -52,6 +53,11 @@ public:
     /// every artefact, shown in the contour following tab. Without a seeds run, the experiment
     /// as shown.
     bool startSeedRun(std::uint64_t seed);
+    /// Runs the experiment as shown (A) and the experiment file `otherPath` (B) on the seeds
+    /// `first` to `last` and compares them trial by trial (the "Compare" tab), writing into a new
+    /// folder under the output base. A file that cannot be read, or that shares no trial with A,
+    /// is refused with the reason before any run.
+    bool startComparison(const QString& otherPath, std::uint64_t first, std::uint64_t last);
     /// Trains and validates the experiment as shown on the training and test taps recorded in
     /// `path` (a run's data/taps.csv), taking no tap; a recording that cannot be read or
     /// validated is refused with the reason and the session kept.
@@ -72,6 +78,7 @@ public:
     std::shared_ptr<const RunResult> lastRun() const { return last_; }
     QString lastRunDirectory() const { return lastOutDir_; }
     QString lastSeedsDirectory() const { return lastSeedsDir_; }
+    QString lastComparisonDirectory() const { return lastComparisonDir_; }
     bool running() const { return runs_.running(); }
     QProgressBar* progressBar() const { return progress_; }
     ScenePanel* scenePanel() const { return scene_; }
@@ -79,6 +86,7 @@ public:
     LiveView* liveView() const { return live_; }
     FollowingTab* followingTab() const { return following_; }
     SeedsTab* seedsTab() const { return seeds_; }
+    ComparisonTab* comparisonTab() const { return comparison_; }
     QTabWidget* tabs() const { return tabs_; }
     /// Every plot in the window, for export.
     QList<PlotPanel*> plotPanels() const;
@@ -112,6 +120,8 @@ private:
     void log(const QString& text);
     void showRun(std::shared_ptr<const RunResult> result, const QString& dir);
     void showSeeds(std::shared_ptr<const SeedRates> rates, const QString& dir, bool cancelled);
+    void showComparison(std::shared_ptr<const PairedComparison> comparison, const QString& dir,
+                        bool cancelled);
     void updateActions();
 
     LiveFeed feed_;
@@ -124,6 +134,7 @@ private:
     std::shared_ptr<const RunResult> last_;
     QString lastOutDir_;
     QString lastSeedsDir_;
+    QString lastComparisonDir_;
     std::optional<ExperimentSpec> seedsSpec_;  ///< what the last seeds run ran
     bool countingSeeds_ = false;               ///< the run going counts seeds, not taps
 
@@ -132,6 +143,7 @@ private:
     PlotPanel *taps_, *errors_, *recognition_, *sweepPerception_, *sweepFollowing_, *sweepCompute_;
     FollowingTab* following_;
     SeedsTab* seeds_;
+    ComparisonTab* comparison_;
     QTableWidget *confusionRaw_, *confusionSmoothed_;  ///< traced shape x named, each rule
     QLabel *confusionRawTitle_, *confusionSmoothedTitle_;
     ScenePanel* scene_;

@@ -10,10 +10,30 @@
 
 namespace activetouch {
 
+namespace {
+/// The seeds a run over seeds has done, and how long the rest will take at the pace so far.
+struct SeedClock {
+    SeedClock(std::uint64_t first, std::uint64_t last)
+        : planned(static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX))) {}
+    /// One more seed done; returns the seconds the rest will take.
+    double tick() {
+        ++done;
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        return elapsed / done * (planned - done);
+    }
+    const std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+    const int planned;
+    int done = 0;
+};
+}  // namespace
+
 RunController::RunController(LiveFeed& live, QObject* parent) : QObject(parent), live_(live) {
     qRegisterMetaType<std::shared_ptr<const RunResult>>();
     qRegisterMetaType<std::shared_ptr<const SeedRates>>();
     qRegisterMetaType<SeedOutcome>();
+    qRegisterMetaType<std::vector<PairedTrial>>();
+    qRegisterMetaType<std::shared_ptr<const PairedComparison>>();
 }
 
 RunController::~RunController() {
@@ -132,8 +152,7 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
     return true;
 }
 
-bool RunController::startSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
-                               const QString& outDir) {
+bool RunController::canRunSeeds(std::uint64_t first, std::uint64_t last) {
     if (thread_) {
         emit failed(tr("A run is already going; cancel it or wait for it to finish."));
         return false;
@@ -144,21 +163,22 @@ bool RunController::startSeeds(const ExperimentSpec& spec, std::uint64_t first, 
                         .arg(last));
         return false;
     }
+    return true;
+}
+
+bool RunController::startSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
+                               const QString& outDir) {
+    if (!canRunSeeds(first, last)) return false;
     launch(outDir, [this, spec, first, last, outDir] {
-        const auto started = std::chrono::steady_clock::now();
-        const int planned = static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX));
-        int done = 0;
+        SeedClock clock(first, last);
         try {
             auto rates = std::make_shared<SeedRates>(
                 runSeeds(spec, first, last, outDir.toStdString(), [&](const SeedOutcome& o) {
-                    ++done;
                     emit seedFinished(o);
-                    const double elapsed =
-                        std::chrono::duration<double>(std::chrono::steady_clock::now() - started)
-                            .count();
-                    emit progress(done, planned,
+                    const double left = clock.tick();
+                    emit progress(clock.done, clock.planned,
                                   tr("seed %1 of %2-%3 finished").arg(o.seed).arg(first).arg(last),
-                                  elapsed / done * (planned - done));
+                                  left);
                     return !cancel_;
                 }));
             const bool cancelled = rates->seeds.size() < last - first + 1;
@@ -166,6 +186,34 @@ bool RunController::startSeeds(const ExperimentSpec& spec, std::uint64_t first, 
         } catch (const std::exception& e) {
             emit failed(tr("The seeds run stopped: %1. The seeds finished so far are in "
                            "%2/rates.csv.")
+                            .arg(QString::fromStdString(e.what()), outDir));
+        }
+    });
+    return true;
+}
+
+bool RunController::startComparison(const ExperimentSpec& a, const ExperimentSpec& b,
+                                    std::uint64_t first, std::uint64_t last,
+                                    const QString& outDir) {
+    if (!canRunSeeds(first, last)) return false;
+    launch(outDir, [this, a, b, first, last, outDir] {
+        SeedClock clock(first, last);
+        try {
+            auto comparison = std::make_shared<PairedComparison>(comparePaired(
+                a, b, first, last, outDir.toStdString(),
+                [&](std::uint64_t seed, const std::vector<PairedTrial>& pairs) {
+                    emit comparisonSeedFinished(quint64(seed), pairs);
+                    const double left = clock.tick();
+                    emit progress(clock.done, clock.planned,
+                                  tr("seed %1 of %2-%3 compared").arg(seed).arg(first).arg(last),
+                                  left);
+                    return !cancel_;
+                }));
+            const bool cancelled = std::uint64_t(comparison->seeds) < last - first + 1;
+            emit comparisonFinished(comparison, outDir, cancelled);
+        } catch (const std::exception& e) {
+            emit failed(tr("The comparison stopped: %1. The seeds compared so far are in "
+                           "%2/compare.csv.")
                             .arg(QString::fromStdString(e.what()), outDir));
         }
     });

@@ -9,6 +9,7 @@
 
 #include "app/gui/LiveFeed.h"
 #include "app/run/ExperimentRun.h"
+#include "app/run/PairedComparison.h"
 #include "app/run/SeedRates.h"
 
 namespace activetouch {
@@ -42,6 +43,12 @@ public:
     /// run is already going or the range is backwards.
     bool startSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
                     const QString& outDir);
+    /// Starts comparing `a` and `b` trial by trial on the seeds `first` to `last` (each a whole
+    /// run of each on the simulated rig), writing <outDir>/compare.csv seed by seed and
+    /// compare.json at the end; cancel stops after the seed in flight. False (and failed()) as
+    /// for startSeeds.
+    bool startComparison(const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t first,
+                         std::uint64_t last, const QString& outDir);
     void cancel();
     bool running() const { return thread_ != nullptr; }
     /// Asks a running run to stop and waits at most `ms` for it; true if it stopped.
@@ -56,10 +63,17 @@ signals:
     /// A seeds run has ended, with every seed finished (all planned unless cancelled).
     void seedsFinished(std::shared_ptr<const activetouch::SeedRates> rates, const QString& outDir,
                        bool cancelled);
+    /// A seed of a comparison has finished: its paired trials.
+    void comparisonSeedFinished(quint64 seed, const std::vector<activetouch::PairedTrial>& pairs);
+    /// A comparison has ended, with every seed finished (all planned unless cancelled).
+    void comparisonFinished(std::shared_ptr<const activetouch::PairedComparison> comparison,
+                            const QString& outDir, bool cancelled);
     /// The worker has ended (after finished or failed): a new run may start.
     void idle();
 
 private:
+    /// False (and failed()) if a run is going or the seeds run backwards.
+    bool canRunSeeds(std::uint64_t first, std::uint64_t last);
     /// Runs `work` on a new worker thread; idle() when it ends.
     template <typename Work>
     void launch(const QString& outDir, Work work);
@@ -74,3 +88,5 @@ private:
 Q_DECLARE_METATYPE(std::shared_ptr<const activetouch::RunResult>)
 Q_DECLARE_METATYPE(std::shared_ptr<const activetouch::SeedRates>)
 Q_DECLARE_METATYPE(activetouch::SeedOutcome)
+Q_DECLARE_METATYPE(std::vector<activetouch::PairedTrial>)
+Q_DECLARE_METATYPE(std::shared_ptr<const activetouch::PairedComparison>)

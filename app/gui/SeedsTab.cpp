@@ -11,12 +11,12 @@
 
 #include "app/figures/SeedFigures.h"
 #include "app/gui/PlotPanel.h"
+#include "app/gui/SeedRange.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
 
 namespace {
-constexpr int kMaxSeed = 2147483647;
 
 QTableWidgetItem* cell(const QString& text) {
     auto* item = new QTableWidgetItem(text);
@@ -32,16 +32,7 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     last_ = new QSpinBox;
     first_->setObjectName("firstSeed");
     last_->setObjectName("lastSeed");
-    for (QSpinBox* s : {first_, last_}) s->setRange(0, kMaxSeed);
-    first_->setValue(1);
-    last_->setValue(10);
-    // The range can never be given backwards.
-    connect(first_, &QSpinBox::valueChanged, this, [this](int v) {
-        if (last_->value() < v) last_->setValue(v);
-    });
-    connect(last_, &QSpinBox::valueChanged, this, [this](int v) {
-        if (first_->value() > v) first_->setValue(v);
-    });
+    makeSeedRange(first_, last_, 1, 10);
     run_ = new QPushButton(tr("Run over seeds"));
     run_->setObjectName("runSeeds");
     connect(run_, &QPushButton::clicked, this,

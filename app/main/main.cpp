@@ -1,12 +1,14 @@
 // activetouch: the workbench window.
 //   activetouch [experiment.json]
 //   activetouch --screenshots <dir> [experiment.json]   run the experiment, then over seeds 1-10,
-//   save a PNG of each tab and of the device panels, then of the replay of the first seed's
-//   lost active trial, if any; quit
+//   then compare it with paper_kernel.json beside it (if there) over seeds 1-10, save a PNG of
+//   each tab and of the device panels, then of the replay of the first seed's lost active trial,
+//   if any; quit
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QDir>
 #include <QDockWidget>
+#include <QFileInfo>
 #include <QTabWidget>
 #include <QTimer>
 
@@ -25,9 +27,10 @@ int main(int argc, char** argv) {
         "ActiveTouch Workbench: active tactile perception experiments on a simulated or real rig.");
     parser.addHelpOption();
     QCommandLineOption shots("screenshots",
-                             "Run the experiment, then over seeds 1-10, save a screenshot of each "
-                             "tab into <dir>, and of the replay of the first lost active trial "
-                             "over those seeds, and quit.",
+                             "Run the experiment, then over seeds 1-10, then compare it with "
+                             "paper_kernel.json beside it (if there) over seeds 1-10, save a "
+                             "screenshot of each tab into <dir>, and of the replay of the first "
+                             "lost active trial over those seeds, and quit.",
                              "dir");
     parser.addOption(shots);
     parser.addPositionalArgument(
@@ -62,6 +65,9 @@ int main(int argc, char** argv) {
         window.grab().save(QDir(dir).filePath(QString("%1_%2.png").arg(number).arg(name)));
     };
     int status = 0, runsEnded = 0;
+    bool compared = false, replaying = false;
+    // Beside the paper, its kernel variant for the comparison tab, if it is there.
+    const QString kernel = QFileInfo(window.experimentPath()).dir().filePath("paper_kernel.json");
     QObject::connect(&window, &MainWindow::runEnded, &window, [&](bool completed) {
         const int step = ++runsEnded;
         if (!completed) status = 1;
@@ -71,9 +77,16 @@ int main(int argc, char** argv) {
             });
             return;
         }
-        QTimer::singleShot(500, &window, [&, step, completed] {
+        if (step == 2 && completed && !compared && QFileInfo::exists(kernel)) {
+            compared = true;
+            QTimer::singleShot(200, &window, [&] {
+                if (!window.startComparison(kernel, 1, 10)) app.exit(1);
+            });
+            return;
+        }
+        QTimer::singleShot(500, &window, [&, completed] {
             const int tabs = window.tabs()->count();
-            if (step == 3) {
+            if (replaying) {
                 // The seed's run: its trials and the replay of the first lost active trial.
                 if (auto* scene = window.findChild<QDockWidget*>("sceneDock")) scene->raise();
                 window.tabs()->setCurrentWidget(window.followingTab());
@@ -104,6 +117,7 @@ int main(int argc, char** argv) {
             }
             const std::optional<std::uint64_t> lost =
                 completed ? window.seedsTab()->firstSeedWithLostActiveTrial() : std::nullopt;
+            replaying = true;
             if (!lost || !window.startSeedRun(*lost)) app.quit();
         });
     });

@@ -155,6 +155,16 @@ void addSeed(PairedComparison& c, const RunResult& a, const RunResult& b,
         c.paperResult.add(oa.paperResult(), ob.paperResult());
 }
 
+void checkComparable(const ExperimentSpec& a, const ExperimentSpec& b) {
+    for (const TrialSpec& ta : a.trials)
+        for (const TrialSpec& tb : b.trials)
+            if (ta.label == tb.label && ta.mode == tb.mode) return;
+    throw InputError(b.name, "/following/trials",
+                     "no trial of '" + b.name + "' has a namesake in '" + a.name +
+                         "' (the same label and mode); compare experiments that follow the same "
+                         "trials");
+}
+
 PairedComparison comparePaired(
     const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t first, std::uint64_t last,
     const std::string& outDir,
@@ -162,15 +172,7 @@ PairedComparison comparePaired(
     PairedComparison c;
     c.nameA = a.name;
     c.nameB = b.name;
-    bool shared = false;
-    for (const TrialSpec& ta : a.trials)
-        for (const TrialSpec& tb : b.trials)
-            shared = shared || (ta.label == tb.label && ta.mode == tb.mode);
-    if (!shared)
-        throw InputError(b.name, "/following/trials",
-                         "no trial of '" + b.name + "' has a namesake in '" + a.name +
-                             "' (the same label and mode); compare experiments that follow the "
-                             "same trials");
+    checkComparable(a, b);
     std::optional<OutputFile> table;
     if (!outDir.empty())
         startAppendedTable(table, outDir, "compare.csv", "compare.json",

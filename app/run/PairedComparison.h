@@ -66,10 +66,13 @@ struct PairedComparison {
 void addSeed(PairedComparison& c, const RunResult& a, const RunResult& b,
              std::vector<PairedTrial>* trials = nullptr);
 
+/// Throws InputError if `a` and `b` share no trial (the same label and mode) to compare.
+void checkComparable(const ExperimentSpec& a, const ExperimentSpec& b);
+
 /// Runs `a` and `b` once per seed first..last and compares them. With `outDir`, writes
 /// compare.csv (a row per paired trial, appended as each seed finishes) and compare.json (the
 /// comparison, written last). `seedDone` hears each seed's pairs; returning false stops after it.
-/// Throws InputError, before any run, if the experiments share no trial (label and mode).
+/// checkComparable before any run.
 PairedComparison comparePaired(
     const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t first, std::uint64_t last,
     const std::string& outDir,

@@ -32,6 +32,7 @@
 #include <QtTest>
 #include <csignal>
 
+#include "app/gui/ComparisonTab.h"
 #include "app/gui/DevicesPanel.h"
 #include "app/gui/FollowingTab.h"
 #include "app/gui/LiveView.h"
@@ -682,6 +683,56 @@ private slots:
             }
         QTRY_VERIFY(!window_->running());
         QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
+    }
+
+    void twoExperimentsAreComparedTrialByTrialFromTheWindow() {
+        // The paper as shown (A) against its kernel variant (B) on seeds 3 and 4: a row for each
+        // trial the two ended differently, the same trials compare.csv says differ, and at the
+        // end each side's rates with McNemar's p.
+        ComparisonTab* tab = window_->comparisonTab();
+        auto* compare = tab->findChild<QPushButton*>("compareWith");
+        auto* first = tab->findChild<QSpinBox*>("compareFirstSeed");
+        auto* last = tab->findChild<QSpinBox*>("compareLastSeed");
+        QVERIFY(compare && first && last);
+        QVERIFY(compare->isEnabled());
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QVERIFY(window_->startComparison(sourceFile("experiments/paper_kernel.json"), 3, 4));
+        QVERIFY(!compare->isEnabled());  // one run at a time
+        QCOMPARE(window_->tabs()->currentWidget(), tab);
+        QCOMPARE(first->value(), 3);  // the boxes show the seeds being compared
+        QCOMPARE(last->value(), 4);
+        endsSuccessfully(*window_, ended);
+        QVERIFY(compare->isEnabled());
+        const QString dir = window_->lastComparisonDirectory();
+        QVERIFY(QFile::exists(dir + "/compare.json"));
+        QFile csv(dir + "/compare.csv");
+        QVERIFY(csv.open(QIODevice::ReadOnly));
+        const QList<QByteArray> rows = csv.readAll().trimmed().split('\n');
+        QCOMPARE(rows.size(), 1 + 2 * 10);
+        int differ = 0;
+        for (int i = 1; i < rows.size(); ++i) {
+            const QList<QByteArray> f = rows[i].split(',');
+            differ += f[4] != f[5] || f[6] != f[7];
+        }
+        QCOMPARE(tab->table()->rowCount(), differ);
+        const QString summary = tab->summaryText();
+        QVERIFY2(summary.contains("A = paper, B = paper_kernel, 2 seeds, trial by trial:") &&
+                     summary.contains("McNemar p") && summary.contains("finished; results in"),
+                 qPrintable(summary));
+
+        // A file that shares no trial with the paper is refused before any run, naming why.
+        const QString other = paperVariant(
+            "other_trials.json",
+            R"("name": "other_trials", "following": {"trials": [{"label": "mine", "object":
+               {"shape": "rectangle", "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150]}}]})");
+        QSignalSpy errors(window_.get(), &MainWindow::errorShown);
+        QVERIFY(!window_->startComparison(other, 1, 2));
+        QCOMPARE(errors.count(), 1);
+        QVERIFY2(errors.first().at(0).toString().contains("has a namesake in 'paper'"),
+                 qPrintable(errors.first().at(0).toString()));
+        QVERIFY(!window_->running());
+        QCOMPARE(window_->lastComparisonDirectory(), dir);
+        closeErrorDialogs(*window_);
     }
 
     void ratesOverSeedsRunFromTheWindow() {

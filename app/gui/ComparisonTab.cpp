@@ -1,0 +1,140 @@
+#include "app/gui/ComparisonTab.h"
+
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QTableWidget>
+#include <QVBoxLayout>
+#include <algorithm>
+
+#include "app/gui/SeedRange.h"
+
+namespace activetouch {
+
+ComparisonTab::ComparisonTab(QWidget* parent) : QWidget(parent) {
+    auto* layout = new QVBoxLayout(this);
+    auto* controls = new QHBoxLayout;
+    first_ = new QSpinBox;
+    last_ = new QSpinBox;
+    first_->setObjectName("compareFirstSeed");
+    last_->setObjectName("compareLastSeed");
+    makeSeedRange(first_, last_, 1, 100);
+    compare_ = new QPushButton(tr("Compare with..."));
+    compare_->setObjectName("compareWith");
+    compare_->setEnabled(false);
+    compare_->setToolTip(
+        tr("Choose another experiment file (B) to run beside the experiment as "
+           "shown (A) on the same seeds"));
+    connect(compare_, &QPushButton::clicked, this,
+            [this] { emit compareRequested(firstSeed(), lastSeed()); });
+    controls->addWidget(new QLabel(tr("Seeds from")));
+    controls->addWidget(first_);
+    controls->addWidget(new QLabel(tr("to")));
+    controls->addWidget(last_);
+    controls->addWidget(compare_);
+    auto* about = new QLabel(
+        tr("A seed gives both experiments the same data sets and the same noise on each trial, "
+           "so where they differ in a setting, the trials they end differently show its effect "
+           "(McNemar's test), more surely than two rates with overlapping intervals."));
+    about->setWordWrap(true);
+    controls->addWidget(about, 1);
+    layout->addLayout(controls);
+
+    summary_ =
+        new QLabel(tr("Compare the experiment as shown with another experiment file over a "
+                      "range of seeds."));
+    summary_->setObjectName("comparisonSummary");
+    summary_->setFont(QFont("Monospace", 9));
+    summary_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    summary_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    layout->addWidget(summary_);
+    table_ = new QTableWidget(0, 6);
+    table_->setObjectName("comparisonTrials");
+    table_->setHorizontalHeaderLabels(
+        {tr("seed"), tr("mode"), tr("label"), tr("trial"), tr("A ended"), tr("B ended")});
+    for (int c = 0; c < 4; ++c)
+        table_->horizontalHeader()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
+    table_->horizontalHeader()->setSectionResizeMode(4, QHeaderView::Stretch);
+    table_->horizontalHeader()->setSectionResizeMode(5, QHeaderView::Stretch);
+    table_->setWordWrap(false);
+    table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    table_->verticalHeader()->setVisible(false);
+    layout->addWidget(table_, 1);
+}
+
+std::uint64_t ComparisonTab::firstSeed() const {
+    return static_cast<std::uint64_t>(first_->value());
+}
+std::uint64_t ComparisonTab::lastSeed() const {
+    return static_cast<std::uint64_t>(last_->value());
+}
+
+void ComparisonTab::setRunnable(bool runnable) {
+    runnable_ = runnable;
+    compare_->setEnabled(runnable && !running_);
+}
+
+void ComparisonTab::begin(const QString& a, const QString& b, std::uint64_t first,
+                          std::uint64_t last) {
+    last_->setValue(static_cast<int>(std::min<std::uint64_t>(last, kMaxSeed)));
+    first_->setValue(static_cast<int>(std::min<std::uint64_t>(first, kMaxSeed)));
+    a_ = a;
+    b_ = b;
+    running_ = true;
+    seedsDone_ = pairsDone_ = 0;
+    compare_->setEnabled(false);
+    table_->setRowCount(0);
+    summary_->setText(tr("A = %1, B = %2: running...").arg(a, b));
+}
+
+void ComparisonTab::addSeed(std::uint64_t seed, const std::vector<PairedTrial>& pairs) {
+    ++seedsDone_;
+    pairsDone_ += static_cast<int>(pairs.size());
+    auto ended = [](const std::string& outcome, const std::string& named) {
+        return QString::fromStdString(outcome) +
+               (named.empty() ? QString() : QObject::tr(", named %1").arg(named.c_str()));
+    };
+    for (const PairedTrial& p : pairs) {
+        if (p.outcomeA == p.outcomeB && p.namedA == p.namedB) continue;
+        const int row = table_->rowCount();
+        table_->insertRow(row);
+        table_->setItem(row, 0, new QTableWidgetItem(QString::number(seed)));
+        table_->setItem(row, 1, new QTableWidgetItem(modeName(p.mode)));
+        table_->setItem(row, 2, new QTableWidgetItem(QString::fromStdString(p.label)));
+        table_->setItem(row, 3, new QTableWidgetItem(QString::number(p.trial)));
+        table_->setItem(row, 4, new QTableWidgetItem(ended(p.outcomeA, p.namedA)));
+        table_->setItem(row, 5, new QTableWidgetItem(ended(p.outcomeB, p.namedB)));
+    }
+    summary_->setText(tr("A = %1, B = %2: %3 seeds done, %4 trials paired, %5 ended differently")
+                          .arg(a_, b_)
+                          .arg(seedsDone_)
+                          .arg(pairsDone_)
+                          .arg(table_->rowCount()));
+}
+
+void ComparisonTab::finish(const PairedComparison& comparison, const QString& dir, bool cancelled) {
+    running_ = false;
+    compare_->setEnabled(runnable_);
+    QStringList lines;
+    for (const std::string& line : describeComparison(comparison))
+        lines << QString::fromStdString(line);
+    lines << (cancelled
+                  ? tr("cancelled after %1 seeds; results in %2").arg(comparison.seeds).arg(dir)
+                  : tr("finished; results in %1").arg(dir));
+    summary_->setText(lines.join('\n'));
+}
+
+void ComparisonTab::interrupted() {
+    if (!running_) return;
+    running_ = false;
+    compare_->setEnabled(runnable_);
+    summary_->setText(summary_->text() + tr("\nstopped: the seeds shown are all there are"));
+}
+
+QString ComparisonTab::summaryText() const {
+    return summary_->text();
+}
+
+}  // namespace activetouch

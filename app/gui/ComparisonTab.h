@@ -1,0 +1,56 @@
+#pragma once
+// The comparison tab: the experiment as shown (A) against another experiment file (B), run on
+// the same seeds and compared trial by trial (app/run/PairedComparison.h). Each seed's trials
+// that the two ended differently arrive as rows as it finishes; at the end, each outcome's rate
+// in A and in B, the disagreements, the paired difference with its interval and McNemar's p.
+#include <QWidget>
+#include <cstdint>
+#include <vector>
+
+#include "app/run/PairedComparison.h"
+
+class QLabel;
+class QPushButton;
+class QSpinBox;
+class QTableWidget;
+
+namespace activetouch {
+
+class ComparisonTab : public QWidget {
+    Q_OBJECT
+public:
+    explicit ComparisonTab(QWidget* parent = nullptr);
+
+    std::uint64_t firstSeed() const;
+    std::uint64_t lastSeed() const;
+    /// Enables the compare button (an experiment is open and nothing is running).
+    void setRunnable(bool runnable);
+
+    /// Empties the table for a comparison of `a` against `b` over the seeds `first` to `last`
+    /// (which the seed boxes then show).
+    void begin(const QString& a, const QString& b, std::uint64_t first, std::uint64_t last);
+    /// Adds a finished seed: a row for each trial the two ended differently.
+    void addSeed(std::uint64_t seed, const std::vector<PairedTrial>& pairs);
+    /// The comparison has ended; `dir` holds its files.
+    void finish(const PairedComparison& comparison, const QString& dir, bool cancelled);
+    /// The comparison stopped on an error: the seeds shown are all there will be.
+    void interrupted();
+
+    QTableWidget* table() const { return table_; }
+    QString summaryText() const;
+
+signals:
+    /// Asks to choose experiment B and compare over the seeds first..last.
+    void compareRequested(std::uint64_t first, std::uint64_t last);
+
+private:
+    bool running_ = false, runnable_ = false;
+    int seedsDone_ = 0, pairsDone_ = 0;
+    QString a_, b_;
+    QSpinBox *first_, *last_;
+    QPushButton* compare_;
+    QLabel* summary_;
+    QTableWidget* table_;
+};
+
+}  // namespace activetouch
