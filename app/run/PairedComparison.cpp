@@ -245,14 +245,17 @@ std::vector<std::string> describeComparison(const PairedComparison& c) {
     row("passive trials lost at a corner", c.passiveLostAtCorner);
     row("completed paths recognised (paper's rule)", c.recognisedRaw);
     row("runs with the paper's result whole", c.paperResult);
-    std::snprintf(
-        buf, sizeof buf, "  %-41s %-20s %-20s B - A %+.1f min per run (sd %.1f min over the seeds)",
-        "robot time per run",
-        (std::to_string(static_cast<int>(std::lround(c.meanRobotTimeA_s() / 60.0))) + " min")
-            .c_str(),
-        (std::to_string(static_cast<int>(std::lround(c.meanRobotTimeB_s() / 60.0))) + " min")
-            .c_str(),
-        (c.meanRobotTimeB_s() - c.meanRobotTimeA_s()) / 60.0, c.robotTimeDifferenceSd_s() / 60.0);
+    auto minutes = [](double s) {
+        return std::to_string(static_cast<int>(std::lround(s / 60.0))) + " min";
+    };
+    char spread[64] = "";
+    if (c.seeds >= 2)  // one seed has no spread
+        std::snprintf(spread, sizeof spread, " (sd %.1f min over the seeds)",
+                      c.robotTimeDifferenceSd_s() / 60.0);
+    std::snprintf(buf, sizeof buf, "  %-41s %-20s %-20s B - A %+.1f min per run%s",
+                  "robot time per run", minutes(c.meanRobotTimeA_s()).c_str(),
+                  minutes(c.meanRobotTimeB_s()).c_str(),
+                  (c.meanRobotTimeB_s() - c.meanRobotTimeA_s()) / 60.0, spread);
     lines.push_back(buf);
     if (c.recognisedRaw.pairs() > 0)
         lines.push_back("  (recognition compared over the active trials both completed)");

@@ -57,7 +57,8 @@ struct PairedComparison {
     double robotTimeDiffSquares = 0.0;                    ///< sum of (B - A)^2 per seed
     double meanRobotTimeA_s() const { return seeds ? robotTimeSumA_s / seeds : 0.0; }
     double meanRobotTimeB_s() const { return seeds ? robotTimeSumB_s / seeds : 0.0; }
-    /// The standard deviation over seeds of B's robot time minus A's, per run.
+    /// The standard deviation over seeds of B's robot time minus A's, per run (0 for fewer than
+    /// two seeds).
     double robotTimeDifferenceSd_s() const;
 };
 

@@ -552,6 +552,18 @@ private slots:
         }
         for (const PairedTrial& p : pairs) QCOMPARE(p.outcomeA, p.outcomeB);
         QCOMPARE(c.robotTimeDifferenceSd_s(), 0.0);
+        auto said = [](const PairedComparison& x) {
+            QString all;
+            for (const std::string& line : describeComparison(x))
+                all += QString::fromStdString(line) + '\n';
+            return all;
+        };
+        QVERIFY2(said(c).contains("B - A +0.0 min per run (sd 0.0 min over the seeds)"),
+                 qPrintable(said(c)));
+        // One seed has no spread to give.
+        PairedComparison one;
+        addSeed(one, runs_[0], runs_[1]);
+        QVERIFY2(said(one).contains("min per run\n"), qPrintable(said(one)));
     }
 
     void comparingTwoExperimentsPairsTheirSeedsRates() {
