@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "app/figures/ComparisonFigures.h"
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
@@ -92,13 +93,15 @@ void printHelp() {
         "      the rates so far with their intervals). --out defaults to\n"
         "      results/<experiment name>_seeds.\n"
         "  activetouch-cli compare <a.json> <b.json> --from A --to B [--out <dir>]\n"
+        "                          [--no-figures]\n"
         "      Runs both experiments once per seed A..B and compares them trial by trial: a\n"
         "      seed gives both the same data sets and the same noise on each trial, so where\n"
         "      they differ in a setting, the trials whose outcomes differ show its effect.\n"
         "      Prints each outcome's rate in a and in b, the trials only one completed (or\n"
         "      lost at a corner, or recognised), the difference with its 95 %% interval and\n"
         "      McNemar's exact p, and the robot time per run. Writes <dir>/compare.csv (a row\n"
-        "      per paired trial, appended as each seed finishes) and <dir>/compare.json.\n"
+        "      per paired trial, appended as each seed finishes), <dir>/compare.json and\n"
+        "      <dir>/figures/compare.{png,pdf,svg} (each difference with its interval).\n"
         "      --out defaults to results/<a>_vs_<b>.\n"
         "  activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>] [--no-figures]\n"
         "      Re-analyses recorded training and test taps (a run's data/taps.csv, from the\n"
@@ -577,8 +580,8 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     }
 }
 
-int commandCompare(const std::vector<std::string>& args) {
-    const RunArguments parsed = parseRunArguments(args, "compare", {"--from", "--to"}, false, true);
+int commandCompare(const std::vector<std::string>& args, int argc, char** argv) {
+    const RunArguments parsed = parseRunArguments(args, "compare", {"--from", "--to"}, true, true);
     if (!parsed.error.empty()) return usageError(parsed.error);
     const SeedRange range = seedRangeOf(parsed, "compare --from 1 --to 100");
     if (!range.error.empty()) return usageError(range.error);
@@ -610,9 +613,13 @@ int commandCompare(const std::vector<std::string>& args) {
             });
         std::printf("\n");
         for (const std::string& line : describeComparison(c)) std::printf("%s\n", line.c_str());
-        std::printf("wall time %.1f s; results in %s\n",
+        double figures_s = 0.0;
+        if (parsed.figures)
+            figures_s = drawFigures(
+                argc, argv, [&] { writeComparisonFigures(c, QString::fromStdString(outDir)); });
+        std::printf("wall time %.1f s (figures %.1f s); results in %s\n",
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                    outDir.c_str());
+                    figures_s, outDir.c_str());
         return kOk;
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
@@ -702,7 +709,7 @@ int main(int argc, char** argv) {
     if (command == "analyse" || command == "analyze")
         return commandAnalyse(args, argc, argv, false);
     if (command == "replay") return commandAnalyse(args, argc, argv, true);
-    if (command == "compare") return commandCompare(args);
+    if (command == "compare") return commandCompare(args, argc, argv);
     if (command == "check") return commandCheck(args);
     return usageError("unknown command '" + command +
                       "'; use run, seeds, compare, analyse, replay or check");

@@ -1,5 +1,6 @@
 #include "app/figures/FigureExport.h"
 
+#include <QDir>
 #include <QFileInfo>
 #include <QSvgGenerator>
 #include <algorithm>
@@ -63,6 +64,14 @@ void layOutAt(QCustomPlot& plot, const FigureSize& size) {
     // A refit can move margins and so the panels' shapes again; a few rounds settle it.
     for (int round = 0; round < 3 && fitToLayout(plot); ++round)
         plot.replot(QCustomPlot::rpImmediateRefresh);
+}
+
+QString figuresDirectory(const QString& outDir) {
+    const QString dir = outDir + "/figures";
+    if (!QDir().mkpath(dir))
+        throw std::runtime_error("cannot create " + dir.toStdString() +
+                                 "; check the output folder is writable");
+    return dir;
 }
 
 QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats,

@@ -35,6 +35,9 @@ bool fitToLayout(QCustomPlot& plot);
 /// equal-aspect panels fitted to their shapes there.
 void layOutAt(QCustomPlot& plot, const FigureSize& size);
 
+/// <outDir>/figures, made if need be; throws std::runtime_error naming it if it cannot be.
+QString figuresDirectory(const QString& outDir);
+
 /// Saves `plot` as `<basePath>.<format>` for each format in `formats` (png, pdf, svg).
 /// Returns the files written; throws std::runtime_error naming the file that could not be written.
 QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats,

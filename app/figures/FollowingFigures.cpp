@@ -280,10 +280,7 @@ const std::vector<RunFigure>& runFigures() {
 }
 
 QStringList writeRunFigures(const RunResult& result, const QString& outDir) {
-    const QString dir = outDir + "/figures";
-    if (!QDir().mkpath(dir))
-        throw std::runtime_error("cannot create " + dir.toStdString() +
-                                 "; check the output folder is writable");
+    const QString dir = figuresDirectory(outDir);
     QStringList written;
     QCustomPlot plot;
     for (const RunFigure& figure : runFigures())

@@ -121,10 +121,7 @@ bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QStri
 
 QStringList writeSeedFigures(const SeedRates& rates, const QString& experiment,
                              const QString& outDir) {
-    const QString dir = outDir + "/figures";
-    if (!QDir().mkpath(dir))
-        throw std::runtime_error("cannot create " + dir.toStdString() +
-                                 "; check the output folder is writable");
+    const QString dir = figuresDirectory(outDir);
     QCustomPlot plot;
     if (!buildSeedRatesFigure(plot, rates, experiment)) return {};
     return exportFigure(plot, dir + "/seed_rates", {"png", "pdf", "svg"}, kSeedFigureSize);

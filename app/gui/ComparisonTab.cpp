@@ -5,11 +5,15 @@
 #include <QLabel>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QSplitter>
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <algorithm>
 
+#include "app/figures/ComparisonFigures.h"
+#include "app/gui/PlotPanel.h"
 #include "app/gui/SeedRange.h"
+#include "qcustomplot.h"
 
 namespace activetouch {
 
@@ -61,7 +65,16 @@ ComparisonTab::ComparisonTab(QWidget* parent) : QWidget(parent) {
     table_->setWordWrap(false);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     table_->verticalHeader()->setVisible(false);
-    layout->addWidget(table_, 1);
+    plot_ = new PlotPanel("compare");
+    plot_->setEmptyHint(
+        tr("Choose the seeds above and click Compare with...: each part of the "
+           "result's difference between the two experiments appears here with "
+           "its interval."));
+    auto* split = new QSplitter(Qt::Horizontal);
+    split->addWidget(table_);
+    split->addWidget(plot_);
+    split->setSizes({560, 840});
+    layout->addWidget(split, 1);
 }
 
 std::uint64_t ComparisonTab::firstSeed() const {
@@ -86,6 +99,9 @@ void ComparisonTab::begin(const QString& a, const QString& b, std::uint64_t firs
     seedsDone_ = pairsDone_ = 0;
     compare_->setEnabled(false);
     table_->setRowCount(0);
+    plot_->plot().clearItems();
+    plot_->plot().clearPlottables();
+    plot_->requestReplot();
     summary_->setText(tr("A = %1, B = %2: running...").arg(a, b));
 }
 
@@ -124,6 +140,8 @@ void ComparisonTab::finish(const PairedComparison& comparison, const QString& di
                   ? tr("cancelled after %1 seeds; results in %2").arg(comparison.seeds).arg(dir)
                   : tr("finished; results in %1").arg(dir));
     summary_->setText(lines.join('\n'));
+    buildComparisonFigure(plot_->plot(), comparison);
+    plot_->requestReplot();
 }
 
 void ComparisonTab::interrupted() {

@@ -16,6 +16,8 @@ class QTableWidget;
 
 namespace activetouch {
 
+class PlotPanel;
+
 class ComparisonTab : public QWidget {
     Q_OBJECT
 public:
@@ -37,6 +39,7 @@ public:
     void interrupted();
 
     QTableWidget* table() const { return table_; }
+    PlotPanel* plotPanel() const { return plot_; }
     QString summaryText() const;
 
 signals:
@@ -51,6 +54,7 @@ private:
     QPushButton* compare_;
     QLabel* summary_;
     QTableWidget* table_;
+    PlotPanel* plot_;
 };
 
 }  // namespace activetouch

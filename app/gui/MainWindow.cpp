@@ -26,6 +26,7 @@
 #include <climits>
 #include <tuple>
 
+#include "app/figures/ComparisonFigures.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
 #include "app/figures/SweepFigures.h"
@@ -594,12 +595,19 @@ bool MainWindow::startComparison(const QString& otherPath, std::uint64_t first,
 void MainWindow::showComparison(std::shared_ptr<const PairedComparison> comparison,
                                 const QString& dir, bool cancelled) {
     comparison_->finish(*comparison, dir, cancelled);
+    QString figures;
+    try {
+        const QStringList files = writeComparisonFigures(*comparison, dir);
+        if (!files.isEmpty()) figures = tr("; figure %1").arg(files.first());
+    } catch (const std::exception& e) {
+        showError(tr("Could not write the comparison figure: %1").arg(e.what()));
+    }
     const QString state = cancelled ? tr("cancelled") : tr("finished");
     progress_->setFormat(tr("comparison %1: %2 seeds").arg(state).arg(comparison->seeds));
     status_->setText(tr("comparison %1, results in %2").arg(state, dir));
     const PairedRate& active = comparison->activeCompleted;
     log(tr("comparison %1 after %2 seeds: active completed %3 (A) and %4 (B) of %5, %6 only by "
-           "A, %7 only by B (McNemar p %8); compare.csv and compare.json in %9")
+           "A, %7 only by B (McNemar p %8); compare.csv and compare.json in %9%10")
             .arg(state)
             .arg(comparison->seeds)
             .arg(active.a().count)
@@ -608,7 +616,7 @@ void MainWindow::showComparison(std::shared_ptr<const PairedComparison> comparis
             .arg(active.onlyA)
             .arg(active.onlyB)
             .arg(active.mcnemarP(), 0, 'g', 3)
-            .arg(dir));
+            .arg(dir, figures));
     emit runEnded(!cancelled);
 }
 

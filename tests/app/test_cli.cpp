@@ -679,6 +679,8 @@ private slots:
         const QJsonObject kernel = readJson(seedsOut + "/rates.json");
         QCOMPARE(active["b"].toObject()["count"].toInt(),
                  kernel["active_completed"].toObject()["count"].toInt());
+        for (const char* format : {"png", "pdf", "svg"})
+            QVERIFY(QFileInfo(out + "/figures/compare." + format).size() > 0);
     }
 
     void compareRefusesWhatItCannotPair() {

@@ -3,10 +3,12 @@
 // and axis label inside its panel and no tick labels running into each other.
 #include <QtTest>
 
+#include "app/figures/ComparisonFigures.h"
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
 #include "app/run/ExperimentRun.h"
+#include "app/run/PairedComparison.h"
 #include "app/run/SeedRates.h"
 #include "qcustomplot.h"
 #include "support/FigureChecks.h"
@@ -205,6 +207,50 @@ private slots:
             test::checkLabelsFitTheirPanels(plot, name);
             if (QTest::currentTestFailed()) return;
         }
+    }
+
+    void theComparisonFigureShowsEachDifferenceWithItsInterval() {
+        // A made-up comparison: 9 trials only B completed against 1 only A, one path only A
+        // named rightly; no passive trials, no whole runs.
+        PairedComparison c;
+        c.nameA = "paper";
+        c.nameB = "variant";
+        c.seeds = 10;
+        for (int i = 0; i < 100; ++i) c.activeCompleted.add(i <= 80, i < 80 || (i > 80 && i < 90));
+        for (int i = 0; i < 50; ++i) c.recognisedRaw.add(true, i != 0);
+        QCOMPARE(c.activeCompleted.onlyA, 1);
+        QCOMPARE(c.activeCompleted.onlyB, 9);
+        QCustomPlot plot;
+        QVERIFY(buildComparisonFigure(plot, c));
+        // One point per part compared, the passive row left out; the first part at the top.
+        QCPGraph* points = plot.graph(0);
+        QVERIFY(points);
+        QCOMPARE(points->data()->size(), 2);
+        const auto top = points->data()->at(1), below = points->data()->at(0);
+        QCOMPARE(top->key, 2.0);
+        QCOMPARE(top->value, 100.0 * c.activeCompleted.difference());
+        QCOMPARE(below->value, 100.0 * c.recognisedRaw.difference());
+        QCPErrorBars* bars = nullptr;
+        for (int i = 0; i < plot.plottableCount(); ++i)
+            if (auto* b = qobject_cast<QCPErrorBars*>(plot.plottable(i))) bars = b;
+        QVERIFY(bars);
+        const QCPErrorBarsData upper = bars->data()->at(1);
+        QVERIFY(qAbs(top->value - upper.errorMinus - 100.0 * c.activeCompleted.differenceLow()) <
+                1e-9);
+        QVERIFY(qAbs(top->value + upper.errorPlus - 100.0 * c.activeCompleted.differenceHigh()) <
+                1e-9);
+        // Each row says its counts and McNemar's p under its name.
+        auto names = plot.graph(0)->keyAxis()->ticker().dynamicCast<QCPAxisTickerText>();
+        QVERIFY(names);
+        QCOMPARE(names->ticks().value(2.0),
+                 QString("active trials completed\nA 81/100, B 89/100; only A 1, only B 9; p "
+                         "0.021"));
+        layOutAt(plot, kComparisonFigureSize);
+        test::checkLabelsFitTheirPanels(plot, "compare");
+        // Nothing compared: the title only.
+        QCustomPlot empty;
+        QVERIFY(!buildComparisonFigure(empty, PairedComparison{}));
+        QCOMPARE(empty.plottableCount(), 0);
     }
 };
 

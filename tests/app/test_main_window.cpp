@@ -719,6 +719,10 @@ private slots:
         QVERIFY2(summary.contains("A = paper, B = paper_kernel, 2 seeds, trial by trial:") &&
                      summary.contains("McNemar p") && summary.contains("finished; results in"),
                  qPrintable(summary));
+        // The differences with their intervals, on screen and in the folder.
+        QVERIFY(tab->plotPanel()->plot().graphCount() == 1);
+        QCOMPARE(tab->plotPanel()->plot().graph(0)->data()->size(), 4);
+        QVERIFY(QFileInfo(dir + "/figures/compare.png").size() > 0);
 
         // A file that shares no trial with the paper is refused before any run, naming why.
         const QString other = paperVariant(

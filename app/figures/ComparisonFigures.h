@@ -1,0 +1,30 @@
+#pragma once
+// Two experiments compared trial by trial on the same seeds (app/run/PairedComparison.h): for each
+// part of the paper's result, B's rate minus A's with its 95 % interval, McNemar's p beside it,
+// and what each costs in robot time per run.
+#include <QString>
+#include <QStringList>
+
+#include "app/figures/FigureExport.h"
+
+class QCustomPlot;
+
+namespace activetouch {
+
+struct PairedComparison;
+
+/// One row per outcome compared (active trials completed, passive trials lost at a corner,
+/// completed paths recognised by the paper's rule, runs with the paper's result whole): the
+/// difference B - A in percentage points as a point with its interval, a line at no difference,
+/// and under each part's name its counts and McNemar's p. False (with the title only) if nothing
+/// was compared.
+bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& comparison);
+
+/// The size compare is written at.
+inline constexpr FigureSize kComparisonFigureSize{1600, 700, 150};
+
+/// Writes <outDir>/figures/compare.{png,pdf,svg}; returns the files (none if nothing was
+/// compared). Throws std::runtime_error naming what could not be written.
+QStringList writeComparisonFigures(const PairedComparison& comparison, const QString& outDir);
+
+}  // namespace activetouch
