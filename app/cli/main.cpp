@@ -528,6 +528,14 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv, 
     }
 }
 
+/// The closing line of a run over seeds: wall time since `start`, of which figures, and where.
+void printWallTime(std::chrono::steady_clock::time_point start, double figures_s,
+                   const std::string& outDir) {
+    std::printf("wall time %.1f s (figures %.1f s); results in %s\n",
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                figures_s, outDir.c_str());
+}
+
 int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     const RunArguments parsed = parseRunArguments(args, "seeds", {"--from", "--to"}, true);
     if (!parsed.error.empty()) return usageError(parsed.error);
@@ -566,9 +574,7 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
                 writeSeedFigures(rates, QString::fromStdString(spec.name),
                                  QString::fromStdString(outDir));
             });
-        std::printf("wall time %.1f s (figures %.1f s); results in %s\n",
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                    figures_s, outDir.c_str());
+        printWallTime(start, figures_s, outDir);
         return kOk;
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
@@ -617,9 +623,7 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
         if (parsed.figures)
             figures_s = drawFigures(
                 argc, argv, [&] { writeComparisonFigures(c, QString::fromStdString(outDir)); });
-        std::printf("wall time %.1f s (figures %.1f s); results in %s\n",
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                    figures_s, outDir.c_str());
+        printWallTime(start, figures_s, outDir);
         return kOk;
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

@@ -1,6 +1,5 @@
 #include "app/figures/ComparisonFigures.h"
 
-#include <QDir>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>

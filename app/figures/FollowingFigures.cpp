@@ -1,6 +1,5 @@
 #include "app/figures/FollowingFigures.h"
 
-#include <QDir>
 #include <algorithm>
 #include <stdexcept>
 #include <utility>

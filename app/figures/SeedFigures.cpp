@@ -1,6 +1,5 @@
 #include "app/figures/SeedFigures.h"
 
-#include <QDir>
 #include <stdexcept>
 
 #include "app/figures/FigureExport.h"
