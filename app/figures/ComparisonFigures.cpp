@@ -10,30 +10,39 @@
 
 namespace activetouch {
 
-bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& c) {
-    const QString a = QString::fromStdString(c.nameA), b = QString::fromStdString(c.nameB);
-    startFigure(plot, QString("%1 (B) against %2 (A), %3 seeds").arg(b, a).arg(c.seeds));
-    struct Row {
-        const char* name;
-        const PairedRate* rate;
-    };
-    std::vector<Row> rows;
-    for (const Row& r : {Row{"active trials completed", &c.activeCompleted},
-                         Row{"passive trials lost at a corner", &c.passiveLostAtCorner},
-                         Row{"completed paths recognised (paper's rule)", &c.recognisedRaw},
-                         Row{"runs with the paper's result whole", &c.paperResult}})
-        if (r.rate->pairs() > 0) rows.push_back(r);
-    if (rows.empty()) return false;
+namespace {
 
-    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    QCPAxisRect* rect = addTitledPanel(grid, 0,
-                                       QString("robot time per run: A %1 min, B %2 min")
-                                           .arg(std::lround(c.meanRobotTimeA_s() / 60.0))
-                                           .arg(std::lround(c.meanRobotTimeB_s() / 60.0)),
-                                       "B - A with 95 % interval (percentage points)", "");
+/// A part of the result, where it sits in a PairedParts, and its colour (as in seed_rates).
+struct Part {
+    const char* name;
+    PairedRate PairedParts::*rate;
+    int colour;
+};
+constexpr Part kParts[] = {
+    {"active trials completed", &PairedParts::activeCompleted, 0},
+    {"passive trials lost at a corner", &PairedParts::passiveLostAtCorner, 3},
+    {"completed paths recognised (paper's rule)", &PairedParts::recognisedRaw, 2},
+    {"runs with the paper's result whole", &PairedParts::paperResult, 7},
+};
+
+/// A dashed line through the panel where B - A is zero: across the panel if `horizontal`.
+void markNoDifference(QCPAxisRect* rect, QCPAxis* valueAxis, QCPAxis* other, bool horizontal) {
+    auto* zero = new QCPItemStraightLine(rect->parentPlot());
+    zero->setClipAxisRect(rect);
+    QCPAxis* x = horizontal ? other : valueAxis;
+    QCPAxis* y = horizontal ? valueAxis : other;
+    zero->point1->setAxes(x, y);
+    zero->point2->setAxes(x, y);
+    zero->point1->setCoords(0.0, 0.0);
+    zero->point2->setCoords(horizontal ? 1.0 : 0.0, horizontal ? 0.0 : 1.0);
+    zero->setPen(QPen(Qt::gray, 1, Qt::DashLine));
+}
+
+/// Each part's difference with its interval as a point on a bar, the first part at the top,
+/// its counts and McNemar's p under its name.
+void addDifferences(QCPAxisRect* rect, const PairedComparison& c, const std::vector<Part>& rows) {
     QCPAxis* x = rect->axis(QCPAxis::atBottom);
     QCPAxis* y = rect->axis(QCPAxis::atLeft);
-    // The first outcome at the top.
     const int n = static_cast<int>(rows.size());
     QVector<double> key, value;
     QVector<double> minus, plus;
@@ -41,7 +50,8 @@ bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& c) {
     double lo = 0.0, hi = 0.0;
     // Keys ascending, as the graph and its error bars keep them: the last row first.
     for (int i = n - 1; i >= 0; --i) {
-        const PairedRate& r = *rows[static_cast<std::size_t>(i)].rate;
+        const Part& part = rows[static_cast<std::size_t>(i)];
+        const PairedRate& r = c.*part.rate;
         const double at = n - i, d = 100.0 * r.difference();
         const double low = 100.0 * r.differenceLow(), high = 100.0 * r.differenceHigh();
         key << at;
@@ -50,9 +60,8 @@ bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& c) {
         plus << high - d;
         lo = std::min(lo, low);
         hi = std::max(hi, high);
-        // Under each part's name, its counts and McNemar's p.
         names->addTick(at, QString("%1\nA %2/%3, B %4/%5; only A %6, only B %7; p %8")
-                               .arg(rows[static_cast<std::size_t>(i)].name)
+                               .arg(part.name)
                                .arg(r.a().count)
                                .arg(r.pairs())
                                .arg(r.b().count)
@@ -61,7 +70,7 @@ bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& c) {
                                .arg(r.onlyB)
                                .arg(r.mcnemarP(), 0, 'g', 2));
     }
-    QCPGraph* points = plot.addGraph(y, x);  // keys up the side, values across
+    QCPGraph* points = rect->parentPlot()->addGraph(y, x);  // keys up the side, values across
     points->setName("B - A");
     points->setData(key, value, true);
     points->setLineStyle(QCPGraph::lsNone);
@@ -75,13 +84,60 @@ bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& c) {
     y->setRange(0.4, n + 0.6);
     const double span = std::max(hi - lo, 2.0);
     x->setRange(lo - 0.08 * span, hi + 0.08 * span);
-    auto* zero = new QCPItemStraightLine(&plot);
-    zero->setClipAxisRect(rect);
-    zero->point1->setAxes(x, y);
-    zero->point2->setAxes(x, y);
-    zero->point1->setCoords(0.0, 0.0);
-    zero->point2->setCoords(0.0, 1.0);
-    zero->setPen(QPen(Qt::gray, 1, Qt::DashLine));
+    markNoDifference(rect, x, y, false);
+}
+
+/// Each part's difference after each seed with its interval as a band: how it settles.
+void addSettling(QCPAxisRect* rect, QCPLegend* legend, const PairedComparison& c,
+                 const std::vector<Part>& rows) {
+    double lo = 0.0, hi = 0.0;
+    for (const Part& part : rows) {
+        RunningValue r;
+        for (std::size_t i = 0; i < c.soFar.size(); ++i) {
+            const PairedRate& at = c.soFar[i].*part.rate;
+            if (at.pairs() == 0) continue;
+            r.append(double(i + 1), 100.0 * at.difference(), 100.0 * at.differenceLow(),
+                     100.0 * at.differenceHigh());
+            lo = std::min(lo, r.low.back());
+            hi = std::max(hi, r.high.back());
+        }
+        addRunningBand(rect, legend, part.name, r, seriesColour(part.colour));
+    }
+    QSharedPointer<QCPAxisTickerFixed> whole(new QCPAxisTickerFixed);
+    whole->setTickStep(1.0);
+    whole->setScaleStrategy(QCPAxisTickerFixed::ssMultiples);
+    rect->axis(QCPAxis::atBottom)->setTicker(whole);
+    rect->axis(QCPAxis::atBottom)->setRange(0.5, double(c.soFar.size()) + 0.5);
+    const double span = std::max(hi - lo, 2.0);
+    rect->axis(QCPAxis::atLeft)->setRange(lo - 0.05 * span, hi + 0.05 * span);
+    markNoDifference(rect, rect->axis(QCPAxis::atLeft), rect->axis(QCPAxis::atBottom), true);
+}
+
+}  // namespace
+
+bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& c, bool stacked) {
+    const QString a = QString::fromStdString(c.nameA), b = QString::fromStdString(c.nameB);
+    startFigure(plot, QString("%1 (B) against %2 (A), %3 seeds").arg(b, a).arg(c.seeds));
+    std::vector<Part> rows;
+    for (const Part& part : kParts)
+        if ((c.*part.rate).pairs() > 0) rows.push_back(part);
+    if (rows.empty()) return false;
+
+    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
+    QCPAxisRect* rect = addTitledPanel(grid, 0,
+                                       QString("robot time per run: A %1 min, B %2 min")
+                                           .arg(std::lround(c.meanRobotTimeA_s() / 60.0))
+                                           .arg(std::lround(c.meanRobotTimeB_s() / 60.0)),
+                                       "B - A with 95 % interval (percentage points)", "");
+    addDifferences(rect, c, rows);
+    if (c.soFar.empty()) return true;  // made up without its seeds: nothing to settle
+
+    QCPLayoutGrid* below = stacked ? addFigureRow(plot, 1.0) : grid;
+    const auto [sofar, legend] = addPanelWithLegendBelow(below, 0, stacked ? 0 : 1, /*perLine=*/2);
+    setPanelTitle(sofar, "B - A so far, 95 % intervals");
+    sofar->axis(QCPAxis::atBottom)->setLabel("seeds compared");
+    sofar->axis(QCPAxis::atLeft)->setLabel("B - A (percentage points)");
+    addSettling(sofar, legend, c, rows);
     return true;
 }
 

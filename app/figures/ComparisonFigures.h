@@ -13,15 +13,17 @@ namespace activetouch {
 
 struct PairedComparison;
 
-/// One row per outcome compared (active trials completed, passive trials lost at a corner,
-/// completed paths recognised by the paper's rule, runs with the paper's result whole): the
-/// difference B - A in percentage points as a point with its interval, a line at no difference,
-/// and under each part's name its counts and McNemar's p. False (with the title only) if nothing
-/// was compared.
-bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& comparison);
+/// Left (above if `stacked`): one row per outcome compared (active trials completed, passive
+/// trials lost at a corner, completed paths recognised by the paper's rule, runs with the paper's
+/// result whole): the difference B - A in percentage points as a point with its interval, a line
+/// at no difference, and under each part's name its counts and McNemar's p. Right (below): each
+/// difference with its interval after each seed (PairedComparison::soFar), so a reader sees how it
+/// settles. False (with the title only) if nothing was compared.
+bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& comparison,
+                           bool stacked = false);
 
-/// The size compare is written at.
-inline constexpr FigureSize kComparisonFigureSize{1600, 700, 150};
+/// The size compare is written at: wide, the two panels side by side.
+inline constexpr FigureSize kComparisonFigureSize{2200, 800, 150};
 
 /// Writes <outDir>/figures/compare.{png,pdf,svg}; returns the files (none if nothing was
 /// compared). Throws std::runtime_error naming what could not be written.

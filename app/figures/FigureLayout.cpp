@@ -189,4 +189,22 @@ QCPGraph* addSeries(QCPAxisRect* rect, QCPLegend* legend, const QString& name,
     return g;
 }
 
+void addRunningBand(QCPAxisRect* rect, QCPLegend* legend, const QString& name,
+                    const RunningValue& r, QColor colour) {
+    if (r.x.isEmpty()) return;
+    QColor fill = colour;
+    fill.setAlpha(40);
+    QCPGraph* low = addSeries(rect, nullptr, name + " (95 % low)", r.x, r.low, colour);
+    QCPGraph* high = addSeries(rect, nullptr, name + " (95 % high)", r.x, r.high, colour);
+    for (QCPGraph* g : {low, high}) {
+        g->setPen(Qt::NoPen);
+        g->setScatterStyle(QCPScatterStyle::ssNone);
+    }
+    high->setBrush(fill);
+    high->setChannelFillGraph(low);
+    QCPGraph* line = addSeries(rect, legend, name, r.x, r.value, colour);
+    line->setScatterStyle(r.x.size() > 30 ? QCPScatterStyle(QCPScatterStyle::ssNone)
+                                          : QCPScatterStyle(QCPScatterStyle::ssCircle, 5));
+}
+
 }  // namespace activetouch

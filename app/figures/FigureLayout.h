@@ -65,4 +65,20 @@ QCPGraph* addSeries(QCPAxisRect* rect, QCPLegend* legend, const QString& name,
                     const QVector<double>& x, const QVector<double>& y, QColor colour,
                     bool lines = true);
 
+/// A quantity tracked as seeds accumulate: after each seed, its value and its 95 % interval.
+struct RunningValue {
+    QVector<double> x, value, low, high;
+    void append(double at, double v, double lo, double hi) {
+        x << at;
+        value << v;
+        low << lo;
+        high << hi;
+    }
+};
+
+/// `r` as a line with its interval as a shaded band (the band's edges stay out of `legend`);
+/// markers on the line only while there are few points. Nothing if `r` is empty.
+void addRunningBand(QCPAxisRect* rect, QCPLegend* legend, const QString& name,
+                    const RunningValue& r, QColor colour);
+
 }  // namespace activetouch

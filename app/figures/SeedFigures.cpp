@@ -11,12 +11,8 @@ namespace activetouch {
 namespace {
 
 /// A running rate: its value and 95 % band after each seed, in percent.
-struct RunningRate {
-    QVector<double> x, rate, low, high;
-};
-
-RunningRate running(const SeedRates& all, Rate (*part)(const SeedOutcome&)) {
-    RunningRate r;
+RunningValue running(const SeedRates& all, Rate (*part)(const SeedOutcome&)) {
+    RunningValue r;
     Rate sofar;
     int runs = 0;
     for (const SeedOutcome& s : all.seeds) {
@@ -25,30 +21,10 @@ RunningRate running(const SeedRates& all, Rate (*part)(const SeedOutcome&)) {
         sofar.count += p.count;
         sofar.total += p.total;
         if (sofar.total == 0) continue;
-        r.x << double(runs);
-        r.rate << 100.0 * sofar.fraction();
-        r.low << 100.0 * sofar.low();
-        r.high << 100.0 * sofar.high();
+        r.append(double(runs), 100.0 * sofar.fraction(), 100.0 * sofar.low(),
+                 100.0 * sofar.high());
     }
     return r;
-}
-
-void addBand(QCPAxisRect* rect, QCPLegend* legend, const QString& name, const RunningRate& r,
-             QColor colour) {
-    if (r.x.isEmpty()) return;
-    QColor fill = colour;
-    fill.setAlpha(40);
-    QCPGraph* low = addSeries(rect, nullptr, name + " (95 % low)", r.x, r.low, colour);
-    QCPGraph* high = addSeries(rect, nullptr, name + " (95 % high)", r.x, r.high, colour);
-    for (QCPGraph* g : {low, high}) {
-        g->setPen(Qt::NoPen);
-        g->setScatterStyle(QCPScatterStyle::ssNone);
-    }
-    high->setBrush(fill);
-    high->setChannelFillGraph(low);
-    QCPGraph* line = addSeries(rect, legend, name, r.x, r.rate, colour);
-    line->setScatterStyle(r.x.size() > 30 ? QCPScatterStyle(QCPScatterStyle::ssNone)
-                                          : QCPScatterStyle(QCPScatterStyle::ssCircle, 5));
 }
 
 }  // namespace
@@ -105,13 +81,13 @@ bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QStri
     each->axis(QCPAxis::atBottom)->setRange(first - 0.5, last + 0.5);
     each->axis(QCPAxis::atLeft)->setRange(-5.0, 105.0);
 
-    addBand(sofar, ls, "active completed", running(rates, activeCompletedIn), seriesColour(0));
-    addBand(sofar, ls, "passive lost", running(rates, passiveLostIn), seriesColour(3));
-    addBand(sofar, ls, "recognised, paper's rule", running(rates, recognisedRawIn),
+    addRunningBand(sofar, ls, "active completed", running(rates, activeCompletedIn), seriesColour(0));
+    addRunningBand(sofar, ls, "passive lost", running(rates, passiveLostIn), seriesColour(3));
+    addRunningBand(sofar, ls, "recognised, paper's rule", running(rates, recognisedRawIn),
             seriesColour(2));
-    addBand(sofar, ls, "recognised, smoothed", running(rates, recognisedSmoothedIn),
+    addRunningBand(sofar, ls, "recognised, smoothed", running(rates, recognisedSmoothedIn),
             seriesColour(4));
-    addBand(sofar, ls, "runs with the paper's result whole", running(rates, paperResultIn),
+    addRunningBand(sofar, ls, "runs with the paper's result whole", running(rates, paperResultIn),
             seriesColour(7));
     sofar->axis(QCPAxis::atBottom)->setRange(0.5, n + 0.5);
     sofar->axis(QCPAxis::atLeft)->setRange(0.0, 102.0);

@@ -96,7 +96,7 @@ void ComparisonTab::begin(const QString& a, const QString& b, std::uint64_t firs
     a_ = a;
     b_ = b;
     running_ = true;
-    seedsDone_ = pairsDone_ = 0;
+    seedsPlanned_ = static_cast<int>(last - first + 1);
     compare_->setEnabled(false);
     table_->setRowCount(0);
     plot_->plot().clearItems();
@@ -105,9 +105,8 @@ void ComparisonTab::begin(const QString& a, const QString& b, std::uint64_t firs
     summary_->setText(tr("A = %1, B = %2: running...").arg(a, b));
 }
 
-void ComparisonTab::addSeed(std::uint64_t seed, const std::vector<PairedTrial>& pairs) {
-    ++seedsDone_;
-    pairsDone_ += static_cast<int>(pairs.size());
+void ComparisonTab::addSeed(std::uint64_t seed, const std::vector<PairedTrial>& pairs,
+                            const PairedComparison& soFar) {
     auto ended = [](const std::string& outcome, const std::string& named) {
         return QString::fromStdString(outcome) +
                (named.empty() ? QString() : QObject::tr(", named %1").arg(named.c_str()));
@@ -123,24 +122,27 @@ void ComparisonTab::addSeed(std::uint64_t seed, const std::vector<PairedTrial>& 
         table_->setItem(row, 4, new QTableWidgetItem(ended(p.outcomeA, p.namedA)));
         table_->setItem(row, 5, new QTableWidgetItem(ended(p.outcomeB, p.namedB)));
     }
-    summary_->setText(tr("A = %1, B = %2: %3 seeds done, %4 trials paired, %5 ended differently")
-                          .arg(a_, b_)
-                          .arg(seedsDone_)
-                          .arg(pairsDone_)
-                          .arg(table_->rowCount()));
+    show(soFar, tr("running: %1 of %2 seeds compared, %3 trials ended differently")
+                    .arg(soFar.seeds)
+                    .arg(seedsPlanned_)
+                    .arg(table_->rowCount()));
 }
 
 void ComparisonTab::finish(const PairedComparison& comparison, const QString& dir, bool cancelled) {
     running_ = false;
     compare_->setEnabled(runnable_);
+    show(comparison,
+         cancelled ? tr("cancelled after %1 seeds; results in %2").arg(comparison.seeds).arg(dir)
+                   : tr("finished; results in %1").arg(dir));
+}
+
+void ComparisonTab::show(const PairedComparison& comparison, const QString& state) {
     QStringList lines;
     for (const std::string& line : describeComparison(comparison))
         lines << QString::fromStdString(line);
-    lines << (cancelled
-                  ? tr("cancelled after %1 seeds; results in %2").arg(comparison.seeds).arg(dir)
-                  : tr("finished; results in %1").arg(dir));
+    lines << state;
     summary_->setText(lines.join('\n'));
-    buildComparisonFigure(plot_->plot(), comparison);
+    buildComparisonFigure(plot_->plot(), comparison, /*stacked=*/true);
     plot_->requestReplot();
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 // The comparison tab: the experiment as shown (A) against another experiment file (B), run on
 // the same seeds and compared trial by trial (app/run/PairedComparison.h). Each seed's trials
-// that the two ended differently arrive as rows as it finishes; at the end, each outcome's rate
-// in A and in B, the disagreements, the paired difference with its interval and McNemar's p.
+// that the two ended differently arrive as rows as it finishes, and each outcome's rate in A and
+// in B, the disagreements, the paired difference with its interval and McNemar's p follow the
+// seeds as they accumulate.
 #include <QWidget>
 #include <cstdint>
 #include <vector>
@@ -31,8 +32,10 @@ public:
     /// Empties the table for a comparison of `a` against `b` over the seeds `first` to `last`
     /// (which the seed boxes then show).
     void begin(const QString& a, const QString& b, std::uint64_t first, std::uint64_t last);
-    /// Adds a finished seed: a row for each trial the two ended differently.
-    void addSeed(std::uint64_t seed, const std::vector<PairedTrial>& pairs);
+    /// Adds a finished seed: a row for each trial the two ended differently; the summary and the
+    /// figure show the comparison so far.
+    void addSeed(std::uint64_t seed, const std::vector<PairedTrial>& pairs,
+                 const PairedComparison& soFar);
     /// The comparison has ended; `dir` holds its files.
     void finish(const PairedComparison& comparison, const QString& dir, bool cancelled);
     /// The comparison stopped on an error: the seeds shown are all there will be.
@@ -47,8 +50,10 @@ signals:
     void compareRequested(std::uint64_t first, std::uint64_t last);
 
 private:
+    void show(const PairedComparison& comparison, const QString& state);
+
     bool running_ = false, runnable_ = false;
-    int seedsDone_ = 0, pairsDone_ = 0;
+    int seedsPlanned_ = 0;
     QString a_, b_;
     QSpinBox *first_, *last_;
     QPushButton* compare_;

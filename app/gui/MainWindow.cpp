@@ -263,8 +263,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     connect(&runs_, &RunController::seedFinished, seeds_, &SeedsTab::addSeed);
     connect(&runs_, &RunController::seedsFinished, this, &MainWindow::showSeeds);
     connect(&runs_, &RunController::comparisonSeedFinished, comparison_,
-            [this](quint64 seed, const std::vector<PairedTrial>& pairs) {
-                comparison_->addSeed(seed, pairs);
+            [this](quint64 seed, const std::vector<PairedTrial>& pairs,
+                   const std::shared_ptr<const PairedComparison>& soFar) {
+                comparison_->addSeed(seed, pairs, *soFar);
             });
     connect(&runs_, &RunController::comparisonFinished, this, &MainWindow::showComparison);
     connect(&runs_, &RunController::failed, this, [this](const QString& m) {

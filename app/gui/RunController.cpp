@@ -201,8 +201,10 @@ bool RunController::startComparison(const ExperimentSpec& a, const ExperimentSpe
         try {
             auto comparison = std::make_shared<PairedComparison>(comparePaired(
                 a, b, first, last, outDir.toStdString(),
-                [&](std::uint64_t seed, const std::vector<PairedTrial>& pairs) {
-                    emit comparisonSeedFinished(quint64(seed), pairs);
+                [&](std::uint64_t seed, const std::vector<PairedTrial>& pairs,
+                    const PairedComparison& soFar) {
+                    emit comparisonSeedFinished(quint64(seed), pairs,
+                                                std::make_shared<const PairedComparison>(soFar));
                     const double left = clock.tick();
                     emit progress(clock.done, clock.planned,
                                   tr("seed %1 of %2-%3 compared").arg(seed).arg(first).arg(last),

@@ -63,8 +63,9 @@ signals:
     /// A seeds run has ended, with every seed finished (all planned unless cancelled).
     void seedsFinished(std::shared_ptr<const activetouch::SeedRates> rates, const QString& outDir,
                        bool cancelled);
-    /// A seed of a comparison has finished: its paired trials.
-    void comparisonSeedFinished(quint64 seed, const std::vector<activetouch::PairedTrial>& pairs);
+    /// A seed of a comparison has finished: its paired trials, and the comparison so far.
+    void comparisonSeedFinished(quint64 seed, const std::vector<activetouch::PairedTrial>& pairs,
+                                std::shared_ptr<const activetouch::PairedComparison> soFar);
     /// A comparison has ended, with every seed finished (all planned unless cancelled).
     void comparisonFinished(std::shared_ptr<const activetouch::PairedComparison> comparison,
                             const QString& outDir, bool cancelled);

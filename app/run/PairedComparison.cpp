@@ -153,6 +153,7 @@ void addSeed(PairedComparison& c, const RunResult& a, const RunResult& b,
     const SeedOutcome oa = seedOutcome(a), ob = seedOutcome(b);
     if (oa.paperResultApplies() && ob.paperResultApplies())
         c.paperResult.add(oa.paperResult(), ob.paperResult());
+    c.soFar.push_back(static_cast<const PairedParts&>(c));
 }
 
 void checkComparable(const ExperimentSpec& a, const ExperimentSpec& b) {
@@ -165,10 +166,9 @@ void checkComparable(const ExperimentSpec& a, const ExperimentSpec& b) {
                          "trials");
 }
 
-PairedComparison comparePaired(
-    const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t first, std::uint64_t last,
-    const std::string& outDir,
-    const std::function<bool(std::uint64_t, const std::vector<PairedTrial>&)>& seedDone) {
+PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
+                               std::uint64_t first, std::uint64_t last, const std::string& outDir,
+                               const ComparedSeed& seedDone) {
     PairedComparison c;
     c.nameA = a.name;
     c.nameB = b.name;
@@ -192,7 +192,7 @@ PairedComparison comparePaired(
                              p.namedB.c_str());
             table->flush();
         }
-        if (seedDone && !seedDone(seed, pairs)) break;
+        if (seedDone && !seedDone(seed, pairs, c)) break;
         if (seed == last) break;  // last may be the largest seed
     }
     if (table) {

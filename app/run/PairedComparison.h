@@ -43,14 +43,21 @@ struct PairedTrial {
     std::string namedA, namedB;  ///< the shape the paper's rule named a completed path, or ""
 };
 
-struct PairedComparison {
-    std::string nameA, nameB;
-    int seeds = 0;
+/// The parts of the paper's result, each compared over the pairs both experiments have.
+struct PairedParts {
     PairedRate activeCompleted;      ///< active trials both experiments ran
     PairedRate passiveLostAtCorner;  ///< passive trials both ran
     /// Active trials both completed and recognised: named rightly by the paper's rule.
     PairedRate recognisedRaw;
     PairedRate paperResult;  ///< runs (seeds) where both have the paper's parts
+};
+
+struct PairedComparison : PairedParts {
+    std::string nameA, nameB;
+    int seeds = 0;
+    /// The parts as they stood after each seed, in the order the seeds were added: how the
+    /// differences settle.
+    std::vector<PairedParts> soFar;
     /// Trials only one experiment has (a label, mode or repeat the other lacks); not compared.
     int unpairedTrials = 0;
     double robotTimeSumA_s = 0.0, robotTimeSumB_s = 0.0;  ///< whole runs
@@ -72,12 +79,13 @@ void checkComparable(const ExperimentSpec& a, const ExperimentSpec& b);
 
 /// Runs `a` and `b` once per seed first..last and compares them. With `outDir`, writes
 /// compare.csv (a row per paired trial, appended as each seed finishes) and compare.json (the
-/// comparison, written last). `seedDone` hears each seed's pairs; returning false stops after it.
-/// checkComparable before any run.
-PairedComparison comparePaired(
-    const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t first, std::uint64_t last,
-    const std::string& outDir,
-    const std::function<bool(std::uint64_t, const std::vector<PairedTrial>&)>& seedDone = {});
+/// comparison, written last). `seedDone` hears each seed's pairs and the comparison so far;
+/// returning false stops after it. checkComparable before any run.
+using ComparedSeed = std::function<bool(std::uint64_t seed, const std::vector<PairedTrial>& pairs,
+                                        const PairedComparison& soFar)>;
+PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
+                               std::uint64_t first, std::uint64_t last, const std::string& outDir,
+                               const ComparedSeed& seedDone = {});
 
 Json pairedComparisonJson(const PairedComparison& c);
 

@@ -252,6 +252,55 @@ private slots:
         QVERIFY(!buildComparisonFigure(empty, PairedComparison{}));
         QCOMPARE(empty.plottableCount(), 0);
     }
+
+    void theComparisonFigureShowsHowEachDifferenceSettles() {
+        // Three made-up seeds of 10 active trials each and a run each: B completes 2, 0 and 3
+        // trials that A lost; the runs differ at the first seed only. No passive trials.
+        PairedComparison c;
+        c.nameA = "paper";
+        c.nameB = "variant";
+        for (int onlyB : {2, 0, 3}) {
+            for (int i = 0; i < 10; ++i) c.activeCompleted.add(i >= onlyB, true);
+            c.paperResult.add(onlyB == 0, true);
+            ++c.seeds;
+            c.soFar.push_back(c);
+        }
+        const QList<QPair<bool, FigureSize>> layouts{{false, kComparisonFigureSize},
+                                                     {true, FigureSize{840, 900, 100}}};
+        for (const auto& [stacked, size] : layouts) {
+            QCustomPlot plot;
+            QVERIFY(buildComparisonFigure(plot, c, stacked));
+            // After each seed, the active difference and its interval as they stood then.
+            QCPGraph* line = nullptr;
+            QCPGraph *low = nullptr, *high = nullptr;
+            for (int i = 0; i < plot.graphCount(); ++i) {
+                const QString name = plot.graph(i)->name();
+                if (name == "active trials completed") line = plot.graph(i);
+                if (name == "active trials completed (95 % low)") low = plot.graph(i);
+                if (name == "active trials completed (95 % high)") high = plot.graph(i);
+                QVERIFY2(!name.startsWith("passive"), qPrintable(name));  // nothing to compare
+            }
+            QVERIFY(line && low && high);
+            QCOMPARE(line->data()->size(), 3);
+            for (int i = 0; i < 3; ++i) {
+                const PairedRate& at = c.soFar[std::size_t(i)].activeCompleted;
+                QCOMPARE(line->data()->at(i)->key, double(i + 1));
+                QCOMPARE(line->data()->at(i)->value, 100.0 * at.difference());
+                QCOMPARE(low->data()->at(i)->value, 100.0 * at.differenceLow());
+                QCOMPARE(high->data()->at(i)->value, 100.0 * at.differenceHigh());
+            }
+            // 2 of 10, then 2 of 20, then 5 of 30 percentage points.
+            QCOMPARE(line->data()->at(1)->value, 10.0);
+            QVERIFY(qAbs(line->data()->at(2)->value - 50.0 / 3.0) < 1e-9);
+            const QString name =
+                QString("compare %1").arg(stacked ? "stacked" : "side by side");
+            layOutAt(plot, size);
+            test::checkLegendsClearOfData(plot, name);
+            if (QTest::currentTestFailed()) return;
+            test::checkLabelsFitTheirPanels(plot, name);
+            if (QTest::currentTestFailed()) return;
+        }
+    }
 };
 
 QTEST_MAIN(TestFigures)

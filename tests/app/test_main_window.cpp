@@ -719,9 +719,13 @@ private slots:
         QVERIFY2(summary.contains("A = paper, B = paper_kernel, 2 seeds, trial by trial:") &&
                      summary.contains("McNemar p") && summary.contains("finished; results in"),
                  qPrintable(summary));
-        // The differences with their intervals, on screen and in the folder.
-        QVERIFY(tab->plotPanel()->plot().graphCount() == 1);
-        QCOMPARE(tab->plotPanel()->plot().graph(0)->data()->size(), 4);
+        // The differences with their intervals, and how each settled over the two seeds, on
+        // screen and in the folder.
+        QCustomPlot& plot = tab->plotPanel()->plot();
+        QCOMPARE(plot.graph(0)->data()->size(), 4);
+        QCOMPARE(plot.graphCount(), 1 + 4 * 3);  // each part a line between its band's edges
+        for (int i = 1; i < plot.graphCount(); ++i)
+            QCOMPARE(plot.graph(i)->data()->size(), 2);
         QVERIFY(QFileInfo(dir + "/figures/compare.png").size() > 0);
 
         // A file that shares no trial with the paper is refused before any run, naming why.
@@ -737,6 +741,39 @@ private slots:
         QVERIFY(!window_->running());
         QCOMPARE(window_->lastComparisonDirectory(), dir);
         closeErrorDialogs(*window_);
+    }
+
+    void aComparisonShowsEachSeedAsItFinishes() {
+        // Two seeds planned, one in: its row, the comparison so far and its figure are on
+        // screen; a stop keeps them and says so.
+        ComparisonTab tab;
+        tab.setRunnable(true);
+        tab.begin("paper", "variant", 5, 6);
+        PairedComparison soFar;
+        soFar.nameA = "paper";
+        soFar.nameB = "variant";
+        for (int i = 0; i < 8; ++i) soFar.activeCompleted.add(i > 0, true);
+        soFar.seeds = 1;
+        soFar.soFar.push_back(soFar);
+        PairedTrial lostInA{5, FollowingMode::Active, "cross", 2, "lost at a corner (lost)",
+                            "completed", "", "cross"};
+        PairedTrial alike{5, FollowingMode::Active, "C", 1, "completed", "completed", "C", "C"};
+        tab.addSeed(5, {lostInA, alike}, soFar);
+        QCOMPARE(tab.table()->rowCount(), 1);
+        QCOMPARE(tab.table()->item(0, 2)->text(), QString("cross"));
+        QCOMPARE(tab.table()->item(0, 5)->text(), QString("completed, named cross"));
+        QVERIFY2(tab.summaryText().contains("A = paper, B = variant, 1 seeds, trial by trial:") &&
+                     tab.summaryText().contains("running: 1 of 2 seeds compared, 1 trials "
+                                                "ended differently"),
+                 qPrintable(tab.summaryText()));
+        QCustomPlot& plot = tab.plotPanel()->plot();
+        QCOMPARE(plot.graph(0)->data()->size(), 1);
+        QCOMPARE(plot.graph(0)->data()->at(0)->value, 12.5);
+        QVERIFY(!tab.findChild<QPushButton*>("compareWith")->isEnabled());
+        tab.interrupted();
+        QVERIFY(tab.summaryText().endsWith("stopped: the seeds shown are all there are"));
+        QCOMPARE(plot.graph(0)->data()->size(), 1);
+        QVERIFY(tab.findChild<QPushButton*>("compareWith")->isEnabled());
     }
 
     void ratesOverSeedsRunFromTheWindow() {

@@ -571,10 +571,30 @@ private slots:
         // The paper against its kernel variant, trial by trial over the same seeds: each side's
         // totals are that experiment's own rates, and every trial the two ended differently is
         // among the disagreements.
+        std::vector<int> heard;  // seeds compared, as each seed reports it
         const PairedComparison c = comparePaired(
             loadExperiment(test::sourcePath("experiments/paper.json")),
-            loadExperiment(test::sourcePath("experiments/paper_kernel.json")), 1, 10, "");
+            loadExperiment(test::sourcePath("experiments/paper_kernel.json")), 1, 10, "",
+            [&](std::uint64_t seed, const std::vector<PairedTrial>& pairs,
+                const PairedComparison& soFar) {
+                heard.push_back(soFar.seeds);
+                return pairs.size() == 10 && pairs.front().seed == seed;
+            });
         QCOMPARE(c.seeds, 10);
+        QCOMPARE(heard, (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10}));
+        // How the comparison stood after each seed: pairs only accumulate, and it ends where
+        // the totals are.
+        QCOMPARE(c.soFar.size(), std::size_t(10));
+        for (std::size_t i = 0; i < c.soFar.size(); ++i) {
+            QCOMPARE(c.soFar[i].activeCompleted.pairs(), 8 * int(i + 1));
+            QCOMPARE(c.soFar[i].paperResult.pairs(), int(i + 1));
+            if (i > 0)
+                QVERIFY(c.soFar[i].activeCompleted.onlyB >= c.soFar[i - 1].activeCompleted.onlyB);
+        }
+        QCOMPARE(c.soFar.back().activeCompleted.onlyA, c.activeCompleted.onlyA);
+        QCOMPARE(c.soFar.back().activeCompleted.onlyB, c.activeCompleted.onlyB);
+        QCOMPARE(c.soFar.back().recognisedRaw.both, c.recognisedRaw.both);
+        QCOMPARE(c.soFar.back().passiveLostAtCorner.neither, c.passiveLostAtCorner.neither);
         QCOMPARE(c.activeCompleted.a().count, rates_.activeCompleted().count);
         QCOMPARE(c.activeCompleted.b().count, kernel_.activeCompleted().count);
         QCOMPARE(c.activeCompleted.pairs(), 80);
