@@ -601,8 +601,7 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
         const auto start = std::chrono::steady_clock::now();
         const PairedComparison c = comparePaired(
             *a, *b, range.first, range.last, outDir,
-            [](std::uint64_t seed, const std::vector<PairedTrial>& pairs,
-               const PairedComparison&) {
+            [](std::uint64_t seed, const std::vector<PairedTrial>& pairs, const PairedComparison&) {
                 int differ = 0;
                 for (const PairedTrial& p : pairs)
                     differ += p.outcomeA != p.outcomeB || p.namedA != p.namedB;

@@ -21,8 +21,7 @@ RunningValue running(const SeedRates& all, Rate (*part)(const SeedOutcome&)) {
         sofar.count += p.count;
         sofar.total += p.total;
         if (sofar.total == 0) continue;
-        r.append(double(runs), 100.0 * sofar.fraction(), 100.0 * sofar.low(),
-                 100.0 * sofar.high());
+        r.append(double(runs), 100.0 * sofar.fraction(), 100.0 * sofar.low(), 100.0 * sofar.high());
     }
     return r;
 }
@@ -81,14 +80,15 @@ bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QStri
     each->axis(QCPAxis::atBottom)->setRange(first - 0.5, last + 0.5);
     each->axis(QCPAxis::atLeft)->setRange(-5.0, 105.0);
 
-    addRunningBand(sofar, ls, "active completed", running(rates, activeCompletedIn), seriesColour(0));
+    addRunningBand(sofar, ls, "active completed", running(rates, activeCompletedIn),
+                   seriesColour(0));
     addRunningBand(sofar, ls, "passive lost", running(rates, passiveLostIn), seriesColour(3));
     addRunningBand(sofar, ls, "recognised, paper's rule", running(rates, recognisedRawIn),
-            seriesColour(2));
+                   seriesColour(2));
     addRunningBand(sofar, ls, "recognised, smoothed", running(rates, recognisedSmoothedIn),
-            seriesColour(4));
+                   seriesColour(4));
     addRunningBand(sofar, ls, "runs with the paper's result whole", running(rates, paperResultIn),
-            seriesColour(7));
+                   seriesColour(7));
     sofar->axis(QCPAxis::atBottom)->setRange(0.5, n + 0.5);
     sofar->axis(QCPAxis::atLeft)->setRange(0.0, 102.0);
     return true;

@@ -292,8 +292,7 @@ private slots:
             // 2 of 10, then 2 of 20, then 5 of 30 percentage points.
             QCOMPARE(line->data()->at(1)->value, 10.0);
             QVERIFY(qAbs(line->data()->at(2)->value - 50.0 / 3.0) < 1e-9);
-            const QString name =
-                QString("compare %1").arg(stacked ? "stacked" : "side by side");
+            const QString name = QString("compare %1").arg(stacked ? "stacked" : "side by side");
             layOutAt(plot, size);
             test::checkLegendsClearOfData(plot, name);
             if (QTest::currentTestFailed()) return;

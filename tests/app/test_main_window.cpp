@@ -724,8 +724,7 @@ private slots:
         QCustomPlot& plot = tab->plotPanel()->plot();
         QCOMPARE(plot.graph(0)->data()->size(), 4);
         QCOMPARE(plot.graphCount(), 1 + 4 * 3);  // each part a line between its band's edges
-        for (int i = 1; i < plot.graphCount(); ++i)
-            QCOMPARE(plot.graph(i)->data()->size(), 2);
+        for (int i = 1; i < plot.graphCount(); ++i) QCOMPARE(plot.graph(i)->data()->size(), 2);
         QVERIFY(QFileInfo(dir + "/figures/compare.png").size() > 0);
 
         // A file that shares no trial with the paper is refused before any run, naming why.
@@ -755,8 +754,9 @@ private slots:
         for (int i = 0; i < 8; ++i) soFar.activeCompleted.add(i > 0, true);
         soFar.seeds = 1;
         soFar.soFar.push_back(soFar);
-        PairedTrial lostInA{5, FollowingMode::Active, "cross", 2, "lost at a corner (lost)",
-                            "completed", "", "cross"};
+        PairedTrial lostInA{
+            5,      FollowingMode::Active, "cross", 2, "lost at a corner (lost)", "completed", "",
+            "cross"};
         PairedTrial alike{5, FollowingMode::Active, "C", 1, "completed", "completed", "C", "C"};
         tab.addSeed(5, {lostInA, alike}, soFar);
         QCOMPARE(tab.table()->rowCount(), 1);
