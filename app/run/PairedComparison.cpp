@@ -60,6 +60,13 @@ std::string signedPercentText(double fraction) {
     return buf;
 }
 
+/// The parts of the result by the names compare.json and compare_so_far.csv give them.
+constexpr std::pair<const char*, PairedRate PairedParts::*> kPartNames[] = {
+    {"active_completed", &PairedParts::activeCompleted},
+    {"passive_lost_at_a_corner", &PairedParts::passiveLostAtCorner},
+    {"recognised_raw", &PairedParts::recognisedRaw},
+    {"paper_result", &PairedParts::paperResult},
+};
 Json pairedRateJson(const PairedRate& r) {
     return {{"pairs", r.pairs()},
             {"a", rateJson(r.a())},
@@ -173,10 +180,14 @@ PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
     c.nameA = a.name;
     c.nameB = b.name;
     checkComparable(a, b);
-    std::optional<OutputFile> table;
-    if (!outDir.empty())
+    std::optional<OutputFile> table, soFar;
+    if (!outDir.empty()) {
         startAppendedTable(table, outDir, "compare.csv", "compare.json",
                            "seed,mode,label,trial,outcome_a,outcome_b,named_a,named_b\n");
+        startAppendedTable(soFar, outDir, "compare_so_far.csv", "compare.json",
+                           "seeds_compared,seed,part,pairs,a,b,only_a,only_b,"
+                           "difference_b_minus_a,ci95_low,ci95_high,mcnemar_p\n");
+    }
     for (std::uint64_t seed = first; seed <= last; ++seed) {
         RunOptions options;
         options.seed = seed;
@@ -191,31 +202,37 @@ PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
                              p.outcomeA.c_str(), p.outcomeB.c_str(), p.namedA.c_str(),
                              p.namedB.c_str());
             table->flush();
+            for (const auto& [part, rate] : kPartNames) {
+                const PairedRate& r = c.*rate;
+                if (r.pairs() == 0) continue;
+                soFar->print("%d,%llu,%s,%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g\n", c.seeds,
+                             static_cast<unsigned long long>(seed), part, r.pairs(), r.a().count,
+                             r.b().count, r.onlyA, r.onlyB, r.difference(), r.differenceLow(),
+                             r.differenceHigh(), r.mcnemarP());
+            }
+            soFar->flush();
         }
         if (seedDone && !seedDone(seed, pairs, c)) break;
         if (seed == last) break;  // last may be the largest seed
     }
     if (table) {
         table->close();
+        soFar->close();
         writeJsonAtomically((fs::path(outDir) / "compare.json").string(), pairedComparisonJson(c));
     }
     return c;
 }
 
 Json pairedComparisonJson(const PairedComparison& c) {
-    return {{"a", c.nameA},
-            {"b", c.nameB},
-            {"seeds", c.seeds},
-            {"unpaired_trials", c.unpairedTrials},
-            {"active_completed", pairedRateJson(c.activeCompleted)},
-            {"passive_lost_at_a_corner", pairedRateJson(c.passiveLostAtCorner)},
-            {"recognised_raw", pairedRateJson(c.recognisedRaw)},
-            {"paper_result", pairedRateJson(c.paperResult)},
-            {"robot_time_per_run_s",
-             {{"a", c.meanRobotTimeA_s()},
-              {"b", c.meanRobotTimeB_s()},
-              {"difference_b_minus_a", c.meanRobotTimeB_s() - c.meanRobotTimeA_s()},
-              {"difference_sd", c.robotTimeDifferenceSd_s()}}}};
+    Json doc = {
+        {"a", c.nameA}, {"b", c.nameB}, {"seeds", c.seeds}, {"unpaired_trials", c.unpairedTrials}};
+    for (const auto& [part, rate] : kPartNames) doc[part] = pairedRateJson(c.*rate);
+    doc["robot_time_per_run_s"] = {
+        {"a", c.meanRobotTimeA_s()},
+        {"b", c.meanRobotTimeB_s()},
+        {"difference_b_minus_a", c.meanRobotTimeB_s() - c.meanRobotTimeA_s()},
+        {"difference_sd", c.robotTimeDifferenceSd_s()}};
+    return doc;
 }
 
 std::vector<std::string> describeComparison(const PairedComparison& c) {

@@ -78,8 +78,9 @@ void addSeed(PairedComparison& c, const RunResult& a, const RunResult& b,
 void checkComparable(const ExperimentSpec& a, const ExperimentSpec& b);
 
 /// Runs `a` and `b` once per seed first..last and compares them. With `outDir`, writes
-/// compare.csv (a row per paired trial, appended as each seed finishes) and compare.json (the
-/// comparison, written last). `seedDone` hears each seed's pairs and the comparison so far;
+/// compare.csv (a row per paired trial) and compare_so_far.csv (each part's comparison after each
+/// seed, the table behind the figure's second panel), both appended as each seed finishes, and
+/// compare.json (the comparison, written last). `seedDone` hears each seed's pairs and the comparison so far;
 /// returning false stops after it. checkComparable before any run.
 using ComparedSeed = std::function<bool(std::uint64_t seed, const std::vector<PairedTrial>& pairs,
                                         const PairedComparison& soFar)>;

@@ -681,6 +681,28 @@ private slots:
                  kernel["active_completed"].toObject()["count"].toInt());
         for (const char* format : {"png", "pdf", "svg"})
             QVERIFY(QFileInfo(out + "/figures/compare." + format).size() > 0);
+        // How each part stood after each seed; after the last, as compare.json has it.
+        const QStringList soFar = QString::fromUtf8([&] {
+                                      QFile f(out + "/compare_so_far.csv");
+                                      f.open(QIODevice::ReadOnly);
+                                      return f.readAll();
+                                  }())
+                                      .split('\n', Qt::SkipEmptyParts);
+        QCOMPARE(soFar.size(), 1 + 2 * 4);
+        QCOMPARE(soFar[0], QString("seeds_compared,seed,part,pairs,a,b,only_a,only_b,"
+                                   "difference_b_minus_a,ci95_low,ci95_high,mcnemar_p"));
+        QVERIFY2(soFar[1].startsWith("1,3,active_completed,8,"), qPrintable(soFar[1]));
+        for (int i = 5; i < 9; ++i) {
+            const QStringList f = soFar[i].split(',');
+            QCOMPARE(f[0], QString("2"));
+            QCOMPARE(f[1], QString("4"));
+            const QJsonObject part = c[f[2]].toObject();
+            QVERIFY2(!part.isEmpty(), qPrintable(f[2]));
+            QCOMPARE(f[3].toInt(), part["pairs"].toInt());
+            QCOMPARE(f[6].toInt(), part["only_a"].toInt());
+            QCOMPARE(f[7].toInt(), part["only_b"].toInt());
+            QVERIFY(qAbs(f[8].toDouble() - part["difference_b_minus_a"].toDouble()) < 1e-5);
+        }
     }
 
     void compareRefusesWhatItCannotPair() {
