@@ -38,26 +38,19 @@ void markNoDifference(QCPAxisRect* rect, QCPAxis* valueAxis, QCPAxis* other, boo
     zero->setPen(QPen(Qt::gray, 1, Qt::DashLine));
 }
 
-/// Each part's difference with its interval as a point on a bar, the first part at the top,
-/// its counts and McNemar's p under its name.
+/// Each part's difference with its interval as a point on a bar in the part's colour, the first
+/// part at the top, its counts and McNemar's p under its name.
 void addDifferences(QCPAxisRect* rect, const PairedComparison& c, const std::vector<Part>& rows) {
     QCPAxis* x = rect->axis(QCPAxis::atBottom);
     QCPAxis* y = rect->axis(QCPAxis::atLeft);
     const int n = static_cast<int>(rows.size());
-    QVector<double> key, value;
-    QVector<double> minus, plus;
     QSharedPointer<QCPAxisTickerText> names(new QCPAxisTickerText);
     double lo = 0.0, hi = 0.0;
-    // Keys ascending, as the graph and its error bars keep them: the last row first.
-    for (int i = n - 1; i >= 0; --i) {
+    for (int i = 0; i < n; ++i) {
         const Part& part = rows[static_cast<std::size_t>(i)];
         const PairedRate& r = c.*part.rate;
         const double at = n - i, d = 100.0 * r.difference();
         const double low = 100.0 * r.differenceLow(), high = 100.0 * r.differenceHigh();
-        key << at;
-        value << d;
-        minus << d - low;
-        plus << high - d;
         lo = std::min(lo, low);
         hi = std::max(hi, high);
         names->addTick(at, QString("%1\nA %2/%3, B %4/%5; only A %6, only B %7; p %8")
@@ -69,17 +62,18 @@ void addDifferences(QCPAxisRect* rect, const PairedComparison& c, const std::vec
                                .arg(r.onlyA)
                                .arg(r.onlyB)
                                .arg(r.mcnemarP(), 0, 'g', 2));
+        const QColor colour = seriesColour(part.colour);
+        QCPGraph* point = rect->parentPlot()->addGraph(y, x);  // keys up the side, values across
+        point->setName(QString("B - A: %1").arg(part.name));
+        point->setData({at}, {d}, true);
+        point->setLineStyle(QCPGraph::lsNone);
+        point->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDisc, colour, 9));
+        auto* bar = new QCPErrorBars(y, x);
+        bar->setName(QString("95 % interval: %1").arg(part.name));
+        bar->setDataPlottable(point);
+        bar->setData({d - low}, {high - d});
+        bar->setPen(QPen(colour, 2.0));
     }
-    QCPGraph* points = rect->parentPlot()->addGraph(y, x);  // keys up the side, values across
-    points->setName("B - A");
-    points->setData(key, value, true);
-    points->setLineStyle(QCPGraph::lsNone);
-    points->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDisc, seriesColour(0), 8));
-    auto* bars = new QCPErrorBars(y, x);
-    bars->setName("95 % interval");
-    bars->setDataPlottable(points);
-    bars->setData(minus, plus);
-    bars->setPen(QPen(seriesColour(0), 1.5));
     y->setTicker(names);
     y->setRange(0.4, n + 0.6);
     const double span = std::max(hi - lo, 2.0);

@@ -222,23 +222,28 @@ private slots:
         QCOMPARE(c.activeCompleted.onlyB, 9);
         QCustomPlot plot;
         QVERIFY(buildComparisonFigure(plot, c));
-        // One point per part compared, the passive row left out; the first part at the top.
-        QCPGraph* points = plot.graph(0);
-        QVERIFY(points);
-        QCOMPARE(points->data()->size(), 2);
-        const auto top = points->data()->at(1), below = points->data()->at(0);
-        QCOMPARE(top->key, 2.0);
-        QCOMPARE(top->value, 100.0 * c.activeCompleted.difference());
-        QCOMPARE(below->value, 100.0 * c.recognisedRaw.difference());
+        // One point per part compared, in its colour, the passive row left out; the first part
+        // at the top.
+        QCOMPARE(plot.graphCount(), 2);
+        QCPGraph* top = plot.graph(0);
+        QCPGraph* below = plot.graph(1);
+        QCOMPARE(top->name(), QString("B - A: active trials completed"));
+        QCOMPARE(below->name(), QString("B - A: completed paths recognised (paper's rule)"));
+        QCOMPARE(top->data()->size(), 1);
+        QCOMPARE(top->data()->at(0)->key, 2.0);
+        QCOMPARE(below->data()->at(0)->key, 1.0);
+        QCOMPARE(top->data()->at(0)->value, 100.0 * c.activeCompleted.difference());
+        QCOMPARE(below->data()->at(0)->value, 100.0 * c.recognisedRaw.difference());
+        QVERIFY(top->scatterStyle().pen().color() != below->scatterStyle().pen().color());
         QCPErrorBars* bars = nullptr;
         for (int i = 0; i < plot.plottableCount(); ++i)
-            if (auto* b = qobject_cast<QCPErrorBars*>(plot.plottable(i))) bars = b;
+            if (auto* b = qobject_cast<QCPErrorBars*>(plot.plottable(i)))
+                if (b->dataPlottable() == top) bars = b;
         QVERIFY(bars);
-        const QCPErrorBarsData upper = bars->data()->at(1);
-        QVERIFY(qAbs(top->value - upper.errorMinus - 100.0 * c.activeCompleted.differenceLow()) <
-                1e-9);
-        QVERIFY(qAbs(top->value + upper.errorPlus - 100.0 * c.activeCompleted.differenceHigh()) <
-                1e-9);
+        const QCPErrorBarsData upper = bars->data()->at(0);
+        const double value = top->data()->at(0)->value;
+        QVERIFY(qAbs(value - upper.errorMinus - 100.0 * c.activeCompleted.differenceLow()) < 1e-9);
+        QVERIFY(qAbs(value + upper.errorPlus - 100.0 * c.activeCompleted.differenceHigh()) < 1e-9);
         // Each row says its counts and McNemar's p under its name.
         auto names = plot.graph(0)->keyAxis()->ticker().dynamicCast<QCPAxisTickerText>();
         QVERIFY(names);
@@ -278,7 +283,7 @@ private slots:
                 if (name == "active trials completed") line = plot.graph(i);
                 if (name == "active trials completed (95 % low)") low = plot.graph(i);
                 if (name == "active trials completed (95 % high)") high = plot.graph(i);
-                QVERIFY2(!name.startsWith("passive"), qPrintable(name));  // nothing to compare
+                QVERIFY2(!name.contains("passive"), qPrintable(name));  // nothing to compare
             }
             QVERIFY(line && low && high);
             QCOMPARE(line->data()->size(), 3);
