@@ -81,10 +81,13 @@ void addDifferences(QCPAxisRect* rect, const PairedComparison& c, const std::vec
     markNoDifference(rect, x, y, false);
 }
 
-/// Each part's difference after each seed with its interval as a band: how it settles.
+/// Each part's difference after each seed with its interval as a band: how it settles. The value
+/// axis spans the bands from a tenth of the seeds on, so that over many seeds the first few, whose
+/// intervals may span +-100 points, do not flatten the rest: they run off the panel instead.
 void addSettling(QCPAxisRect* rect, QCPLegend* legend, const PairedComparison& c,
                  const std::vector<Part>& rows) {
     double lo = 0.0, hi = 0.0;
+    const std::size_t spanFrom = c.soFar.size() / 10;
     for (const Part& part : rows) {
         RunningValue r;
         for (std::size_t i = 0; i < c.soFar.size(); ++i) {
@@ -92,6 +95,7 @@ void addSettling(QCPAxisRect* rect, QCPLegend* legend, const PairedComparison& c
             if (at.pairs() == 0) continue;
             r.append(double(i + 1), 100.0 * at.difference(), 100.0 * at.differenceLow(),
                      100.0 * at.differenceHigh());
+            if (i + 1 < spanFrom) continue;  // before seed n / 10
             lo = std::min(lo, r.low.back());
             hi = std::max(hi, r.high.back());
         }

@@ -18,7 +18,8 @@ struct PairedComparison;
 /// result whole): the difference B - A in percentage points as a point with its interval, a line
 /// at no difference, and under each part's name its counts and McNemar's p. Right (below): each
 /// difference with its interval after each seed (PairedComparison::soFar), so a reader sees how it
-/// settles. False (with the title only) if nothing was compared.
+/// settles, its value axis fitted to the seeds from a tenth of them on. False (with the title
+/// only) if nothing was compared.
 bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& comparison,
                            bool stacked = false);
 

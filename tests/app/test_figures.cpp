@@ -303,6 +303,32 @@ private slots:
             if (QTest::currentTestFailed()) return;
             test::checkLabelsFitTheirPanels(plot, name);
             if (QTest::currentTestFailed()) return;
+            // Over three seeds the value axis holds every interval, the first run's +100 too.
+            QCOMPARE(line->valueAxis()->range().upper >= 100.0, true);
+        }
+        // Over 100 seeds, the first run only A had whole and 99 both had: the axis fits the
+        // intervals from the tenth seed on, and the first seeds' run off the panel.
+        PairedComparison many;
+        for (int seed = 1; seed <= 100; ++seed) {
+            many.paperResult.add(true, seed > 1);
+            ++many.seeds;
+            many.soFar.push_back(many);
+        }
+        QCustomPlot plot;
+        QVERIFY(buildComparisonFigure(plot, many));
+        QCPGraph* whole = nullptr;
+        for (int i = 0; i < plot.graphCount(); ++i)
+            if (plot.graph(i)->name() == "runs with the paper's result whole")
+                whole = plot.graph(i);
+        QVERIFY(whole);
+        QCOMPARE(whole->data()->at(0)->value, -100.0);
+        const QCPRange shown = whole->valueAxis()->range();
+        QVERIFY2(shown.lower > -50.0 && shown.upper > 0.0,
+                 qPrintable(QString("%1 to %2").arg(shown.lower).arg(shown.upper)));
+        for (int i = 9; i < 100; ++i) {
+            const PairedRate& at = many.soFar[std::size_t(i)].paperResult;
+            QVERIFY(shown.contains(100.0 * at.differenceLow()));
+            QVERIFY(shown.contains(100.0 * at.differenceHigh()));
         }
     }
 };
