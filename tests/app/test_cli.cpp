@@ -21,6 +21,7 @@
 
 using namespace activetouch;
 using test::linesIn;
+using test::linesOf;
 using test::readJson;
 using test::runCli;
 using Outcome = test::CliOutcome;
@@ -652,12 +653,7 @@ private slots:
                  qPrintable(o.out));
         QVERIFY2(o.out.contains("active trials completed") && o.out.contains("McNemar p"),
                  qPrintable(o.out));
-        const QStringList rows = QString::fromUtf8([&] {
-                                     QFile f(out + "/compare.csv");
-                                     f.open(QIODevice::ReadOnly);
-                                     return f.readAll();
-                                 }())
-                                     .split('\n', Qt::SkipEmptyParts);
+        const QStringList rows = linesOf(out + "/compare.csv");
         QCOMPARE(rows.size(), 1 + 2 * 10);
         QCOMPARE(rows[0], QString("seed,mode,label,trial,outcome_a,outcome_b,named_a,named_b"));
         QVERIFY2(rows[1].startsWith("3,passive,\"rectangle\",1,"), qPrintable(rows[1]));
@@ -682,12 +678,7 @@ private slots:
         for (const char* format : {"png", "pdf", "svg"})
             QVERIFY(QFileInfo(out + "/figures/compare." + format).size() > 0);
         // How each part stood after each seed; after the last, as compare.json has it.
-        const QStringList soFar = QString::fromUtf8([&] {
-                                      QFile f(out + "/compare_so_far.csv");
-                                      f.open(QIODevice::ReadOnly);
-                                      return f.readAll();
-                                  }())
-                                      .split('\n', Qt::SkipEmptyParts);
+        const QStringList soFar = linesOf(out + "/compare_so_far.csv");
         QCOMPARE(soFar.size(), 1 + 2 * 4);
         QCOMPARE(soFar[0], QString("seeds_compared,seed,part,pairs,a,b,only_a,only_b,"
                                    "difference_b_minus_a,ci95_low,ci95_high,mcnemar_p"));

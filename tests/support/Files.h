@@ -4,6 +4,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QString>
+#include <QStringList>
 
 namespace activetouch::test {
 
@@ -12,6 +13,13 @@ inline int linesIn(const QString& path) {
     QFile f(path);
     if (!f.open(QIODevice::ReadOnly)) return -1;
     return static_cast<int>(f.readAll().count('\n'));
+}
+
+/// The file's non-empty lines (none if it cannot be read): a table's header and rows.
+inline QStringList linesOf(const QString& path) {
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly)) return {};
+    return QString::fromUtf8(f.readAll()).split('\n', Qt::SkipEmptyParts);
 }
 
 /// The JSON object a file holds (empty if it cannot be read): a summary, a rates table.
