@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 
 #include "app/figures/FigureLayout.h"
@@ -12,18 +13,13 @@ namespace activetouch {
 
 namespace {
 
-/// A part of the result, where it sits in a PairedParts, and its colour (as in seed_rates).
+/// A part of the result as drawn: what it is, and its colour (as in seed_rates).
 struct Part {
     const char* name;
     PairedRate PairedParts::*rate;
     int colour;
 };
-constexpr Part kParts[] = {
-    {"active trials completed", &PairedParts::activeCompleted, 0},
-    {"passive trials lost at a corner", &PairedParts::passiveLostAtCorner, 3},
-    {"completed paths recognised (paper's rule)", &PairedParts::recognisedRaw, 2},
-    {"runs with the paper's result whole", &PairedParts::paperResult, 7},
-};
+constexpr int kPartColours[std::size(kPairedParts)] = {0, 3, 2, 7};
 
 /// A dashed line through the panel where B - A is zero: across the panel if `horizontal`.
 void markNoDifference(QCPAxisRect* rect, QCPAxis* valueAxis, QCPAxis* other, bool horizontal) {
@@ -117,8 +113,9 @@ bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& c, bool st
     const QString a = QString::fromStdString(c.nameA), b = QString::fromStdString(c.nameB);
     startFigure(plot, QString("%1 (B) against %2 (A), %3 seeds").arg(b, a).arg(c.seeds));
     std::vector<Part> rows;
-    for (const Part& part : kParts)
-        if ((c.*part.rate).pairs() > 0) rows.push_back(part);
+    for (std::size_t i = 0; i < std::size(kPairedParts); ++i)
+        if ((c.*kPairedParts[i].rate).pairs() > 0)
+            rows.push_back({kPairedParts[i].name, kPairedParts[i].rate, kPartColours[i]});
     if (rows.empty()) return false;
 
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);

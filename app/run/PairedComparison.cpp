@@ -60,13 +60,6 @@ std::string signedPercentText(double fraction) {
     return buf;
 }
 
-/// The parts of the result by the names compare.json and compare_so_far.csv give them.
-constexpr std::pair<const char*, PairedRate PairedParts::*> kPartNames[] = {
-    {"active_completed", &PairedParts::activeCompleted},
-    {"passive_lost_at_a_corner", &PairedParts::passiveLostAtCorner},
-    {"recognised_raw", &PairedParts::recognisedRaw},
-    {"paper_result", &PairedParts::paperResult},
-};
 Json pairedRateJson(const PairedRate& r) {
     return {{"pairs", r.pairs()},
             {"a", rateJson(r.a())},
@@ -202,13 +195,13 @@ PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
                              p.outcomeA.c_str(), p.outcomeB.c_str(), p.namedA.c_str(),
                              p.namedB.c_str());
             table->flush();
-            for (const auto& [part, rate] : kPartNames) {
-                const PairedRate& r = c.*rate;
+            for (const PairedPart& part : kPairedParts) {
+                const PairedRate& r = c.*part.rate;
                 if (r.pairs() == 0) continue;
                 soFar->print("%d,%llu,%s,%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g\n", c.seeds,
-                             static_cast<unsigned long long>(seed), part, r.pairs(), r.a().count,
-                             r.b().count, r.onlyA, r.onlyB, r.difference(), r.differenceLow(),
-                             r.differenceHigh(), r.mcnemarP());
+                             static_cast<unsigned long long>(seed), part.key, r.pairs(),
+                             r.a().count, r.b().count, r.onlyA, r.onlyB, r.difference(),
+                             r.differenceLow(), r.differenceHigh(), r.mcnemarP());
             }
             soFar->flush();
         }
@@ -226,7 +219,7 @@ PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
 Json pairedComparisonJson(const PairedComparison& c) {
     Json doc = {
         {"a", c.nameA}, {"b", c.nameB}, {"seeds", c.seeds}, {"unpaired_trials", c.unpairedTrials}};
-    for (const auto& [part, rate] : kPartNames) doc[part] = pairedRateJson(c.*rate);
+    for (const PairedPart& part : kPairedParts) doc[part.key] = pairedRateJson(c.*part.rate);
     doc["robot_time_per_run_s"] = {
         {"a", c.meanRobotTimeA_s()},
         {"b", c.meanRobotTimeB_s()},
@@ -258,10 +251,7 @@ std::vector<std::string> describeComparison(const PairedComparison& c) {
                       r.mcnemarP());
         lines.push_back(buf);
     };
-    row("active trials completed", c.activeCompleted);
-    row("passive trials lost at a corner", c.passiveLostAtCorner);
-    row("completed paths recognised (paper's rule)", c.recognisedRaw);
-    row("runs with the paper's result whole", c.paperResult);
+    for (const PairedPart& part : kPairedParts) row(part.name, c.*part.rate);
     auto minutes = [](double s) {
         return std::to_string(static_cast<int>(std::lround(s / 60.0))) + " min";
     };

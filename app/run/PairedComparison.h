@@ -52,6 +52,21 @@ struct PairedParts {
     PairedRate paperResult;  ///< runs (seeds) where both have the paper's parts
 };
 
+/// Each part: its key in compare.json and compare_so_far.csv, its name in text and figures, and
+/// where it sits in a PairedParts; in the order they are reported.
+struct PairedPart {
+    const char* key;
+    const char* name;
+    PairedRate PairedParts::*rate;
+};
+inline constexpr PairedPart kPairedParts[] = {
+    {"active_completed", "active trials completed", &PairedParts::activeCompleted},
+    {"passive_lost_at_a_corner", "passive trials lost at a corner",
+     &PairedParts::passiveLostAtCorner},
+    {"recognised_raw", "completed paths recognised (paper's rule)", &PairedParts::recognisedRaw},
+    {"paper_result", "runs with the paper's result whole", &PairedParts::paperResult},
+};
+
 struct PairedComparison : PairedParts {
     std::string nameA, nameB;
     int seeds = 0;
@@ -80,8 +95,8 @@ void checkComparable(const ExperimentSpec& a, const ExperimentSpec& b);
 /// Runs `a` and `b` once per seed first..last and compares them. With `outDir`, writes
 /// compare.csv (a row per paired trial) and compare_so_far.csv (each part's comparison after each
 /// seed, the table behind the figure's second panel), both appended as each seed finishes, and
-/// compare.json (the comparison, written last). `seedDone` hears each seed's pairs and the comparison so far;
-/// returning false stops after it. checkComparable before any run.
+/// compare.json (the comparison, written last). `seedDone` hears each seed's pairs and the
+/// comparison so far; returning false stops after it. checkComparable before any run.
 using ComparedSeed = std::function<bool(std::uint64_t seed, const std::vector<PairedTrial>& pairs,
                                         const PairedComparison& soFar)>;
 PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
