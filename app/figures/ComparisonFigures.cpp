@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "app/figures/FigureLayout.h"
+#include "app/figures/FollowingFigures.h"
 #include "app/run/PairedComparison.h"
 #include "qcustomplot.h"
 
@@ -133,6 +134,55 @@ bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& c, bool st
     sofar->axis(QCPAxis::atBottom)->setLabel("seeds compared");
     sofar->axis(QCPAxis::atLeft)->setLabel("B - A (percentage points)");
     addSettling(sofar, legend, c, rows);
+    return true;
+}
+
+bool buildTrialPairFigure(QCustomPlot& plot, const TrialPairRun& pair) {
+    const TrialRun& a = pair.a;
+    startFigure(plot, QString("seed %1: %2 trial %3 of %4, as A and B ran it")
+                          .arg(pair.seed)
+                          .arg(modeName(a.result.mode))
+                          .arg(a.trial)
+                          .arg(QString::fromStdString(a.label)));
+    // Two long entries: the legend goes under the panel, clear of the paths.
+    const auto [rect, legend] = addPanelWithLegendBelow(addFigureRow(plot, 1.0), 0, 0, 1);
+    setPanelTitle(rect, QString::fromStdString(a.label));
+    rect->axis(QCPAxis::atBottom)->setLabel("x (mm)");
+    rect->axis(QCPAxis::atLeft)->setLabel("y (mm)");
+    PathBox box;
+    addOutline(rect, legend, a.outline, box);
+    if (pair.b.outline.vertices() != a.outline.vertices()) {
+        // B placed its object elsewhere: both outlines, B's dashed.
+        QCPCurve* outlineB = addOutline(rect, legend, pair.b.outline, box);
+        outlineB->setPen(QPen(Qt::darkGray, 1.5, Qt::DashLine));
+        outlineB->setName("object in B");
+    }
+    QCPCurve* firstEnd = nullptr;
+    std::vector<Vec2> furthest;
+    struct Side {
+        const char* which;
+        const std::string& name;
+        const TrialRun& run;
+        QColor colour;
+        double dotSize;
+    };
+    for (const Side& side : {Side{"A", pair.nameA, pair.a, seriesColour(0), 7.0},
+                             Side{"B", pair.nameB, pair.b, seriesColour(3), 4.0}}) {
+        const std::string named = namedPath(side.run);
+        QCPCurve* end = addTrialPath(
+            rect, legend, side.run, side.colour, side.dotSize,
+            QString("%1 %2: %3%4, %5 taps")
+                .arg(side.which, QString::fromStdString(side.name),
+                     QString::fromStdString(trialOutcome(side.run)),
+                     named.empty() ? QString() : QString(", named %1").arg(named.c_str()))
+                .arg(side.run.result.taps.size()),
+            box);
+        if (end) {
+            if (!firstEnd) firstEnd = end;
+            furthest.push_back(side.run.result.furthest.point);
+        }
+    }
+    finishPathPanel(rect, legend, firstEnd, furthest, box, /*legendRoom=*/0.0);
     return true;
 }
 

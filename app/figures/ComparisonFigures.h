@@ -12,6 +12,7 @@ class QCustomPlot;
 namespace activetouch {
 
 struct PairedComparison;
+struct TrialPairRun;
 
 /// Left (above if `stacked`): one row per outcome compared (active trials completed, passive
 /// trials lost at a corner, completed paths recognised by the paper's rule, runs with the paper's
@@ -22,6 +23,11 @@ struct PairedComparison;
 /// only) if nothing was compared.
 bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& comparison,
                            bool stacked = false);
+
+/// One trial of one seed as A and B ran it (runTrialPair): the object, both paths with their taps,
+/// where a trial that did not complete ended and how far along the contour it got; each path's
+/// legend entry says how it ended and the shape the paper's rule named it.
+bool buildTrialPairFigure(QCustomPlot& plot, const TrialPairRun& pair);
 
 /// The size compare is written at: wide, the two panels side by side.
 inline constexpr FigureSize kComparisonFigureSize{2200, 800, 150};

@@ -39,6 +39,63 @@ QCPCurve* polyline(QCPAxisRect* rect, const std::vector<Vec2>& points, bool clos
 
 }  // namespace
 
+QCPCurve* addOutline(QCPAxisRect* rect, QCPLegend* legend, const Polygon& outline, PathBox& box) {
+    auto* curve = polyline(rect, outline.vertices(), true);
+    curve->setPen(QPen(Qt::black, 2));
+    curve->setName("object");
+    legend->addItem(new QCPPlottableLegendItem(legend, curve));
+    for (Vec2 v : outline.vertices()) box.add(v);
+    return curve;
+}
+
+QCPCurve* addTrialPath(QCPAxisRect* rect, QCPLegend* legend, const TrialRun& t, QColor colour,
+                       double dotSize, const QString& name, PathBox& box) {
+    auto* path = polyline(rect, t.result.path(), false);
+    path->setPen(QPen(colour, 1.0));
+    path->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDisc, colour, dotSize));
+    path->setName(name);
+    legend->addItem(new QCPPlottableLegendItem(legend, path));
+    for (Vec2 v : t.result.path()) box.add(v);
+    if (t.result.completed() || t.result.taps.empty()) return nullptr;
+    auto* end = polyline(rect, {t.result.path().back()}, false);
+    end->setPen(Qt::NoPen);
+    end->setScatterStyle(
+        QCPScatterStyle(QCPScatterStyle::ssCross, QPen(Qt::black, 2.5), Qt::NoBrush, 13));
+    end->setName("where the trial ended");
+    return end;
+}
+
+void finishPathPanel(QCPAxisRect* rect, QCPLegend* legend, QCPCurve* firstEnd,
+                     const std::vector<Vec2>& furthest, const PathBox& box, double legendRoom) {
+    if (firstEnd) legend->addItem(new QCPPlottableLegendItem(legend, firstEnd));
+    if (!furthest.empty()) {
+        // The contour points trials that did not complete got furthest to before they went
+        // astray.
+        auto* marks = polyline(rect, furthest, false);
+        marks->setLineStyle(QCPCurve::lsNone);
+        marks->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDiamond,
+                                               QPen(QColor(255, 127, 14), 2.5), Qt::NoBrush, 13));
+        marks->setName("furthest along the contour");
+        legend->addItem(new QCPPlottableLegendItem(legend, marks));
+    }
+    const double margin = 8.0;
+    const Vec2 lo = box.lo, hi = box.hi;
+    setEqualAspectRanges(rect, QCPRange(lo.x - margin, hi.x + margin),
+                         QCPRange(lo.y - margin, hi.y + margin + legendRoom * (hi.y - lo.y)));
+}
+
+QCPLegend* addPathPanel(QCPAxisRect* rect, const QString& title) {
+    rect->axis(QCPAxis::atBottom)->setLabel("x (mm)");
+    rect->axis(QCPAxis::atLeft)->setLabel("y (mm)");
+    setPanelTitle(rect, title);
+    auto* legend = new QCPLegend;
+    rect->insetLayout()->addElement(legend, Qt::AlignTop | Qt::AlignRight);
+    legend->setLayer("legend");
+    legend->setFont(QFont("Sans", 8));
+    legend->setBrush(QColor(255, 255, 255, 220));
+    return legend;
+}
+
 bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
                      const QString& title) {
     std::vector<std::string> labels;
@@ -54,71 +111,33 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
     for (std::size_t i = 0; i < labels.size(); ++i) {
         auto* rect = new QCPAxisRect(&plot);
         panels->addElement(static_cast<int>(i) / columns, static_cast<int>(i) % columns, rect);
-        rect->axis(QCPAxis::atBottom)->setLabel("x (mm)");
-        rect->axis(QCPAxis::atLeft)->setLabel("y (mm)");
-        setPanelTitle(rect, QString::fromStdString(labels[i]));
-        auto* legend = new QCPLegend;
-        rect->insetLayout()->addElement(legend, Qt::AlignTop | Qt::AlignRight);
-        legend->setLayer("legend");
-        legend->setFont(QFont("Sans", 8));
-        legend->setBrush(QColor(255, 255, 255, 220));
-        Vec2 lo{1e9, 1e9}, hi{-1e9, -1e9};
+        QCPLegend* legend = addPathPanel(rect, QString::fromStdString(labels[i]));
+        PathBox box;
         bool outlineDrawn = false;
         QCPCurve* firstEnd = nullptr;
         std::vector<Vec2> furthest;  // of the trials that did not complete, drawn over the paths
         for (const auto& t : r.trials) {
             if (t.result.mode != mode || t.label != labels[i]) continue;
             if (!outlineDrawn) {
-                auto* outline = polyline(rect, t.outline.vertices(), true);
-                outline->setPen(QPen(Qt::black, 2));
-                outline->setName("object");
-                legend->addItem(new QCPPlottableLegendItem(legend, outline));
+                addOutline(rect, legend, t.outline, box);
                 outlineDrawn = true;
-                for (Vec2 v : t.outline.vertices()) {
-                    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
-                    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
-                }
             }
-            auto* path = polyline(rect, t.result.path(), false);
-            path->setPen(QPen(trialColour(t.trial), 1.0));
             // Later trials draw smaller dots so that overlapping paths stay visible.
-            path->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDisc, trialColour(t.trial),
-                                                  std::max(3.0, 7.0 - 1.5 * (t.trial - 1))));
-            path->setName(QString("%1%2: %3, %4 taps")
-                              .arg(prefix)
-                              .arg(t.trial)
-                              .arg(trialEndName(t.result.end))
-                              .arg(t.result.taps.size()));
-            legend->addItem(new QCPPlottableLegendItem(legend, path));
-            if (!t.result.completed() && !t.result.taps.empty()) {
-                // Where a trial that did not complete ended; one legend entry per panel, last.
-                auto* end = polyline(rect, {t.result.path().back()}, false);
-                end->setPen(Qt::NoPen);
-                end->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCross, QPen(Qt::black, 2.5),
-                                                     Qt::NoBrush, 13));
-                end->setName("where the trial ended");
+            QCPCurve* end = addTrialPath(rect, legend, t, trialColour(t.trial),
+                                         std::max(3.0, 7.0 - 1.5 * (t.trial - 1)),
+                                         QString("%1%2: %3, %4 taps")
+                                             .arg(prefix)
+                                             .arg(t.trial)
+                                             .arg(trialEndName(t.result.end))
+                                             .arg(t.result.taps.size()),
+                                         box);
+            if (end) {
+                // One legend entry per panel for where trials ended, last.
                 if (!firstEnd) firstEnd = end;
                 furthest.push_back(t.result.furthest.point);
             }
-            for (Vec2 v : t.result.path()) {
-                lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
-                hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
-            }
         }
-        if (firstEnd) legend->addItem(new QCPPlottableLegendItem(legend, firstEnd));
-        if (!furthest.empty()) {
-            // The contour points those trials got furthest to before they went astray.
-            auto* marks = polyline(rect, furthest, false);
-            marks->setLineStyle(QCPCurve::lsNone);
-            marks->setScatterStyle(QCPScatterStyle(
-                QCPScatterStyle::ssDiamond, QPen(QColor(255, 127, 14), 2.5), Qt::NoBrush, 13));
-            marks->setName("furthest along the contour");
-            legend->addItem(new QCPPlottableLegendItem(legend, marks));
-        }
-        // Room above the paths for the legend.
-        const double margin = 8.0;
-        setEqualAspectRanges(rect, QCPRange(lo.x - margin, hi.x + margin),
-                             QCPRange(lo.y - margin, hi.y + margin + 0.35 * (hi.y - lo.y)));
+        finishPathPanel(rect, legend, firstEnd, furthest, box);
     }
     return true;
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <tuple>
 
 #include "app/run/OutputFiles.h"
@@ -27,17 +28,6 @@ std::pair<double, double> adjustedDifference(const PairedRate& r) {
     const double variance =
         std::max(0.0, (onlyA + onlyB) - (onlyB - onlyA) * (onlyB - onlyA) / n) / (n * n);
     return {d, kZ * std::sqrt(variance)};
-}
-
-std::string trialOutcome(const TrialResult& t) {
-    if (t.completed()) return "completed";
-    return std::string(t.stoppedAtCorner() ? "lost at a corner (" : "lost away from corners (") +
-           trialEndName(t.end) + ")";
-}
-
-/// The shape the paper's rule named a completed path, or nothing (a trial lost or not recognised).
-std::string namedPath(const TrialRun& t) {
-    return t.recognised && t.result.completed() ? t.recognition.predicted : std::string();
 }
 
 using TrialKey = std::tuple<FollowingMode, std::string, int>;
@@ -75,6 +65,46 @@ Json pairedRateJson(const PairedRate& r) {
 }
 
 }  // namespace
+
+std::string trialOutcome(const TrialRun& t) {
+    const TrialResult& r = t.result;
+    if (r.completed()) return "completed";
+    return std::string(r.stoppedAtCorner() ? "lost at a corner (" : "lost away from corners (") +
+           trialEndName(r.end) + ")";
+}
+
+std::string namedPath(const TrialRun& t) {
+    return t.recognised && t.result.completed() ? t.recognition.predicted : std::string();
+}
+
+TrialPairRun runTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t seed,
+                          FollowingMode mode, const std::string& label, int trial) {
+    for (const ExperimentSpec* spec : {&a, &b}) {
+        int repeats = 0;
+        for (const TrialSpec& t : spec->trials)
+            if (t.mode == mode && t.label == label) repeats += t.repeats;
+        if (trial < 1 || trial > repeats)
+            throw InputError(spec->name, "/following/trials",
+                             "'" + spec->name + "' has no " + modeName(mode) + " trial " +
+                                 std::to_string(trial) + " of '" + label +
+                                 "'; choose a trial both experiments run");
+    }
+    RunOptions options;
+    options.seed = seed;
+    TrialPairRun pair{a.name, b.name, seed, {}, {}};
+    auto find = [&](const RunResult& run, TrialRun& out) {
+        for (const TrialRun& t : run.trials)
+            if (t.result.mode == mode && t.label == label && t.trial == trial) {
+                out = t;
+                return;
+            }
+        throw std::runtime_error("'" + run.spec.name + "' ended before its " + modeName(mode) +
+                                 " trial " + std::to_string(trial) + " of '" + label + "'");
+    };
+    find(runExperiment(a, options), pair.a);
+    find(runExperiment(b, options), pair.b);
+    return pair;
+}
 
 void PairedRate::add(bool a, bool b) {
     if (a && b)
@@ -145,8 +175,8 @@ void addSeed(PairedComparison& c, const RunResult& a, const RunResult& b,
             c.passiveLostAtCorner.add(ra.stoppedAtCorner(), rb.stoppedAtCorner());
         }
         if (trials)
-            trials->push_back({a.spec.scene.seed, ra.mode, ta->label, ta->trial, trialOutcome(ra),
-                               trialOutcome(rb), namedPath(*ta), namedPath(tb)});
+            trials->push_back({a.spec.scene.seed, ra.mode, ta->label, ta->trial, trialOutcome(*ta),
+                               trialOutcome(tb), namedPath(*ta), namedPath(tb)});
     }
     for (const auto& entry : inB)
         if (!inA.count(entry.first)) ++c.unpairedTrials;

@@ -105,6 +105,26 @@ PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
 
 Json pairedComparisonJson(const PairedComparison& c);
 
+/// One trial of one seed as each of two experiments ran it: to see where a setting made them
+/// part.
+struct TrialPairRun {
+    std::string nameA, nameB;
+    std::uint64_t seed = 0;
+    TrialRun a, b;
+};
+
+/// Runs `a` and `b` with `seed` and returns the trial both have as `mode`, `label` and repeat
+/// `trial`, as each ran it: the same trial compare pairs. Throws InputError naming the trial if
+/// either experiment lacks it.
+TrialPairRun runTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t seed,
+                          FollowingMode mode, const std::string& label, int trial);
+
+/// How a trial of a pair ended, as compare.csv and the Compare tab say it: "completed" or
+/// "lost at a corner (reason)" or "lost away from corners (reason)", and the shape the paper's
+/// rule named a completed path.
+std::string trialOutcome(const TrialRun& t);
+std::string namedPath(const TrialRun& t);
+
 /// The comparison as lines of text: each outcome's rate in A and in B, the pairs where they
 /// differ, the difference with its interval and McNemar's p.
 std::vector<std::string> describeComparison(const PairedComparison& c);

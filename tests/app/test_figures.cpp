@@ -331,6 +331,56 @@ private slots:
             QVERIFY(shown.contains(100.0 * at.differenceHigh()));
         }
     }
+
+    void aTrialPairShowsBothPathsOnTheObject() {
+        // Seed 3's second active cross trial: the paper's histogram loses it at a corner, the
+        // kernel's completes it (compare over seeds 1-10 lists it).
+        const ExperimentSpec a = loadExperiment(test::sourcePath("experiments/paper.json"));
+        const ExperimentSpec b = loadExperiment(test::sourcePath("experiments/paper_kernel.json"));
+        const TrialPairRun pair = runTrialPair(a, b, 3, FollowingMode::Active, "cross", 2);
+        QCOMPARE(pair.seed, std::uint64_t(3));
+        QVERIFY2(trialOutcome(pair.a).rfind("lost at a corner", 0) == 0,
+                 trialOutcome(pair.a).c_str());
+        QCOMPARE(trialOutcome(pair.b), std::string("completed"));
+        QCOMPARE(pair.a.outline.vertices(), pair.b.outline.vertices());
+        QCustomPlot plot;
+        QVERIFY(buildTrialPairFigure(plot, pair));
+        QMap<QString, QCPCurve*> curves;
+        for (int i = 0; i < plot.plottableCount(); ++i)
+            if (auto* c = qobject_cast<QCPCurve*>(plot.plottable(i))) curves[c->name()] = c;
+        // The object once (both placed it alike), each path with how it ended, where A ended
+        // and how far along the contour it got.
+        QVERIFY(curves.contains("object") && !curves.contains("object in B"));
+        QStringList paths;
+        for (const QString& name : curves.keys())
+            if (name.startsWith("A ") || name.startsWith("B ")) paths << name;
+        QCOMPARE(paths.size(), 2);
+        QVERIFY2(paths[0].startsWith("A paper: lost at a corner"), qPrintable(paths[0]));
+        QCOMPARE(paths[1], QString("B paper_kernel: completed, named %1, %2 taps")
+                               .arg(QString::fromStdString(pair.b.recognition.predicted))
+                               .arg(pair.b.result.taps.size()));
+        QCOMPARE(curves[paths[0]]->data()->size(), int(pair.a.result.path().size()));
+        QCOMPARE(curves[paths[1]]->data()->size(), int(pair.b.result.path().size()));
+        QVERIFY(curves.contains("where the trial ended"));
+        QCOMPARE((curves["where the trial ended"]->data()->begin())->key,
+                 pair.a.result.path().back().x);
+        QVERIFY(curves.contains("furthest along the contour"));
+        QCOMPARE(curves["furthest along the contour"]->data()->size(), 1);
+        layOutAt(plot, FigureSize{700, 800, 100});
+        QMap<int, QPair<QCPRange, QCPRange>> views;
+        test::checkEqualAspect(plot, "trial pair", views);
+        if (QTest::currentTestFailed()) return;
+        test::checkLegendsClearOfData(plot, "trial pair");
+        if (QTest::currentTestFailed()) return;
+        // A trial one of them does not run is refused, naming it.
+        QString message;
+        try {
+            runTrialPair(a, b, 3, FollowingMode::Active, "cross", 3);
+        } catch (const std::exception& e) {
+            message = e.what();
+        }
+        QVERIFY2(message.contains("has no active trial 3 of 'cross'"), qPrintable(message));
+    }
 };
 
 QTEST_MAIN(TestFigures)
