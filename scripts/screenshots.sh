@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Screenshots of every tab after a paper run, as a person sees them: builds, then runs the window
-# under Xvfb with --screenshots, which runs the whole paper experiment, a run over seeds 1-10 and
-# its comparison with paper_kernel.json over the same seeds, and saves one PNG per tab, one of the device panels, one of the protocol panel and one of the first
-# lost active trial's replay.
+# under Xvfb with --screenshots, which runs the whole paper experiment, a run over seeds 1-10, its
+# comparison with paper_kernel.json over the same seeds and the first active trial the two ended
+# differently, in both, and saves one PNG per tab, one of the device panels, one of the protocol
+# panel and one of the first lost active trial's replay.
 # Usage: bash scripts/screenshots.sh [output dir, default results/screenshots]
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"

@@ -65,13 +65,37 @@ ComparisonTab::ComparisonTab(QWidget* parent) : QWidget(parent) {
     table_->setWordWrap(false);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     table_->verticalHeader()->setVisible(false);
+    connect(table_, &QTableWidget::itemSelectionChanged, this, [this] { updatePairButton(); });
+    connect(table_, &QTableWidget::cellDoubleClicked, this,
+            [this](int row, int) { requestPair(row); });
+    showPair_ = new QPushButton(tr("Show the trial in both"));
+    showPair_->setObjectName("showTrialPair");
+    showPair_->setEnabled(false);
+    showPair_->setToolTip(
+        tr("Run the selected row's seed in both experiments and draw that "
+           "trial's two paths on its object"));
+    connect(showPair_, &QPushButton::clicked, this, [this] { requestPair(table_->currentRow()); });
+    pair_ = new PlotPanel("compare_trial_pair");
+    pair_->setEmptyHint(
+        tr("Double-click a trial above, or select it and click Show the trial in both: that "
+           "seed runs again in both experiments and the trial's two paths are drawn here."));
+    auto* tableColumn = new QWidget;
+    auto* tableLayout = new QVBoxLayout(tableColumn);
+    tableLayout->setContentsMargins(0, 0, 0, 0);
+    tableLayout->addWidget(table_, 1);
+    tableLayout->addWidget(showPair_, 0, Qt::AlignLeft);
+    auto* left = new QSplitter(Qt::Vertical);
+    left->addWidget(tableColumn);
+    left->addWidget(pair_);
+    left->setSizes({400, 500});
+
     plot_ = new PlotPanel("compare");
     plot_->setEmptyHint(
         tr("Choose the seeds above and click Compare with...: each part of the "
            "result's difference between the two experiments appears here with "
            "its interval."));
     auto* split = new QSplitter(Qt::Horizontal);
-    split->addWidget(table_);
+    split->addWidget(left);
     split->addWidget(plot_);
     split->setSizes({560, 840});
     layout->addWidget(split, 1);
@@ -87,6 +111,25 @@ std::uint64_t ComparisonTab::lastSeed() const {
 void ComparisonTab::setRunnable(bool runnable) {
     runnable_ = runnable;
     compare_->setEnabled(runnable && !running_);
+    updatePairButton();
+}
+
+void ComparisonTab::updatePairButton() {
+    showPair_->setEnabled(runnable_ && !running_ && table_->currentRow() >= 0 &&
+                          !table_->selectedItems().isEmpty());
+}
+
+void ComparisonTab::requestPair(int row) {
+    if (!runnable_ || running_ || row < 0 || row >= table_->rowCount()) return;
+    emit trialPairRequested(
+        table_->item(row, 0)->text().toULongLong(),
+        static_cast<FollowingMode>(table_->item(row, 1)->data(Qt::UserRole).toInt()),
+        table_->item(row, 2)->text(), table_->item(row, 3)->text().toInt());
+}
+
+void ComparisonTab::showTrialPair(const TrialPairRun& pair) {
+    buildTrialPairFigure(pair_->plot(), pair);
+    pair_->requestReplot();
 }
 
 void ComparisonTab::begin(const QString& a, const QString& b, std::uint64_t first,
@@ -99,6 +142,10 @@ void ComparisonTab::begin(const QString& a, const QString& b, std::uint64_t firs
     seedsPlanned_ = static_cast<int>(last - first + 1);
     compare_->setEnabled(false);
     table_->setRowCount(0);
+    updatePairButton();
+    pair_->plot().clearItems();
+    pair_->plot().clearPlottables();
+    pair_->requestReplot();
     plot_->plot().clearItems();
     plot_->plot().clearPlottables();
     plot_->requestReplot();
@@ -116,7 +163,9 @@ void ComparisonTab::addSeed(std::uint64_t seed, const std::vector<PairedTrial>& 
         const int row = table_->rowCount();
         table_->insertRow(row);
         table_->setItem(row, 0, new QTableWidgetItem(QString::number(seed)));
-        table_->setItem(row, 1, new QTableWidgetItem(modeName(p.mode)));
+        auto* mode = new QTableWidgetItem(modeName(p.mode));
+        mode->setData(Qt::UserRole, static_cast<int>(p.mode));
+        table_->setItem(row, 1, mode);
         table_->setItem(row, 2, new QTableWidgetItem(QString::fromStdString(p.label)));
         table_->setItem(row, 3, new QTableWidgetItem(QString::number(p.trial)));
         table_->setItem(row, 4, new QTableWidgetItem(ended(p.outcomeA, p.namedA)));
@@ -131,6 +180,7 @@ void ComparisonTab::addSeed(std::uint64_t seed, const std::vector<PairedTrial>& 
 void ComparisonTab::finish(const PairedComparison& comparison, const QString& dir, bool cancelled) {
     running_ = false;
     compare_->setEnabled(runnable_);
+    updatePairButton();
     show(comparison,
          cancelled ? tr("cancelled after %1 seeds; results in %2").arg(comparison.seeds).arg(dir)
                    : tr("finished; results in %1").arg(dir));
@@ -150,6 +200,7 @@ void ComparisonTab::interrupted() {
     if (!running_) return;
     running_ = false;
     compare_->setEnabled(runnable_);
+    updatePairButton();
     summary_->setText(summary_->text() + tr("\nstopped: the seeds shown are all there are"));
 }
 

@@ -41,25 +41,37 @@ public:
     /// The comparison stopped on an error: the seeds shown are all there will be.
     void interrupted();
 
+    /// Shows one trial as A and B ran it (asked for with trialPairRequested).
+    void showTrialPair(const TrialPairRun& pair);
+
     QTableWidget* table() const { return table_; }
     PlotPanel* plotPanel() const { return plot_; }
+    /// The trial pair shown under the table.
+    PlotPanel* pairPanel() const { return pair_; }
     QString summaryText() const;
 
 signals:
     /// Asks to choose experiment B and compare over the seeds first..last.
     void compareRequested(std::uint64_t first, std::uint64_t last);
+    /// Asks to run the trial of the selected row in both experiments (a double-click on the row,
+    /// or the button under the table).
+    void trialPairRequested(quint64 seed, activetouch::FollowingMode mode, const QString& label,
+                            int trial);
 
 private:
     void show(const PairedComparison& comparison, const QString& state);
+    void updatePairButton();
+    /// Asks for the trial pair of `row`.
+    void requestPair(int row);
 
     bool running_ = false, runnable_ = false;
     int seedsPlanned_ = 0;
     QString a_, b_;
     QSpinBox *first_, *last_;
-    QPushButton* compare_;
+    QPushButton *compare_, *showPair_;
     QLabel* summary_;
     QTableWidget* table_;
-    PlotPanel* plot_;
+    PlotPanel *plot_, *pair_;
 };
 
 }  // namespace activetouch

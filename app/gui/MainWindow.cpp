@@ -134,6 +134,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
                     tr("Experiments (*.json)"));
                 if (!path.isEmpty()) startComparison(path, first, last);
             });
+    connect(comparison_, &ComparisonTab::trialPairRequested, this,
+            [this](quint64 seed, FollowingMode mode, const QString& label, int trial) {
+                startTrialPair(seed, mode, label, trial);
+            });
     setCentralWidget(tabs_);
     const QString training =
         tr("Click Run whole protocol, or Run training & validation, to tap the "
@@ -268,6 +272,25 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
                 comparison_->addSeed(seed, pairs, *soFar);
             });
     connect(&runs_, &RunController::comparisonFinished, this, &MainWindow::showComparison);
+    connect(&runs_, &RunController::trialPairFinished, this,
+            [this](const std::shared_ptr<const TrialPairRun>& pair) {
+                comparison_->showTrialPair(*pair);
+                auto ended = [](const TrialRun& t) {
+                    const std::string named = namedPath(t);
+                    return QString::fromStdString(trialOutcome(t)) +
+                           (named.empty() ? QString() : tr(", named %1").arg(named.c_str()));
+                };
+                const QString how =
+                    tr("seed %1, %2 trial %3 of %4: A %5, B %6")
+                        .arg(pair->seed)
+                        .arg(modeName(pair->a.result.mode))
+                        .arg(pair->a.trial)
+                        .arg(QString::fromStdString(pair->a.label), ended(pair->a), ended(pair->b));
+                progress_->setFormat(tr("trial shown in both experiments"));
+                status_->setText(how);
+                log(how);
+                emit runEnded(true);
+            });
     connect(&runs_, &RunController::failed, this, [this](const QString& m) {
         seeds_->interrupted();
         comparison_->interrupted();
@@ -301,7 +324,9 @@ QList<PlotPanel*> MainWindow::plotPanels() const {
             sweepPerception_,
             sweepFollowing_,
             sweepCompute_,
-            seeds_->ratesPanel()};
+            seeds_->ratesPanel(),
+            comparison_->plotPanel(),
+            comparison_->pairPanel()};
 }
 
 void MainWindow::setPace(Pace pace) {
@@ -579,6 +604,7 @@ bool MainWindow::startComparison(const QString& otherPath, std::uint64_t first,
     if (!runs_.startComparison(*toRun, other, first, last, dir)) return false;
     countingSeeds_ = true;
     lastComparisonDir_ = dir;
+    compared_ = std::make_pair(*toRun, other);
     comparison_->begin(a, b, first, last);
     tabs_->setCurrentWidget(comparison_);
     progress_->setRange(0, static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX)));
@@ -589,6 +615,25 @@ bool MainWindow::startComparison(const QString& otherPath, std::uint64_t first,
             .arg(first)
             .arg(last)
             .arg(dir));
+    updateActions();
+    return true;
+}
+
+bool MainWindow::startTrialPair(std::uint64_t seed, FollowingMode mode, const QString& label,
+                                int trial) {
+    if (!compared_ || runs_.running()) return false;
+    if (!runs_.startTrialPair(compared_->first, compared_->second, seed, mode, label.toStdString(),
+                              trial))
+        return false;
+    countingSeeds_ = true;
+    progress_->setRange(0, 1);
+    progress_->setValue(0);
+    log(tr("running seed %1 in %2 (A) and %3 (B) to show %4 trial %5 of %6")
+            .arg(seed)
+            .arg(QString::fromStdString(compared_->first.name),
+                 QString::fromStdString(compared_->second.name), modeName(mode))
+            .arg(trial)
+            .arg(label));
     updateActions();
     return true;
 }

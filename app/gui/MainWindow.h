@@ -58,6 +58,10 @@ public:
     /// folder under the output base. A file that cannot be read, or that shares no trial with A,
     /// is refused with the reason before any run.
     bool startComparison(const QString& otherPath, std::uint64_t first, std::uint64_t last);
+    /// Runs `seed` of the last comparison in both its experiments (as they were compared,
+    /// whatever the panels show since) and shows the trial `mode`/`label`/`trial` of each under
+    /// the comparison's table. False if there has been no comparison or a run is going.
+    bool startTrialPair(std::uint64_t seed, FollowingMode mode, const QString& label, int trial);
     /// Trains and validates the experiment as shown on the training and test taps recorded in
     /// `path` (a run's data/taps.csv), taking no tap; a recording that cannot be read or
     /// validated is refused with the reason and the session kept.
@@ -136,7 +140,9 @@ private:
     QString lastSeedsDir_;
     QString lastComparisonDir_;
     std::optional<ExperimentSpec> seedsSpec_;  ///< what the last seeds run ran
-    bool countingSeeds_ = false;               ///< the run going counts seeds, not taps
+    /// What the last comparison compared: A and B.
+    std::optional<std::pair<ExperimentSpec, ExperimentSpec>> compared_;
+    bool countingSeeds_ = false;  ///< the run going counts seeds, not taps
 
     QTabWidget* tabs_;
     LiveView* live_;

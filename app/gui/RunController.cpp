@@ -222,6 +222,31 @@ bool RunController::startComparison(const ExperimentSpec& a, const ExperimentSpe
     return true;
 }
 
+bool RunController::startTrialPair(const ExperimentSpec& a, const ExperimentSpec& b,
+                                   std::uint64_t seed, FollowingMode mode, const std::string& label,
+                                   int trial) {
+    if (!canRunSeeds(seed, seed)) return false;
+    launch(QString(), [this, a, b, seed, mode, label, trial] {
+        emit progress(0, 1,
+                      tr("seed %1: %2 trial %3 of %4 in both experiments")
+                          .arg(seed)
+                          .arg(modeName(mode))
+                          .arg(trial)
+                          .arg(QString::fromStdString(label)),
+                      0.0);
+        try {
+            auto pair =
+                std::make_shared<const TrialPairRun>(runTrialPair(a, b, seed, mode, label, trial));
+            emit progress(1, 1, tr("seed %1 run in both experiments").arg(seed), 0.0);
+            emit trialPairFinished(pair);
+        } catch (const std::exception& e) {
+            emit failed(tr("Could not run the trial in both experiments: %1")
+                            .arg(QString::fromStdString(e.what())));
+        }
+    });
+    return true;
+}
+
 template <typename Work>
 void RunController::launch(const QString& outDir, Work work) {
     cancel_ = false;
@@ -231,7 +256,7 @@ void RunController::launch(const QString& outDir, Work work) {
         thread_ = nullptr;
         emit idle();
     });
-    QDir().mkpath(outDir);
+    if (!outDir.isEmpty()) QDir().mkpath(outDir);
     thread_->start();
 }
 

@@ -49,6 +49,11 @@ public:
     /// for startSeeds.
     bool startComparison(const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t first,
                          std::uint64_t last, const QString& outDir);
+    /// Runs one trial of `seed` as `a` and as `b` ran it in a comparison (runTrialPair: a whole
+    /// run of each on the simulated rig, writing nothing), to see where they part. False (and
+    /// failed()) if a run is going.
+    bool startTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t seed,
+                        FollowingMode mode, const std::string& label, int trial);
     void cancel();
     bool running() const { return thread_ != nullptr; }
     /// Asks a running run to stop and waits at most `ms` for it; true if it stopped.
@@ -69,6 +74,8 @@ signals:
     /// A comparison has ended, with every seed finished (all planned unless cancelled).
     void comparisonFinished(std::shared_ptr<const activetouch::PairedComparison> comparison,
                             const QString& outDir, bool cancelled);
+    /// A trial pair has been run.
+    void trialPairFinished(std::shared_ptr<const activetouch::TrialPairRun> pair);
     /// The worker has ended (after finished or failed): a new run may start.
     void idle();
 
@@ -91,3 +98,4 @@ Q_DECLARE_METATYPE(std::shared_ptr<const activetouch::SeedRates>)
 Q_DECLARE_METATYPE(activetouch::SeedOutcome)
 Q_DECLARE_METATYPE(std::vector<activetouch::PairedTrial>)
 Q_DECLARE_METATYPE(std::shared_ptr<const activetouch::PairedComparison>)
+Q_DECLARE_METATYPE(std::shared_ptr<const activetouch::TrialPairRun>)

@@ -1,17 +1,19 @@
 // activetouch: the workbench window.
 //   activetouch [experiment.json]
 //   activetouch --screenshots <dir> [experiment.json]   run the experiment, then over seeds 1-10,
-//   then compare it with paper_kernel.json beside it (if there) over seeds 1-10, save a PNG of
-//   each tab and of the device panels, then of the replay of the first seed's lost active trial,
-//   if any; quit
+//   then compare it with paper_kernel.json beside it (if there) over seeds 1-10 and show the
+//   first active trial the two ended differently in both, save a PNG of each tab and of the
+//   device panels, then of the replay of the first seed's lost active trial, if any; quit
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QDir>
 #include <QDockWidget>
 #include <QFileInfo>
 #include <QTabWidget>
+#include <QTableWidget>
 #include <QTimer>
 
+#include "app/gui/ComparisonTab.h"
 #include "app/gui/FollowingTab.h"
 #include "app/gui/MainWindow.h"
 #include "app/gui/SeedsTab.h"
@@ -65,7 +67,7 @@ int main(int argc, char** argv) {
         window.grab().save(QDir(dir).filePath(QString("%1_%2.png").arg(number).arg(name)));
     };
     int status = 0, runsEnded = 0;
-    bool compared = false, replaying = false;
+    bool compared = false, paired = false, replaying = false;
     // Beside the paper, its kernel variant for the comparison tab, if it is there.
     const QString kernel = QFileInfo(window.experimentPath()).dir().filePath("paper_kernel.json");
     QObject::connect(&window, &MainWindow::runEnded, &window, [&](bool completed) {
@@ -83,6 +85,32 @@ int main(int argc, char** argv) {
                 if (!window.startComparison(kernel, 1, 10)) app.exit(1);
             });
             return;
+        }
+        if (step == 3 && completed && compared && !paired) {
+            // The first active trial one of the two lost, in both (or else the first active
+            // trial they ended differently).
+            paired = true;
+            QTableWidget* rows = window.comparisonTab()->table();
+            int shown = -1, firstActive = -1;
+            for (int r = 0; r < rows->rowCount() && shown < 0; ++r) {
+                if (rows->item(r, 1)->text() != "active") continue;
+                if (firstActive < 0) firstActive = r;
+                if (rows->item(r, 4)->text().startsWith("lost") ||
+                    rows->item(r, 5)->text().startsWith("lost"))
+                    shown = r;
+            }
+            if (shown < 0) shown = firstActive;
+            if (shown >= 0) {
+                rows->selectRow(shown);
+                QTimer::singleShot(200, &window, [&, shown] {
+                    QTableWidget* t = window.comparisonTab()->table();
+                    if (!window.startTrialPair(t->item(shown, 0)->text().toULongLong(),
+                                               FollowingMode::Active, t->item(shown, 2)->text(),
+                                               t->item(shown, 3)->text().toInt()))
+                        app.exit(1);
+                });
+                return;
+            }
         }
         QTimer::singleShot(500, &window, [&, completed] {
             const int tabs = window.tabs()->count();

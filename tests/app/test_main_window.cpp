@@ -98,7 +98,8 @@ void clickCheckBox(QGroupBox* box) {
 
 /// Whether a single run fills the panel (sweeps and seeds have their own runs).
 bool filledByARun(const PlotPanel* p) {
-    return !p->name().startsWith("sweep") && p->name() != "seed_rates";
+    return !p->name().startsWith("sweep") && p->name() != "seed_rates" &&
+           !p->name().startsWith("compare");
 }
 
 /// Whether the plot draws any axis (after a redraw): an empty figure shows its hint alone.
@@ -198,7 +199,8 @@ private slots:
         for (PlotPanel* p : window_->plotPanels()) {
             if (p->plot().plottableCount() > 0) continue;  // the live plots draw from the start
             QVERIFY2(p->showsEmptyHint(), qPrintable(p->name()));
-            QVERIFY2(p->emptyHint().contains("Run") || p->emptyHint().contains("trial"),
+            QVERIFY2(p->emptyHint().contains("Run") || p->emptyHint().contains("trial") ||
+                         p->emptyHint().contains("Compare with"),
                      qPrintable(p->name()));
             QVERIFY2(!drawsAnAxis(p), qPrintable(p->name()));
             ++hinted;
@@ -726,6 +728,55 @@ private slots:
         for (int i = 0; i < plot.graphCount(); ++i)
             QCOMPARE(plot.graph(i)->data()->size(), i < 4 ? 1 : 2);
         QVERIFY(QFileInfo(dir + "/figures/compare.png").size() > 0);
+
+        // A trial the two ended differently, shown in both: its seed runs again in each
+        // experiment as compared, and the two paths are drawn on the object.
+        auto* showPair = tab->findChild<QPushButton*>("showTrialPair");
+        QVERIFY(showPair);
+        QVERIFY(!showPair->isEnabled());  // nothing selected yet
+        QVERIFY(tab->pairPanel()->showsEmptyHint());
+        QVERIFY(tab->table()->rowCount() > 0);
+        tab->table()->selectRow(0);
+        QVERIFY(showPair->isEnabled());
+        const quint64 seed = tab->table()->item(0, 0)->text().toULongLong();
+        const QString label = tab->table()->item(0, 2)->text();
+        const int trial = tab->table()->item(0, 3)->text().toInt();
+        const FollowingMode mode = tab->table()->item(0, 1)->text() == "active"
+                                       ? FollowingMode::Active
+                                       : FollowingMode::Passive;
+        QTest::mouseClick(showPair, Qt::LeftButton);
+        QVERIFY(window_->running());
+        QVERIFY(!showPair->isEnabled() && !compare->isEnabled());
+        endsSuccessfully(*window_, ended);
+        if (QTest::currentTestFailed()) return;
+        QVERIFY(showPair->isEnabled());
+        const TrialPairRun direct =
+            runTrialPair(loadExperiment(sourceFile("experiments/paper.json").toStdString()),
+                         loadExperiment(sourceFile("experiments/paper_kernel.json").toStdString()),
+                         seed, mode, label.toStdString(), trial);
+        // The row said they ended differently; so does the rerun.
+        QVERIFY(trialOutcome(direct.a) != trialOutcome(direct.b) ||
+                namedPath(direct.a) != namedPath(direct.b));
+        QCOMPARE(QString::fromStdString(trialOutcome(direct.a)),
+                 tab->table()->item(0, 4)->text().section(", named", 0, 0));
+        QCustomPlot& pairPlot = tab->pairPanel()->plot();
+        QTRY_VERIFY(!tab->pairPanel()->showsEmptyHint());
+        QStringList drawn;
+        for (int i = 0; i < pairPlot.plottableCount(); ++i) {
+            auto* curve = qobject_cast<QCPCurve*>(pairPlot.plottable(i));
+            if (!curve || !curve->name().startsWith(QString("A ")) &&
+                              !curve->name().startsWith(QString("B ")))
+                continue;
+            drawn << curve->name();
+            const TrialRun& run = curve->name().startsWith("A ") ? direct.a : direct.b;
+            QCOMPARE(curve->data()->size(), int(run.result.path().size()));
+            QCOMPARE(curve->data()->at(0)->key, run.result.path().front().x);
+            QCOMPARE((curve->data()->end() - 1)->value, run.result.path().back().y);
+        }
+        QCOMPARE(drawn.size(), 2);
+        QVERIFY2(drawn[0].startsWith("A paper: " + QString::fromStdString(trialOutcome(direct.a))),
+                 qPrintable(drawn.join(" | ")));
+        QVERIFY2(drawn[1].startsWith("B paper_kernel: "), qPrintable(drawn.join(" | ")));
 
         // A file that shares no trial with the paper is refused before any run, naming why.
         const QString other = paperVariant(
