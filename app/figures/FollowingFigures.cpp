@@ -88,12 +88,7 @@ QCPLegend* addPathPanel(QCPAxisRect* rect, const QString& title) {
     rect->axis(QCPAxis::atBottom)->setLabel("x (mm)");
     rect->axis(QCPAxis::atLeft)->setLabel("y (mm)");
     setPanelTitle(rect, title);
-    auto* legend = new QCPLegend;
-    rect->insetLayout()->addElement(legend, Qt::AlignTop | Qt::AlignRight);
-    legend->setLayer("legend");
-    legend->setFont(QFont("Sans", 8));
-    legend->setBrush(QColor(255, 255, 255, 220));
-    return legend;
+    return addLegend(rect);
 }
 
 bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
