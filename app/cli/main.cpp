@@ -605,17 +605,15 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
             *a, *b, range.first, range.last, outDir,
             [](std::uint64_t seed, const std::vector<PairedTrial>& pairs, const PairedComparison&) {
                 int differ = 0;
-                for (const PairedTrial& p : pairs)
-                    differ += p.outcomeA != p.outcomeB || p.namedA != p.namedB;
+                for (const PairedTrial& p : pairs) differ += p.differs();
                 std::printf("seed %llu: %zu trials paired, %d ended differently\n",
                             static_cast<unsigned long long>(seed), pairs.size(), differ);
                 for (const PairedTrial& p : pairs)
-                    if (p.outcomeA != p.outcomeB || p.namedA != p.namedB)
-                        std::printf("    %s %s trial %d: a %s%s%s, b %s%s%s\n", modeName(p.mode),
-                                    p.label.c_str(), p.trial, p.outcomeA.c_str(),
-                                    p.namedA.empty() ? "" : ", named ", p.namedA.c_str(),
-                                    p.outcomeB.c_str(), p.namedB.empty() ? "" : ", named ",
-                                    p.namedB.c_str());
+                    if (p.differs())
+                        std::printf("    %s %s trial %d: a %s, b %s\n", modeName(p.mode),
+                                    p.label.c_str(), p.trial,
+                                    endedText(p.outcomeA, p.namedA).c_str(),
+                                    endedText(p.outcomeB, p.namedB).c_str());
                 std::fflush(stdout);
                 return true;
             });

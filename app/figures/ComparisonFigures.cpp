@@ -168,15 +168,12 @@ bool buildTrialPairFigure(QCustomPlot& plot, const TrialPairRun& pair) {
     };
     for (const Side& side : {Side{"A", pair.nameA, pair.a, seriesColour(0), 7.0},
                              Side{"B", pair.nameB, pair.b, seriesColour(3), 4.0}}) {
-        const std::string named = namedPath(side.run);
-        QCPCurve* end = addTrialPath(
-            rect, legend, side.run, side.colour, side.dotSize,
-            QString("%1 %2: %3%4, %5 taps")
-                .arg(side.which, QString::fromStdString(side.name),
-                     QString::fromStdString(trialOutcome(side.run)),
-                     named.empty() ? QString() : QString(", named %1").arg(named.c_str()))
-                .arg(side.run.result.taps.size()),
-            box);
+        QCPCurve* end = addTrialPath(rect, legend, side.run, side.colour, side.dotSize,
+                                     QString("%1 %2: %3, %4 taps")
+                                         .arg(side.which, QString::fromStdString(side.name),
+                                              QString::fromStdString(endedText(side.run)))
+                                         .arg(side.run.result.taps.size()),
+                                     box);
         if (end) {
             if (!firstEnd) firstEnd = end;
             furthest.push_back(side.run.result.furthest.point);

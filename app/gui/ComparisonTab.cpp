@@ -155,11 +155,10 @@ void ComparisonTab::begin(const QString& a, const QString& b, std::uint64_t firs
 void ComparisonTab::addSeed(std::uint64_t seed, const std::vector<PairedTrial>& pairs,
                             const PairedComparison& soFar) {
     auto ended = [](const std::string& outcome, const std::string& named) {
-        return QString::fromStdString(outcome) +
-               (named.empty() ? QString() : QObject::tr(", named %1").arg(named.c_str()));
+        return QString::fromStdString(endedText(outcome, named));
     };
     for (const PairedTrial& p : pairs) {
-        if (p.outcomeA == p.outcomeB && p.namedA == p.namedB) continue;
+        if (!p.differs()) continue;
         const int row = table_->rowCount();
         table_->insertRow(row);
         table_->setItem(row, 0, new QTableWidgetItem(QString::number(seed)));

@@ -275,17 +275,13 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     connect(&runs_, &RunController::trialPairFinished, this,
             [this](const std::shared_ptr<const TrialPairRun>& pair) {
                 comparison_->showTrialPair(*pair);
-                auto ended = [](const TrialRun& t) {
-                    const std::string named = namedPath(t);
-                    return QString::fromStdString(trialOutcome(t)) +
-                           (named.empty() ? QString() : tr(", named %1").arg(named.c_str()));
-                };
-                const QString how =
-                    tr("seed %1, %2 trial %3 of %4: A %5, B %6")
-                        .arg(pair->seed)
-                        .arg(modeName(pair->a.result.mode))
-                        .arg(pair->a.trial)
-                        .arg(QString::fromStdString(pair->a.label), ended(pair->a), ended(pair->b));
+                const QString how = tr("seed %1, %2 trial %3 of %4: A %5, B %6")
+                                        .arg(pair->seed)
+                                        .arg(modeName(pair->a.result.mode))
+                                        .arg(pair->a.trial)
+                                        .arg(QString::fromStdString(pair->a.label),
+                                             QString::fromStdString(endedText(pair->a)),
+                                             QString::fromStdString(endedText(pair->b)));
                 progress_->setFormat(tr("trial shown in both experiments"));
                 status_->setText(how);
                 log(how);

@@ -77,6 +77,10 @@ std::string namedPath(const TrialRun& t) {
     return t.recognised && t.result.completed() ? t.recognition.predicted : std::string();
 }
 
+std::string endedText(const std::string& outcome, const std::string& named) {
+    return named.empty() ? outcome : outcome + ", named " + named;
+}
+
 TrialPairRun runTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t seed,
                           FollowingMode mode, const std::string& label, int trial) {
     for (const ExperimentSpec* spec : {&a, &b}) {

@@ -41,6 +41,9 @@ struct PairedTrial {
     /// "completed", "lost at a corner" or "lost away from corners", with the reason it ended.
     std::string outcomeA, outcomeB;
     std::string namedA, namedB;  ///< the shape the paper's rule named a completed path, or ""
+    /// The two ended differently: one completed and the other not, or lost differently, or
+    /// named the path differently.
+    bool differs() const { return outcomeA != outcomeB || namedA != namedB; }
 };
 
 /// The parts of the paper's result, each compared over the pairs both experiments have.
@@ -124,6 +127,11 @@ TrialPairRun runTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, std:
 /// rule named a completed path.
 std::string trialOutcome(const TrialRun& t);
 std::string namedPath(const TrialRun& t);
+/// "<outcome>", or "<outcome>, named <shape>" for a path the paper's rule named.
+std::string endedText(const std::string& outcome, const std::string& named);
+inline std::string endedText(const TrialRun& t) {
+    return endedText(trialOutcome(t), namedPath(t));
+}
 
 /// The comparison as lines of text: each outcome's rate in A and in B, the pairs where they
 /// differ, the difference with its interval and McNemar's p.
