@@ -531,11 +531,30 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv, 
 }
 
 /// The closing line of a run over seeds: wall time since `start`, of which figures, and where.
-void printWallTime(std::chrono::steady_clock::time_point start, double figures_s,
-                   const std::string& outDir) {
-    std::printf("wall time %.1f s (figures %.1f s); results in %s\n",
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                figures_s, outDir.c_str());
+/// The end every command over seeds shares: `run` does the runs and prints as it goes, giving
+/// what it found; `figures` (unless `drawn` is false) draws that; then the wall time. Bad input
+/// exits 2; any other failure exits 1, saying that the seeds finished so far are in
+/// `outDir`/`table` (`what` names the command's failure: "run failed", "compare failed").
+template <typename Run, typename Figures>
+int overSeeds(const char* what, const std::string& outDir, const char* table, bool drawn, int argc,
+              char** argv, Run run, Figures figures) {
+    try {
+        const auto start = std::chrono::steady_clock::now();
+        const auto found = run();
+        double figures_s = 0.0;
+        if (drawn) figures_s = drawFigures(argc, argv, [&] { figures(found); });
+        std::printf("wall time %.1f s (figures %.1f s); results in %s\n",
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                    figures_s, outDir.c_str());
+        return kOk;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: %s\nThe seeds finished so far are in %s/%s.\n", what, e.what(),
+                     outDir.c_str(), table);
+        return kRunFailed;
+    }
 }
 
 int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
@@ -549,43 +568,34 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     if (!loaded) return kBadInput;
     const ExperimentSpec& spec = *loaded;
     if (outDir.empty()) outDir = (fs::path("results") / (spec.name + "_seeds")).string();
-    try {
-        const auto start = std::chrono::steady_clock::now();
-        const SeedRates rates =
-            runSeeds(spec, range.first, range.last, outDir, [](const SeedOutcome& o) {
-                std::printf("seed %llu: passive lost %d/%d, active completed %d/%d",
-                            static_cast<unsigned long long>(o.seed), o.passiveLost, o.passiveTrials,
-                            o.activeCompleted, o.activeTrials);
-                if (o.recognition)
-                    std::printf(", recognised %d (smoothed %d) of %d", o.recognisedRaw(),
-                                o.recognisedSmoothed(), o.recognitionTrials());
-                std::printf("\n");
-                for (const auto& f : o.passiveShortfalls) std::printf("    %s\n", f.c_str());
-                for (const auto& f : o.failures) std::printf("    %s\n", f.c_str());
-                for (const auto& m : o.misnamed()) std::printf("    %s\n", m.c_str());
-                std::fflush(stdout);
-                return true;
-            });
-        std::printf("\n%s over %zu seeds (%llu-%llu):\n", spec.name.c_str(), rates.seeds.size(),
-                    static_cast<unsigned long long>(range.first),
-                    static_cast<unsigned long long>(range.last));
-        for (const std::string& line : describeRates(rates)) std::printf("%s\n", line.c_str());
-        double figures_s = 0.0;
-        if (parsed.figures)
-            figures_s = drawFigures(argc, argv, [&] {
-                writeSeedFigures(rates, QString::fromStdString(spec.name),
-                                 QString::fromStdString(outDir));
-            });
-        printWallTime(start, figures_s, outDir);
-        return kOk;
-    } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return kBadInput;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "run failed: %s\nThe seeds finished so far are in %s/rates.csv.\n",
-                     e.what(), outDir.c_str());
-        return kRunFailed;
-    }
+    return overSeeds(
+        "run failed", outDir, "rates.csv", parsed.figures, argc, argv,
+        [&] {
+            const SeedRates rates =
+                runSeeds(spec, range.first, range.last, outDir, [](const SeedOutcome& o) {
+                    std::printf("seed %llu: passive lost %d/%d, active completed %d/%d",
+                                static_cast<unsigned long long>(o.seed), o.passiveLost,
+                                o.passiveTrials, o.activeCompleted, o.activeTrials);
+                    if (o.recognition)
+                        std::printf(", recognised %d (smoothed %d) of %d", o.recognisedRaw(),
+                                    o.recognisedSmoothed(), o.recognitionTrials());
+                    std::printf("\n");
+                    for (const auto& f : o.passiveShortfalls) std::printf("    %s\n", f.c_str());
+                    for (const auto& f : o.failures) std::printf("    %s\n", f.c_str());
+                    for (const auto& m : o.misnamed()) std::printf("    %s\n", m.c_str());
+                    std::fflush(stdout);
+                    return true;
+                });
+            std::printf("\n%s over %zu seeds (%llu-%llu):\n", spec.name.c_str(), rates.seeds.size(),
+                        static_cast<unsigned long long>(range.first),
+                        static_cast<unsigned long long>(range.last));
+            for (const std::string& line : describeRates(rates)) std::printf("%s\n", line.c_str());
+            return rates;
+        },
+        [&](const SeedRates& rates) {
+            writeSeedFigures(rates, QString::fromStdString(spec.name),
+                             QString::fromStdString(outDir));
+        });
 }
 
 int commandCompare(const std::vector<std::string>& args, int argc, char** argv) {
@@ -599,41 +609,33 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
     if (!b) return kBadInput;
     std::string outDir = parsed.outDir;
     if (outDir.empty()) outDir = (fs::path("results") / (a->name + "_vs_" + b->name)).string();
-    try {
-        const auto start = std::chrono::steady_clock::now();
-        const PairedComparison c = comparePaired(
-            *a, *b, range.first, range.last, outDir,
-            [](std::uint64_t seed, const std::vector<PairedTrial>& pairs, const PairedComparison&) {
-                int differ = 0;
-                for (const PairedTrial& p : pairs) differ += p.differs();
-                std::printf("seed %llu: %zu trials paired, %d ended differently\n",
-                            static_cast<unsigned long long>(seed), pairs.size(), differ);
-                for (const PairedTrial& p : pairs)
-                    if (p.differs())
-                        std::printf("    %s %s trial %d: a %s, b %s\n", modeName(p.mode),
-                                    p.label.c_str(), p.trial,
-                                    endedText(p.outcomeA, p.namedA).c_str(),
-                                    endedText(p.outcomeB, p.namedB).c_str());
-                std::fflush(stdout);
-                return true;
-            });
-        std::printf("\n");
-        for (const std::string& line : describeComparison(c)) std::printf("%s\n", line.c_str());
-        double figures_s = 0.0;
-        if (parsed.figures)
-            figures_s = drawFigures(
-                argc, argv, [&] { writeComparisonFigures(c, QString::fromStdString(outDir)); });
-        printWallTime(start, figures_s, outDir);
-        return kOk;
-    } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return kBadInput;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr,
-                     "compare failed: %s\nThe seeds finished so far are in %s/compare.csv.\n",
-                     e.what(), outDir.c_str());
-        return kRunFailed;
-    }
+    return overSeeds(
+        "compare failed", outDir, "compare.csv", parsed.figures, argc, argv,
+        [&] {
+            const PairedComparison c = comparePaired(
+                *a, *b, range.first, range.last, outDir,
+                [](std::uint64_t seed, const std::vector<PairedTrial>& pairs,
+                   const PairedComparison&) {
+                    int differ = 0;
+                    for (const PairedTrial& p : pairs) differ += p.differs();
+                    std::printf("seed %llu: %zu trials paired, %d ended differently\n",
+                                static_cast<unsigned long long>(seed), pairs.size(), differ);
+                    for (const PairedTrial& p : pairs)
+                        if (p.differs())
+                            std::printf("    %s %s trial %d: a %s, b %s\n", modeName(p.mode),
+                                        p.label.c_str(), p.trial,
+                                        endedText(p.outcomeA, p.namedA).c_str(),
+                                        endedText(p.outcomeB, p.namedB).c_str());
+                    std::fflush(stdout);
+                    return true;
+                });
+            std::printf("\n");
+            for (const std::string& line : describeComparison(c)) std::printf("%s\n", line.c_str());
+            return c;
+        },
+        [&](const PairedComparison& c) {
+            writeComparisonFigures(c, QString::fromStdString(outDir));
+        });
 }
 
 int commandCheck(const std::vector<std::string>& args) {
