@@ -37,7 +37,13 @@ LiveView::LiveView(LiveFeed& feed, QWidget* parent)
     b.plotLayout()->addElement(0, 0,
                                new QCPTextElement(&b, tr("Taxel pressures (live, 50 Hz)"),
                                                   QFont("Sans", 11, QFont::Bold)));
+    // The bars and readouts change at 50 Hz and nothing else does: they get a paint buffer of their
+    // own, above every other layer, and each frame redraws only that buffer.
+    b.addLayer("live");
+    liveLayer_ = b.layer("live");
+    liveLayer_->setMode(QCPLayer::lmBuffered);
     barPlottable_ = new QCPBars(b.xAxis, b.yAxis);
+    barPlottable_->setLayer(liveLayer_);
     barPlottable_->setBrush(QColor(31, 119, 180));
     barPlottable_->setPen(Qt::NoPen);
     QVector<double> keys, zeros;
@@ -50,6 +56,7 @@ LiveView::LiveView(LiveFeed& feed, QWidget* parent)
         t->position->setCoords(k, 0);
         t->setPositionAlignment(Qt::AlignBottom | Qt::AlignHCenter);
         t->setText("0");
+        t->setLayer(liveLayer_);
         readouts_.push_back(t);
     }
     barPlottable_->setData(keys, zeros);
@@ -83,10 +90,20 @@ LiveView::LiveView(LiveFeed& feed, QWidget* parent)
 }
 
 void LiveView::tick() {
+    if (takeNewest()) undrawn_ = true;
+    // The plot always holds the newest state (an export shows it); the bars are drawn only while
+    // the tab is in front, and once it comes back the next tick draws what changed meanwhile.
+    if (!undrawn_ || !bars_->isVisible()) return;
+    liveLayer_->replot();
+    undrawn_ = false;
+    ++framesDrawn_;
+}
+
+bool LiveView::takeNewest() {
     const LiveFeed::Snapshot s = feed_.snapshot();
     const bool newTap = s.tapSerial != shownTap_;
     const bool newFrame = s.frameSerial != shownFrame_;
-    if (!newTap && !newFrame && playback_ >= s.tap.sampleCount() - 1) return;
+    if (!newTap && !newFrame && playback_ >= s.tap.sampleCount() - 1) return false;
     if (newTap) {
         shownTap_ = s.tapSerial;
         playback_ = 0;
@@ -113,7 +130,7 @@ void LiveView::tick() {
         playback_ = std::min(playback_ + (newTap ? 0 : 1), s.tap.sampleCount() - 1);
         frame.assign(s.tap.frame(playback_), s.tap.frame(playback_) + s.tap.taxels);
     }
-    if (frame.empty()) return;
+    if (frame.empty()) return false;
     QVector<double> keys, values;
     for (std::size_t k = 0; k < frame.size(); ++k) {
         keys << double(k);
@@ -124,8 +141,7 @@ void LiveView::tick() {
         }
     }
     barPlottable_->setData(keys, values, true);
-    bars_->requestReplot();
-    ++framesDrawn_;
+    return true;
 }
 
 }  // namespace activetouch

@@ -265,6 +265,48 @@ private slots:
         QVERIFY(window_->liveView()->framesDrawn() > 0);
     }
 
+    void theLiveViewDrawsOnlyWhileInFront() {
+        LiveFeed feed;
+        QTabWidget tabs;
+        auto* live = new LiveView(feed);
+        tabs.addTab(live, "Live");
+        tabs.addTab(new QLabel("another tab"), "Other");
+        tabs.resize(900, 600);
+        tabs.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&tabs));
+        auto* bars = qobject_cast<QCPBars*>(live->barsPanel()->plot().plottable(0));
+        QVERIFY(bars);
+        const auto shownValues = [&] {
+            std::vector<double> v;
+            for (auto it = bars->data()->constBegin(); it != bars->data()->constEnd(); ++it)
+                v.push_back(it->value);
+            return v;
+        };
+        std::vector<double> frame(kFingertipTaxels);
+        const auto publish = [&](double base) {
+            for (int k = 0; k < kFingertipTaxels; ++k) frame[k] = base + k;
+            feed.publishFrame(frame.data(), kFingertipTaxels);
+        };
+        publish(10);
+        QTRY_COMPARE(shownValues(), frame);
+        QTRY_VERIFY(live->framesDrawn() > 0);
+        // Behind another tab it keeps the newest frame in its data but draws nothing.
+        tabs.setCurrentIndex(1);
+        const std::uint64_t drawn = live->framesDrawn();
+        for (int i = 0; i < 5; ++i) {
+            publish(100 + i);
+            QTest::qWait(30);
+        }
+        QTRY_COMPARE(shownValues(), frame);
+        QCOMPARE(live->framesDrawn(), drawn);
+        // Brought back, it draws what changed meanwhile without waiting for another frame.
+        tabs.setCurrentIndex(0);
+        QTRY_COMPARE(live->framesDrawn(), drawn + 1);
+        QTest::qWait(100);
+        QCOMPARE(live->framesDrawn(), drawn + 1);  // and nothing again until the feed moves
+        QCOMPARE(shownValues(), frame);
+    }
+
     void everyFigureExportsInEveryFormat() {
         for (PlotPanel* p : window_->plotPanels()) {
             const QString base = dir_.filePath("export/" + p->name());
@@ -764,8 +806,8 @@ private slots:
         QStringList drawn;
         for (int i = 0; i < pairPlot.plottableCount(); ++i) {
             auto* curve = qobject_cast<QCPCurve*>(pairPlot.plottable(i));
-            if (!curve || !curve->name().startsWith(QString("A ")) &&
-                              !curve->name().startsWith(QString("B ")))
+            if (!curve || (!curve->name().startsWith(QString("A ")) &&
+                           !curve->name().startsWith(QString("B "))))
                 continue;
             drawn << curve->name();
             const TrialRun& run = curve->name().startsWith("A ") ? direct.a : direct.b;
