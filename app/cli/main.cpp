@@ -18,6 +18,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <variant>
 #include <vector>
 
 #include "app/figures/ComparisonFigures.h"
@@ -105,6 +107,14 @@ void printHelp() {
         "      <dir>/figures/compare.{png,pdf,svg} (each difference with its interval, and how\n"
         "      it settled seed by seed).\n"
         "      --out defaults to results/<a>_vs_<b>.\n"
+        "  activetouch-cli compare <a.json> <b.json> --show SEED,MODE,LABEL,TRIAL [--out <dir>]\n"
+        "                          [--no-figures]\n"
+        "      Runs that seed in both experiments and shows that trial (as the first four\n"
+        "      columns of a compare.csv row name it, e.g. 3,active,cross,2) as each ran it:\n"
+        "      prints how each ended and what it measured, and writes\n"
+        "      <dir>/trial_pair_seed<S>_<mode>_<label>_<trial>.csv (both paths, tap by tap)\n"
+        "      and the same name under <dir>/figures as .png, .pdf and .svg (the object, both\n"
+        "      paths with their taps, where a lost trial ended and how far it got).\n"
         "  activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>] [--no-figures]\n"
         "      Re-analyses recorded training and test taps (a run's data/taps.csv, from the\n"
         "      simulated or the real rig) with the experiment's classes, classifier, training\n"
@@ -197,19 +207,29 @@ std::optional<std::uint64_t> parseSeed(const std::string& v) {
     return static_cast<std::uint64_t>(n);
 }
 
-/// The arguments of run, seeds and analyse: one experiment file (and for analyse a recording),
-/// --out, the seed options that command takes (each a whole number) and --no-figures where
-/// allowed. An error is the message to print.
+/// The arguments of run, seeds, compare and analyse: one experiment file (and for analyse a
+/// recording, for compare a second experiment), --out, the seed options that command takes (each
+/// a whole number), the text options it takes (--rig, --show) and --no-figures where allowed. An
+/// error is the message to print.
 struct RunArguments {
-    std::string experimentPath, recordingPath, outDir, rigPath;
+    std::string experimentPath, recordingPath, outDir;
     std::map<std::string, std::uint64_t> seeds;  ///< "--seed", "--from", "--to" as given
+    std::map<std::string, std::string> texts;    ///< "--rig", "--show" as given
     bool figures = true;
     std::string error;
+
+    std::string text(const std::string& option) const {
+        const auto it = texts.find(option);
+        return it == texts.end() ? std::string() : it->second;
+    }
 };
 
+/// `textOptions` maps each text option the command takes to what it needs, e.g. {"--rig", "a rig
+/// file, e.g. rig.json"}.
 RunArguments parseRunArguments(const std::vector<std::string>& args, const char* command,
                                const std::vector<std::string>& seedOptions, bool figuresOption,
-                               bool takesRecording = false, bool rigOption = false) {
+                               bool takesRecording = false,
+                               const std::map<std::string, std::string>& textOptions = {}) {
     RunArguments r;
     auto fail = [&](const std::string& message) {
         r.error = message;
@@ -228,9 +248,9 @@ RunArguments parseRunArguments(const std::vector<std::string>& args, const char*
             const auto n = parseSeed(v);
             if (!n) return fail(a + " '" + v + "' is not a whole number between 0 and 2147483647");
             r.seeds[a] = *n;
-        } else if (a == "--rig" && rigOption) {
-            if (i + 1 >= args.size()) return fail("--rig needs a rig file, e.g. rig.json");
-            r.rigPath = args[++i];
+        } else if (const auto text = textOptions.find(a); text != textOptions.end()) {
+            if (i + 1 >= args.size()) return fail(a + " needs " + text->second);
+            r.texts[a] = args[++i];
         } else if (a == "--no-figures" && figuresOption) {
             r.figures = false;
         } else if (!a.empty() && a[0] == '-') {
@@ -297,6 +317,17 @@ Timing writeArtefacts(const RunResult& result, const std::string& outDir, bool f
     return t;
 }
 
+/// How a trial ended and what it measured, as a run's report gives it after "trial N: ".
+void printTrialMeasures(const TrialRun& t) {
+    std::printf(
+        "%-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, contour distance mean %.2f max "
+        "%.2f mm%s%s%s\n",
+        trialEndName(t.result.end), t.result.taps.size(), t.result.robotTime_s,
+        100.0 * t.result.coverage, t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
+        t.recognised ? ", recognised as " : "", t.recognised ? t.recognition.predicted.c_str() : "",
+        t.result.completed() ? "" : (", furthest " + describePlace(t.result.furthest)).c_str());
+}
+
 /// What a run or an analysis found: validation, noise floor, trials, recognition, where it went.
 void printReport(const RunResult& result, double wall, double figures_s,
                  const std::string& outDir) {
@@ -321,16 +352,11 @@ void printReport(const RunResult& result, double wall, double figures_s,
             result.noiseFloor_counts);
     int labelWidth = 9;  // the columns line up whatever the trials are called
     for (const auto& t : result.trials) labelWidth = std::max(labelWidth, int(t.label.size()));
-    for (const auto& t : result.trials)
-        std::printf(
-            "%-7s %-*s trial %d: %-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, "
-            "contour distance mean %.2f max %.2f mm%s%s%s\n",
-            modeName(t.result.mode), labelWidth, t.label.c_str(), t.trial,
-            trialEndName(t.result.end), t.result.taps.size(), t.result.robotTime_s,
-            100.0 * t.result.coverage, t.result.meanContourDistance_mm,
-            t.result.maxContourDistance_mm, t.recognised ? ", recognised as " : "",
-            t.recognised ? t.recognition.predicted.c_str() : "",
-            t.result.completed() ? "" : (", furthest " + describePlace(t.result.furthest)).c_str());
+    for (const auto& t : result.trials) {
+        std::printf("%-7s %-*s trial %d: ", modeName(t.result.mode), labelWidth, t.label.c_str(),
+                    t.trial);
+        printTrialMeasures(t);
+    }
     if (!result.templates.empty())
         std::printf("recognition: %.0f %% of %s paths (smoothed histograms: %.0f %%)\n",
                     100.0 * result.recognitionAccuracy, modeName(spec.recognition.ofMode),
@@ -340,7 +366,8 @@ void printReport(const RunResult& result, double wall, double figures_s,
 }
 
 int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
-    const RunArguments parsed = parseRunArguments(args, "run", {"--seed"}, true, false, true);
+    const RunArguments parsed = parseRunArguments(args, "run", {"--seed"}, true, false,
+                                                  {{"--rig", "a rig file, e.g. rig.json"}});
     if (!parsed.error.empty()) return usageError(parsed.error);
     const std::string& experimentPath = parsed.experimentPath;
     std::string outDir = parsed.outDir;
@@ -354,9 +381,9 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
     const ExperimentSpec& spec = *loaded;
     // Devices named by a rig file: everything about them is checked before anything connects.
     std::optional<RigConfig> rigConfig;
-    if (!parsed.rigPath.empty()) {
+    if (const std::string rigPath = parsed.text("--rig"); !rigPath.empty()) {
         try {
-            rigConfig = readRigFile(parsed.rigPath, spec.scene);
+            rigConfig = readRigFile(rigPath, spec.scene);
             checkRunnableOn(spec, spec.scene.object);
         } catch (const InputError& e) {
             std::fprintf(stderr, "error: %s\n", e.what());
@@ -598,17 +625,116 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
         });
 }
 
+/// One trial of one seed, named as the first four columns of a compare.csv row name it.
+struct TrialRef {
+    std::uint64_t seed = 0;
+    FollowingMode mode = FollowingMode::Active;
+    std::string label;
+    int trial = 0;
+};
+
+/// Reads "seed,mode,label,trial" (e.g. 3,active,cross,2; the label may be quoted, as compare.csv
+/// quotes it); an error is the message to print.
+std::variant<TrialRef, std::string> parseTrialRef(const std::string& text) {
+    std::vector<std::string> fields(1);
+    for (const char c : text) {
+        if (c == ',')
+            fields.emplace_back();
+        else
+            fields.back() += c;
+    }
+    for (std::string& f : fields) {
+        f.erase(0, f.find_first_not_of(' '));
+        f.erase(f.find_last_not_of(' ') + 1);
+    }
+    const std::string form =
+        "; give seed,mode,label,trial as the first four columns of a compare.csv row, e.g. "
+        "3,active,cross,2";
+    if (fields.size() != 4) return "--show '" + text + "' has " + std::to_string(fields.size()) +
+                                   " field" + (fields.size() == 1 ? "" : "s") + form;
+    TrialRef ref;
+    const auto seed = parseSeed(fields[0]);
+    if (!seed) return "--show: seed '" + fields[0] + "' is not a whole number" + form;
+    ref.seed = *seed;
+    if (fields[1] == modeName(FollowingMode::Active))
+        ref.mode = FollowingMode::Active;
+    else if (fields[1] == modeName(FollowingMode::Passive))
+        ref.mode = FollowingMode::Passive;
+    else
+        return "--show: mode '" + fields[1] + "' is neither active nor passive" + form;
+    ref.label = fields[2];
+    if (ref.label.size() >= 2 && ref.label.front() == '"' && ref.label.back() == '"')
+        ref.label = ref.label.substr(1, ref.label.size() - 2);
+    if (ref.label.empty()) return "--show: the label is empty" + form;
+    const auto trial = parseSeed(fields[3]);
+    if (!trial || *trial < 1 || *trial > 1000)
+        return "--show: trial '" + fields[3] + "' is not a repeat number from 1" + form;
+    ref.trial = static_cast<int>(*trial);
+    return ref;
+}
+
+/// compare --show: runs one seed in both experiments and shows one trial as each ran it, as a
+/// table and a figure in `outDir`.
+int showTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, const TrialRef& ref,
+                  const std::string& outDir, bool figures, int argc, char** argv) {
+    try {
+        const auto start = std::chrono::steady_clock::now();
+        const TrialPairRun pair = runTrialPair(a, b, ref.seed, ref.mode, ref.label, ref.trial);
+        const int nameWidth = int(std::max(pair.nameA.size(), pair.nameB.size()));
+        std::printf("seed %llu, %s trial %d of %s, as each experiment ran it:\n",
+                    static_cast<unsigned long long>(ref.seed), modeName(ref.mode), ref.trial,
+                    ref.label.c_str());
+        for (const auto& [side, name, run] :
+             {std::tuple{"a", &pair.nameA, &pair.a}, std::tuple{"b", &pair.nameB, &pair.b}}) {
+            std::printf("%s %-*s  ", side, nameWidth, name->c_str());
+            printTrialMeasures(*run);
+        }
+        std::printf("a %s; b %s\n", endedText(pair.a).c_str(), endedText(pair.b).c_str());
+        std::fflush(stdout);
+        writeTrialPairTable(pair, outDir);
+        double figures_s = 0.0;
+        if (figures)
+            figures_s = drawFigures(argc, argv, [&] {
+                writeTrialPairFigures(pair, QString::fromStdString(outDir));
+            });
+        std::printf("wall time %.1f s (figures %.1f s); results in %s (%s.*)\n",
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                    figures_s, outDir.c_str(), trialPairFileStem(pair).c_str());
+        return kOk;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "compare failed: %s\n", e.what());
+        return kRunFailed;
+    }
+}
+
 int commandCompare(const std::vector<std::string>& args, int argc, char** argv) {
-    const RunArguments parsed = parseRunArguments(args, "compare", {"--from", "--to"}, true, true);
+    const RunArguments parsed =
+        parseRunArguments(args, "compare", {"--from", "--to"}, true, true,
+                          {{"--show", "a trial: seed,mode,label,trial, e.g. 3,active,cross,2"}});
     if (!parsed.error.empty()) return usageError(parsed.error);
-    const SeedRange range = seedRangeOf(parsed, "compare --from 1 --to 100");
-    if (!range.error.empty()) return usageError(range.error);
+    const std::string show = parsed.text("--show");
+    std::optional<TrialRef> ref;
+    SeedRange range;
+    if (!show.empty()) {
+        if (!parsed.seeds.empty())
+            return usageError("--show runs the one seed it names; leave out --from and --to");
+        auto read = parseTrialRef(show);
+        if (auto* error = std::get_if<std::string>(&read)) return usageError(*error);
+        ref = std::get<TrialRef>(read);
+    } else {
+        range = seedRangeOf(parsed, "compare --from 1 --to 100");
+        if (!range.error.empty()) return usageError(range.error);
+    }
     const auto a = loadForRun(parsed.experimentPath);
     if (!a) return kBadInput;
     const auto b = loadForRun(parsed.recordingPath);
     if (!b) return kBadInput;
     std::string outDir = parsed.outDir;
     if (outDir.empty()) outDir = (fs::path("results") / (a->name + "_vs_" + b->name)).string();
+    if (ref) return showTrialPair(*a, *b, *ref, outDir, parsed.figures, argc, argv);
     return overSeeds(
         "compare failed", outDir, "compare.csv", parsed.figures, argc, argv,
         [&] {

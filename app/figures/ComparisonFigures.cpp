@@ -190,4 +190,12 @@ QStringList writeComparisonFigures(const PairedComparison& comparison, const QSt
     return exportFigure(plot, dir + "/compare", {"png", "pdf", "svg"}, kComparisonFigureSize);
 }
 
+QStringList writeTrialPairFigures(const TrialPairRun& pair, const QString& outDir) {
+    const QString dir = figuresDirectory(outDir);
+    QCustomPlot plot;
+    buildTrialPairFigure(plot, pair);
+    return exportFigure(plot, dir + "/" + QString::fromStdString(trialPairFileStem(pair)),
+                        {"png", "pdf", "svg"}, kTrialPairFigureSize);
+}
+
 }  // namespace activetouch

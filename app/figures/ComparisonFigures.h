@@ -32,6 +32,13 @@ bool buildTrialPairFigure(QCustomPlot& plot, const TrialPairRun& pair);
 /// The size compare is written at: wide, the two panels side by side.
 inline constexpr FigureSize kComparisonFigureSize{2200, 800, 150};
 
+/// The size a trial pair is written at: one panel, its legend under it.
+inline constexpr FigureSize kTrialPairFigureSize{1400, 1300, 150};
+
+/// Writes <outDir>/figures/<trialPairFileStem>.{png,pdf,svg}; returns the files. Throws
+/// std::runtime_error naming what could not be written.
+QStringList writeTrialPairFigures(const TrialPairRun& pair, const QString& outDir);
+
 /// Writes <outDir>/figures/compare.{png,pdf,svg}; returns the files (none if nothing was
 /// compared). Throws std::runtime_error naming what could not be written.
 QStringList writeComparisonFigures(const PairedComparison& comparison, const QString& outDir);

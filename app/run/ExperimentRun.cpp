@@ -548,6 +548,17 @@ RunResult runFollowing(const RunResult& trained, const ExperimentSpec& specIn,
     return result;
 }
 
+void printTrialTaps(OutputFile& f, const std::string& prefix, const TrialRun& t) {
+    int i = 0;
+    for (const auto& tap : t.result.taps) {
+        const Vec2 m = tap.decision.move();
+        f.print("%s%d,%.10g,%.10g,%s,%g,%d,%s,%.10g,%.10g,%.10g,%.10g\n", prefix.c_str(), i++,
+                tap.record.pose.x, tap.record.pose.y, tap.percept.shapeClass().c_str(),
+                tap.percept.orientationDeg, tap.percept.position, ruleFor(tap.decision.rule).name,
+                m.x, m.y, tap.progress_mm, tap.contourDistance_mm);
+    }
+}
+
 void writeRunTables(const RunResult& r, const std::string& outDir) {
     const fs::path data = fs::path(outDir) / "data";
     ensureOutputDirectory(data.string());
@@ -638,21 +649,12 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
         }
         {
             OutputFile f((data / "following_paths.csv").string());
-            f.print(
-                "shape,mode,trial,tap,x_mm,y_mm,shape_class,orientation_deg,position,rule,"
-                "move_x_mm,move_y_mm,progress_mm,contour_distance_mm\n");
-            for (const auto& t : r.trials) {
-                int i = 0;
-                for (const auto& tap : t.result.taps) {
-                    const Vec2 m = tap.decision.move();
-                    f.print("%s,%s,%d,%d,%.10g,%.10g,%s,%g,%d,%s,%.10g,%.10g,%.10g,%.10g\n",
-                            t.label.c_str(), modeName(t.result.mode), t.trial, i++,
-                            tap.record.pose.x, tap.record.pose.y, tap.percept.shapeClass().c_str(),
-                            tap.percept.orientationDeg, tap.percept.position,
-                            ruleFor(tap.decision.rule).name, m.x, m.y, tap.progress_mm,
-                            tap.contourDistance_mm);
-                }
-            }
+            f.print("shape,mode,trial,%s\n", kTrialTapColumns);
+            for (const auto& t : r.trials)
+                printTrialTaps(f,
+                               t.label + "," + modeName(t.result.mode) + "," +
+                                   std::to_string(t.trial) + ",",
+                               t);
             f.close();
         }
         {

@@ -165,6 +165,14 @@ TrialSetup trialSetupFor(const RunResult& trained, FollowingMode mode,
 /// How many taps a run will take: exact for training, estimated for following trials.
 int plannedTapEstimate(const ExperimentSpec& spec);
 
+/// The columns each tap of a trial has in following_paths.csv, after the trial's own.
+inline constexpr const char* kTrialTapColumns =
+    "tap,x_mm,y_mm,shape_class,orientation_deg,position,rule,move_x_mm,move_y_mm,progress_mm,"
+    "contour_distance_mm";
+/// Appends a row per tap of `t` to `f`: `prefix` (the row's leading columns, ending in a comma),
+/// then the kTrialTapColumns.
+void printTrialTaps(OutputFile& f, const std::string& prefix, const TrialRun& t);
+
 /// Writes the tables (data/*.csv) of a finished run.
 void writeRunTables(const RunResult& result, const std::string& outDir);
 

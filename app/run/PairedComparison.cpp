@@ -1,6 +1,7 @@
 #include "app/run/PairedComparison.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -88,7 +89,7 @@ TrialPairRun runTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, std:
         for (const TrialSpec& t : spec->trials)
             if (t.mode == mode && t.label == label) repeats += t.repeats;
         if (trial < 1 || trial > repeats)
-            throw InputError(spec->name, "/following/trials",
+            throw InputError(spec->source.empty() ? spec->name : spec->source, "/following/trials",
                              "'" + spec->name + "' has no " + modeName(mode) + " trial " +
                                  std::to_string(trial) + " of '" + label +
                                  "'; choose a trial both experiments run");
@@ -108,6 +109,23 @@ TrialPairRun runTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, std:
     find(runExperiment(a, options), pair.a);
     find(runExperiment(b, options), pair.b);
     return pair;
+}
+
+std::string trialPairFileStem(const TrialPairRun& pair) {
+    std::string label = pair.a.label;
+    for (char& c : label)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+    return "trial_pair_seed" + std::to_string(pair.seed) + "_" + modeName(pair.a.result.mode) +
+           "_" + label + "_" + std::to_string(pair.a.trial);
+}
+
+void writeTrialPairTable(const TrialPairRun& pair, const std::string& outDir) {
+    ensureOutputDirectory(outDir);
+    OutputFile f((fs::path(outDir) / (trialPairFileStem(pair) + ".csv")).string());
+    f.print("side,experiment,%s\n", kTrialTapColumns);
+    printTrialTaps(f, "a," + csvField({pair.nameA}) + ",", pair.a);
+    printTrialTaps(f, "b," + csvField({pair.nameB}) + ",", pair.b);
+    f.close();
 }
 
 void PairedRate::add(bool a, bool b) {

@@ -122,6 +122,15 @@ struct TrialPairRun {
 TrialPairRun runTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t seed,
                           FollowingMode mode, const std::string& label, int trial);
 
+/// The name a pair's table and figure take, e.g. "trial_pair_seed3_active_cross_2" (characters
+/// of the label a file name should not hold become '_').
+std::string trialPairFileStem(const TrialPairRun& pair);
+
+/// Writes <outDir>/<trialPairFileStem>.csv: a row per tap of each side's trial, its side ("a" or
+/// "b") and experiment name (quoted), then the columns of following_paths.csv (kTrialTapColumns). Throws naming the file if it
+/// cannot be written whole.
+void writeTrialPairTable(const TrialPairRun& pair, const std::string& outDir);
+
 /// How a trial of a pair ended, as compare.csv and the Compare tab say it: "completed" or
 /// "lost at a corner (reason)" or "lost away from corners (reason)", and the shape the paper's
 /// rule named a completed path.

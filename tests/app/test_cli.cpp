@@ -696,6 +696,84 @@ private slots:
         }
     }
 
+    void compareShowsOneTrialAsEachExperimentRanIt() {
+        // The first trial of seed 3 the two ended differently, named by its compare.csv row.
+        const QString out = dir_.filePath("compare_show");
+        const QStringList common = {"compare", sourceFile("experiments/paper.json"),
+                                    sourceFile("experiments/paper_kernel.json"), "--out", out};
+        QCOMPARE(runCli(common + QStringList{"--from", "3", "--to", "3", "--no-figures"}).exitCode,
+                 0);
+        QStringList differing;
+        for (const QString& row : linesOf(out + "/compare.csv").mid(1)) {
+            const QStringList f = row.split(',');
+            if (f[4] != f[5] || f[6] != f[7]) {
+                differing = f;
+                break;
+            }
+        }
+        QVERIFY2(!differing.isEmpty(), "seed 3 has a trial the two ended differently");
+        const QString ref = differing.mid(0, 4).join(',');  // as the row has it, label quoted
+        const Outcome o = runCli(common + QStringList{"--show", ref});
+        QCOMPARE(o.exitCode, 0);
+        const QString label = differing[2].mid(1, differing[2].size() - 2);
+        QVERIFY2(o.out.contains(QString("seed 3, %1 trial %2 of %3, as each experiment ran it")
+                                    .arg(differing[1], differing[3], label)),
+                 qPrintable(o.out));
+        // It says how each ended as compare.csv does.
+        const auto ended = [](const QString& outcome, const QString& named) {
+            return named.isEmpty() ? outcome : outcome + ", named " + named;
+        };
+        QVERIFY2(o.out.contains(QString("a %1; b %2")
+                                    .arg(ended(differing[4], differing[6]),
+                                         ended(differing[5], differing[7]))),
+                 qPrintable(o.out));
+        // Its table holds A's trial tap for tap as A's own run of that seed recorded it.
+        const QString stem = QString("trial_pair_seed3_%1_%2_%3")
+                                 .arg(differing[1], label, differing[3]);
+        const QStringList pair = linesOf(out + "/" + stem + ".csv");
+        QVERIFY(pair.size() > 2);
+        QVERIFY(pair[0].startsWith("side,experiment,tap,x_mm,y_mm,"));
+        const QString runOut = dir_.filePath("compare_show_run");
+        QCOMPARE(runCli({"run", sourceFile("experiments/paper.json"), "--seed", "3", "--out",
+                         runOut, "--no-figures"})
+                     .exitCode,
+                 0);
+        QStringList fromRun, fromPair, sides;
+        const QString trialPrefix = QString("%1,%2,%3,").arg(label, differing[1], differing[3]);
+        for (const QString& row : linesOf(runOut + "/data/following_paths.csv"))
+            if (row.startsWith(trialPrefix)) fromRun << row.mid(trialPrefix.size());
+        for (const QString& row : pair.mid(1)) {
+            const QStringList f = row.split(',');
+            if (!sides.contains(f[0])) sides << f[0];
+            if (f[0] == "a") {
+                QCOMPARE(f[1], QString("\"paper\""));
+                fromPair << f.mid(2).join(',');
+            } else {
+                QCOMPARE(f[1], QString("\"paper_kernel\""));
+            }
+        }
+        QCOMPARE(sides, QStringList({"a", "b"}));
+        QVERIFY(!fromRun.isEmpty());
+        QCOMPARE(fromPair, fromRun);
+        for (const char* format : {"png", "pdf", "svg"})
+            QVERIFY(QFileInfo(out + "/figures/" + stem + "." + format).size() > 0);
+
+        // A trial either lacks, a malformed name and a seed range beside it are refused.
+        const Outcome missing = runCli(common + QStringList{"--show", "3,active,cross,3"});
+        QCOMPARE(missing.exitCode, 2);
+        QVERIFY2(missing.err.contains("experiments/paper.json") &&
+                     missing.err.contains("'paper' has no active trial 3 of 'cross'"),
+                 qPrintable(missing.err));
+        QVERIFY(!QFile::exists(out + "/trial_pair_seed3_active_cross_3.csv"));
+        const Outcome malformed = runCli(common + QStringList{"--show", "3,active,cross"});
+        QCOMPARE(malformed.exitCode, 2);
+        QVERIFY2(malformed.err.contains("give seed,mode,label,trial"), qPrintable(malformed.err));
+        const Outcome both =
+            runCli(common + QStringList{"--show", "3,active,cross,2", "--from", "1", "--to", "2"});
+        QCOMPARE(both.exitCode, 2);
+        QVERIFY2(both.err.contains("leave out --from and --to"), qPrintable(both.err));
+    }
+
     void compareRefusesWhatItCannotPair() {
         const QString out = dir_.filePath("compare_bad");
         const Outcome one =
