@@ -4,7 +4,6 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QPushButton>
-#include <QSpinBox>
 #include <QSplitter>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -19,12 +18,6 @@ namespace activetouch {
 
 ComparisonTab::ComparisonTab(QWidget* parent) : QWidget(parent) {
     auto* layout = new QVBoxLayout(this);
-    auto* controls = new QHBoxLayout;
-    first_ = new QSpinBox;
-    last_ = new QSpinBox;
-    first_->setObjectName("compareFirstSeed");
-    last_->setObjectName("compareLastSeed");
-    makeSeedRange(first_, last_, 1, 100);
     compare_ = new QPushButton(tr("Compare with..."));
     compare_->setObjectName("compareWith");
     compare_->setEnabled(false);
@@ -33,26 +26,16 @@ ComparisonTab::ComparisonTab(QWidget* parent) : QWidget(parent) {
            "shown (A) on the same seeds"));
     connect(compare_, &QPushButton::clicked, this,
             [this] { emit compareRequested(firstSeed(), lastSeed()); });
-    controls->addWidget(new QLabel(tr("Seeds from")));
-    controls->addWidget(first_);
-    controls->addWidget(new QLabel(tr("to")));
-    controls->addWidget(last_);
-    controls->addWidget(compare_);
-    auto* about = new QLabel(
+    seeds_ = new SeedRangeBar(
+        "compareFirstSeed", "compareLastSeed", 100, compare_,
         tr("A seed gives both experiments the same data sets and the same noise on each trial, "
            "so where they differ in a setting, the trials they end differently show its effect "
            "(McNemar's test), more surely than two rates with overlapping intervals."));
-    about->setWordWrap(true);
-    controls->addWidget(about, 1);
-    layout->addLayout(controls);
+    layout->addWidget(seeds_);
 
-    summary_ =
-        new QLabel(tr("Compare the experiment as shown with another experiment file over a "
-                      "range of seeds."));
-    summary_->setObjectName("comparisonSummary");
-    summary_->setFont(QFont("Monospace", 9));
-    summary_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-    summary_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    summary_ = seedsSummaryLabel("comparisonSummary",
+                                 tr("Compare the experiment as shown with another experiment "
+                                    "file over a range of seeds."));
     layout->addWidget(summary_);
     table_ = new QTableWidget(0, 6);
     table_->setObjectName("comparisonTrials");
@@ -102,10 +85,10 @@ ComparisonTab::ComparisonTab(QWidget* parent) : QWidget(parent) {
 }
 
 std::uint64_t ComparisonTab::firstSeed() const {
-    return static_cast<std::uint64_t>(first_->value());
+    return seeds_->first();
 }
 std::uint64_t ComparisonTab::lastSeed() const {
-    return static_cast<std::uint64_t>(last_->value());
+    return seeds_->last();
 }
 
 void ComparisonTab::setRunnable(bool runnable) {
@@ -134,8 +117,7 @@ void ComparisonTab::showTrialPair(const TrialPairRun& pair) {
 
 void ComparisonTab::begin(const QString& a, const QString& b, std::uint64_t first,
                           std::uint64_t last) {
-    last_->setValue(static_cast<int>(std::min<std::uint64_t>(last, kMaxSeed)));
-    first_->setValue(static_cast<int>(std::min<std::uint64_t>(first, kMaxSeed)));
+    seeds_->set(first, last);
     a_ = a;
     b_ = b;
     running_ = true;

@@ -12,12 +12,12 @@
 
 class QLabel;
 class QPushButton;
-class QSpinBox;
 class QTableWidget;
 
 namespace activetouch {
 
 class PlotPanel;
+class SeedRangeBar;
 
 class ComparisonTab : public QWidget {
     Q_OBJECT
@@ -67,7 +67,7 @@ private:
     bool running_ = false, runnable_ = false;
     int seedsPlanned_ = 0;
     QString a_, b_;
-    QSpinBox *first_, *last_;
+    SeedRangeBar* seeds_;
     QPushButton *compare_, *showPair_;
     QLabel* summary_;
     QTableWidget* table_;

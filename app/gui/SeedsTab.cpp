@@ -4,7 +4,6 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QPushButton>
-#include <QSpinBox>
 #include <QSplitter>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -27,39 +26,22 @@ QTableWidgetItem* cell(const QString& text) {
 
 SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed_rates")) {
     auto* layout = new QVBoxLayout(this);
-    auto* controls = new QHBoxLayout;
-    first_ = new QSpinBox;
-    last_ = new QSpinBox;
-    first_->setObjectName("firstSeed");
-    last_->setObjectName("lastSeed");
-    makeSeedRange(first_, last_, 1, 10);
     run_ = new QPushButton(tr("Run over seeds"));
     run_->setObjectName("runSeeds");
     connect(run_, &QPushButton::clicked, this,
             [this] { emit runRequested(firstSeed(), lastSeed()); });
-    controls->addWidget(new QLabel(tr("Seeds from")));
-    controls->addWidget(first_);
-    controls->addWidget(new QLabel(tr("to")));
-    controls->addWidget(last_);
-    controls->addWidget(run_);
-    auto* about = new QLabel(
+    seeds_ = new SeedRangeBar(
+        "firstSeed", "lastSeed", 10, run_,
         tr("Each seed is a whole run on the simulated rig: its own data sets, training, valid "
            "range and trials. The rates, with their 95 % intervals, are what a claim rests on."));
-    about->setWordWrap(true);
-    controls->addWidget(about, 1);
-    layout->addLayout(controls);
+    layout->addWidget(seeds_);
 
     auto* split = new QSplitter(Qt::Horizontal);
     auto* left = new QWidget;
     auto* ll = new QVBoxLayout(left);
     ll->setContentsMargins(0, 0, 0, 0);
-    summary_ = new QLabel(tr("Run the experiment over a range of seeds to see its rates."));
-    summary_->setObjectName("seedsSummary");
-    summary_->setFont(QFont("Monospace", 9));
-    summary_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-    // Its lines do not wrap; a long results folder is cut at the right rather than squeezing the
-    // figure beside it (the status bar and the log name the folder too).
-    summary_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    summary_ = seedsSummaryLabel("seedsSummary",
+                                 tr("Run the experiment over a range of seeds to see its rates."));
     ll->addWidget(summary_);
     table_ = new QTableWidget(0, 9);
     table_->setHorizontalHeaderLabels(
@@ -107,10 +89,10 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
 }
 
 std::uint64_t SeedsTab::firstSeed() const {
-    return static_cast<std::uint64_t>(first_->value());
+    return seeds_->first();
 }
 std::uint64_t SeedsTab::lastSeed() const {
-    return static_cast<std::uint64_t>(last_->value());
+    return seeds_->last();
 }
 void SeedsTab::setRunnable(bool runnable) {
     runnable_ = runnable;

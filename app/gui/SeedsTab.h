@@ -11,12 +11,12 @@
 
 class QLabel;
 class QPushButton;
-class QSpinBox;
 class QTableWidget;
 
 namespace activetouch {
 
 class PlotPanel;
+class SeedRangeBar;
 
 class SeedsTab : public QWidget {
     Q_OBJECT
@@ -60,7 +60,7 @@ private:
     bool running_ = false;
     bool runnable_ = false;
     SeedRates rates_;
-    QSpinBox *first_, *last_;
+    SeedRangeBar* seeds_;
     QPushButton *run_, *runSeed_;
     QTableWidget* table_;
     QLabel* summary_;
