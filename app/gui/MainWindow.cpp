@@ -272,21 +272,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
                 comparison_->addSeed(seed, pairs, *soFar);
             });
     connect(&runs_, &RunController::comparisonFinished, this, &MainWindow::showComparison);
-    connect(&runs_, &RunController::trialPairFinished, this,
-            [this](const std::shared_ptr<const TrialPairRun>& pair) {
-                comparison_->showTrialPair(*pair);
-                const QString how = tr("seed %1, %2 trial %3 of %4: A %5, B %6")
-                                        .arg(pair->seed)
-                                        .arg(modeName(pair->a.result.mode))
-                                        .arg(pair->a.trial)
-                                        .arg(QString::fromStdString(pair->a.label),
-                                             QString::fromStdString(endedText(pair->a)),
-                                             QString::fromStdString(endedText(pair->b)));
-                progress_->setFormat(tr("trial shown in both experiments"));
-                status_->setText(how);
-                log(how);
-                emit runEnded(true);
-            });
+    connect(&runs_, &RunController::trialPairFinished, this, &MainWindow::showTrialPair);
     connect(&runs_, &RunController::failed, this, [this](const QString& m) {
         seeds_->interrupted();
         comparison_->interrupted();
@@ -619,7 +605,7 @@ bool MainWindow::startTrialPair(std::uint64_t seed, FollowingMode mode, const QS
                                 int trial) {
     if (!compared_ || runs_.running()) return false;
     if (!runs_.startTrialPair(compared_->first, compared_->second, seed, mode, label.toStdString(),
-                              trial))
+                              trial, lastComparisonDir_))
         return false;
     countingSeeds_ = true;
     progress_->setRange(0, 1);
@@ -660,6 +646,32 @@ void MainWindow::showComparison(std::shared_ptr<const PairedComparison> comparis
             .arg(active.mcnemarP(), 0, 'g', 3)
             .arg(dir, figures));
     emit runEnded(!cancelled);
+}
+
+void MainWindow::showTrialPair(const std::shared_ptr<const TrialPairRun>& pair,
+                               const QString& dir) {
+    comparison_->showTrialPair(*pair);
+    const QString how = tr("seed %1, %2 trial %3 of %4: A %5, B %6")
+                            .arg(pair->seed)
+                            .arg(modeName(pair->a.result.mode))
+                            .arg(pair->a.trial)
+                            .arg(QString::fromStdString(pair->a.label),
+                                 QString::fromStdString(endedText(pair->a)),
+                                 QString::fromStdString(endedText(pair->b)));
+    progress_->setFormat(tr("trial shown in both experiments"));
+    status_->setText(how);
+    // The same table and figure compare --show writes, beside the comparison's own files.
+    QString files;
+    try {
+        writeTrialPairTable(*pair, dir.toStdString());
+        writeTrialPairFigures(*pair, dir);
+        files = tr("; its table and figure %1.* in %2")
+                    .arg(QString::fromStdString(trialPairFileStem(*pair)), dir);
+    } catch (const std::exception& e) {
+        showError(tr("Could not write the trial's table and figure: %1").arg(e.what()));
+    }
+    log(how + files);
+    emit runEnded(true);
 }
 
 void MainWindow::showSeeds(std::shared_ptr<const SeedRates> rates, const QString& dir,

@@ -126,6 +126,8 @@ private:
     void showSeeds(std::shared_ptr<const SeedRates> rates, const QString& dir, bool cancelled);
     void showComparison(std::shared_ptr<const PairedComparison> comparison, const QString& dir,
                         bool cancelled);
+    /// Draws a trial pair in the Compare tab and writes its table and figure into `dir`.
+    void showTrialPair(const std::shared_ptr<const TrialPairRun>& pair, const QString& dir);
     void updateActions();
 
     LiveFeed feed_;

@@ -224,9 +224,9 @@ bool RunController::startComparison(const ExperimentSpec& a, const ExperimentSpe
 
 bool RunController::startTrialPair(const ExperimentSpec& a, const ExperimentSpec& b,
                                    std::uint64_t seed, FollowingMode mode, const std::string& label,
-                                   int trial) {
+                                   int trial, const QString& outDir) {
     if (!canRunSeeds(seed, seed)) return false;
-    launch(QString(), [this, a, b, seed, mode, label, trial] {
+    launch(outDir, [this, a, b, seed, mode, label, trial, outDir] {
         emit progress(0, 1,
                       tr("seed %1: %2 trial %3 of %4 in both experiments")
                           .arg(seed)
@@ -238,7 +238,7 @@ bool RunController::startTrialPair(const ExperimentSpec& a, const ExperimentSpec
             auto pair =
                 std::make_shared<const TrialPairRun>(runTrialPair(a, b, seed, mode, label, trial));
             emit progress(1, 1, tr("seed %1 run in both experiments").arg(seed), 0.0);
-            emit trialPairFinished(pair);
+            emit trialPairFinished(pair, outDir);
         } catch (const std::exception& e) {
             emit failed(tr("Could not run the trial in both experiments: %1")
                             .arg(QString::fromStdString(e.what())));

@@ -50,10 +50,12 @@ public:
     bool startComparison(const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t first,
                          std::uint64_t last, const QString& outDir);
     /// Runs one trial of `seed` as `a` and as `b` ran it in a comparison (runTrialPair: a whole
-    /// run of each on the simulated rig, writing nothing), to see where they part. False (and
+    /// run of each on the simulated rig), to see where they part; trialPairFinished hands it on
+    /// with `outDir`, the comparison's folder, where its table and figure go. False (and
     /// failed()) if a run is going.
     bool startTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t seed,
-                        FollowingMode mode, const std::string& label, int trial);
+                        FollowingMode mode, const std::string& label, int trial,
+                        const QString& outDir);
     void cancel();
     bool running() const { return thread_ != nullptr; }
     /// Asks a running run to stop and waits at most `ms` for it; true if it stopped.
@@ -75,7 +77,8 @@ signals:
     void comparisonFinished(std::shared_ptr<const activetouch::PairedComparison> comparison,
                             const QString& outDir, bool cancelled);
     /// A trial pair has been run.
-    void trialPairFinished(std::shared_ptr<const activetouch::TrialPairRun> pair);
+    void trialPairFinished(std::shared_ptr<const activetouch::TrialPairRun> pair,
+                           const QString& outDir);
     /// The worker has ended (after finished or failed): a new run may start.
     void idle();
 

@@ -819,6 +819,20 @@ private slots:
         QVERIFY2(drawn[0].startsWith("A paper: " + QString::fromStdString(trialOutcome(direct.a))),
                  qPrintable(drawn.join(" | ")));
         QVERIFY2(drawn[1].startsWith("B paper_kernel: "), qPrintable(drawn.join(" | ")));
+        // Its table and figure are in the comparison's folder, as compare --show writes them.
+        const QString stem = QString::fromStdString(trialPairFileStem(direct));
+        int rowsA = 0, rowsB = 0;
+        for (const QString& row : test::linesOf(dir + "/" + stem + ".csv").mid(1)) {
+            rowsA += row.startsWith("a,\"paper\",");
+            rowsB += row.startsWith("b,\"paper_kernel\",");
+        }
+        QCOMPARE(rowsA, int(direct.a.result.taps.size()));
+        QCOMPARE(rowsB, int(direct.b.result.taps.size()));
+        for (const char* format : {"png", "pdf", "svg"})
+            QVERIFY(QFileInfo(dir + "/figures/" + stem + "." + format).size() > 0);
+        QVERIFY2(window_->findChild<QPlainTextEdit*>("log")->toPlainText().contains(
+                     stem + ".* in " + dir),
+                 qPrintable(stem));
 
         // A file that shares no trial with the paper is refused before any run, naming why.
         const QString other = paperVariant(
