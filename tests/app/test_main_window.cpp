@@ -833,6 +833,31 @@ private slots:
         QVERIFY2(window_->findChild<QPlainTextEdit*>("log")->toPlainText().contains(
                      stem + ".* in " + dir),
                  qPrintable(stem));
+        // A disk that cannot take them: the pair is drawn all the same and the error names the
+        // table.
+        QVERIFY(tab->table()->rowCount() > 1);
+        tab->table()->selectRow(1);
+        const quint64 seed1 = tab->table()->item(1, 0)->text().toULongLong();
+        QSignalSpy writeErrors(window_.get(), &MainWindow::errorShown);
+        {
+            test::FileSizeLimit limit(100);
+            QTest::mouseClick(showPair, Qt::LeftButton);
+            endsSuccessfully(*window_, ended);
+        }
+        if (QTest::currentTestFailed()) return;
+        QCOMPARE(writeErrors.count(), 1);
+        const QString writeError = writeErrors.first().at(0).toString();
+        QVERIFY2(writeError.contains("Could not write the trial's table and figure") &&
+                     writeError.contains(QString("trial_pair_seed%1_").arg(seed1)) &&
+                     writeError.contains(".csv"),
+                 qPrintable(writeError));
+        QVERIFY2(pairPlot.plotLayout()->elementCount() > 0 &&
+                     qobject_cast<QCPTextElement*>(pairPlot.plotLayout()->element(0, 0)) &&
+                     qobject_cast<QCPTextElement*>(pairPlot.plotLayout()->element(0, 0))
+                         ->text()
+                         .startsWith(QString("seed %1:").arg(seed1)),
+                 "the second pair is drawn");
+        closeErrorDialogs(*window_);
 
         // A file that shares no trial with the paper is refused before any run, naming why.
         const QString other = paperVariant(
