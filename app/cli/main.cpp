@@ -650,8 +650,9 @@ std::variant<TrialRef, std::string> parseTrialRef(const std::string& text) {
     const std::string form =
         "; give seed,mode,label,trial as the first four columns of a compare.csv row, e.g. "
         "3,active,cross,2";
-    if (fields.size() != 4) return "--show '" + text + "' has " + std::to_string(fields.size()) +
-                                   " field" + (fields.size() == 1 ? "" : "s") + form;
+    if (fields.size() != 4)
+        return "--show '" + text + "' has " + std::to_string(fields.size()) + " field" +
+               (fields.size() == 1 ? "" : "s") + form;
     TrialRef ref;
     const auto seed = parseSeed(fields[0]);
     if (!seed) return "--show: seed '" + fields[0] + "' is not a whole number" + form;
@@ -694,9 +695,8 @@ int showTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, const TrialR
         writeTrialPairTable(pair, outDir);
         double figures_s = 0.0;
         if (figures)
-            figures_s = drawFigures(argc, argv, [&] {
-                writeTrialPairFigures(pair, QString::fromStdString(outDir));
-            });
+            figures_s = drawFigures(
+                argc, argv, [&] { writeTrialPairFigures(pair, QString::fromStdString(outDir)); });
         std::printf("wall time %.1f s (figures %.1f s); results in %s (%s.*)\n",
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                     figures_s, outDir.c_str(), trialPairFileStem(pair).c_str());

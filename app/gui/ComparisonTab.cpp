@@ -149,8 +149,13 @@ void ComparisonTab::addSeed(std::uint64_t seed, const std::vector<PairedTrial>& 
         table_->setItem(row, 1, mode);
         table_->setItem(row, 2, new QTableWidgetItem(QString::fromStdString(p.label)));
         table_->setItem(row, 3, new QTableWidgetItem(QString::number(p.trial)));
-        table_->setItem(row, 4, new QTableWidgetItem(ended(p.outcomeA, p.namedA)));
-        table_->setItem(row, 5, new QTableWidgetItem(ended(p.outcomeB, p.namedB)));
+        // The endings are long for their columns: each cell's tooltip gives the whole of it.
+        for (const auto& [column, text] : {std::pair{4, ended(p.outcomeA, p.namedA)},
+                                           std::pair{5, ended(p.outcomeB, p.namedB)}}) {
+            auto* item = new QTableWidgetItem(text);
+            item->setToolTip(text);
+            table_->setItem(row, column, item);
+        }
     }
     show(soFar, tr("running: %1 of %2 seeds compared, %3 trials ended differently")
                     .arg(soFar.seeds)

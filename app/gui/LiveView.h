@@ -42,7 +42,7 @@ private:
     QTimer timer_;
     std::uint64_t shownTap_ = 0, shownFrame_ = 0, framesDrawn_ = 0;
     bool undrawn_ = false;  // the bars' data changed since they were last drawn
-    int playback_ = 0;  // frame of the newest tap being replayed when frames are not streamed
+    int playback_ = 0;      // frame of the newest tap being replayed when frames are not streamed
 };
 
 }  // namespace activetouch

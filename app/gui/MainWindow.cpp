@@ -651,13 +651,13 @@ void MainWindow::showComparison(std::shared_ptr<const PairedComparison> comparis
 void MainWindow::showTrialPair(const std::shared_ptr<const TrialPairRun>& pair,
                                const QString& dir) {
     comparison_->showTrialPair(*pair);
-    const QString how = tr("seed %1, %2 trial %3 of %4: A %5, B %6")
-                            .arg(pair->seed)
-                            .arg(modeName(pair->a.result.mode))
-                            .arg(pair->a.trial)
-                            .arg(QString::fromStdString(pair->a.label),
-                                 QString::fromStdString(endedText(pair->a)),
-                                 QString::fromStdString(endedText(pair->b)));
+    const QString how =
+        tr("seed %1, %2 trial %3 of %4: A %5, B %6")
+            .arg(pair->seed)
+            .arg(modeName(pair->a.result.mode))
+            .arg(pair->a.trial)
+            .arg(QString::fromStdString(pair->a.label), QString::fromStdString(endedText(pair->a)),
+                 QString::fromStdString(endedText(pair->b)));
     progress_->setFormat(tr("trial shown in both experiments"));
     status_->setText(how);
     // The same table and figure compare --show writes, beside the comparison's own files.

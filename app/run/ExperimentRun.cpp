@@ -651,10 +651,10 @@ void writeRunTables(const RunResult& r, const std::string& outDir) {
             OutputFile f((data / "following_paths.csv").string());
             f.print("shape,mode,trial,%s\n", kTrialTapColumns);
             for (const auto& t : r.trials)
-                printTrialTaps(f,
-                               t.label + "," + modeName(t.result.mode) + "," +
-                                   std::to_string(t.trial) + ",",
-                               t);
+                printTrialTaps(
+                    f,
+                    t.label + "," + modeName(t.result.mode) + "," + std::to_string(t.trial) + ",",
+                    t);
             f.close();
         }
         {

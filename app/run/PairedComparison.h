@@ -127,8 +127,8 @@ TrialPairRun runTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, std:
 std::string trialPairFileStem(const TrialPairRun& pair);
 
 /// Writes <outDir>/<trialPairFileStem>.csv: a row per tap of each side's trial, its side ("a" or
-/// "b") and experiment name (quoted), then the columns of following_paths.csv (kTrialTapColumns). Throws naming the file if it
-/// cannot be written whole.
+/// "b") and experiment name (quoted), then the columns of following_paths.csv (kTrialTapColumns).
+/// Throws naming the file if it cannot be written whole.
 void writeTrialPairTable(const TrialPairRun& pair, const std::string& outDir);
 
 /// How a trial of a pair ended, as compare.csv and the Compare tab say it: "completed" or

@@ -728,8 +728,8 @@ private slots:
                                          ended(differing[5], differing[7]))),
                  qPrintable(o.out));
         // Its table holds A's trial tap for tap as A's own run of that seed recorded it.
-        const QString stem = QString("trial_pair_seed3_%1_%2_%3")
-                                 .arg(differing[1], label, differing[3]);
+        const QString stem =
+            QString("trial_pair_seed3_%1_%2_%3").arg(differing[1], label, differing[3]);
         const QStringList pair = linesOf(out + "/" + stem + ".csv");
         QVERIFY(pair.size() > 2);
         QVERIFY(pair[0].startsWith("side,experiment,tap,x_mm,y_mm,"));

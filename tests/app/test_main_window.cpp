@@ -801,6 +801,9 @@ private slots:
                 namedPath(direct.a) != namedPath(direct.b));
         QCOMPARE(QString::fromStdString(trialOutcome(direct.a)),
                  tab->table()->item(0, 4)->text().section(", named", 0, 0));
+        for (int column : {4, 5})  // cut in their columns, whole in their tooltips
+            QCOMPARE(tab->table()->item(0, column)->toolTip(),
+                     tab->table()->item(0, column)->text());
         QCustomPlot& pairPlot = tab->pairPanel()->plot();
         QTRY_VERIFY(!tab->pairPanel()->showsEmptyHint());
         QStringList drawn;
@@ -830,8 +833,8 @@ private slots:
         QCOMPARE(rowsB, int(direct.b.result.taps.size()));
         for (const char* format : {"png", "pdf", "svg"})
             QVERIFY(QFileInfo(dir + "/figures/" + stem + "." + format).size() > 0);
-        QVERIFY2(window_->findChild<QPlainTextEdit*>("log")->toPlainText().contains(
-                     stem + ".* in " + dir),
+        QVERIFY2(window_->findChild<QPlainTextEdit*>("log")->toPlainText().contains(stem +
+                                                                                    ".* in " + dir),
                  qPrintable(stem));
         // A disk that cannot take them: the pair is drawn all the same and the error names the
         // table.
