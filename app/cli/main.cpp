@@ -82,7 +82,8 @@ void printHelp() {
         "      the README): the scene's object must be the one mounted. Ctrl-C stops after the\n"
         "      tap in flight, keeping every tap taken (while connecting, it stops the stage's\n"
         "      origin search).\n"
-        "  activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>] [--no-figures]\n"
+        "  activetouch-cli seeds <experiment.json> --from A --to B [--jobs N] [--out <dir>]\n"
+        "                        [--no-figures]\n"
         "      Runs the experiment once per seed A..B (each a whole run: its own data sets,\n"
         "      training, valid range and trials) and reports the rates with 95 %% intervals:\n"
         "      passive trials lost (and lost at a corner), active trials completed (and per\n"
@@ -93,8 +94,9 @@ void printHelp() {
         "      seed, appended as each finishes), <dir>/rates.json (with the recognition\n"
         "      confusion) and <dir>/figures/seed_rates.{png,pdf,svg} (each seed's outcome and\n"
         "      the rates so far with their intervals). --out defaults to\n"
-        "      results/<experiment name>_seeds.\n"
-        "  activetouch-cli compare <a.json> <b.json> --from A --to B [--out <dir>]\n"
+        "      results/<experiment name>_seeds. --jobs runs N seeds at once (default: one per\n"
+        "      core); every row and rate is the same for any N, reported in seed order.\n"
+        "  activetouch-cli compare <a.json> <b.json> --from A --to B [--jobs N] [--out <dir>]\n"
         "                          [--no-figures]\n"
         "      Runs both experiments once per seed A..B and compares them trial by trial: a\n"
         "      seed gives both the same data sets and the same noise on each trial, so where\n"
@@ -106,7 +108,7 @@ void printHelp() {
         "      each seed), both appended as each seed finishes, <dir>/compare.json and\n"
         "      <dir>/figures/compare.{png,pdf,svg} (each difference with its interval, and how\n"
         "      it settled seed by seed).\n"
-        "      --out defaults to results/<a>_vs_<b>.\n"
+        "      --out defaults to results/<a>_vs_<b>; --jobs as for seeds.\n"
         "  activetouch-cli compare <a.json> <b.json> --show SEED,MODE,LABEL,TRIAL [--out <dir>]\n"
         "                          [--no-figures]\n"
         "      Runs that seed in both experiments and shows that trial (as the first four\n"
@@ -278,9 +280,11 @@ RunArguments parseRunArguments(const std::vector<std::string>& args, const char*
     return r;
 }
 
-/// The seeds --from and --to give, or why they give none.
+/// The seeds --from and --to give and how many run at once (--jobs, else one per core), or why
+/// they give none.
 struct SeedRange {
     std::uint64_t first = 0, last = 0;
+    int jobs = 1;
     std::string error;
 };
 
@@ -297,6 +301,14 @@ SeedRange seedRangeOf(const RunArguments& parsed, const std::string& example) {
     if (r.first > r.last)
         r.error = "--from " + std::to_string(r.first) + " is after --to " + std::to_string(r.last) +
                   "; give the first seed first";
+    r.jobs = defaultSeedJobs();
+    if (const auto jobs = parsed.seeds.find("--jobs"); jobs != parsed.seeds.end()) {
+        if (jobs->second < 1 || jobs->second > 1024)
+            r.error = "--jobs " + std::to_string(jobs->second) +
+                      " cannot run seeds; give how many seeds run at once, from 1 (one after "
+                      "another) to 1024";
+        r.jobs = static_cast<int>(std::min<std::uint64_t>(jobs->second, 1024));
+    }
     return r;
 }
 
@@ -585,7 +597,8 @@ int overSeeds(const char* what, const std::string& outDir, const char* table, bo
 }
 
 int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
-    const RunArguments parsed = parseRunArguments(args, "seeds", {"--from", "--to"}, true);
+    const RunArguments parsed =
+        parseRunArguments(args, "seeds", {"--from", "--to", "--jobs"}, true);
     if (!parsed.error.empty()) return usageError(parsed.error);
     const std::string& experimentPath = parsed.experimentPath;
     std::string outDir = parsed.outDir;
@@ -598,8 +611,9 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     return overSeeds(
         "run failed", outDir, "rates.csv", parsed.figures, argc, argv,
         [&] {
-            const SeedRates rates =
-                runSeeds(spec, range.first, range.last, outDir, [](const SeedOutcome& o) {
+            const SeedRates rates = runSeeds(
+                spec, range.first, range.last, outDir,
+                [](const SeedOutcome& o) {
                     std::printf("seed %llu: passive lost %d/%d, active completed %d/%d",
                                 static_cast<unsigned long long>(o.seed), o.passiveLost,
                                 o.passiveTrials, o.activeCompleted, o.activeTrials);
@@ -612,7 +626,8 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
                     for (const auto& m : o.misnamed()) std::printf("    %s\n", m.c_str());
                     std::fflush(stdout);
                     return true;
-                });
+                },
+                range.jobs);
             std::printf("\n%s over %zu seeds (%llu-%llu):\n", spec.name.c_str(), rates.seeds.size(),
                         static_cast<unsigned long long>(range.first),
                         static_cast<unsigned long long>(range.last));
@@ -712,14 +727,14 @@ int showTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, const TrialR
 
 int commandCompare(const std::vector<std::string>& args, int argc, char** argv) {
     const RunArguments parsed =
-        parseRunArguments(args, "compare", {"--from", "--to"}, true, true,
+        parseRunArguments(args, "compare", {"--from", "--to", "--jobs"}, true, true,
                           {{"--show", "a trial: seed,mode,label,trial, e.g. 3,active,cross,2"}});
     if (!parsed.error.empty()) return usageError(parsed.error);
     const std::string show = parsed.text("--show");
     std::optional<TrialRef> ref;
     SeedRange range;
     if (!show.empty()) {
-        if (!parsed.seeds.empty())
+        if (parsed.seeds.count("--from") || parsed.seeds.count("--to"))
             return usageError("--show runs the one seed it names; leave out --from and --to");
         auto read = parseTrialRef(show);
         if (auto* error = std::get_if<std::string>(&read)) return usageError(*error);
@@ -754,7 +769,8 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
                                         endedText(p.outcomeB, p.namedB).c_str());
                     std::fflush(stdout);
                     return true;
-                });
+                },
+                range.jobs);
             std::printf("\n");
             for (const std::string& line : describeComparison(c)) std::printf("%s\n", line.c_str());
             return c;

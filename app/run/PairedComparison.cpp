@@ -220,7 +220,7 @@ void checkComparable(const ExperimentSpec& a, const ExperimentSpec& b) {
 
 PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
                                std::uint64_t first, std::uint64_t last, const std::string& outDir,
-                               const ComparedSeed& seedDone) {
+                               const ComparedSeed& seedDone, int jobs) {
     PairedComparison c;
     c.nameA = a.name;
     c.nameB = b.name;
@@ -233,33 +233,34 @@ PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
                            "seeds_compared,seed,part,pairs,a,b,only_a,only_b,"
                            "difference_b_minus_a,ci95_low,ci95_high,mcnemar_p\n");
     }
-    for (std::uint64_t seed = first; seed <= last; ++seed) {
+    const auto run = [&a, &b](std::uint64_t seed) {
         RunOptions options;
         options.seed = seed;
-        const RunResult ra = runExperiment(a, options);
-        const RunResult rb = runExperiment(b, options);
-        std::vector<PairedTrial> pairs;
-        addSeed(c, ra, rb, &pairs);
-        if (table) {
-            for (const PairedTrial& p : pairs)
-                table->print("%llu,%s,%s,%d,%s,%s,%s,%s\n", static_cast<unsigned long long>(p.seed),
-                             modeName(p.mode), csvField({p.label}).c_str(), p.trial,
-                             p.outcomeA.c_str(), p.outcomeB.c_str(), p.namedA.c_str(),
-                             p.namedB.c_str());
-            table->flush();
-            for (const PairedPart& part : kPairedParts) {
-                const PairedRate& r = c.*part.rate;
-                if (r.pairs() == 0) continue;
-                soFar->print("%d,%llu,%s,%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g\n", c.seeds,
-                             static_cast<unsigned long long>(seed), part.key, r.pairs(),
-                             r.a().count, r.b().count, r.onlyA, r.onlyB, r.difference(),
-                             r.differenceLow(), r.differenceHigh(), r.mcnemarP());
-            }
-            soFar->flush();
-        }
-        if (seedDone && !seedDone(seed, pairs, c)) break;
-        if (seed == last) break;  // last may be the largest seed
-    }
+        return std::make_pair(runExperiment(a, options), runExperiment(b, options));
+    };
+    forEachSeed(first, last, jobs, run,
+                [&](std::uint64_t seed, std::pair<RunResult, RunResult>&& runs) {
+                    std::vector<PairedTrial> pairs;
+                    addSeed(c, runs.first, runs.second, &pairs);
+                    if (table) {
+                        for (const PairedTrial& p : pairs)
+                            table->print("%llu,%s,%s,%d,%s,%s,%s,%s\n",
+                                         static_cast<unsigned long long>(p.seed), modeName(p.mode),
+                                         csvField({p.label}).c_str(), p.trial, p.outcomeA.c_str(),
+                                         p.outcomeB.c_str(), p.namedA.c_str(), p.namedB.c_str());
+                        table->flush();
+                        for (const PairedPart& part : kPairedParts) {
+                            const PairedRate& r = c.*part.rate;
+                            if (r.pairs() == 0) continue;
+                            soFar->print("%d,%llu,%s,%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g\n", c.seeds,
+                                         static_cast<unsigned long long>(seed), part.key, r.pairs(),
+                                         r.a().count, r.b().count, r.onlyA, r.onlyB, r.difference(),
+                                         r.differenceLow(), r.differenceHigh(), r.mcnemarP());
+                        }
+                        soFar->flush();
+                    }
+                    return !seedDone || seedDone(seed, pairs, c);
+                });
     if (table) {
         table->close();
         soFar->close();

@@ -95,7 +95,8 @@ void addSeed(PairedComparison& c, const RunResult& a, const RunResult& b,
 /// Throws InputError if `a` and `b` share no trial (the same label and mode) to compare.
 void checkComparable(const ExperimentSpec& a, const ExperimentSpec& b);
 
-/// Runs `a` and `b` once per seed first..last and compares them. With `outDir`, writes
+/// Runs `a` and `b` once per seed first..last, `jobs` seeds at once (forEachSeed: the results are
+/// the same for any number), and compares them in seed order. With `outDir`, writes
 /// compare.csv (a row per paired trial) and compare_so_far.csv (each part's comparison after each
 /// seed, the table behind the figure's second panel), both appended as each seed finishes, and
 /// compare.json (the comparison, written last). `seedDone` hears each seed's pairs and the
@@ -104,7 +105,7 @@ using ComparedSeed = std::function<bool(std::uint64_t seed, const std::vector<Pa
                                         const PairedComparison& soFar)>;
 PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
                                std::uint64_t first, std::uint64_t last, const std::string& outDir,
-                               const ComparedSeed& seedDone = {});
+                               const ComparedSeed& seedDone = {}, int jobs = defaultSeedJobs());
 
 Json pairedComparisonJson(const PairedComparison& c);
 

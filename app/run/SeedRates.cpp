@@ -541,7 +541,7 @@ std::vector<std::string> describeRates(const SeedRates& r) {
 
 SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
                    const std::string& outDir,
-                   const std::function<bool(const SeedOutcome&)>& seedDone) {
+                   const std::function<bool(const SeedOutcome&)>& seedDone, int jobs) {
     SeedRates rates;
     std::optional<OutputFile> file;
     if (!outDir.empty())
@@ -555,10 +555,12 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
             "valid_range_positions,"
             "paper_result,paper_result_smoothed,active_failures,misnamed_paths,"
             "passive_not_lost_at_a_corner\n");
-    for (std::uint64_t seed = first; seed <= last; ++seed) {
+    const auto run = [&spec](std::uint64_t seed) {
         RunOptions options;
         options.seed = seed;
-        const SeedOutcome o = seedOutcome(runExperiment(spec, options));
+        return seedOutcome(runExperiment(spec, options));
+    };
+    forEachSeed(first, last, jobs, run, [&](std::uint64_t, SeedOutcome&& o) {
         rates.seeds.push_back(o);
         if (file) {
             // Where the experiment does not have the paper's parts, its result is left empty.
@@ -576,9 +578,8 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
                         csvField(o.passiveShortfalls).c_str());
             file->flush();
         }
-        if (seedDone && !seedDone(o)) break;
-        if (seed == last) break;  // last may be the largest seed
-    }
+        return !seedDone || seedDone(o);
+    });
     if (file) {
         file->close();
         writeJsonAtomically((fs::path(outDir) / "rates.json").string(), seedRatesJson(rates));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/run/ExperimentRun.h"
+#include "app/run/SeedPool.h"
 
 namespace activetouch {
 
@@ -183,12 +184,15 @@ struct SeedRates {
     double robotTimePerRun_s() const;
 };
 
-/// Runs `spec` once per seed from `first` to `last` (no per-run artefacts). With `outDir`, each
-/// seed's row is appended to <outDir>/rates.csv as it finishes and <outDir>/rates.json is written
-/// at the end. `seedDone` sees each outcome; returning false stops after that seed.
+/// Runs `spec` once per seed from `first` to `last` (no per-run artefacts), `jobs` seeds at once
+/// (forEachSeed: the results are the same for any number). With `outDir`, each seed's row is
+/// appended to <outDir>/rates.csv as it finishes, in seed order, and <outDir>/rates.json is
+/// written at the end. `seedDone` sees each outcome in seed order; returning false stops after
+/// that seed.
 SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
                    const std::string& outDir,
-                   const std::function<bool(const SeedOutcome&)>& seedDone = {});
+                   const std::function<bool(const SeedOutcome&)>& seedDone = {},
+                   int jobs = defaultSeedJobs());
 
 Json seedRatesJson(const SeedRates& rates);
 

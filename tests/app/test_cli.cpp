@@ -812,7 +812,28 @@ private slots:
         const Outcome word = runCli({"seeds", sourceFile("experiments/paper.json"), "--from", "one",
                                      "--to", "2", "--out", out});
         QCOMPARE(word.exitCode, 2);
+        const Outcome none = runCli({"seeds", sourceFile("experiments/paper.json"), "--from", "1",
+                                     "--to", "2", "--jobs", "0", "--out", out});
+        QCOMPARE(none.exitCode, 2);
+        QVERIFY2(none.err.contains("--jobs 0 cannot run seeds"), qPrintable(none.err));
         QVERIFY(!QFile::exists(out + "/rates.csv"));
+    }
+
+    void seedsGiveTheSameRowsOnAnyNumberOfCores() {
+        // One seed after another, or three at a time: the same rows, in seed order, and the same
+        // report.
+        QStringList reports;
+        for (const char* jobs : {"1", "3"}) {
+            const QString out = dir_.filePath(QString("rates_jobs%1").arg(jobs));
+            const Outcome o = runCli({"seeds", sourceFile("experiments/paper.json"), "--from", "1",
+                                      "--to", "5", "--jobs", jobs, "--out", out, "--no-figures"});
+            QCOMPARE(o.exitCode, 0);
+            reports << o.out.section("wall time", 0, 0);
+        }
+        QCOMPARE(reports[1], reports[0]);
+        QCOMPARE(linesOf(dir_.filePath("rates_jobs3/rates.csv")),
+                 linesOf(dir_.filePath("rates_jobs1/rates.csv")));
+        QCOMPARE(linesOf(dir_.filePath("rates_jobs3/rates.csv")).size(), 6);
     }
 
     void seedsWithoutFiguresWritesOnlyTheTables() {

@@ -11,6 +11,10 @@
 // experiments compared trial by trial over the same seeds give each side's own rates, and
 // McNemar's test on the trials they ended differently.
 #include <QtTest>
+#include <chrono>
+#include <limits>
+#include <stdexcept>
+#include <thread>
 
 #include "app/run/ExperimentRun.h"
 #include "app/run/PairedComparison.h"
@@ -565,6 +569,81 @@ private slots:
         PairedComparison one;
         addSeed(one, runs_[0], runs_[1]);
         QVERIFY2(said(one).contains("min per run\n"), qPrintable(said(one)));
+    }
+
+    void seedsRunSideBySideGiveWhatOneAfterAnotherGives() {
+        // Three seeds at a time give each seed's outcome as the runs one after another did, and
+        // report them in seed order; a stop after the fourth keeps four.
+        const ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
+        std::vector<std::uint64_t> heard;
+        const SeedRates side = runSeeds(
+            spec, 1, 10, "",
+            [&](const SeedOutcome& o) {
+                heard.push_back(o.seed);
+                return true;
+            },
+            3);
+        QCOMPARE(heard, (std::vector<std::uint64_t>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10}));
+        QCOMPARE(side.seeds.size(), rates_.seeds.size());
+        for (std::size_t i = 0; i < side.seeds.size(); ++i) {
+            const SeedOutcome &a = side.seeds[i], &b = rates_.seeds[i];
+            QCOMPARE(a.seed, b.seed);
+            QCOMPARE(a.activeCompleted, b.activeCompleted);
+            QCOMPARE(a.passiveLost, b.passiveLost);
+            QCOMPARE(a.failures, b.failures);
+            QCOMPARE(a.misnamed(), b.misnamed());
+            QCOMPARE(a.runRobotTime_s, b.runRobotTime_s);
+            QCOMPARE(a.angleError_deg, b.angleError_deg);
+        }
+        const SeedRates stopped = runSeeds(
+            spec, 1, 10, "", [](const SeedOutcome& o) { return o.seed < 4; }, 3);
+        QCOMPARE(stopped.seeds.size(), std::size_t(4));
+        QCOMPARE(stopped.seeds.back().seed, std::uint64_t(4));
+    }
+
+    void seedsAreHandedOnInOrderWhateverFinishesFirst() {
+        // Every third seed is slow, so later seeds finish before it: they still come after it.
+        std::vector<std::uint64_t> order;
+        forEachSeed(
+            1, 9, 3,
+            [](std::uint64_t seed) {
+                if (seed % 3 == 1) std::this_thread::sleep_for(std::chrono::milliseconds(40));
+                return seed * 10;
+            },
+            [&](std::uint64_t seed, std::uint64_t&& result) {
+                order.push_back(result == seed * 10 ? seed : 0);  // 0: another seed's result
+                return true;
+            });
+        QCOMPARE(order, (std::vector<std::uint64_t>{1, 2, 3, 4, 5, 6, 7, 8, 9}));
+        // A seed that fails reaches the caller after the seeds before it, and none after it.
+        order.clear();
+        QString failure;
+        try {
+            forEachSeed(
+                1, 9, 3,
+                [](std::uint64_t seed) {
+                    if (seed == 5) throw std::runtime_error("seed 5 failed");
+                    return seed;
+                },
+                [&](std::uint64_t seed, std::uint64_t&&) {
+                    order.push_back(seed);
+                    return true;
+                });
+        } catch (const std::runtime_error& e) {
+            failure = e.what();
+        }
+        QCOMPARE(failure, QString("seed 5 failed"));
+        QCOMPARE(order, (std::vector<std::uint64_t>{1, 2, 3, 4}));
+        // The largest seeds end the range without wrapping round to 0.
+        order.clear();
+        const std::uint64_t top = std::numeric_limits<std::uint64_t>::max();
+        forEachSeed(
+            top - 2, top, 2, [](std::uint64_t seed) { return seed; },
+            [&](std::uint64_t seed, std::uint64_t&&) {
+                order.push_back(seed);
+                return true;
+            });
+        QCOMPARE(order, (std::vector<std::uint64_t>{top - 2, top - 1, top}));
     }
 
     void comparingTwoExperimentsPairsTheirSeedsRates() {
