@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/common/Avx2Clones.h"
 #include "core/common/NumberText.h"
 
 namespace activetouch {
@@ -186,11 +187,9 @@ inline void accumulateChunk(const double* const* rows, const double* weights, st
     std::memcpy(out + c0, acc, sizeof acc);
 }
 
-__attribute__((target_clones("avx2", "default"))) void accumulateRows(const double* const* rows,
-                                                                      const double* weights,
-                                                                      std::size_t rowCount,
-                                                                      std::size_t classes,
-                                                                      double* out) {
+ACTIVETOUCH_AVX2_CLONES void accumulateRows(const double* const* rows, const double* weights,
+                                            std::size_t rowCount, std::size_t classes,
+                                            double* out) {
     std::size_t c0 = 0;
     for (; c0 + 24 <= classes; c0 += 24) accumulateChunk<6>(rows, weights, rowCount, c0, out);
     for (; c0 + 4 <= classes; c0 += 4) accumulateChunk<1>(rows, weights, rowCount, c0, out);
@@ -205,10 +204,10 @@ __attribute__((target_clones("avx2", "default"))) void accumulateRows(const doub
 // taxel range tiled to the block's length: (v - min) * scale clamped to [0, B - 1]; NaN compares
 // false and lands in bin 0; a degenerate taxel has scale 0 (and inf * 0 = NaN), so it lands in
 // bin 0 too. Equal to binOf() for every value.
-__attribute__((target_clones("avx2", "default"))) void binBlock(
-    const double* __restrict samples, std::size_t count, const double* __restrict min,
-    const double* __restrict scale, const std::uint32_t* __restrict cellBase, double lastBin,
-    std::uint32_t* __restrict cells) {
+ACTIVETOUCH_AVX2_CLONES void binBlock(const double* __restrict samples, std::size_t count,
+                                      const double* __restrict min, const double* __restrict scale,
+                                      const std::uint32_t* __restrict cellBase, double lastBin,
+                                      std::uint32_t* __restrict cells) {
     for (std::size_t i = 0; i < count; ++i) {
         double x = (samples[i] - min[i]) * scale[i];
         x = x > 0.0 ? x : 0.0;

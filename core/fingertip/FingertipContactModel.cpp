@@ -7,6 +7,8 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "core/common/Avx2Clones.h"
+
 namespace activetouch {
 namespace {
 
@@ -274,11 +276,9 @@ using Float16 = float __attribute__((vector_size(64)));
 
 // Running sums over patch points in height order: A += c w and B += c w h, sixteen taxel lanes
 // (zero-padded) per point. Cloned for AVX2; each lane sees the same operations in either clone.
-__attribute__((target_clones("avx2", "default"))) void sweepPatch(const float* weights,
-                                                                  const float* coverage,
-                                                                  const float* heights,
-                                                                  std::size_t from, std::size_t to,
-                                                                  float* sumA, float* sumB) {
+ACTIVETOUCH_AVX2_CLONES void sweepPatch(const float* weights, const float* coverage,
+                                        const float* heights, std::size_t from, std::size_t to,
+                                        float* sumA, float* sumB) {
     Float16 a, b;
     std::memcpy(&a, sumA, sizeof a);
     std::memcpy(&b, sumB, sizeof b);
