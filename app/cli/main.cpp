@@ -575,16 +575,16 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv, 
 /// exits 2; any other failure exits 1, saying that the seeds finished so far are in
 /// `outDir`/`table` (`what` names the command's failure: "run failed", "compare failed").
 template <typename Run, typename Figures>
-int overSeeds(const char* what, const std::string& outDir, const char* table, bool drawn, int argc,
-              char** argv, Run run, Figures figures) {
+int overSeeds(const char* what, const std::string& outDir, const char* table, bool drawn, int jobs,
+              int argc, char** argv, Run run, Figures figures) {
     try {
         const auto start = std::chrono::steady_clock::now();
         const auto found = run();
         double figures_s = 0.0;
         if (drawn) figures_s = drawFigures(argc, argv, [&] { figures(found); });
-        std::printf("wall time %.1f s (figures %.1f s); results in %s\n",
+        std::printf("wall time %.1f s (figures %.1f s; seeds run %d at a time); results in %s\n",
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                    figures_s, outDir.c_str());
+                    figures_s, jobs, outDir.c_str());
         return kOk;
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
@@ -609,7 +609,7 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     const ExperimentSpec& spec = *loaded;
     if (outDir.empty()) outDir = (fs::path("results") / (spec.name + "_seeds")).string();
     return overSeeds(
-        "run failed", outDir, "rates.csv", parsed.figures, argc, argv,
+        "run failed", outDir, "rates.csv", parsed.figures, range.jobs, argc, argv,
         [&] {
             const SeedRates rates = runSeeds(
                 spec, range.first, range.last, outDir,
@@ -751,7 +751,7 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
     if (outDir.empty()) outDir = (fs::path("results") / (a->name + "_vs_" + b->name)).string();
     if (ref) return showTrialPair(*a, *b, *ref, outDir, parsed.figures, argc, argv);
     return overSeeds(
-        "compare failed", outDir, "compare.csv", parsed.figures, argc, argv,
+        "compare failed", outDir, "compare.csv", parsed.figures, range.jobs, argc, argv,
         [&] {
             const PairedComparison c = comparePaired(
                 *a, *b, range.first, range.last, outDir,

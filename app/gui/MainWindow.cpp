@@ -559,10 +559,12 @@ bool MainWindow::startSeeds(std::uint64_t first, std::uint64_t last) {
     tabs_->setCurrentWidget(seeds_);
     progress_->setRange(0, static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX)));
     progress_->setValue(0);
-    log(tr("seeds run started: %1, seeds %2-%3, each a whole run on the simulated rig, writing %4")
+    log(tr("seeds run started: %1, seeds %2-%3, each a whole run on the simulated rig, %4 at a "
+           "time, writing %5")
             .arg(name)
             .arg(first)
             .arg(last)
+            .arg(defaultSeedJobs())
             .arg(dir));
     updateActions();
     return true;
@@ -591,11 +593,12 @@ bool MainWindow::startComparison(const QString& otherPath, std::uint64_t first,
     tabs_->setCurrentWidget(comparison_);
     progress_->setRange(0, static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX)));
     progress_->setValue(0);
-    log(tr("comparison started: %1 (A) against %2 (B, %3), seeds %4-%5, trial by trial, writing "
-           "%6")
+    log(tr("comparison started: %1 (A) against %2 (B, %3), seeds %4-%5, trial by trial, %6 at a "
+           "time, writing %7")
             .arg(a, b, otherPath)
             .arg(first)
             .arg(last)
+            .arg(defaultSeedJobs())
             .arg(dir));
     updateActions();
     return true;
