@@ -39,6 +39,7 @@ LiveView::LiveView(LiveFeed& feed, QWidget* parent)
                                                   QFont("Sans", 11, QFont::Bold)));
     // The bars and readouts change at 50 Hz and nothing else does: they get a paint buffer of their
     // own, above every other layer, and each frame redraws only that buffer.
+    b.setAttribute(Qt::WA_OpaquePaintEvent);  // its white background covers every pixel
     b.addLayer("live");
     liveLayer_ = b.layer("live");
     liveLayer_->setMode(QCPLayer::lmBuffered);
