@@ -734,8 +734,10 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
     std::optional<TrialRef> ref;
     SeedRange range;
     if (!show.empty()) {
-        if (parsed.seeds.count("--from") || parsed.seeds.count("--to"))
-            return usageError("--show runs the one seed it names; leave out --from and --to");
+        if (parsed.seeds.count("--from") || parsed.seeds.count("--to") ||
+            parsed.seeds.count("--jobs"))
+            return usageError(
+                "--show runs the one seed it names; leave out --from, --to and --jobs");
         auto read = parseTrialRef(show);
         if (auto* error = std::get_if<std::string>(&read)) return usageError(*error);
         ref = std::get<TrialRef>(read);

@@ -771,7 +771,10 @@ private slots:
         const Outcome both =
             runCli(common + QStringList{"--show", "3,active,cross,2", "--from", "1", "--to", "2"});
         QCOMPARE(both.exitCode, 2);
-        QVERIFY2(both.err.contains("leave out --from and --to"), qPrintable(both.err));
+        QVERIFY2(both.err.contains("leave out --from, --to and --jobs"), qPrintable(both.err));
+        const Outcome jobs =
+            runCli(common + QStringList{"--show", "3,active,cross,2", "--jobs", "2"});
+        QCOMPARE(jobs.exitCode, 2);
     }
 
     void compareRefusesWhatItCannotPair() {
