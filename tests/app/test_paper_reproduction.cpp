@@ -644,6 +644,17 @@ private slots:
                 return true;
             });
         QCOMPARE(order, (std::vector<std::uint64_t>{top - 2, top - 1, top}));
+        // An empty range runs nothing; a single seed, and no jobs asked for, run one.
+        order.clear();
+        const auto keep = [&](std::uint64_t seed, std::uint64_t&&) {
+            order.push_back(seed);
+            return true;
+        };
+        const auto same = [](std::uint64_t seed) { return seed; };
+        forEachSeed(5, 4, 2, same, keep);
+        QVERIFY(order.empty());
+        forEachSeed(7, 7, 0, same, keep);
+        QCOMPARE(order, (std::vector<std::uint64_t>{7}));
     }
 
     void comparingTwoExperimentsPairsTheirSeedsRates() {
