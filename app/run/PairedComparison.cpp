@@ -238,29 +238,30 @@ PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
         options.seed = seed;
         return std::make_pair(runExperiment(a, options), runExperiment(b, options));
     };
-    forEachSeed(first, last, jobs, run,
-                [&](std::uint64_t seed, std::pair<RunResult, RunResult>&& runs) {
-                    std::vector<PairedTrial> pairs;
-                    addSeed(c, runs.first, runs.second, &pairs);
-                    if (table) {
-                        for (const PairedTrial& p : pairs)
-                            table->print("%llu,%s,%s,%d,%s,%s,%s,%s\n",
-                                         static_cast<unsigned long long>(p.seed), modeName(p.mode),
-                                         csvField({p.label}).c_str(), p.trial, p.outcomeA.c_str(),
-                                         p.outcomeB.c_str(), p.namedA.c_str(), p.namedB.c_str());
-                        table->flush();
-                        for (const PairedPart& part : kPairedParts) {
-                            const PairedRate& r = c.*part.rate;
-                            if (r.pairs() == 0) continue;
-                            soFar->print("%d,%llu,%s,%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g\n", c.seeds,
-                                         static_cast<unsigned long long>(seed), part.key, r.pairs(),
-                                         r.a().count, r.b().count, r.onlyA, r.onlyB, r.difference(),
-                                         r.differenceLow(), r.differenceHigh(), r.mcnemarP());
-                        }
-                        soFar->flush();
-                    }
-                    return !seedDone || seedDone(seed, pairs, c);
-                });
+    // Each seed in turn: its pairs into the comparison, then its rows into the tables.
+    const auto record = [&](std::uint64_t seed, std::pair<RunResult, RunResult>&& runs) {
+        std::vector<PairedTrial> pairs;
+        addSeed(c, runs.first, runs.second, &pairs);
+        if (table) {
+            for (const PairedTrial& p : pairs)
+                table->print("%llu,%s,%s,%d,%s,%s,%s,%s\n", static_cast<unsigned long long>(p.seed),
+                             modeName(p.mode), csvField({p.label}).c_str(), p.trial,
+                             p.outcomeA.c_str(), p.outcomeB.c_str(), p.namedA.c_str(),
+                             p.namedB.c_str());
+            table->flush();
+            for (const PairedPart& part : kPairedParts) {
+                const PairedRate& r = c.*part.rate;
+                if (r.pairs() == 0) continue;
+                soFar->print("%d,%llu,%s,%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g\n", c.seeds,
+                             static_cast<unsigned long long>(seed), part.key, r.pairs(),
+                             r.a().count, r.b().count, r.onlyA, r.onlyB, r.difference(),
+                             r.differenceLow(), r.differenceHigh(), r.mcnemarP());
+            }
+            soFar->flush();
+        }
+        return !seedDone || seedDone(seed, pairs, c);
+    };
+    forEachSeed(first, last, jobs, run, record);
     if (table) {
         table->close();
         soFar->close();
