@@ -25,7 +25,7 @@ ComparisonTab::ComparisonTab(QWidget* parent) : QWidget(parent) {
         tr("Choose another experiment file (B) to run beside the experiment as "
            "shown (A) on the same seeds"));
     connect(compare_, &QPushButton::clicked, this,
-            [this] { emit compareRequested(firstSeed(), lastSeed()); });
+            [this] { emit compareRequested(seeds_->first(), seeds_->last()); });
     seeds_ = new SeedRangeBar(
         "compareFirstSeed", "compareLastSeed", 100, compare_,
         tr("A seed gives both experiments the same data sets and the same noise on each trial, "
@@ -82,13 +82,6 @@ ComparisonTab::ComparisonTab(QWidget* parent) : QWidget(parent) {
     split->addWidget(plot_);
     split->setSizes({560, 840});
     layout->addWidget(split, 1);
-}
-
-std::uint64_t ComparisonTab::firstSeed() const {
-    return seeds_->first();
-}
-std::uint64_t ComparisonTab::lastSeed() const {
-    return seeds_->last();
 }
 
 void ComparisonTab::setRunnable(bool runnable) {

@@ -24,8 +24,6 @@ class ComparisonTab : public QWidget {
 public:
     explicit ComparisonTab(QWidget* parent = nullptr);
 
-    std::uint64_t firstSeed() const;
-    std::uint64_t lastSeed() const;
     /// Enables the compare button (an experiment is open and nothing is running).
     void setRunnable(bool runnable);
 

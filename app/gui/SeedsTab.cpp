@@ -29,7 +29,7 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     run_ = new QPushButton(tr("Run over seeds"));
     run_->setObjectName("runSeeds");
     connect(run_, &QPushButton::clicked, this,
-            [this] { emit runRequested(firstSeed(), lastSeed()); });
+            [this] { emit runRequested(seeds_->first(), seeds_->last()); });
     seeds_ = new SeedRangeBar(
         "firstSeed", "lastSeed", 10, run_,
         tr("Each seed is a whole run on the simulated rig: its own data sets, training, valid "
@@ -88,12 +88,6 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     layout->addWidget(split, 1);
 }
 
-std::uint64_t SeedsTab::firstSeed() const {
-    return seeds_->first();
-}
-std::uint64_t SeedsTab::lastSeed() const {
-    return seeds_->last();
-}
 void SeedsTab::setRunnable(bool runnable) {
     runnable_ = runnable;
     run_->setEnabled(runnable);

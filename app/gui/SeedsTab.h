@@ -23,8 +23,6 @@ class SeedsTab : public QWidget {
 public:
     explicit SeedsTab(QWidget* parent = nullptr);
 
-    std::uint64_t firstSeed() const;
-    std::uint64_t lastSeed() const;
     /// Enables the run buttons (an experiment is open and nothing is running).
     void setRunnable(bool runnable);
     /// The seed of the table's selected row, if a row is selected.
