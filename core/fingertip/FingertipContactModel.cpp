@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/common/Avx2Clones.h"
+#include "core/common/VectorState.h"
 
 namespace activetouch {
 namespace {
@@ -61,6 +62,7 @@ double FingertipContactModel::lowestBodyHeight(double X, double Y) const {
 }
 
 FingertipContactModel::FingertipContactModel(const FingertipSpec& spec) : spec_(spec) {
+    clearUpperVectorState();  // the tables below take thousands of exp calls
     if (spec.taxels.empty()) throw std::invalid_argument("the fingertip has no taxels");
     if (spec.taxels.size() > static_cast<std::size_t>(kLanes))
         throw std::invalid_argument("the contact model handles at most " + std::to_string(kLanes) +
