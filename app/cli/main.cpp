@@ -210,12 +210,12 @@ std::optional<std::uint64_t> parseSeed(const std::string& v) {
 }
 
 /// The arguments of run, seeds, compare and analyse: one experiment file (and for analyse a
-/// recording, for compare a second experiment), --out, the seed options that command takes (each
-/// a whole number), the text options it takes (--rig, --show) and --no-figures where allowed. An
-/// error is the message to print.
+/// recording, for compare a second experiment), --out, the whole-number options that command
+/// takes (--seed, --from, --to, --jobs), the text options it takes (--rig, --show) and
+/// --no-figures where allowed. An error is the message to print.
 struct RunArguments {
     std::string experimentPath, recordingPath, outDir;
-    std::map<std::string, std::uint64_t> seeds;  ///< "--seed", "--from", "--to" as given
+    std::map<std::string, std::uint64_t> seeds;  ///< the whole-number options as given
     std::map<std::string, std::string> texts;    ///< "--rig", "--show" as given
     bool figures = true;
     std::string error;
