@@ -10,7 +10,6 @@
 
 #include "app/run/OutputFiles.h"
 #include "core/common/NumberText.h"
-#include "core/common/VectorState.h"
 #include "core/geometry/ShapeLibrary.h"
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
@@ -307,7 +306,6 @@ void checkRecordingCovers(const ExperimentSpec& spec, const std::vector<Collecte
 
 RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options) {
     const auto started = std::chrono::steady_clock::now();
-    clearUpperVectorState();  // a run may start on a thread made after the GUI's first drawing
     RunResult result;
     result.spec = specIn;
     if (options.seed) result.spec.scene.seed = *options.seed;
