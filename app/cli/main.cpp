@@ -30,6 +30,7 @@
 #include "app/run/PairedComparison.h"
 #include "app/run/SeedRates.h"
 #include "core/experiment/Experiment.h"
+#include "core/io/Csv.h"
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
 #include "core/rig/Rig.h"
@@ -651,13 +652,7 @@ struct TrialRef {
 /// Reads "seed,mode,label,trial" (e.g. 3,active,cross,2; the label may be quoted, as compare.csv
 /// quotes it); an error is the message to print.
 std::variant<TrialRef, std::string> parseTrialRef(const std::string& text) {
-    std::vector<std::string> fields(1);
-    for (const char c : text) {
-        if (c == ',')
-            fields.emplace_back();
-        else
-            fields.back() += c;
-    }
+    std::vector<std::string> fields = splitCsvLine(text);
     for (std::string& f : fields) {
         f.erase(0, f.find_first_not_of(' '));
         f.erase(f.find_last_not_of(' ') + 1);
@@ -672,12 +667,9 @@ std::variant<TrialRef, std::string> parseTrialRef(const std::string& text) {
     const auto seed = parseSeed(fields[0]);
     if (!seed) return "--show: seed '" + fields[0] + "' is not a whole number" + form;
     ref.seed = *seed;
-    if (fields[1] == modeName(FollowingMode::Active))
-        ref.mode = FollowingMode::Active;
-    else if (fields[1] == modeName(FollowingMode::Passive))
-        ref.mode = FollowingMode::Passive;
-    else
-        return "--show: mode '" + fields[1] + "' is neither active nor passive" + form;
+    const auto mode = modeNamed(fields[1]);
+    if (!mode) return "--show: mode '" + fields[1] + "' is neither active nor passive" + form;
+    ref.mode = *mode;
     ref.label = fields[2];
     if (ref.label.size() >= 2 && ref.label.front() == '"' && ref.label.back() == '"')
         ref.label = ref.label.substr(1, ref.label.size() - 2);

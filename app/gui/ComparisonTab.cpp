@@ -111,8 +111,6 @@ void ComparisonTab::showTrialPair(const TrialPairRun& pair) {
 void ComparisonTab::begin(const QString& a, const QString& b, std::uint64_t first,
                           std::uint64_t last) {
     seeds_->set(first, last);
-    a_ = a;
-    b_ = b;
     running_ = true;
     seedsPlanned_ = static_cast<int>(last - first + 1);
     compare_->setEnabled(false);

@@ -64,7 +64,6 @@ private:
 
     bool running_ = false, runnable_ = false;
     int seedsPlanned_ = 0;
-    QString a_, b_;
     SeedRangeBar* seeds_;
     QPushButton *compare_, *showPair_;
     QLabel* summary_;

@@ -8,6 +8,12 @@ const char* modeName(FollowingMode m) {
     return m == FollowingMode::Active ? "active" : "passive";
 }
 
+std::optional<FollowingMode> modeNamed(std::string_view name) {
+    for (const FollowingMode m : {FollowingMode::Active, FollowingMode::Passive})
+        if (name == modeName(m)) return m;
+    return std::nullopt;
+}
+
 const std::vector<FollowingNumber>& followingNumbers() {
     using S = FollowingSettings;
     static const std::vector<FollowingNumber> numbers{

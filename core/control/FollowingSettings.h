@@ -1,13 +1,17 @@
 #pragma once
 // The settings of the perception-action loop and of a trial's termination (DESIGN.md §2). Every
 // step length of the rules table is one of these numbers.
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace activetouch {
 
 enum class FollowingMode { Active, Passive };
 const char* modeName(FollowingMode m);
+/// The mode `name` names ("active" or "passive", as modeName gives them), if it names one.
+std::optional<FollowingMode> modeNamed(std::string_view name);
 
 struct FollowingSettings {
     double followStep_mm = 2.0;      ///< along the perceived edge, every tap (paper: 2 mm)

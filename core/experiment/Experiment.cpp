@@ -23,8 +23,7 @@ namespace {
 
 FollowingMode parseMode(const JsonFields& f, const std::string& key, const std::string& fallback) {
     const std::string m = f.text(key, fallback);
-    if (m == "active") return FollowingMode::Active;
-    if (m == "passive") return FollowingMode::Passive;
+    if (const auto mode = modeNamed(m)) return *mode;
     f.fail(key, "mode '" + m + "' is neither active nor passive");
 }
 
@@ -140,12 +139,10 @@ void parseSweeps(const JsonFields& f, ExperimentSpec& e) {
             if (!p.raw("modes").is_array() || p.raw("modes").empty())
                 p.fail("modes", "'modes' must list active and/or passive");
             for (const auto& m : p.raw("modes")) {
-                if (m == "active")
-                    s.modes.push_back(FollowingMode::Active);
-                else if (m == "passive")
-                    s.modes.push_back(FollowingMode::Passive);
-                else
+                const auto mode = m.is_string() ? modeNamed(m.get<std::string>()) : std::nullopt;
+                if (!mode)
                     p.fail("modes", "mode " + describeJson(m) + " is neither active nor passive");
+                s.modes.push_back(*mode);
             }
         } else {
             s.modes = {FollowingMode::Active, FollowingMode::Passive};

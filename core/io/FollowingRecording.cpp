@@ -137,7 +137,7 @@ FollowingRecordingContents parseFollowingRecording(const std::string& path,
                                  "pressure " + f[static_cast<std::size_t>(i)] +
                                      " is outside the fingertip's 0..255 counts");
         }
-        if (f[kMode] != "active" && f[kMode] != "passive")
+        if (!modeNamed(f[kMode]))
             throw InputError(path, at("mode"), "'" + f[kMode] + "' is neither active nor passive");
         if (f[kEnding] != "reflex" && f[kEnding] != "stroke_limit")
             throw InputError(path, at("ending"),
@@ -164,11 +164,7 @@ FollowingRecordingContents parseFollowingRecording(const std::string& path,
                 ++contents.trials;
                 if (trials)
                     trials->push_back(
-                        {f[kShape],
-                         f[kMode] == "active" ? FollowingMode::Active : FollowingMode::Passive,
-                         static_cast<int>(v[kTrial]),
-                         {},
-                         {}});
+                        {f[kShape], *modeNamed(f[kMode]), static_cast<int>(v[kTrial]), {}, {}});
             }
             trialKey = key;
             tapIndex = tap;
