@@ -1,14 +1,13 @@
 #include "core/io/JsonFields.h"
 
-#include <fstream>
-#include <sstream>
 
 #include "core/common/NumberText.h"
-#include "core/io/InputFile.h"
+#include "core/io/JsonText.h"
 
 namespace activetouch {
 
 Json parseJsonText(const std::string& text, const std::string& source) {
+    checkJsonText(text, source);
     try {
         return Json::parse(text);
     } catch (const Json::parse_error& e) {
@@ -29,19 +28,53 @@ Json parseJsonText(const std::string& text, const std::string& source) {
         throw InputError(source,
                          "line " + std::to_string(line) + ", column " + std::to_string(column),
                          "the file is not valid JSON (" + what + "); fix the syntax there");
+    } catch (const Json::exception& e) {
+        // The text check refuses what the library would refuse for size or range; anything else
+        // it throws still reaches the user as a sentence about the file.
+        std::string what = e.what();
+        const auto bracket = what.find("] ");
+        if (bracket != std::string::npos) what = what.substr(bracket + 2);
+        throw InputError(source, "", "the file could not be read as JSON (" + what + ")");
     }
 }
 
 Json readJsonFile(const std::string& path) {
-    std::ifstream in = openInputFile(path, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return parseJsonText(ss.str(), path);
+    return parseJsonText(readJsonFileText(path), path);
 }
 
+namespace {
+
+// Renders `value` into `out` until `out` holds more than `budget` characters: a message needs
+// the start of a value, never the whole of a large one.
+void renderJson(const Json& value, std::string& out, std::size_t budget) {
+    if (out.size() > budget) return;
+    if (value.is_object() || value.is_array()) {
+        const bool object = value.is_object();
+        out += object ? '{' : '[';
+        bool first = true;
+        for (auto it = value.begin(); it != value.end() && out.size() <= budget; ++it) {
+            if (!first) out += ", ";
+            first = false;
+            if (object) out += Json(it.key()).dump(-1, ' ', false, Json::error_handler_t::replace) + ": ";
+            renderJson(it.value(), out, budget);
+        }
+        out += object ? '}' : ']';
+        return;
+    }
+    if (value.is_string() && value.get_ref<const std::string&>().size() > budget) {
+        out += Json(value.get_ref<const std::string&>().substr(0, budget)).dump();
+        return;
+    }
+    out += value.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+}  // namespace
+
 std::string describeJson(const Json& value) {
-    std::string s = value.dump();
-    if (s.size() > 60) s = s.substr(0, 57) + "...";
+    constexpr std::size_t kShown = 60;
+    std::string s;
+    renderJson(value, s, kShown);
+    if (s.size() > kShown) s = s.substr(0, kShown - 3) + "...";
     return s;
 }
 
