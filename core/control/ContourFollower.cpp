@@ -160,6 +160,39 @@ Vec2 lowerEdgeStart(const Polygon& outline, const ValidOffsets& valid) {
     return *start;
 }
 
+double followingReach_mm(const FollowingSettings& s) {
+    const double move =
+        std::max({s.followStep_mm + s.repositionStep_mm, s.planeStep_mm + s.planeRetreatStep_mm,
+                  s.airInwardStep_mm + s.airRetreatStep_mm});
+    return s.lostOutside_mm + move;
+}
+
+std::string followingTravelProblem(const Polygon& outline, const FollowingSettings& s,
+                                   Vec2 travel) {
+    const double reach = followingReach_mm(s);
+    const Vec2 lo = outline.boundingBoxMin(), hi = outline.boundingBoxMax();
+    struct Side {
+        double room;
+        const char* name;
+    };
+    const Side sides[] = {{lo.x, "left side (x = 0)"},
+                          {lo.y, "lower side (y = 0)"},
+                          {travel.x - hi.x, "right side (x = travel)"},
+                          {travel.y - hi.y, "upper side (y = travel)"}};
+    for (const Side& side : sides) {
+        if (side.room >= reach) continue;
+        char buf[400];
+        std::snprintf(buf, sizeof buf,
+                      "a trial on this object can take the tip %.1f mm past its outline before "
+                      "it counts as lost (lost_outside_mm plus the largest move), but the object "
+                      "lies %.1f mm from the stage travel's %s; move the object at least %.1f mm "
+                      "further in (offset_mm) or lower following.lost_outside_mm",
+                      reach, side.room, side.name, reach - side.room);
+        return buf;
+    }
+    return {};
+}
+
 std::string startProblem(const Polygon& outline, Vec2 start, const FollowingSettings& s) {
     const double sd = outline.signedDistance(start);  // + inside
     const bool outside = sd < 0;

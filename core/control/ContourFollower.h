@@ -111,6 +111,16 @@ struct TrialSetup {
 /// edge faces within 45 degrees of down.
 Vec2 lowerEdgeStart(const Polygon& outline, const ValidOffsets& valid);
 
+/// How far past the outline a trial's tip can reach: it counts as lost once more than
+/// lost_outside_mm outside, and the move that took it there is at most the largest pair of
+/// steps one rule combines.
+double followingReach_mm(const FollowingSettings& s);
+
+/// Why a trial on `outline` could drive the stage past its travel (0..travel_mm) before it
+/// counts as lost, naming the side ("the left side (x = 0)"), or empty.
+std::string followingTravelProblem(const Polygon& outline, const FollowingSettings& s,
+                                   Vec2 travel_mm);
+
 /// Why `start` cannot begin a trial on `outline` (too far from the contour), or empty.
 std::string startProblem(const Polygon& outline, Vec2 start, const FollowingSettings& settings);
 

@@ -15,8 +15,8 @@ bool looksLikeExperiment(const Json& json) {
     return json.is_object() && (json.contains("scene") || json.contains("extends"));
 }
 
-int ExperimentSpec::plannedTaps() const {
-    return training.dataSets * classes.classCount() * training.tapsPerClass;
+std::int64_t ExperimentSpec::plannedTaps() const {
+    return std::int64_t{training.dataSets} * classes.classCount() * training.tapsPerClass;
 }
 
 namespace {
@@ -65,6 +65,11 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
         if (const std::string problem = objectPlacementProblem(spec.object, e.scene);
             !problem.empty())
             throw InputError(f.source(), place + "/object", problem);
+        if (const std::string problem =
+                followingTravelProblem(spec.object.outline(), s, e.scene.stage.travel_mm);
+            !problem.empty())
+            throw InputError(f.source(), place + "/object",
+                             "trial '" + spec.label + "': " + problem);
         if (t.has("start_mm")) {
             spec.start = t.point("start_mm");
             if (const std::string problem = startProblem(spec.object.outline(), *spec.start, s);
@@ -326,6 +331,9 @@ std::vector<std::string> untrainedEdgeCautions(const ExperimentSpec& e, double t
 
 namespace {
 
+// Longer chains of "extends" are refused (docs/limits.md): real ones are two or three long.
+constexpr std::size_t kMaxExtendsChain = 16;
+
 // RFC 7386 merge patch: objects merge key by key, null removes a key, anything else replaces.
 void mergePatch(Json& target, const Json& patch) {
     if (!patch.is_object() || !target.is_object()) {
@@ -355,6 +363,11 @@ Json resolvedExperiment(const std::string& path, std::vector<std::string>& chain
                              fs::path(canonical).filename().string() +
                              "); let one of them name its settings instead");
     }
+    if (chain.size() >= kMaxExtendsChain)
+        throw InputError(chain.back(), "/extends",
+                         "more than " + std::to_string(kMaxExtendsChain) +
+                             " experiments extend one another in a chain; let one of them name "
+                             "its settings instead of extending");
     Json j = readJsonFile(path);
     if (!looksLikeExperiment(j))
         throw InputError(path, "/",

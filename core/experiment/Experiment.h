@@ -1,6 +1,7 @@
 #pragma once
 // An experiment file: a scene plus the protocol to run on it (DESIGN.md §4). The paper's
 // experiment is experiments/paper.json.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -62,7 +63,7 @@ struct ExperimentSpec {
     RecognitionSpec recognition;
     SweepSpec sweeps;
 
-    int plannedTaps() const;  ///< training taps; trials add theirs as they go
+    std::int64_t plannedTaps() const;  ///< training taps; trials add theirs as they go
 };
 
 /// Why training on the scene's object cannot run as the experiment says, or empty (see

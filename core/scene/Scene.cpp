@@ -184,7 +184,7 @@ TapSpec parseTap(const JsonFields& f) {
     t.contactThreshold = f.number("contact_threshold_counts", 0.01, 3000.0, t.contactThreshold);
     t.contactTime_s = f.number("contact_time_s", 0.0, 10.0, t.contactTime_s);
     t.settle_s = f.number("settle_s", 0.0, 60.0, t.settle_s);
-    t.samples = f.integer("samples", 1, 100000, t.samples);
+    t.samples = f.integer("samples", 1, kMaxTapSamples, t.samples);
     t.sampleRate_hz = f.number("sample_rate_hz", 1.0, 10000.0, t.sampleRate_hz);
     t.noiseFloor = f.number("noise_floor_counts", 0.0, 255.0, t.noiseFloor);
     if (t.worstCaseStroke_s() > t.window_s() + 1e-9)
@@ -218,6 +218,12 @@ SceneSpec parseScene(const Json& json, const std::string& source, const std::str
         s.stage.travel_mm = st.point("travel_mm", s.stage.travel_mm);
         if (!(s.stage.travel_mm.x > 0 && s.stage.travel_mm.y > 0))
             st.fail("travel_mm", "stage travel must be positive on both axes");
+        if (s.stage.travel_mm.x > kMaxStageTravel_mm || s.stage.travel_mm.y > kMaxStageTravel_mm)
+            st.fail("travel_mm", "a stage travel of (" + numberText(s.stage.travel_mm.x) + ", " +
+                                     numberText(s.stage.travel_mm.y) +
+                                     ") mm is beyond any XY stage (at most " +
+                                     numberText(kMaxStageTravel_mm) +
+                                     " mm on each axis); give the stage's travel in mm");
         s.stage.speed_mm_s = st.number("speed_mm_s", 0.1, 2000.0, s.stage.speed_mm_s);
     }
     s.seed = static_cast<std::uint64_t>(f.integer("seed", 0, 2147483647L, 1));

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/common/Limits.h"
 #include "core/fingertip/FingertipSpec.h"
 #include "core/geometry/Polygon.h"
 #include "core/geometry/ShapeLibrary.h"
