@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
+#include <utility>
 #include <stdexcept>
 
 namespace activetouch {
@@ -49,9 +51,16 @@ std::string vertexText(std::size_t i, Vec2 v) {
 
 }  // namespace
 
-std::optional<std::string> Polygon::problemWith(const std::vector<Vec2>& v) {
+namespace {
+
+// Why the cheap per-vertex tests refuse `v` (O(n)), or nothing.
+std::optional<std::string> vertexProblem(const std::vector<Vec2>& v) {
     if (v.size() < 3)
         return "an outline needs at least 3 vertices, got " + std::to_string(v.size());
+    if (v.size() > kMaxOutlineVertices)
+        return "an outline may have at most " + std::to_string(kMaxOutlineVertices) +
+               " vertices, got " + std::to_string(v.size()) +
+               "; no fingertip resolves detail that fine, so thin the outline";
     for (std::size_t i = 0; i < v.size(); ++i) {
         if (!std::isfinite(v[i].x) || !std::isfinite(v[i].y))
             return vertexText(i, v[i]) + " is not a finite number";
@@ -61,35 +70,125 @@ std::optional<std::string> Polygon::problemWith(const std::vector<Vec2>& v) {
         if (distance(v[i], v[(i + 1) % v.size()]) < 1e-9)
             return vertexText(i, v[i]) + " repeats the next vertex; remove the duplicate";
     }
+    return std::nullopt;
+}
+
+// The problem of edges i < j (edge k runs from vertex k to k + 1), or nothing.
+std::optional<std::string> edgePairProblem(const std::vector<Vec2>& v, std::size_t i,
+                                           std::size_t j) {
+    const std::size_t n = v.size();
+    const bool adjacent = (j == i + 1) || (i == 0 && j == n - 1);
+    if (adjacent) {
+        // Adjacent edges share a vertex; they may only touch there (no folding back).
+        const Vec2 shared = (j == i + 1) ? v[j] : v[i];
+        const Vec2 a0 = (j == i + 1) ? v[i] : v[(i + 1) % n];
+        const Vec2 b1 = (j == i + 1) ? v[(j + 1) % n] : v[j];
+        if (orientation(a0, shared, b1) == 0 && dot(a0 - shared, b1 - shared) > 0)
+            return "edges at " + vertexText(i == 0 && j == n - 1 ? 0 : j, shared) +
+                   " fold back onto each other";
+        return std::nullopt;
+    }
+    if (segmentsIntersect(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n]))
+        return "the outline intersects itself: the edge from " + vertexText(i, v[i]) +
+               " crosses the edge from " + vertexText(j, v[j]);
+    return std::nullopt;
+}
+
+// The first pair of edges (in the order i, then j) that cross or fold back, found by sweeping
+// the edges' x-extents: only edges whose boxes overlap are tested, so an outline of thousands of
+// vertices is checked in milliseconds.
+std::optional<std::string> crossingProblem(const std::vector<Vec2>& v) {
+    const std::size_t n = v.size();
+    struct Box {
+        double minX, maxX, minY, maxY;
+        std::size_t edge;
+    };
+    std::vector<Box> boxes(n);
+    constexpr double slack = 1e-9;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 a = v[i], b = v[(i + 1) % n];
+        boxes[i] = {std::min(a.x, b.x) - slack, std::max(a.x, b.x) + slack,
+                    std::min(a.y, b.y) - slack, std::max(a.y, b.y) + slack, i};
+    }
+    std::sort(boxes.begin(), boxes.end(),
+              [](const Box& a, const Box& b) { return a.minX < b.minX; });
+    std::optional<std::pair<std::size_t, std::size_t>> first;
+    std::optional<std::string> problem;
+    for (std::size_t k = 0; k < n; ++k) {
+        for (std::size_t m = k + 1; m < n && boxes[m].minX <= boxes[k].maxX; ++m) {
+            if (boxes[m].minY > boxes[k].maxY || boxes[k].minY > boxes[m].maxY) continue;
+            const std::size_t i = std::min(boxes[k].edge, boxes[m].edge);
+            const std::size_t j = std::max(boxes[k].edge, boxes[m].edge);
+            if (first && std::pair(i, j) >= *first) continue;
+            if (auto p = edgePairProblem(v, i, j)) {
+                first = std::pair(i, j);
+                problem = std::move(p);
+            }
+        }
+    }
+    return problem;
+}
+
+// The outlines checked last: an object's outline is asked for again and again (every trial,
+// every check), and one of thousands of vertices is checked once.
+class CheckedOutlines {
+public:
+    std::optional<std::optional<std::string>> find(const std::vector<Vec2>& v) {
+        std::lock_guard lock(mutex_);
+        for (const auto& [vertices, problem] : entries_)
+            if (vertices == v) return problem;
+        return std::nullopt;
+    }
+    void add(const std::vector<Vec2>& v, const std::optional<std::string>& problem) {
+        std::lock_guard lock(mutex_);
+        if (entries_.size() >= 8) entries_.erase(entries_.begin());
+        entries_.emplace_back(v, problem);
+    }
+
+private:
+    std::mutex mutex_;
+    std::vector<std::pair<std::vector<Vec2>, std::optional<std::string>>> entries_;
+};
+
+CheckedOutlines& checkedOutlines() {
+    static CheckedOutlines outlines;
+    return outlines;
+}
+
+}  // namespace
+
+std::optional<std::string> Polygon::problemWith(const std::vector<Vec2>& v) {
+    if (auto problem = vertexProblem(v)) return problem;
+    const bool remembered = v.size() >= 64;  // small outlines cost less to check than to look up
+    if (remembered)
+        if (auto known = checkedOutlines().find(v)) return *known;
+    std::optional<std::string> problem;
     bool collinear = true;
     for (std::size_t i = 2; i < v.size() && collinear; ++i)
         collinear = orientation(v[0], v[1], v[i]) == 0;
-    if (collinear) return "the outline encloses no area (all vertices on one line)";
-    const std::size_t n = v.size();
-    for (std::size_t i = 0; i < n; ++i) {
-        for (std::size_t j = i + 1; j < n; ++j) {
-            const bool adjacent = (j == i + 1) || (i == 0 && j == n - 1);
-            if (adjacent) {
-                // Adjacent edges share a vertex; they may only touch there (no folding back).
-                const Vec2 shared = (j == i + 1) ? v[j] : v[i];
-                const Vec2 a0 = (j == i + 1) ? v[i] : v[(i + 1) % n];
-                const Vec2 b1 = (j == i + 1) ? v[(j + 1) % n] : v[j];
-                if (orientation(a0, shared, b1) == 0 && dot(a0 - shared, b1 - shared) > 0)
-                    return "edges at " + vertexText(i == 0 && j == n - 1 ? 0 : j, shared) +
-                           " fold back onto each other";
-                continue;
-            }
-            if (segmentsIntersect(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n]))
-                return "the outline intersects itself: the edge from " + vertexText(i, v[i]) +
-                       " crosses the edge from " + vertexText(j, v[j]);
-        }
-    }
-    if (!(std::abs(signedArea(v)) > 1e-9)) return "the outline encloses no area";
-    return std::nullopt;
+    if (collinear)
+        problem = "the outline encloses no area (all vertices on one line)";
+    else if (auto crossing = crossingProblem(v))
+        problem = std::move(crossing);
+    else if (!(std::abs(signedArea(v)) > 1e-9))
+        problem = "the outline encloses no area";
+    if (remembered) checkedOutlines().add(v, problem);
+    return problem;
 }
 
 Polygon::Polygon(std::vector<Vec2> vertices) {
     if (auto problem = problemWith(vertices)) throw std::invalid_argument(*problem);
+    adopt(std::move(vertices));
+}
+
+Polygon::Polygon(std::vector<Vec2> vertices, MovedWhole) {
+    // A rotation and a translation keep a simple outline simple: only what depends on where the
+    // vertices now lie is checked again.
+    if (auto problem = vertexProblem(vertices)) throw std::invalid_argument(*problem);
+    adopt(std::move(vertices));
+}
+
+void Polygon::adopt(std::vector<Vec2> vertices) {
     if (signedArea(vertices) < 0) std::reverse(vertices.begin(), vertices.end());
     vertices_ = std::move(vertices);
     cumulativeLength_.resize(vertices_.size() + 1, 0.0);
@@ -167,7 +266,7 @@ Polygon Polygon::transformed(double degrees, Vec2 offset) const {
     std::vector<Vec2> out;
     out.reserve(vertices_.size());
     for (Vec2 v : vertices_) out.push_back(rotated(v, degrees) + offset);
-    return Polygon(std::move(out));
+    return Polygon(std::move(out), MovedWhole{});
 }
 
 std::vector<Vec2> Polygon::offsetOutline(double d) const {

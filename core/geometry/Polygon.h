@@ -9,13 +9,17 @@
 
 namespace activetouch {
 
+/// The most vertices an outline may have (docs/limits.md): a 0.1 mm chord along a 300 mm object
+/// is 3,000; a fingertip resolves nothing finer.
+inline constexpr std::size_t kMaxOutlineVertices = 10000;
+
 class Polygon {
 public:
     Polygon() = default;
 
     /// Builds a polygon from vertices in either winding. Throws std::invalid_argument with a
     /// sentence if the outline is degenerate (fewer than 3 distinct vertices, zero area, repeated
-    /// consecutive vertices) or self-intersecting; see `problemWith`.
+    /// consecutive vertices), self-intersecting or over kMaxOutlineVertices; see `problemWith`.
     explicit Polygon(std::vector<Vec2> vertices);
 
     /// Why `vertices` cannot be an object outline, or nothing if they can.
@@ -67,6 +71,10 @@ public:
     std::vector<Vec2> offsetOutline(double distance) const;
 
 private:
+    struct MovedWhole {};  ///< the vertices of a checked outline, rotated and moved
+    Polygon(std::vector<Vec2> vertices, MovedWhole);
+    void adopt(std::vector<Vec2> vertices);
+
     std::vector<Vec2> vertices_;
     std::vector<double> cumulativeLength_;  // arc length at the start of each edge, plus total
     Vec2 min_, max_;
