@@ -1,9 +1,12 @@
 #include "core/io/Csv.h"
 
 #include <charconv>
+#include <cstdio>
 #include <cmath>
+#include <filesystem>
 
 #include "core/common/InputError.h"
+#include "core/io/InputFile.h"
 #include "core/io/OutputFile.h"
 
 namespace activetouch {
@@ -50,16 +53,87 @@ int csvInteger(const std::string& field, const std::string& path, int line,
     return static_cast<int>(v);
 }
 
+void checkPose(Vec2 pose, const RecordingBounds& bounds, const std::string& path, int line,
+               const std::string& x, const std::string& y) {
+    constexpr double kSlack_mm = 1e-6;
+    const auto inside = [&](double v, double travel) {
+        return v >= -kSlack_mm && v <= travel + kSlack_mm;
+    };
+    if (!inside(pose.x, bounds.travel_mm.x) || !inside(pose.y, bounds.travel_mm.y)) {
+        char travel[64];
+        std::snprintf(travel, sizeof travel, "0..%g, 0..%g mm", bounds.travel_mm.x,
+                      bounds.travel_mm.y);
+        throw InputError(path,
+                         "line " + std::to_string(line) + ", column " +
+                             (inside(pose.x, bounds.travel_mm.x) ? "pose_y_mm" : "pose_x_mm"),
+                         "the pose (" + x + ", " + y + ") mm lies outside the stage travel (" +
+                             travel + "); no tap was taken there");
+    }
+}
+
+void checkTime(double time, double previous, const std::string& path, int line,
+               const std::string& field) {
+    const std::string place = "line " + std::to_string(line) + ", column robot_time_s";
+    if (time < 0.0)
+        throw InputError(path, place, "robot time " + field + " s is negative");
+    if (time < previous)
+        throw InputError(path, place,
+                         "robot time " + field + " s is earlier than the tap before it; taps are "
+                                                 "recorded in the order they were taken");
+}
+
+void sameAsFirstRow(const std::vector<std::string>& row, const std::vector<std::string>& first,
+                    const char* const* columns, int count, const std::string& path, int line,
+                    int firstLine) {
+    for (int i = 0; i < count; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        if (row[k] != first[k])
+            throw InputError(path, "line " + std::to_string(line) + ", column " + columns[i],
+                             "'" + row[k] + "' differs from the tap's first row (line " +
+                                 std::to_string(firstLine) + ": '" + first[k] +
+                                 "'); a tap's own columns are the same on every one of its rows");
+    }
+}
+
+std::ifstream openRecording(const std::string& path) {
+    std::ifstream in = openInputFile(path);
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (!ec && size > kMaxRecordingBytes)
+        throw InputError(path, "",
+                         "the recording is " + std::to_string(size >> 20) +
+                             " MiB, over the " + std::to_string(kMaxRecordingBytes >> 20) +
+                             " MiB a recording may have (about 200,000 taps); split the run");
+    return in;
+}
+
+bool RecordingRows::readLine(std::string& line) {
+    line.clear();
+    std::streambuf* buffer = in_.rdbuf();
+    for (;;) {
+        const int c = buffer->sbumpc();
+        if (c == std::char_traits<char>::eof()) return !line.empty();
+        if (c == '\n') return true;
+        if (line.size() >= kMaxRecordingLineBytes)
+            throw InputError(path_, "line " + std::to_string(line_ + 1),
+                             "the line is longer than " +
+                                 std::to_string(kMaxRecordingLineBytes >> 10) +
+                                 " KiB; a recording's rows are well under one, so this is not a "
+                                 "recording the workbench wrote");
+        line += static_cast<char>(c);
+    }
+}
+
 RecordingRows::RecordingRows(std::istream& in, const std::string& path) : in_(in), path_(path) {
     std::string line;
-    if (!std::getline(in_, line))
+    if (!readLine(line))
         throw InputError(path_, "line 1", "the file is empty; expected a header row");
     header_ = splitCsvLine(line);
 }
 
 bool RecordingRows::next(std::vector<std::string>& fields) {
     std::string line;
-    while (std::getline(in_, line)) {
+    while (readLine(line)) {
         ++line_;
         if (line.empty() || line == "\r") continue;
         if (brokenAt_)

@@ -2,13 +2,31 @@
 // What the project's CSV readers and tap writers share: splitting a line (the project writes no
 // quoted fields), reading a finite number from a field, with an error that names the file, line
 // and column, and the header of a table with a row per (tap, sample).
+#include <cstddef>
+#include <fstream>
 #include <istream>
 #include <string>
 #include <vector>
 
+#include "core/common/Limits.h"
+#include "core/geometry/Vec2.h"
+
 namespace activetouch {
 
 class OutputFile;
+
+/// What every row of a recording is held to besides itself (docs/limits.md).
+struct RecordingBounds {
+    /// Samples every tap has; 0: as many as the file's first tap. A run's run.json gives it.
+    int samplesPerTap = 0;
+    /// Poses lie within 0..travel on each axis.
+    Vec2 travel_mm{kMaxStageTravel_mm, kMaxStageTravel_mm};
+};
+
+/// A recording larger than this is refused before it is read (docs/limits.md).
+inline constexpr unsigned long long kMaxRecordingBytes = 1ull << 30;
+/// A recording's line longer than this is refused: a row of a 12-taxel tap is under 600 bytes.
+inline constexpr std::size_t kMaxRecordingLineBytes = 1u << 16;
 
 /// Writes the header of a table with a row per (tap, sample): the `count` fixed `columns`, then
 /// taxel_0 .. taxel_{taxels-1}; flushes it.
@@ -27,11 +45,30 @@ double csvNumber(const std::string& field, const std::string& path, int line,
 int csvInteger(const std::string& field, const std::string& path, int line,
                const std::string& column);
 
+/// Refuses a tap pose outside 0..bounds.travel_mm (fields `x`, `y` as written), naming the line.
+void checkPose(Vec2 pose, const RecordingBounds& bounds, const std::string& path, int line,
+               const std::string& x, const std::string& y);
+
+/// Refuses a robot time below 0 or below `previous` (the tap before it), naming the line.
+void checkTime(double time, double previous, const std::string& path, int line,
+               const std::string& field);
+
+/// Refuses a row whose first `count` fields (the tap's own columns, named by `columns`) differ
+/// from those of the tap's first row `first`, at `firstLine`.
+void sameAsFirstRow(const std::vector<std::string>& row, const std::vector<std::string>& first,
+                    const char* const* columns, int count, const std::string& path, int line,
+                    int firstLine);
+
+/// `path` opened for reading as a recording; InputError if it is missing, unreadable or over
+/// kMaxRecordingBytes.
+std::ifstream openRecording(const std::string& path);
+
 /// The rows of a recording written and flushed row by row: every row as wide as the header, but
 /// the file's last line, which a run stopped while writing may have cut short.
 class RecordingRows {
 public:
-    /// Reads the header line; throws InputError if the file is empty.
+    /// Reads the header line; throws InputError if the file is empty. Every line is refused past
+    /// kMaxRecordingLineBytes.
     RecordingRows(std::istream& in, const std::string& path);
     const std::vector<std::string>& header() const { return header_; }
     /// The next row as wide as the header, or false at the end of the file. Empty lines are
@@ -42,6 +79,9 @@ public:
     std::string cutOff() const;
 
 private:
+    /// The next line without its newline, refused past kMaxRecordingLineBytes; false at the end.
+    bool readLine(std::string& line);
+
     std::istream& in_;
     std::string path_;
     std::vector<std::string> header_;

@@ -1,5 +1,7 @@
 #include "core/io/FollowingRecording.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <vector>
 
@@ -44,7 +46,11 @@ enum Column {
     kShapeClass,
     kOrientation,
     kPosition,
-    kRule = 14,
+    kOffset,
+    kPosterior,
+    kRule,
+    kMoveX,
+    kMoveY,
     kSample = 19
 };
 
@@ -78,8 +84,9 @@ namespace {
 
 /// Reads and checks `path`; with `trials`, keeps every whole tap.
 FollowingRecordingContents parseFollowingRecording(const std::string& path,
-                                                   std::vector<RecordedTrial>* trials) {
-    std::ifstream in = openInputFile(path);
+                                                   std::vector<RecordedTrial>* trials,
+                                                   const RecordingBounds& bounds) {
+    std::ifstream in = openRecording(path);
     RecordingRows rows(in, path);
     const auto& header = rows.header();
     const int taxels = static_cast<int>(header.size()) - kFixed;
@@ -94,7 +101,11 @@ FollowingRecordingContents parseFollowingRecording(const std::string& path,
                          "tap,... and ends with sample,taxel_0,...,taxel_11");
 
     FollowingRecordingContents contents;
+    contents.samplesPerTap = bounds.samplesPerTap;
     int lineNo = 1;
+    std::vector<std::string> first;  // the tap's first row: its own columns hold on every row
+    int firstLine = 0;
+    double lastTime = 0.0;  // within a trial
     // The tap being read: its trial, its index and how many samples came so far.
     std::string trialKey;
     int tapIndex = -1, samples = 0;
@@ -153,6 +164,25 @@ FollowingRecordingContents parseFollowingRecording(const std::string& path,
         const int tap = static_cast<int>(v[kTap]), sample = static_cast<int>(v[kSample]);
         if (sample == 0) {
             finishTap();
+            if (v[kPosterior] < 0.0 || v[kPosterior] > 1.0)
+                throw InputError(path, at("posterior"),
+                                 "posterior " + f[kPosterior] +
+                                     " is not a probability (0 to 1)");
+            if (std::abs(v[kOrientation]) > 360.0)
+                throw InputError(path, at("orientation_deg"),
+                                 "orientation " + f[kOrientation] + " deg is beyond +-360");
+            const double reach = std::max(bounds.travel_mm.x, bounds.travel_mm.y);
+            for (int c : {kOffset, kMoveX, kMoveY})
+                if (std::abs(v[static_cast<std::size_t>(c)]) > reach)
+                    throw InputError(path, at(kFixedColumns[c]),
+                                     std::string(kFixedColumns[c]) + " " +
+                                         f[static_cast<std::size_t>(c)] +
+                                         " mm reaches beyond the stage travel");
+            checkPose({v[kPoseX], v[kPoseY]}, bounds, path, lineNo, f[kPoseX], f[kPoseY]);
+            checkTime(v[kTime], key == trialKey ? lastTime : 0.0, path, lineNo, f[kTime]);
+            lastTime = v[kTime];
+            first.assign(f.begin(), f.begin() + kSample);
+            firstLine = lineNo;
             const int expected = key == trialKey ? tapIndex + 1 : 0;
             if (tap != expected)
                 throw InputError(path, at("tap"),
@@ -183,7 +213,13 @@ FollowingRecordingContents parseFollowingRecording(const std::string& path,
                              "sample " + f[kSample] +
                                  " does not continue the tap above it; each tap's samples run 0, "
                                  "1, 2, ... in order");
+        } else {
+            sameAsFirstRow(f, first, kFixedColumns, kSample, path, lineNo, firstLine);
         }
+        if (bounds.samplesPerTap > 0 && samples >= contents.samplesPerTap)
+            throw InputError(path, at("sample"),
+                             "the tap has more than " + std::to_string(contents.samplesPerTap) +
+                                 " samples, as many as the run's run.json gives");
         ++samples;
         lastRow = lineNo;
         if (trials)
@@ -211,14 +247,16 @@ FollowingRecordingContents parseFollowingRecording(const std::string& path,
 
 }  // namespace
 
-FollowingRecordingContents checkFollowingRecording(const std::string& path) {
-    return parseFollowingRecording(path, nullptr);
+FollowingRecordingContents checkFollowingRecording(const std::string& path,
+                                                   const RecordingBounds& bounds) {
+    return parseFollowingRecording(path, nullptr, bounds);
 }
 
 std::vector<RecordedTrial> readFollowingRecording(const std::string& path,
-                                                  FollowingRecordingContents* contents) {
+                                                  FollowingRecordingContents* contents,
+                                                  const RecordingBounds& bounds) {
     std::vector<RecordedTrial> trials;
-    const FollowingRecordingContents c = parseFollowingRecording(path, &trials);
+    const FollowingRecordingContents c = parseFollowingRecording(path, &trials, bounds);
     if (contents) *contents = c;
     return trials;
 }

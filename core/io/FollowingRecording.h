@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/control/ContourFollower.h"
+#include "core/io/Csv.h"
 #include "core/io/OutputFile.h"
 
 namespace activetouch {
@@ -41,7 +42,10 @@ struct FollowingRecordingContents {
 /// 0, 1, 2, ... with their samples 0, 1, 2, ... and as many samples as every other tap. Only the
 /// end of the file may be cut short (reported, not an error). Throws InputError naming the file,
 /// the line, the column and the problem.
-FollowingRecordingContents checkFollowingRecording(const std::string& path);
+/// Every row is held to `bounds` and to its tap's first row (the tap's own columns are the same
+/// on all its rows), posteriors lie in 0..1 and robot times never run backwards within a trial.
+FollowingRecordingContents checkFollowingRecording(const std::string& path,
+                                                   const RecordingBounds& bounds = {});
 
 /// What the recorded run perceived and decided at a tap, as the recording words it.
 struct RecordedDecision {
@@ -63,6 +67,7 @@ struct RecordedTrial {
 
 /// Reads and checks a recording as checkFollowingRecording does, keeping every whole tap.
 std::vector<RecordedTrial> readFollowingRecording(const std::string& path,
-                                                  FollowingRecordingContents* contents = nullptr);
+                                                  FollowingRecordingContents* contents = nullptr,
+                                                  const RecordingBounds& bounds = {});
 
 }  // namespace activetouch

@@ -1,5 +1,7 @@
 #include "core/io/TapCsv.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 
 #include "core/common/InputError.h"
@@ -13,6 +15,7 @@ const char* kFixedColumns[] = {
     "set",       "class",     "orientation_deg", "position", "true_offset_mm",
     "pose_x_mm", "pose_y_mm", "robot_time_s",    "ending",   "sample"};
 constexpr int kFixed = 10;
+constexpr int kPerTap = 9;  // set .. ending: the same on every row of a tap
 
 }  // namespace
 
@@ -34,8 +37,8 @@ void TapCsvWriter::append(const CollectedTap& c, const ClassSet& classes) {
 }
 
 std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& classes,
-                                     std::string* cutOff) {
-    std::ifstream in = openInputFile(path);
+                                     std::string* cutOff, const RecordingBounds& bounds) {
+    std::ifstream in = openRecording(path);
     RecordingRows rows(in, path);
     const auto& header = rows.header();
     int taxels = static_cast<int>(header.size()) - kFixed;
@@ -64,7 +67,10 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     auto integer = [&](const std::string& field, const std::string& column) {
         return csvInteger(field, path, lineNo, column);
     };
-    int samplesPerTap = 0, lastRow = 0;
+    int samplesPerTap = bounds.samplesPerTap, lastRow = 0;
+    std::vector<std::string> first;  // the tap's first row: its per-tap columns hold on every row
+    int firstLine = 0;
+    double lastTime = 0.0;
     auto finishTap = [&]() {
         if (taps.empty()) return;
         if (samplesPerTap == 0) samplesPerTap = static_cast<int>(samples.size());
@@ -110,8 +116,16 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
             c.dataSet = set;
             c.cls = cls;
             c.trueOffset_mm = number(f[4], "true_offset_mm");
+            if (std::abs(c.trueOffset_mm) > std::max(bounds.travel_mm.x, bounds.travel_mm.y))
+                throw InputError(path, "line " + std::to_string(lineNo) + ", column true_offset_mm",
+                                 "an offset of " + f[4] + " mm from the edge is beyond the stage");
             c.record.pose = {number(f[5], "pose_x_mm"), number(f[6], "pose_y_mm")};
+            checkPose(c.record.pose, bounds, path, lineNo, f[5], f[6]);
             c.record.startTime_s = number(f[7], "robot_time_s");
+            checkTime(c.record.startTime_s, lastTime, path, lineNo, f[7]);
+            lastTime = c.record.startTime_s;
+            first.assign(f.begin(), f.begin() + kPerTap);
+            firstLine = lineNo;
             if (f[8] != "reflex" && f[8] != "stroke_limit")
                 throw InputError(path, "line " + std::to_string(lineNo) + ", column ending",
                                  "'" + f[8] + "' is neither reflex nor stroke_limit");
@@ -123,7 +137,13 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
                              "sample " + f[9] +
                                  " does not continue the tap above it; each tap's samples run 0, "
                                  "1, 2, ... in order");
+        } else {
+            sameAsFirstRow(f, first, kFixedColumns, kPerTap, path, lineNo, firstLine);
         }
+        if (bounds.samplesPerTap > 0 && static_cast<int>(samples.size()) >= samplesPerTap)
+            throw InputError(path, "line " + std::to_string(lineNo) + ", column sample",
+                             "the tap has more than " + std::to_string(samplesPerTap) +
+                                 " samples, as many as the run's run.json gives");
         std::vector<double> frame(static_cast<std::size_t>(taxels));
         for (int k = 0; k < taxels; ++k) {
             const std::string column = "taxel_" + std::to_string(k);

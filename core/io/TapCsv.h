@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/io/Csv.h"
 #include "core/io/OutputFile.h"
 #include "core/tap/ClassSet.h"
 #include "core/validation/TrainingProtocol.h"
@@ -33,8 +34,11 @@ private:
 /// and the problem for wrong columns, non-numbers, NaN, values outside 0..255, a row whose
 /// orientation and position are not its class's, or taps with unequal numbers of samples. A run
 /// stopped while writing leaves its last tap (and maybe its last line) cut short: that tap is left
-/// out and `cutOff` says what was cut; without `cutOff`, such a file is refused.
+/// out and `cutOff` says what was cut; without `cutOff`, such a file is refused. Every row is held
+/// to `bounds` and to its tap's first row: set, class, pose, time and ending are the tap's, poses
+/// lie inside the travel, times are non-negative and never run backwards.
 std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& classes,
-                                     std::string* cutOff = nullptr);
+                                     std::string* cutOff = nullptr,
+                                     const RecordingBounds& bounds = {});
 
 }  // namespace activetouch
