@@ -164,6 +164,7 @@ void SerialLineChannel::discardInput() {
 
 void SerialLineChannel::received(const QByteArray& bytes) {
     std::lock_guard lock(mutex_);
+    if (!failure_.empty()) return;
     partial_.append(bytes.constData(), static_cast<std::size_t>(bytes.size()));
     std::size_t nl;
     while ((nl = partial_.find('\n')) != std::string::npos) {
@@ -171,6 +172,19 @@ void SerialLineChannel::received(const QByteArray& bytes) {
         partial_.erase(0, nl + 1);
         if (!line.empty() && line.back() == '\r') line.pop_back();
         lines_.push_back(std::move(line));
+    }
+    // A controller's replies are short lines read as they come: a line that never ends, or
+    // lines nobody reads, mean a wrong baud rate or something else on the port.
+    if (partial_.size() > kMaxLineBytes || lines_.size() > kMaxUnreadLines) {
+        failure_ = "serial port " + settings_.portName +
+                   (partial_.size() > kMaxLineBytes
+                        ? " sent more than " + std::to_string(kMaxLineBytes) +
+                              " bytes without a line end"
+                        : " sent more than " + std::to_string(kMaxUnreadLines) +
+                              " lines nobody asked for") +
+                   "; check the baud rate, the parity and that the controller is on this port";
+        partial_.clear();
+        lines_.clear();
     }
     cv_.notify_all();
 }

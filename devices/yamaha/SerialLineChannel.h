@@ -53,6 +53,10 @@ private:
     void received(const QByteArray& bytes);
     void failed(const std::string& why);
 
+    /// An RCX reply line is under 100 bytes; past these the port fails (see received()).
+    static constexpr std::size_t kMaxLineBytes = 4096;
+    static constexpr std::size_t kMaxUnreadLines = 1000;
+
     SerialSettings settings_;
     QThread thread_;
     QObject* context_ = nullptr;   ///< lives in thread_

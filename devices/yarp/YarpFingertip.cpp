@@ -21,6 +21,9 @@ std::optional<std::string> readLine(QTcpSocket& s, QByteArray& buffer, Clock::ti
             if (!line.empty() && line.back() == '\r') line.pop_back();
             return line;
         }
+        // A reply line past the decoder's cap is no YARP reply: the wait ends as if timed out.
+        if (static_cast<std::size_t>(buffer.size()) > StreamDecoder::kMaxTextLineBytes)
+            return std::nullopt;
         const auto left =
             std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
         if (left <= 0 || s.state() != QAbstractSocket::ConnectedState) return std::nullopt;
@@ -31,12 +34,6 @@ std::optional<std::string> readLine(QTcpSocket& s, QByteArray& buffer, Clock::ti
 
 std::string where(const YarpFingertipSettings& s) {
     return s.nameServerHost + ":" + std::to_string(s.nameServerPort);
-}
-
-std::int32_t int32At(const QByteArray& b, int at) {
-    std::int32_t v;
-    std::memcpy(&v, b.constData() + at, 4);
-    return v;
 }
 
 }  // namespace
@@ -88,6 +85,33 @@ void YarpFingertip::disconnect() {
 }
 
 void YarpFingertip::run(std::promise<std::string>* ready) {
+    // Nothing may leave the reader thread: whatever goes wrong in it ends the device in a fault
+    // with a message (and answers a connect still waiting), never std::terminate.
+    bool answered = false;
+    try {
+        serve(ready, answered);
+    } catch (const std::exception& e) {
+        fault(std::string("YARP: reading ") + s_.port + " failed (" + e.what() +
+                  "); reconnect the fingertip",
+              ready, answered);
+    } catch (...) {
+        fault("YARP: reading " + s_.port + " failed; reconnect the fingertip", ready, answered);
+    }
+}
+
+void YarpFingertip::fault(const std::string& problem, std::promise<std::string>* ready,
+                          bool answered) {
+    if (!answered) {
+        ready->set_value(problem);
+        return;
+    }
+    std::lock_guard lock(mutex_);
+    if (failure_.empty()) failure_ = problem;
+    cv_.notify_all();
+    if (log_) log_("!!", problem);
+}
+
+void YarpFingertip::serve(std::promise<std::string>* ready, bool& answered) {
     auto say = [&](const std::string& dir, const std::string& text) {
         if (log_) log_(dir, text);
     };
@@ -180,68 +204,40 @@ void YarpFingertip::run(std::promise<std::string>* ready) {
     }
     data.flush();
     ready->set_value(std::string());
+    answered = true;
 
-    bool wantHeader = true;
+    StreamDecoder decoder(s_.binaryCarrier);
+    auto decode = [&](const QByteArray& bytes) {
+        for (StreamDecoder::Event& e :
+             decoder.feed(bytes.constData(), static_cast<std::size_t>(bytes.size()))) {
+            if (e.kind == StreamDecoder::Event::Fatal) {
+                fault("YARP: " + s_.port + ": " + e.problem + "; reconnect the fingertip", ready,
+                      answered);
+                return;
+            }
+            if (e.kind == StreamDecoder::Event::Bad) {
+                bad(e.problem);
+                continue;
+            }
+            try {
+                deliver(e.values);
+            } catch (const YarpError& err) {
+                bad(err.what());
+            }
+        }
+    };
+    if (!buffer.isEmpty()) decode(buffer);  // what came with the welcome
     while (!stop_) {
-        if (data.state() != QAbstractSocket::ConnectedState) {
+        {
             std::lock_guard lock(mutex_);
-            failure_ = "YARP: " + s_.port + " closed the connection; reconnect the fingertip";
-            cv_.notify_all();
-            say("!!", failure_);
+            if (!failure_.empty()) break;
+        }
+        if (data.state() != QAbstractSocket::ConnectedState) {
+            fault("YARP: " + s_.port + " closed the connection; reconnect the fingertip", ready,
+                  answered);
             break;
         }
-        if (data.waitForReadyRead(50)) buffer += data.readAll();
-        if (s_.binaryCarrier) {
-            // "YA" int32 "RP", block count, block lengths, reply length, blocks.
-            while (buffer.size() >= 12) {
-                if (buffer[0] != 'Y' || buffer[1] != 'A' || buffer[6] != 'R' || buffer[7] != 'P') {
-                    const int next = buffer.indexOf("YA", 1);
-                    bad("a binary message does not start with its YA..RP marker; skipped to the "
-                        "next one");
-                    buffer.remove(0, next < 0 ? buffer.size() : next);
-                    continue;
-                }
-                const std::int32_t blocks = int32At(buffer, 8);
-                if (blocks < 1 || blocks > 16) {
-                    bad("a binary message claims " + std::to_string(blocks) + " blocks");
-                    buffer.remove(0, 2);
-                    continue;
-                }
-                const int headerBytes = 12 + 4 * blocks + 4;
-                if (buffer.size() < headerBytes) break;
-                long long total = 0;
-                for (int b = 0; b < blocks; ++b) total += int32At(buffer, 12 + 4 * b);
-                if (buffer.size() < headerBytes + total) break;
-                const std::int32_t lastLength = int32At(buffer, 12 + 4 * (blocks - 1));
-                const char* last = buffer.constData() + headerBytes + total - lastLength;
-                std::vector<std::uint8_t> payload(last, last + lastLength);
-                buffer.remove(0, headerBytes + static_cast<int>(total));
-                try {
-                    deliver(parseBinaryVector(payload));
-                } catch (const YarpError& e) {
-                    bad(e.what());
-                }
-            }
-        } else {
-            const auto noWait = Clock::now();
-            while (auto line = readLine(data, buffer, noWait)) {
-                if (wantHeader) {
-                    if (isMessageHeader(*line))
-                        wantHeader = false;
-                    else
-                        bad("a line where a message header belongs: '" + line->substr(0, 40) + "'");
-                    continue;
-                }
-                wantHeader = true;
-                try {
-                    deliver(parseDataLine(*line));
-                } catch (const YarpError& e) {
-                    bad(e.what());
-                }
-            }
-        }
-        std::lock_guard lock(mutex_);
-        if (!failure_.empty()) break;
+        if (data.bytesAvailable() > 0 || data.waitForReadyRead(50)) decode(data.read(kReadChunk));
     }
     data.abort();
 }

@@ -14,6 +14,8 @@
 #include <thread>
 #include <vector>
 
+#include <QtGlobal>
+
 #include "core/rig/Rig.h"
 #include "devices/yarp/YarpProtocol.h"
 
@@ -61,6 +63,12 @@ public:
 
 private:
     void run(std::promise<std::string>* ready);
+    /// The thread's work: connect, answer `ready`, then read until stopped or failed.
+    void serve(std::promise<std::string>* ready, bool& answered);
+    /// Ends the device in a fault: answers `ready` if the connect is still waiting, else sets
+    /// the failure every wait then reports.
+    void fault(const std::string& problem, std::promise<std::string>* ready, bool answered);
+    static constexpr qint64 kReadChunk = 64 << 10;  ///< read at most this much per wait
     void deliver(const std::vector<double>& hand);
     void bad(const std::string& problem);
 

@@ -171,4 +171,125 @@ std::vector<double> SkinCompensation::compensate(const std::vector<double>& raw)
     return out;
 }
 
+std::vector<StreamDecoder::Event> StreamDecoder::feed(const char* data, std::size_t size) {
+    std::vector<Event> events;
+    if (dead_) return events;
+    buffer_.append(data, size);
+    if (binary_)
+        decodeBinary(events);
+    else
+        decodeText(events);
+    // Decoded bytes go once they are half the buffer: each byte is moved at most a few times.
+    if (start_ > 0 && start_ * 2 >= buffer_.size()) {
+        buffer_.erase(0, start_);
+        start_ = 0;
+    }
+    return events;
+}
+
+void StreamDecoder::fatal(std::vector<Event>& events, const std::string& problem) {
+    dead_ = true;
+    buffer_.clear();
+    start_ = 0;
+    events.push_back({Event::Fatal, {}, problem});
+}
+
+void StreamDecoder::decodeText(std::vector<Event>& events) {
+    while (!dead_) {
+        const std::size_t nl = buffer_.find('\n', start_);
+        if (nl == std::string::npos) {
+            if (buffered() > kMaxTextLineBytes)
+                fatal(events, "a text line runs past " + std::to_string(kMaxTextLineBytes >> 10) +
+                                  " KiB without ending; this is no skin stream");
+            return;
+        }
+        if (nl - start_ > kMaxTextLineBytes) {
+            fatal(events, "a text line of " + std::to_string(nl - start_) +
+                              " bytes; a skin message is a few kilobytes");
+            return;
+        }
+        std::string line = buffer_.substr(start_, nl - start_);
+        start_ = nl + 1;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (wantHeader_) {
+            if (isMessageHeader(line))
+                wantHeader_ = false;
+            else
+                events.push_back({Event::Bad, {},
+                                  "a line where a message header belongs: '" +
+                                      line.substr(0, 40) + "'"});
+            continue;
+        }
+        wantHeader_ = true;
+        try {
+            events.push_back({Event::Values, parseDataLine(line), {}});
+        } catch (const YarpError& e) {
+            events.push_back({Event::Bad, {}, e.what()});
+        }
+    }
+}
+
+namespace {
+
+std::int32_t int32At(const std::string& b, std::size_t at) {
+    std::int32_t v;
+    std::memcpy(&v, b.data() + at, 4);
+    return v;
+}
+
+}  // namespace
+
+void StreamDecoder::decodeBinary(std::vector<Event>& events) {
+    // "YA" int32 "RP", block count, block lengths, reply length, then the blocks.
+    while (!dead_ && buffered() >= 12) {
+        const std::size_t at = start_;
+        if (buffer_[at] != 'Y' || buffer_[at + 1] != 'A' || buffer_[at + 6] != 'R' ||
+            buffer_[at + 7] != 'P') {
+            const std::size_t next = buffer_.find("YA", at + 1);
+            events.push_back({Event::Bad, {},
+                              "a binary message does not start with its YA..RP marker; skipped "
+                              "to the next one"});
+            start_ = next == std::string::npos ? buffer_.size() - 1 : next;
+            continue;
+        }
+        const std::int32_t blocks = int32At(buffer_, at + 8);
+        if (blocks < 1 || blocks > kMaxBlocks) {
+            events.push_back({Event::Bad, {},
+                              "a binary message claims " + std::to_string(blocks) + " blocks"});
+            start_ = at + 2;
+            continue;
+        }
+        const std::size_t headerBytes = 12 + 4 * static_cast<std::size_t>(blocks) + 4;
+        if (buffered() < headerBytes) return;
+        std::int64_t total = 0;
+        for (int b = 0; b < blocks; ++b) {
+            const std::int32_t length = int32At(buffer_, at + 12 + 4 * static_cast<std::size_t>(b));
+            if (length < 0 || length > kMaxBlockBytes) {
+                fatal(events, "a binary message claims a block of " + std::to_string(length) +
+                                  " bytes (at most " + std::to_string(kMaxBlockBytes) +
+                                  "); the stream can no longer be framed");
+                return;
+            }
+            total += length;
+        }
+        if (total > kMaxBlockBytes) {
+            fatal(events, "a binary message claims " + std::to_string(total) +
+                              " bytes of blocks; the stream can no longer be framed");
+            return;
+        }
+        const std::size_t whole = headerBytes + static_cast<std::size_t>(total);
+        if (buffered() < whole) return;
+        const std::int32_t lastLength =
+            int32At(buffer_, at + 12 + 4 * static_cast<std::size_t>(blocks - 1));
+        const char* last = buffer_.data() + at + whole - static_cast<std::size_t>(lastLength);
+        const std::vector<std::uint8_t> payload(last, last + lastLength);
+        start_ = at + whole;
+        try {
+            events.push_back({Event::Values, parseBinaryVector(payload), {}});
+        } catch (const YarpError& e) {
+            events.push_back({Event::Bad, {}, e.what()});
+        }
+    }
+}
+
 }  // namespace activetouch::yarp

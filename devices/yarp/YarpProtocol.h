@@ -43,6 +43,44 @@ std::vector<double> parseDataLine(const std::string& line);
 /// the payload length. Throws YarpError for anything else.
 std::vector<double> parseBinaryVector(const std::vector<std::uint8_t>& payload);
 
+/// A reader connection's byte stream (text or binary carrier) decoded as bytes arrive, with no
+/// socket: the reader thread feeds it what it reads, tests and the fuzzer feed it anything. Every
+/// length the stream claims is checked before it is trusted, and nothing is buffered without a
+/// bound: a line or a frame past its cap ends the stream (the framing is lost), a message that
+/// cannot be read is reported and skipped.
+class StreamDecoder {
+public:
+    /// The longest text line and the largest binary block a skin stream has any use for: a
+    /// 192-value hand vector is under 4 KiB in either carrier.
+    static constexpr std::size_t kMaxTextLineBytes = 64u << 10;
+    static constexpr std::int64_t kMaxBlockBytes = 1 << 20;
+    static constexpr int kMaxBlocks = 16;
+
+    struct Event {
+        enum Kind { Values, Bad, Fatal } kind = Values;
+        std::vector<double> values;  ///< Values: the message's numbers
+        std::string problem;         ///< Bad, Fatal: in a sentence
+    };
+
+    explicit StreamDecoder(bool binaryCarrier) : binary_(binaryCarrier) {}
+    /// Appends `size` bytes and decodes every whole message in order. After a Fatal event the
+    /// stream is dead: further bytes are ignored.
+    std::vector<Event> feed(const char* data, std::size_t size);
+    bool dead() const { return dead_; }
+    std::size_t buffered() const { return buffer_.size() - start_; }
+
+private:
+    void decodeText(std::vector<Event>& events);
+    void decodeBinary(std::vector<Event>& events);
+    void fatal(std::vector<Event>& events, const std::string& problem);
+
+    bool binary_;
+    bool dead_ = false;
+    bool wantHeader_ = true;  ///< text carrier: a message header line comes next
+    std::string buffer_;
+    std::size_t start_ = 0;  ///< where the undecoded bytes begin in buffer_
+};
+
 /// The first taxel of each fingertip in the 192-value hand vector.
 enum class Finger { Index = 0, Middle = 12, Ring = 24, Little = 36, Thumb = 48 };
 /// The 12 values of `finger`. Throws YarpError if the vector is not 192 values long.
