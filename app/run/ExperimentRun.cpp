@@ -4,12 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
 
 #include "app/run/OutputFiles.h"
+#include "app/run/RunFolder.h"
 #include "core/common/NumberText.h"
+#include "core/experiment/RunPlan.h"
 #include "core/geometry/ShapeLibrary.h"
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
@@ -71,11 +74,11 @@ TrialSetup trialSetupFor(const RunResult& trained, FollowingMode mode,
 
 int plannedTapEstimate(const ExperimentSpec& spec) {
     // Training taps are known; a trial takes about a perimeter's worth of follow steps plus the
-    // repositioning around corners, which a fifth more covers.
-    double taps = spec.plannedTaps();
-    for (const TrialSpec& t : spec.trials)
-        taps += t.repeats * 1.2 * t.object.outline().perimeter() / spec.following.followStep_mm;
-    return static_cast<int>(taps);
+    // repositioning around corners (RunPlan). A plan beyond an int's range is refused before any
+    // run unless asked for; a progress count saturates there.
+    const RunPlan plan = planOf(spec);
+    return static_cast<int>(
+        std::min(plan.trainingTaps + plan.trialTaps, double(std::numeric_limits<int>::max())));
 }
 
 RecordedRun readRecordedRun(const std::string& runDir, const ClassSet& classes) {
@@ -97,9 +100,12 @@ RecordedRun readRecordedRun(const std::string& runDir, const ClassSet& classes) 
                          "data/taps.csv here to replay both");
     RecordedRun run;
     run.name = runDir;
-    run.taps = readTapCsv(taps, classes, &run.tapsCutOff);
+    // Both files must be the one run's: a folder that mixes runs is refused, naming the file.
+    const RecordingBounds bounds = checkedRecordingBounds(taps, &run.note);
+    checkedRecordingBounds(following);
+    run.taps = readTapCsv(taps, classes, &run.tapsCutOff, bounds);
     FollowingRecordingContents contents;
-    run.trials = readFollowingRecording(following, &contents);
+    run.trials = readFollowingRecording(following, &contents, bounds);
     run.followingTaps = contents.taps;
     run.trialsCutOff = contents.cutOff;
     return run;
@@ -351,6 +357,7 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
 
     std::unique_ptr<TapCsvWriter> recording;
     if (!options.outDir.empty()) {
+        if (options.beforeWriting) options.beforeWriting();
         ensureOutputDirectory((fs::path(options.outDir) / "data").string());
         recording = std::make_unique<TapCsvWriter>(
             (fs::path(options.outDir) / "data" / "taps.csv").string(), model->taxelCount());
@@ -392,7 +399,7 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     }
     if (simulated) result.tapsSimulated = simulated->world().tapsSimulated();
     if (recorded ? result.taps.size() < recorded->size()
-                 : static_cast<int>(result.taps.size()) < spec.plannedTaps()) {
+                 : static_cast<std::int64_t>(result.taps.size()) < spec.plannedTaps()) {
         result.cancelled = true;
         result.runWall_s =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -475,6 +482,18 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     return result;
 }
 
+RunResult runExperimentOrFailure(const ExperimentSpec& spec, const RunOptions& options) {
+    try {
+        return runExperiment(spec, options);
+    } catch (const RigError& e) {
+        RunResult failed;
+        failed.spec = spec;
+        if (options.seed) failed.spec.scene.seed = *options.seed;
+        failed.failure = std::string("during the training taps: ") + e.what();
+        return failed;
+    }
+}
+
 std::string followingClassifierNote(const RunResult& r) {
     if (r.classifierRetrainedOnTaps == 0) return {};
     return "following classifier: trained again after validation on all " +
@@ -541,7 +560,8 @@ RunResult runFollowing(const RunResult& trained, const ExperimentSpec& specIn,
         ensureOutputDirectory((fs::path(options.outDir) / "data").string());
     auto model = std::make_shared<const FingertipContactModel>(result.spec.scene.fingertip);
     RunProgress progress;
-    progress.tapsPlanned = plannedTapEstimate(result.spec) - result.spec.plannedTaps();
+    progress.tapsPlanned =
+        static_cast<int>(plannedTapEstimate(result.spec) - result.spec.plannedTaps());
     runTrials(result, model, options, progress);
     result.runWall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -960,8 +980,10 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
 }
 
 void writeSummary(const RunResult& r, const std::string& outDir, double wall_s, double figures_s) {
-    writeJsonAtomically((fs::path(outDir) / "summary.json").string(),
-                        summaryJson(r, wall_s, figures_s));
+    Json summary = summaryJson(r, wall_s, figures_s);
+    // The run that claimed the folder: replay refuses a summary of another run beside its data.
+    if (const std::string id = runIdOf(outDir); !id.empty()) summary["run_id"] = id;
+    writeJsonAtomically((fs::path(outDir) / "summary.json").string(), summary);
 }
 
 }  // namespace activetouch

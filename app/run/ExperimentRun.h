@@ -95,6 +95,9 @@ struct RunOptions {
     /// tapped; where it decides otherwise it leaves the recording (TrialEnd::LeftRecording).
     const std::vector<RecordedTrial>* recordedTrials = nullptr;
     std::string recordingName;  ///< where the recorded taps came from, for the summary
+    /// Called once, after every input check and before the first file is written in outDir: a
+    /// caller claims the folder there (RunFolder.h), so that a refused input writes nothing.
+    std::function<void()> beforeWriting;
 };
 
 /// A recording read back whole: training and test taps to analyse instead of taking any, and for
@@ -106,6 +109,8 @@ struct RecordedRun {
     int followingTaps = 0;
     /// Empty, or what a run stopped while writing cut from the end of each file.
     std::string tapsCutOff, trialsCutOff;
+    /// Empty, or why the files could not be checked to come from one run (no run.json).
+    std::string note;
     bool replay() const { return !trials.empty(); }
 };
 
@@ -140,6 +145,11 @@ void checkRunnableOn(const ExperimentSpec& spec, const ObjectSpec& object);
 /// noted in `failure`, and stops the run with everything recorded so far. InputError if the output
 /// cannot be written.
 RunResult runExperiment(const ExperimentSpec& spec, const RunOptions& options);
+
+/// runExperiment for runs over seeds: a device or rig error during the training taps, which
+/// runExperiment throws, comes back as a result with `failure` set and no trials, as one during a
+/// trial does, so that the run counts as failed and never as trials lost.
+RunResult runExperimentOrFailure(const ExperimentSpec& spec, const RunOptions& options);
 
 /// What the trials follow with when it is not the validated classifier: a sentence saying the
 /// classifier was trained again on every data set after validation, or empty.

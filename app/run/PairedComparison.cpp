@@ -173,6 +173,13 @@ double PairedComparison::robotTimeDifferenceSd_s() const {
 
 void addSeed(PairedComparison& c, const RunResult& a, const RunResult& b,
              std::vector<PairedTrial>* trials) {
+    if (!a.failure.empty() || !b.failure.empty()) {
+        for (const auto& [side, run] : {std::pair{"a", &a}, std::pair{"b", &b}})
+            if (!run->failure.empty())
+                c.failedRuns.push_back("seed " + std::to_string(run->spec.scene.seed) + ", " +
+                                       side + " (" + run->spec.name + "): " + run->failure);
+        return;
+    }
     ++c.seeds;
     c.robotTimeSumA_s += a.robotTime_s;
     c.robotTimeSumB_s += b.robotTime_s;
@@ -236,7 +243,8 @@ PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
     const auto run = [&a, &b](std::uint64_t seed) {
         RunOptions options;
         options.seed = seed;
-        return std::make_pair(runExperiment(a, options), runExperiment(b, options));
+        return std::make_pair(runExperimentOrFailure(a, options),
+                              runExperimentOrFailure(b, options));
     };
     // Each seed in turn: its pairs into the comparison, then its rows into the tables.
     const auto record = [&](std::uint64_t seed, std::pair<RunResult, RunResult>&& runs) {
@@ -271,8 +279,11 @@ PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
 }
 
 Json pairedComparisonJson(const PairedComparison& c) {
-    Json doc = {
-        {"a", c.nameA}, {"b", c.nameB}, {"seeds", c.seeds}, {"unpaired_trials", c.unpairedTrials}};
+    Json doc = {{"a", c.nameA},
+                {"b", c.nameB},
+                {"seeds", c.seeds},
+                {"unpaired_trials", c.unpairedTrials},
+                {"failed_runs", c.failedRuns}};
     for (const PairedPart& part : kPairedParts) doc[part.key] = pairedRateJson(c.*part.rate);
     doc["robot_time_per_run_s"] = {
         {"a", c.meanRobotTimeA_s()},
@@ -284,6 +295,11 @@ Json pairedComparisonJson(const PairedComparison& c) {
 
 std::vector<std::string> describeComparison(const PairedComparison& c) {
     std::vector<std::string> lines;
+    if (!c.failedRuns.empty()) {
+        lines.push_back(std::to_string(c.failedRuns.size()) +
+                        " failed runs (device or rig error), their seeds not compared:");
+        for (const std::string& f : c.failedRuns) lines.push_back("  " + f);
+    }
     char buf[320];
     std::snprintf(buf, sizeof buf, "A = %s, B = %s, %d seeds, trial by trial:", c.nameA.c_str(),
                   c.nameB.c_str(), c.seeds);

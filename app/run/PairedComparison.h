@@ -78,6 +78,9 @@ struct PairedComparison : PairedParts {
     std::vector<PairedParts> soFar;
     /// Trials only one experiment has (a label, mode or repeat the other lacks); not compared.
     int unpairedTrials = 0;
+    /// Seeds whose run failed in either experiment on a device or rig error: "seed 3, a: ...".
+    /// Their trials are not compared (a failed run is no outcome of either experiment).
+    std::vector<std::string> failedRuns;
     double robotTimeSumA_s = 0.0, robotTimeSumB_s = 0.0;  ///< whole runs
     double robotTimeDiffSquares = 0.0;                    ///< sum of (B - A)^2 per seed
     double meanRobotTimeA_s() const { return seeds ? robotTimeSumA_s / seeds : 0.0; }

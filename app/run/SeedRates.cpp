@@ -114,7 +114,13 @@ SeedOutcome seedOutcome(const RunResult& run) {
     o.positionError_mm = run.validation.positionError_mm;
     o.validRange = run.validation.validRange;
     o.recognition = run.spec.recognition.enabled;
+    o.runFailure = run.failure;
+    int planned = 0;
+    for (const TrialSpec& t : run.spec.trials) planned += t.repeats;
+    int counted = 0;
     for (const TrialRun& t : run.trials) {
+        if (t.result.end == TrialEnd::DeviceError) continue;  // the run failed, not the trial
+        ++counted;
         const Tracing traced{1, t.result.coverage, t.result.meanContourDistance_mm};
         if (t.result.mode == FollowingMode::Passive) {
             ++o.passiveTrials;
@@ -147,6 +153,7 @@ SeedOutcome seedOutcome(const RunResult& run) {
         o.completedRobotTime_s += t.result.robotTime_s;
         o.activeTracing.add(traced);
     }
+    if (o.failed()) o.trialsNotRun = planned - counted;
     return o;
 }
 
@@ -400,7 +407,9 @@ Json seedRatesJson(const SeedRates& r) {
               s.paperResultApplies() ? Json(s.paperResultSmoothed()) : Json(nullptr)},
              {"active_failures", s.failures},
              {"passive_not_lost_at_a_corner", s.passiveShortfalls},
-             {"misnamed_paths", s.misnamed()}});
+             {"misnamed_paths", s.misnamed()},
+             {"run_failure", s.failed() ? Json(s.runFailure) : Json(nullptr)},
+             {"trials_not_run", s.trialsNotRun}});
     auto byLabel = [](const RatesByLabel& rates) {
         Json list = Json::array();
         for (const auto& [label, rate] : rates) {
@@ -413,6 +422,7 @@ Json seedRatesJson(const SeedRates& r) {
     const RecognitionConfusion confusion = r.confusion();
     return {{"seeds", seeds},
             {"runs", r.seeds.size()},
+            {"runs_failed", rateJson(r.runsFailed())},
             {"passive_lost", rateJson(r.passiveLost())},
             {"passive_lost_by_label", byLabel(r.passiveLostByLabel())},
             {"passive_lost_at_a_corner", rateJson(r.passiveLostAtCorner())},
@@ -458,6 +468,15 @@ std::vector<std::string> describeRates(const SeedRates& r) {
         if (rates.size() > 1)
             for (const auto& [label, rate] : rates) line("  " + label, rate);
     };
+    if (const Rate failed = r.runsFailed(); failed.count > 0) {
+        // A device or rig error is no outcome of the method: such runs count in no trial rate.
+        line("runs failed (device or rig error)", failed);
+        for (const SeedOutcome& o : r.seeds)
+            if (o.failed())
+                lines.push_back("  seed " + std::to_string(o.seed) + ", " +
+                                std::to_string(o.trialsNotRun) + " trials not run: " +
+                                o.runFailure);
+    }
     line("passive trials lost", r.passiveLost());
     perLabel(r.passiveLostByLabel());
     line("passive trials lost at a corner", r.passiveLostAtCorner());
@@ -539,6 +558,15 @@ std::vector<std::string> describeRates(const SeedRates& r) {
     return lines;
 }
 
+Rate SeedRates::runsFailed() const {
+    Rate r;
+    for (const SeedOutcome& s : seeds) {
+        ++r.total;
+        r.count += s.failed();
+    }
+    return r;
+}
+
 SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
                    const std::string& outDir,
                    const std::function<bool(const SeedOutcome&)>& seedDone, int jobs) {
@@ -554,11 +582,11 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
             "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
             "valid_range_positions,"
             "paper_result,paper_result_smoothed,active_failures,misnamed_paths,"
-            "passive_not_lost_at_a_corner\n");
+            "passive_not_lost_at_a_corner,run_failure,trials_not_run\n");
     const auto run = [&spec](std::uint64_t seed) {
         RunOptions options;
         options.seed = seed;
-        return seedOutcome(runExperiment(spec, options));
+        return seedOutcome(runExperimentOrFailure(spec, options));
     };
     forEachSeed(first, last, jobs, run, [&](std::uint64_t, SeedOutcome&& o) {
         rates.seeds.push_back(o);
@@ -568,14 +596,16 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
             const char* smoothed = !o.paperResultApplies()   ? ""
                                    : o.paperResultSmoothed() ? "1"
                                                              : "0";
-            file->print("%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s,%s,%s\n",
+            file->print(
+                "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s,%s,%s,%s,%d\n",
                         static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
                         o.passiveLostAtCorner(), o.activeTrials, o.activeCompleted,
                         o.recognitionTrials(), o.recognisedRaw(), o.recognisedSmoothed(),
                         o.completedTaps, o.completedRobotTime_s, o.runRobotTime_s, o.angleError_deg,
                         o.positionError_mm, o.validRange.span().c_str(), paper, smoothed,
                         csvField(o.failures).c_str(), csvField(o.misnamed()).c_str(),
-                        csvField(o.passiveShortfalls).c_str());
+                        csvField(o.passiveShortfalls).c_str(),
+                        o.failed() ? csvField({o.runFailure}).c_str() : "", o.trialsNotRun);
             file->flush();
         }
         return !seedDone || seedDone(o);

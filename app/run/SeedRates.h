@@ -72,6 +72,12 @@ struct SeedOutcome {
     double runRobotTime_s = 0.0;        ///< the whole run, training included
     double angleError_deg = 0.0, positionError_mm = 0.0;  ///< offline validation
     ValidRange validRange;                                ///< the positions the validation picked
+    /// A device or rig error that stopped the run (a stage asked past its travel, a stream that
+    /// dropped): the run failed, its trial in flight and the ones after it were not run and count
+    /// in no trial rate.
+    std::string runFailure;
+    int trialsNotRun = 0;
+    bool failed() const { return !runFailure.empty(); }
     std::vector<std::string> failures;  ///< "cross trial 2: lost: ..." for each active trial lost
     /// "passive rectangle trial 2: completed ..." for each passive trial not lost at a corner.
     std::vector<std::string> passiveShortfalls;
@@ -96,7 +102,9 @@ struct SeedOutcome {
     std::vector<std::string> misnamed() const;
 
     /// Whether the run has the paper's parts: passive and active trials, and recognition.
-    bool paperResultApplies() const { return passiveTrials > 0 && activeTrials > 0 && recognition; }
+    bool paperResultApplies() const {
+        return !failed() && passiveTrials > 0 && activeTrials > 0 && recognition;
+    }
     /// The paper's result whole in this run: every passive trial lost, every active trial
     /// completed and every active path recognised by the paper's rule.
     bool paperResult() const { return paperFollowing() && recognisedRaw() == recognitionTrials(); }
@@ -161,6 +169,7 @@ struct ValidRangeRate {
 
 struct SeedRates {
     std::vector<SeedOutcome> seeds;
+    Rate runsFailed() const;  ///< of runs: stopped by a device or rig error
     Rate passiveLost() const;
     Rate passiveLostAtCorner() const;  ///< of passive trials
     Rate activeCompleted() const;

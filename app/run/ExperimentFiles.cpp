@@ -1,0 +1,29 @@
+#include "app/run/ExperimentFiles.h"
+
+#include <filesystem>
+
+#include "core/fingertip/FingertipContactModel.h"
+#include "devices/simulated/SimulatedWorld.h"
+
+namespace activetouch {
+
+ExperimentSpec loadCheckedExperiment(const std::string& path, bool requireExperiment) {
+    const Json j = readJsonFile(path);
+    ExperimentSpec spec;
+    if (looksLikeExperiment(j)) {
+        spec = loadExperiment(path);
+    } else if (requireExperiment) {
+        throw InputError(
+            path, "/",
+            "this is not an experiment file (it has neither 'scene' nor 'extends'); give an "
+            "experiment such as experiments/paper.json");
+    } else {
+        spec.scene =
+            parseScene(j, path, "", std::filesystem::path(path).parent_path().string());
+    }
+    const FingertipContactModel model(spec.scene.fingertip);
+    validateEffects(spec.scene, model);
+    return spec;
+}
+
+}  // namespace activetouch
