@@ -26,10 +26,13 @@
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
+#include "app/run/ExperimentFiles.h"
 #include "app/run/ExperimentRun.h"
 #include "app/run/PairedComparison.h"
+#include "app/run/RunFolder.h"
 #include "app/run/SeedRates.h"
 #include "core/experiment/Experiment.h"
+#include "core/experiment/RunPlan.h"
 #include "core/io/Csv.h"
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
@@ -132,10 +135,17 @@ void printHelp() {
         "      otherwise and left the recording. --out defaults to\n"
         "      results/<experiment name>_replay.\n"
         "  activetouch-cli check <file.json | taps.csv | following_taps.csv>\n"
-        "      Validates an experiment, a scene, a rig file or a recording (training taps,\n"
+        "                        [--allow-long-plan]\n"
+        "      Validates an experiment (and prints its plan: taps and robot time), a scene,\n"
+        "      a rig file or a recording (training taps,\n"
         "      or following taps: a run stopped while writing leaves every finished tap whole\n"
         "      and the cut is reported) and says what is wrong, if anything.\n"
         "  activetouch-cli --help\n\n"
+        "Every command that writes a folder refuses one that already holds a run (its run.json,\n"
+        "summary, tables or data) unless given --replace, which removes that run's files first;\n"
+        "files of yours in the folder are left alone. run, seeds and compare refuse a plan\n"
+        "beyond 10,000,000 taps, 24 h of robot time or 2 GiB of taps held in memory unless\n"
+        "given --allow-long-plan; check prints the plan. Limits: docs/limits.md.\n\n"
         "Exit codes: 0 ok, 1 the run failed, 2 bad input (the message names the file, the place "
         "and the problem).\n");
 }
@@ -144,25 +154,6 @@ int usageError(const std::string& message) {
     std::fprintf(stderr, "activetouch-cli: %s\nRun 'activetouch-cli --help' for usage.\n",
                  message.c_str());
     return kBadInput;
-}
-
-/// Loads an experiment or a scene and checks everything the run would check, effects included.
-ExperimentSpec loadChecked(const std::string& path, bool requireExperiment) {
-    const Json j = readJsonFile(path);
-    ExperimentSpec spec;
-    if (looksLikeExperiment(j)) {
-        spec = loadExperiment(path);
-    } else if (requireExperiment) {
-        throw InputError(
-            path, "/",
-            "this is not an experiment file (it has neither 'scene' nor 'extends'); 'run' takes an "
-            "experiment such as experiments/paper.json");
-    } else {
-        spec.scene = parseScene(j, path, "", fs::path(path).parent_path().string());
-    }
-    FingertipContactModel model(spec.scene.fingertip);
-    validateEffects(spec.scene, model);
-    return spec;
 }
 
 /// Says, before any tap, what an experiment will run but cannot do well.
@@ -175,10 +166,39 @@ void printCautions(const ExperimentSpec& spec) {
 /// message is printed and nothing is returned.
 std::optional<ExperimentSpec> loadForRun(const std::string& path) {
     try {
-        ExperimentSpec spec = loadChecked(path, true);
+        ExperimentSpec spec = loadCheckedExperiment(path, true);
         printCautions(spec);
         return spec;
     } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return std::nullopt;
+    }
+}
+
+/// Refuses (printing why) a plan of `runs` runs of `spec` beyond the bounds, unless allowed;
+/// `onRig`: its taps are taken on a rig, so its robot time is bounded too.
+bool planAccepted(const ExperimentSpec& spec, double runs, bool allowed, bool onRig = false) {
+    const RunPlan plan = planOf(spec).times(runs);
+    const PlanProblem problem = planProblem(
+        plan,
+        runs > 1 ? std::to_string(static_cast<long long>(runs)) + " runs of the experiment"
+                 : "the experiment",
+        onRig);
+    if (problem.empty() || allowed) return true;
+    std::fprintf(stderr, "error: %s\n",
+                 InputError::compose(spec.source, problem.place, problem.problem).c_str());
+    return false;
+}
+
+/// Claims `outDir` for a run (printing why not); while it lives, the folder's run.json is
+/// completed with the run's files whenever the command ends.
+std::optional<RunFolderClaim> claimOrSay(const std::string& outDir, const char* command,
+                                         const ExperimentSpec& spec, const RunFacts& facts,
+                                         bool replace) {
+    try {
+        return std::optional<RunFolderClaim>(std::in_place, outDir, command, spec.name, facts,
+                                             replace);
+    } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return std::nullopt;
     }
@@ -219,6 +239,8 @@ struct RunArguments {
     std::map<std::string, std::uint64_t> seeds;  ///< the whole-number options as given
     std::map<std::string, std::string> texts;    ///< "--rig", "--show" as given
     bool figures = true;
+    bool replace = false;        ///< --replace: an earlier run in --out may be removed
+    bool allowLongPlan = false;  ///< --allow-long-plan: a plan beyond the bounds is meant
     std::string error;
 
     std::string text(const std::string& option) const {
@@ -256,6 +278,11 @@ RunArguments parseRunArguments(const std::vector<std::string>& args, const char*
             r.texts[a] = args[++i];
         } else if (a == "--no-figures" && figuresOption) {
             r.figures = false;
+        } else if (a == "--replace") {
+            r.replace = true;
+        } else if (a == "--allow-long-plan" && std::string(command) != "analyse" &&
+                   std::string(command) != "replay") {
+            r.allowLongPlan = true;
         } else if (!a.empty() && a[0] == '-') {
             return fail("unknown option '" + a + "'");
         } else if (r.experimentPath.empty()) {
@@ -403,11 +430,10 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
             return kBadInput;
         }
     }
+    if (!planAccepted(spec, 1, parsed.allowLongPlan, rigConfig.has_value())) return kBadInput;
     if (outDir.empty()) outDir = (fs::path("results") / spec.name).string();
-    const fs::path out(outDir);
-    // A stale summary must never be mistaken for this run's.
-    std::error_code ec;
-    fs::remove(out / "summary.json", ec);
+    const auto claimed = claimOrSay(outDir, "run", spec, runFactsOf(spec), parsed.replace);
+    if (!claimed) return kBadInput;
 
     RunResult result;
     try {
@@ -445,6 +471,9 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
             result = runExperiment(spec, options);
             assembled->shutdown();
         } else {
+            // Ctrl-C stops after the tap in flight, as on a rig, keeping every tap taken.
+            const InterruptHandlers handlers;
+            options.cancel = &gInterrupted;
             result = runExperiment(spec, options);
         }
         const Timing t = writeArtefacts(result, outDir, figures, argc, argv, start);
@@ -498,14 +527,15 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv, 
         parsed.outDir.empty()
             ? (fs::path("results") / (spec.name + (replay ? "_replay" : "_analysis"))).string()
             : parsed.outDir;
-    const fs::path out(outDir);
     try {
         // Read whole before anything is written: the output may be where the recording lies.
         RecordedRun recorded;
         if (replay)
             recorded = readRecordedRun(parsed.recordingPath, spec.classes);
         else
-            recorded.taps = readTapCsv(parsed.recordingPath, spec.classes, &recorded.tapsCutOff);
+            recorded.taps =
+                readTapCsv(parsed.recordingPath, spec.classes, &recorded.tapsCutOff,
+                           checkedRecordingBounds(parsed.recordingPath, &recorded.note));
         const std::vector<CollectedTap>& taps = recorded.taps;
         const std::string& cut = recorded.tapsCutOff;
         RunOptions options;
@@ -513,8 +543,13 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv, 
         options.recordedTaps = &taps;
         options.recordedTrials = replay ? &recorded.trials : nullptr;
         options.recordingName = parsed.recordingPath;
-        std::error_code ec;
-        fs::remove(out / "summary.json", ec);
+        if (!recorded.note.empty()) std::fprintf(stderr, "caution: %s\n", recorded.note.c_str());
+        // The folder is claimed once the recording has passed every check: a refused one
+        // writes nothing.
+        std::optional<RunFolderClaim> claimed;
+        options.beforeWriting = [&] {
+            claimed.emplace(outDir, command, spec.name, runFactsOf(spec, &taps), parsed.replace);
+        };
         const RunResult result = runExperiment(spec, options);
         const Timing t = writeArtefacts(result, outDir, parsed.figures, argc, argv, start);
         if (replay)
@@ -597,6 +632,17 @@ int overSeeds(const char* what, const std::string& outDir, const char* table, bo
     }
 }
 
+/// A command over seeds whose runs all ended but some failed on a device or rig error exits 1,
+/// saying so: such a run is no outcome of the experiment.
+int failedRunsExit(int code, int failedRuns, const std::string& outDir, const char* where) {
+    if (code != kOk || failedRuns == 0) return code;
+    std::fprintf(stderr,
+                 "%d run%s failed on a device or rig error (not counted as lost trials); see "
+                 "%s/%s\n",
+                 failedRuns, failedRuns == 1 ? "" : "s", outDir.c_str(), where);
+    return kRunFailed;
+}
+
 int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     const RunArguments parsed =
         parseRunArguments(args, "seeds", {"--from", "--to", "--jobs"}, true);
@@ -608,8 +654,13 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     const auto loaded = loadForRun(experimentPath);
     if (!loaded) return kBadInput;
     const ExperimentSpec& spec = *loaded;
+    if (!planAccepted(spec, double(range.last - range.first + 1), parsed.allowLongPlan))
+        return kBadInput;
     if (outDir.empty()) outDir = (fs::path("results") / (spec.name + "_seeds")).string();
-    return overSeeds(
+    const auto claimed = claimOrSay(outDir, "seeds", spec, runFactsOf(spec), parsed.replace);
+    if (!claimed) return kBadInput;
+    int failedRuns = 0;
+    const int code = overSeeds(
         "run failed", outDir, "rates.csv", parsed.figures, range.jobs, argc, argv,
         [&] {
             const SeedRates rates = runSeeds(
@@ -629,6 +680,7 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
                     return true;
                 },
                 range.jobs);
+            failedRuns = rates.runsFailed().count;
             std::printf("\n%s over %zu seeds (%llu-%llu):\n", spec.name.c_str(), rates.seeds.size(),
                         static_cast<unsigned long long>(range.first),
                         static_cast<unsigned long long>(range.last));
@@ -639,6 +691,7 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
             writeSeedFigures(rates, QString::fromStdString(spec.name),
                              QString::fromStdString(outDir));
         });
+    return failedRunsExit(code, failedRuns, outDir, "rates.csv");
 }
 
 /// One trial of one seed, named as the first four columns of a compare.csv row name it.
@@ -743,8 +796,22 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
     if (!b) return kBadInput;
     std::string outDir = parsed.outDir;
     if (outDir.empty()) outDir = (fs::path("results") / (a->name + "_vs_" + b->name)).string();
+    // --show adds a trial's table and figure beside a comparison's files, as the window does.
     if (ref) return showTrialPair(*a, *b, *ref, outDir, parsed.figures, argc, argv);
-    return overSeeds(
+    try {
+        checkComparable(*a, *b);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    }
+    const double seeds = double(range.last - range.first + 1);
+    if (!planAccepted(*a, seeds, parsed.allowLongPlan) ||
+        !planAccepted(*b, seeds, parsed.allowLongPlan))
+        return kBadInput;
+    const auto claimed = claimOrSay(outDir, "compare", *a, runFactsOf(*a), parsed.replace);
+    if (!claimed) return kBadInput;
+    int failedRuns = 0;
+    const int code = overSeeds(
         "compare failed", outDir, "compare.csv", parsed.figures, range.jobs, argc, argv,
         [&] {
             const PairedComparison c = comparePaired(
@@ -767,40 +834,64 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
                 range.jobs);
             std::printf("\n");
             for (const std::string& line : describeComparison(c)) std::printf("%s\n", line.c_str());
+            failedRuns = static_cast<int>(c.failedRuns.size());
             return c;
         },
         [&](const PairedComparison& c) {
             writeComparisonFigures(c, QString::fromStdString(outDir));
         });
+    return failedRunsExit(code, failedRuns, outDir, "compare.json");
 }
 
-int commandCheck(const std::vector<std::string>& args) {
+int commandCheck(const std::vector<std::string>& argsIn) {
+    std::vector<std::string> args;
+    bool allowLongPlan = false;
+    for (const std::string& a : argsIn) {
+        if (a == "--allow-long-plan")
+            allowLongPlan = true;
+        else if (!a.empty() && a[0] == '-')
+            return usageError("unknown option '" + a + "'");
+        else
+            args.push_back(a);
+    }
     if (args.size() != 1) return usageError("check takes exactly one file");
-    if (args[0].size() > 4 && args[0].substr(args[0].size() - 4) == ".csv") {
+    const std::string& file = args[0];
+    if (file.size() > 4 && file.substr(file.size() - 4) == ".csv") {
         // A tap recording (data/taps.csv) or a following recording (data/following_taps.csv),
-        // told apart by their header: every row, column and value checked.
+        // told apart by their header: every row, column and value checked, against the run's
+        // run.json where it has one.
         try {
-            std::ifstream in(args[0]);
-            std::string header;
-            std::getline(in, header);
+            std::string note;
+            const RecordingBounds bounds = checkedRecordingBounds(file, &note);
+            if (!note.empty()) std::fprintf(stderr, "caution: %s\n", note.c_str());
+            std::ifstream in = openRecording(file);
+            std::string header(17, '\0');
+            in.read(header.data(), static_cast<std::streamsize>(header.size()));
+            header.resize(static_cast<std::size_t>(in.gcount()));
+            const bool known = bounds.samplesPerTap > 0;
+            auto unconfirmed = [&](int taps) {
+                return known || taps > 1 ? ""
+                                         : "; with one tap and no run.json beside it, nothing "
+                                           "shows whether that tap is whole";
+            };
             if (header.rfind("shape,mode,trial,", 0) == 0) {
-                const auto c = checkFollowingRecording(args[0]);
-                std::printf("%s: ok (%d taps over %d trials, %d samples each)%s%s\n",
-                            args[0].c_str(), c.taps, c.trials, c.samplesPerTap,
+                const auto c = checkFollowingRecording(file, bounds);
+                std::printf("%s: ok (%d taps over %d trials, %d samples each)%s%s%s\n",
+                            file.c_str(), c.taps, c.trials, c.samplesPerTap,
                             c.cutOff.empty() ? ""
                                              : "; cut short at the end, as by a run "
                                                "stopped while writing: ",
-                            c.cutOff.c_str());
+                            c.cutOff.c_str(), unconfirmed(c.taps));
                 return kOk;
             }
             std::string cut;
-            const auto taps = readTapCsv(args[0], ClassSet{}, &cut);
-            std::printf("%s: ok (%zu taps, %d samples each)%s%s\n", args[0].c_str(), taps.size(),
+            const auto taps = readTapCsv(file, ClassSet{}, &cut, bounds);
+            std::printf("%s: ok (%zu taps, %d samples each)%s%s%s\n", file.c_str(), taps.size(),
                         taps.front().record.tap.sampleCount(),
                         cut.empty() ? ""
                                     : "; cut short at the end, as by a run stopped while "
                                       "writing: ",
-                        cut.c_str());
+                        cut.c_str(), unconfirmed(static_cast<int>(taps.size())));
             return kOk;
         } catch (const InputError& e) {
             std::fprintf(stderr, "error: %s\n", e.what());
@@ -808,18 +899,28 @@ int commandCheck(const std::vector<std::string>& args) {
         }
     }
     try {
-        if (const Json j = readJsonFile(args[0]); looksLikeRigFile(j)) {
+        if (const Json j = readJsonFile(file); looksLikeRigFile(j)) {
             // The stage's soft limits come from the experiment's scene at run time.
-            const RigConfig rig = parseRigFile(j, args[0], SceneSpec{});
-            std::printf("%s: ok (rig: %s)\n", args[0].c_str(), rig.describe().c_str());
+            const RigConfig rig = parseRigFile(j, file, SceneSpec{});
+            std::printf("%s: ok (rig: %s)\n", file.c_str(), rig.describe().c_str());
             return kOk;
         }
-        const ExperimentSpec spec = loadChecked(args[0], false);
+        const ExperimentSpec spec = loadCheckedExperiment(file, false);
         const bool experiment = !spec.name.empty();
-        std::printf("%s: ok (%s; object %s, %zu effect%s listed)\n", args[0].c_str(),
+        if (experiment && !planAccepted(spec, 1, allowLongPlan)) return kBadInput;
+        std::printf("%s: ok (%s; object %s, %zu effect%s listed)\n", file.c_str(),
                     experiment ? ("experiment '" + spec.name + "'").c_str() : "scene",
                     spec.scene.object.shape.c_str(), spec.scene.effects.size(),
                     spec.scene.effects.size() == 1 ? "" : "s");
+        if (experiment) {
+            const RunPlan plan = planOf(spec);
+            std::printf("plan: %s\n", planText(plan).c_str());
+            if (!planProblem(plan, "the experiment", true).empty())
+                std::fprintf(stderr,
+                             "caution: on a real rig this plan is beyond the %.0f h a run may take "
+                             "there (run --rig refuses it without --allow-long-plan)\n",
+                             kMaxPlannedRobotTime_s / 3600);
+        }
         std::fflush(stdout);
         printCautions(spec);
         return kOk;
@@ -827,7 +928,7 @@ int commandCheck(const std::vector<std::string>& args) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return kBadInput;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "error: %s: %s\n", args[0].c_str(), e.what());
+        std::fprintf(stderr, "error: %s: %s\n", file.c_str(), e.what());
         return kBadInput;
     }
 }

@@ -40,6 +40,8 @@
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
 #include "app/gui/WholeFile.h"
+#include "app/run/RunFolder.h"
+#include "core/experiment/RunPlan.h"
 #include "app/run/SeedRates.h"
 #include "core/io/FollowingRecording.h"
 #include "core/io/TapCsv.h"
@@ -508,10 +510,42 @@ bool MainWindow::startOnRecording(const QString& path, bool replay) {
                   recorded);
 }
 
+bool MainWindow::mayWriteRun(const ExperimentSpec& spec, double runs, const QString& dir) {
+    // A plan past the bounds (docs/limits.md) runs only when the user says it is meant.
+    const RunPlan plan = planOf(spec).times(runs);
+    if (const PlanProblem problem =
+            planProblem(plan, "the experiment", devices_.session()->connected());
+        !problem.empty()) {
+        QMessageBox ask(QMessageBox::Question, tr("ActiveTouch Workbench"),
+                        tr("%1 asks for more than a run should:\n%2\n\nRun it anyway?")
+                            .arg(QString::fromStdString(spec.name),
+                                 QString::fromStdString(problem.problem)),
+                        QMessageBox::Yes | QMessageBox::No, this);
+        ask.setObjectName("longPlanQuestion");
+        ask.setDefaultButton(QMessageBox::No);
+        if (ask.exec() != QMessageBox::Yes) {
+            log(tr("not started: %1").arg(QString::fromStdString(problem.problem)));
+            return false;
+        }
+    }
+    // A folder never holds two runs' files: one that holds a run is replaced only when asked.
+    if (holdsRun(dir.toStdString())) {
+        QMessageBox ask(QMessageBox::Question, tr("ActiveTouch Workbench"),
+                        tr("%1 already holds a run. Replace it? Its files are removed first.")
+                            .arg(dir),
+                        QMessageBox::Yes | QMessageBox::No, this);
+        ask.setObjectName("replaceRunQuestion");
+        ask.setDefaultButton(QMessageBox::No);
+        if (ask.exec() != QMessageBox::Yes) return false;
+    }
+    return true;
+}
+
 bool MainWindow::launch(const ExperimentSpec& spec, RunController::What what, const QString& stem,
                         std::shared_ptr<const ConnectedRig> connected,
                         std::shared_ptr<const RecordedRun> recorded) {
     const QString dir = newRunDirectory(stem);
+    if (!mayWriteRun(spec, recorded ? 0 : 1, dir)) return false;  // a recording takes no taps
     if (!runs_.start(spec, dir, what, static_cast<Pace>(pace_->currentIndex()), last_, connected,
                      recorded))
         return false;
@@ -551,6 +585,7 @@ bool MainWindow::startSeeds(std::uint64_t first, std::uint64_t last) {
     const ExperimentSpec& spec = *toRun;
     const QString name = QString::fromStdString(spec.name);
     const QString dir = newRunDirectory(name + "_seeds");
+    if (!mayWriteRun(spec, double(last - first + 1), dir)) return false;
     if (!runs_.startSeeds(spec, first, last, dir)) return false;
     countingSeeds_ = true;
     lastSeedsDir_ = dir;
@@ -585,6 +620,9 @@ bool MainWindow::startComparison(const QString& otherPath, std::uint64_t first,
     }
     const QString a = QString::fromStdString(toRun->name), b = QString::fromStdString(other.name);
     const QString dir = newRunDirectory(a + "_vs_" + b);
+    if (!mayWriteRun(*toRun, double(last - first + 1), dir) ||
+        !mayWriteRun(other, double(last - first + 1), dir))
+        return false;
     if (!runs_.startComparison(*toRun, other, first, last, dir)) return false;
     countingSeeds_ = true;
     lastComparisonDir_ = dir;

@@ -114,6 +114,9 @@ private:
     /// Analyses the recorded taps in the file `path`, or (`replay`) replays the run recorded in
     /// the folder `path`; what cannot be read or run is refused with the reason.
     bool startOnRecording(const QString& path, bool replay);
+    /// Whether `runs` runs of `spec` may be written into `dir`: a plan beyond the bounds and a
+    /// folder that holds a run each need the user's yes.
+    bool mayWriteRun(const ExperimentSpec& spec, double runs, const QString& dir);
     /// Starts `spec` into a new folder named after `stem`, on `connected` or the simulated rig.
     bool launch(const ExperimentSpec& spec, RunController::What what, const QString& stem,
                 std::shared_ptr<const ConnectedRig> connected,

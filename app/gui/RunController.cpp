@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "app/figures/FollowingFigures.h"
+#include "app/run/RunFolder.h"
 
 namespace activetouch {
 
@@ -134,6 +135,11 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
             }
         };
         try {
+            // The window asked before replacing a run in the folder (MainWindow::mayWriteRun).
+            const RunFolderClaim claim(options.outDir, recorded ? (recorded->replay() ? "replay" : "analyse") : "run",
+                                       spec.name,
+                                       runFactsOf(spec, recorded ? &recorded->taps : nullptr),
+                                       true);
             auto result = std::make_shared<RunResult>(what == What::FollowingOnly
                                                           ? runFollowing(*trained, spec, options)
                                                           : runExperiment(spec, options));
@@ -172,6 +178,8 @@ bool RunController::startSeeds(const ExperimentSpec& spec, std::uint64_t first, 
     launch(outDir, [this, spec, first, last, outDir] {
         SeedClock clock(first, last);
         try {
+            const RunFolderClaim claim(outDir.toStdString(), "seeds", spec.name, runFactsOf(spec),
+                                       true);
             auto rates = std::make_shared<SeedRates>(
                 runSeeds(spec, first, last, outDir.toStdString(), [&](const SeedOutcome& o) {
                     emit seedFinished(o);
@@ -199,6 +207,8 @@ bool RunController::startComparison(const ExperimentSpec& a, const ExperimentSpe
     launch(outDir, [this, a, b, first, last, outDir] {
         SeedClock clock(first, last);
         try {
+            const RunFolderClaim claim(outDir.toStdString(), "compare", a.name, runFactsOf(a),
+                                       true);
             auto comparison = std::make_shared<PairedComparison>(comparePaired(
                 a, b, first, last, outDir.toStdString(),
                 [&](std::uint64_t seed, const std::vector<PairedTrial>& pairs,

@@ -504,17 +504,26 @@ private slots:
                  qPrintable(following.out));
     }
 
-    void aSummaryThatCannotReplaceWhatIsThereFailsTheRun() {
-        // A folder (not empty) where summary.json would go: the run's tables and taps are
-        // written, the summary cannot be, and the run says so rather than leave a .partial.
+    void aFolderHoldingARunIsReplacedOnlyWhenAsked() {
+        // A folder holding an earlier run's files (here a summary.json that is a folder, and a
+        // file of the user's): refused without --replace, nothing touched; with it, every file of
+        // the old run goes first and the user's file stays.
         const QString out = dir_.filePath("summary_blocked");
         QVERIFY(QDir().mkpath(out + "/summary.json/kept"));
-        const Outcome o =
+        const QString mine = write("summary_blocked/notes.txt", "mine\n");
+        const Outcome refused =
             runCli({"run", sourceFile("experiments/paper.json"), "--out", out, "--no-figures"});
-        QCOMPARE(o.exitCode, 1);
-        QVERIFY2(o.err.contains(out + "/summary.json: cannot write the file (Is a directory)"),
-                 qPrintable(o.err));
-        QVERIFY(!QFile::exists(out + "/summary.json.partial"));
+        QCOMPARE(refused.exitCode, 2);
+        QVERIFY2(refused.err.contains(out + ": this folder already holds a run") &&
+                     refused.err.contains("--replace"),
+                 qPrintable(refused.err));
+        QVERIFY(QFile::exists(out + "/summary.json/kept"));
+        QVERIFY(!QFile::exists(out + "/run.json"));
+        const Outcome o = runCli(
+            {"run", sourceFile("experiments/paper.json"), "--out", out, "--no-figures", "--replace"});
+        QCOMPARE(o.exitCode, 0);
+        QVERIFY(QFileInfo(out + "/summary.json").isFile());
+        QVERIFY(QFile::exists(mine));
         const Outcome taps = runCli({"check", out + "/data/taps.csv"});
         QCOMPARE(taps.exitCode, 0);
         QVERIFY2(taps.out.contains("360 taps"), qPrintable(taps.out));
@@ -569,7 +578,8 @@ private slots:
         const QStringList rows = QString(csv.readAll()).trimmed().split('\n');
         QCOMPARE(rows.size(), 4);  // header + seeds 2, 3, 4
         QVERIFY(rows[0].endsWith(
-            ",paper_result_smoothed,active_failures,misnamed_paths,passive_not_lost_at_a_corner"));
+            ",paper_result_smoothed,active_failures,misnamed_paths,passive_not_lost_at_a_corner,"
+            "run_failure,trials_not_run"));
         QVERIFY(
             rows[0].startsWith("seed,passive_trials,passive_lost,passive_lost_at_a_corner,"
                                "active_trials,"));
