@@ -337,7 +337,7 @@ ExperimentSpec readExperimentChecked(const QString& path, Json& j) {
     j = readExperimentFile(path.toStdString());
     ExperimentSpec spec =
         parseExperiment(j, path.toStdString(), QFileInfo(path).path().toStdString());
-    validateEffects(spec.scene, FingertipContactModel(spec.scene.fingertip));
+    validateEffects(spec.scene);
     return spec;
 }
 }  // namespace
@@ -376,7 +376,7 @@ ExperimentSpec MainWindow::experimentAsShown(Json* document) const {
     ExperimentSpec onPanelScene = spec_;
     onPanelScene.scene = scene_->sceneFromPanel(spec_.scene);
     const SceneSpec& scene = onPanelScene.scene;
-    validateEffects(scene, FingertipContactModel(scene.fingertip));
+    validateEffects(scene);
     if (const std::string problem = trainingObjectProblem(onPanelScene); !problem.empty())
         throw InputError("scene panel", "object", "training on it: " + problem);
     Json j = protocol_->patch(experimentJson_);

@@ -2,7 +2,6 @@
 
 #include <filesystem>
 
-#include "core/fingertip/FingertipContactModel.h"
 #include "devices/simulated/SimulatedWorld.h"
 
 namespace activetouch {
@@ -21,8 +20,7 @@ ExperimentSpec loadCheckedExperiment(const std::string& path, bool requireExperi
         spec.scene =
             parseScene(j, path, "", std::filesystem::path(path).parent_path().string());
     }
-    const FingertipContactModel model(spec.scene.fingertip);
-    validateEffects(spec.scene, model);
+    validateEffects(spec.scene);
     return spec;
 }
 

@@ -8,8 +8,7 @@
 namespace activetouch {
 namespace {
 
-std::unique_ptr<Effect> buildEffect(const SceneSpec& scene, const EffectSpec& spec,
-                                    const FingertipContactModel& model) {
+const EffectDescription& describedEffect(const SceneSpec& scene, const EffectSpec& spec) {
     const EffectDescription* d = findEffect(spec.name);
     if (!d) {
         std::string known;
@@ -17,30 +16,39 @@ std::unique_ptr<Effect> buildEffect(const SceneSpec& scene, const EffectSpec& sp
         throw InputError(scene.source, spec.place + "/name",
                          "unknown effect '" + spec.name + "'; the simulated rig knows: " + known);
     }
+    return *d;
+}
+
+// The effect's parameters, every key known.
+JsonFields effectFields(const SceneSpec& scene, const EffectSpec& spec,
+                        const EffectDescription& d) {
     JsonFields f(spec.parameters, scene.source, spec.place);
     std::vector<std::string> keys;
-    for (const auto& p : d->parameters) keys.push_back(p.key);
-    if (d->takesTaxelList) keys.push_back("taxels");
+    for (const auto& p : d.parameters) keys.push_back(p.key);
+    if (d.takesTaxelList) keys.push_back("taxels");
     keys.push_back("name");
     f.rejectUnknownKeys(keys);
-    return d->make(f, model, RandomStream::derived(scene.seed, "effect:" + spec.name));
+    return f;
+}
+
+std::unique_ptr<Effect> buildEffect(const SceneSpec& scene, const EffectSpec& spec,
+                                    const FingertipContactModel& model) {
+    const EffectDescription& d = describedEffect(scene, spec);
+    return d.make(effectFields(scene, spec, d), model,
+                  RandomStream::derived(scene.seed, "effect:" + spec.name));
 }
 
 }  // namespace
 
-void validateEffects(const SceneSpec& scene, const FingertipContactModel& model) {
+void validateEffects(const SceneSpec& scene) {
+    // Everything an effect reads from a scene, checked without building the contact model: the
+    // only thing of the fingertip an effect's parameters depend on is its number of taxels.
+    const int taxels = static_cast<int>(scene.fingertip.taxels.size());
     for (const auto& spec : scene.effects) {
-        const EffectDescription* d = findEffect(spec.name);
-        if (!d) buildEffect(scene, spec, model);  // throws with the list of known effects
-        JsonFields f(spec.parameters, scene.source, spec.place);
-        std::vector<std::string> keys{"name"};
-        for (const auto& p : d->parameters) {
-            keys.push_back(p.key);
-            f.number(p.key, p.lo, p.hi);
-        }
-        if (d->takesTaxelList) keys.push_back("taxels");
-        f.rejectUnknownKeys(keys);
-        if (d->takesTaxelList) buildEffect(scene, spec, model);
+        const EffectDescription& d = describedEffect(scene, spec);
+        const JsonFields f = effectFields(scene, spec, d);
+        for (const auto& p : d.parameters) f.number(p.key, p.lo, p.hi);
+        if (d.takesTaxelList) effectTaxelList(f, taxels);
     }
 }
 

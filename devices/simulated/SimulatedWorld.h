@@ -102,6 +102,6 @@ private:
 };
 
 /// Checks every effect entry of `scene` (name and parameters) without building a world.
-void validateEffects(const SceneSpec& scene, const FingertipContactModel& model);
+void validateEffects(const SceneSpec& scene);
 
 }  // namespace activetouch

@@ -5,6 +5,7 @@
 //   pose      - where the stage really puts the fingertip (stage_error)
 //   mechanics - how the tapper's stroke ends (contact_latency)
 //   signal    - what the taxels report (everything else), in a fixed physical order:
+//               link_dropout (the stream failing before anything is reported),
 //               viscoelastic_memory, crosstalk, dead_taxel, baseline_drift, taxel_noise,
 //               adc_quantisation.
 #include <functional>
@@ -72,6 +73,10 @@ struct EffectDescription {
                                           RandomStream)>
         make;
 };
+
+/// The taxel indices an effect's "taxels" lists (dead_taxel's), each within 0..taxelCount-1;
+/// InputError naming the place otherwise.
+std::vector<int> effectTaxelList(const JsonFields& f, int taxelCount);
 
 /// Every effect the simulated rig knows.
 const std::vector<EffectDescription>& effectCatalogue();

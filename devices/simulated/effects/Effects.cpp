@@ -6,6 +6,7 @@
 #include <map>
 #include <mutex>
 
+#include "core/rig/Rig.h"
 #include "devices/simulated/effects/Effect.h"
 
 namespace activetouch {
@@ -16,6 +17,26 @@ std::map<std::string, int>& counts() {
     static std::map<std::string, int> c;
     return c;
 }
+
+/// The fingertip's stream dropping mid-tap, as a loose cable, a USB hub or a busy network does on
+/// the real rig: with the given probability a tap fails with the device error the YARP reader
+/// gives, so that how a run, a trial or a sweep over seeds handles a device fault can be tried
+/// on the simulated rig. The probability is the scene's; which tap fails comes from the seed.
+class LinkDropout final : public Effect {
+public:
+    LinkDropout(double probability, RandomStream rng)
+        : Effect("link_dropout", Acts::Signal, 0), probability_(probability), rng_(rng) {}
+    void shapeSignal(Tap&, const SignalContext& c) override {
+        if (rng_.uniform() < probability_)
+            throw RigError("simulated fingertip: the stream dropped during the tap at " +
+                           std::to_string(c.startTime_s) +
+                           " s of robot time (link_dropout); reconnect the fingertip");
+    }
+
+private:
+    double probability_;
+    RandomStream rng_;
+};
 
 /// Gaussian stage positioning error per move (the paper's stage: about 20 um).
 class StageError final : public Effect {
@@ -295,24 +316,38 @@ const std::vector<EffectDescription>& effectCatalogue() {
              {{"reading_counts", "the stuck reading, counts", 0.0, 255.0, 0.0}},
              true,
              [](const JsonFields& f, const M& m, RandomStream) {
-                 if (!f.has("taxels") || !f.raw("taxels").is_array() || f.raw("taxels").empty())
-                     f.fail("taxels",
-                            "dead_taxel needs 'taxels': a non-empty list of taxel indices 0.." +
-                                std::to_string(m.taxelCount() - 1));
-                 std::vector<int> list;
-                 for (const auto& v : f.raw("taxels")) {
-                     if (!v.is_number_integer() || v.get<int>() < 0 ||
-                         v.get<int>() >= m.taxelCount())
-                         f.fail("taxels", "taxel " + describeJson(v) +
-                                              " does not exist; use indices 0.." +
-                                              std::to_string(m.taxelCount() - 1));
-                     list.push_back(v.get<int>());
-                 }
-                 return std::make_unique<DeadTaxel>(list, f.number("reading_counts", 0.0, 255.0));
+                 return std::make_unique<DeadTaxel>(effectTaxelList(f, m.taxelCount()),
+                                                    f.number("reading_counts", 0.0, 255.0));
              }});
+        c.push_back({"link_dropout",
+                     "The fingertip's stream drops during a tap, as a flaky cable or network "
+                     "does: the tap fails with a device error (for trying fault handling).",
+                     {{"probability_per_tap", "chance that a tap's stream drops", 0.0, 1.0, 0.0}},
+                     false,
+                     [](const JsonFields& f, const M&, RandomStream r) {
+                         return std::make_unique<LinkDropout>(
+                             f.number("probability_per_tap", 0.0, 1.0), r);
+                     }});
         return c;
     }();
     return catalogue;
+}
+
+std::vector<int> effectTaxelList(const JsonFields& f, int taxelCount) {
+    const std::string indices = "taxel indices 0.." + std::to_string(taxelCount - 1);
+    if (!f.has("taxels") || !f.raw("taxels").is_array() || f.raw("taxels").empty())
+        f.fail("taxels", "dead_taxel needs 'taxels': a non-empty list of " + indices);
+    std::vector<int> list;
+    for (const auto& v : f.raw("taxels")) {
+        // An index is compared as a whole number of any size: a huge one must not wrap.
+        const bool valid = v.is_number_integer() && v.get<long long>() >= 0 &&
+                           v.get<long long>() < taxelCount && !(v.is_number_unsigned() &&
+                                                                v.get<unsigned long long>() >=
+                                                                    static_cast<unsigned long long>(taxelCount));
+        if (!valid) f.fail("taxels", "taxel " + describeJson(v) + " does not exist; use " + indices);
+        list.push_back(static_cast<int>(v.get<long long>()));
+    }
+    return list;
 }
 
 const EffectDescription* findEffect(const std::string& name) {
