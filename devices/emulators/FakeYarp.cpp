@@ -109,6 +109,13 @@ void FakeYarp::injectWrongSize(int values) {
 void FakeYarp::setWrongSize(int values) {
     alwaysWrongSize_ = values;
 }
+void FakeYarp::injectRawBytes(std::string bytes) {
+    std::lock_guard lock(rawMutex_);
+    raw_ = std::move(bytes);
+}
+void FakeYarp::dropReaders() {
+    dropReaders_ = true;
+}
 
 std::vector<double> FakeYarp::handVector() {
     std::vector<double> hand(192, 0.0);
@@ -240,6 +247,14 @@ void FakeYarp::publish(Client& c) {
     if (c.nextFrame < now) c.nextFrame = now;
     if (stalled_) return;
     if (c.out.size() > (1u << 20)) return;  // the reader is not reading: drop frames
+    {
+        std::lock_guard lock(rawMutex_);
+        if (!raw_.empty()) {
+            c.out += raw_;
+            raw_.clear();
+            return;
+        }
+    }
     c.out += c.binary ? binaryMessage() : textMessage();
     ++count_;
     ++frames_;
@@ -247,6 +262,9 @@ void FakeYarp::publish(Client& c) {
 
 void FakeYarp::loop() {
     while (running_) {
+        if (dropReaders_.exchange(false))
+            for (Client& c : clients_)
+                if (c.reader) c.state = Client::State::Closed;
         if (!nameServerUp_ && nameServerFd_ >= 0) {
             ::close(nameServerFd_);
             nameServerFd_ = -1;

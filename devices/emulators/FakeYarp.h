@@ -3,7 +3,8 @@
 // name server answers CONNACK / query; the publisher streams a 192-value hand vector at a set rate
 // over the text carrier ('d' or 'D' headers, with or without an envelope) or the binary carrier
 // (Vector tag 0x10A or 0x114). The fingertip's 12 values come from a callback. Faults: name server
-// down, port unknown, stream stalls, malformed lines, vectors of the wrong size.
+// down, port unknown, stream stalls, malformed lines, vectors of the wrong size, raw bytes of
+// any framing, the stream dropping.
 #include <atomic>
 #include <functional>
 #include <mutex>
@@ -43,6 +44,10 @@ public:
     void injectMalformedLine();          ///< the next message's data is not numbers
     void injectWrongSize(int values);    ///< the next message carries `values` values
     void setWrongSize(int values);       ///< every message carries `values` values (0: 192)
+    /// The next message each reader gets is these bytes, as they are: hostile framing, say.
+    void injectRawBytes(std::string bytes);
+    /// Closes every reader's connection, as a stream that drops does.
+    void dropReaders();
     std::uint64_t framesSent() const { return frames_; }
     int readers() const { return readers_; }
 
@@ -61,7 +66,9 @@ private:
     std::thread thread_;
     std::atomic<bool> running_{false};
     std::atomic<bool> nameServerUp_{true}, registered_{true}, stalled_{false};
-    std::atomic<bool> malformed_{false};
+    std::atomic<bool> malformed_{false}, dropReaders_{false};
+    std::string raw_;  ///< injectRawBytes's, under rawMutex_
+    std::mutex rawMutex_;
     std::atomic<int> wrongSize_{0}, alwaysWrongSize_{0};
     std::atomic<std::uint64_t> frames_{0};
     std::atomic<int> readers_{0};

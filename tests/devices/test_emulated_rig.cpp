@@ -10,6 +10,8 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QProcess>
+#include <QTemporaryDir>
 #include <QtTest>
 #include <chrono>
 #include <csignal>
@@ -450,6 +452,102 @@ private slots:
                     std::string::npos);
         }
         QCOMPARE(e.bench->yarp().readers(), 0);
+    }
+
+    void aFaultMidRunKeepsEveryTapOnDiskAndEndsSafely_data() {
+        QTest::addColumn<QString>("fault");
+        QTest::addColumn<bool>("inTraining");
+        QTest::addColumn<QString>("says");
+        QTest::newRow("the fingertip's stream drops mid-trial")
+            << "stream" << false << "closed the connection";
+        QTest::newRow("the NXT is unplugged mid-trial") << "unplug" << false << "NXT";
+        QTest::newRow("the stage stalls mid-trial") << "stall" << false << "stage";
+        QTest::newRow("the stage stalls during training") << "stall" << true << "stage";
+        QTest::newRow("the fingertip's stream drops during training")
+            << "stream" << true << "closed the connection";
+    }
+    void aFaultMidRunKeepsEveryTapOnDiskAndEndsSafely() {
+        // activetouch-cli on the emulated bench, a fault injected while it runs: it exits 1
+        // naming the fault, every tap it finished is whole on disk and readable, summary.json
+        // says the run did not finish (none after a fault in training, which validated
+        // nothing), and the bench is left safe: tapper retracted or stopped, stage at rest,
+        // fingertip let go.
+        QFETCH(QString, fault);
+        QFETCH(bool, inTraining);
+        QFETCH(QString, says);
+        Emulated e(20.0);
+        const QTemporaryDir dir;
+        const yarp::YarpFingertipSettings tip = e.bench->fingertipSettings();
+        const QJsonObject rigFile{
+            {"stage", QJsonObject{{"device", "yamaha"},
+                                  {"port", QString::fromStdString(
+                                               e.bench->stageSettings().serial.portName)}}},
+            {"tapper", QJsonObject{{"device", "nxt"},
+                                   {"usb_bus", 1},
+                                   {"usb_address", 2},
+                                   {"degrees_per_mm", e.bench->tapperSettings().degreesPerMm}}},
+            {"fingertip", QJsonObject{{"device", "yarp"},
+                                      {"name_server_port", tip.nameServerPort},
+                                      {"port", QString::fromStdString(tip.port)}}},
+            {"time_scale", e.bench->timeScale()}};
+        const QString rig = dir.filePath("rig.json");
+        QFile r(rig);
+        QVERIFY(r.open(QIODevice::WriteOnly));
+        r.write(QJsonDocument(rigFile).toJson());
+        r.close();
+        const QString experiment = dir.filePath("faulty.json");
+        QFile x(experiment);
+        QVERIFY(x.open(QIODevice::WriteOnly));
+        x.write(QString(R"({"extends": "%1", "name": "faulty", "training": {"data_sets": 2},
+            "recognition": null, "following": {"trials": [{"mode": "active", "object":
+            {"shape": "rectangle", "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150],
+            "top_height_mm": 10}, "repeats": 3}]}})")
+                    .arg(test::sourceFile("experiments/paper.json"))
+                    .toUtf8());
+        x.close();
+        const QString out = dir.filePath("run");
+        const QString watched = out + (inTraining ? "/data/taps.csv" : "/data/following_taps.csv");
+        QProcess p;
+        p.start(qEnvironmentVariable("ACTIVETOUCH_CLI"),
+                {"run", experiment, "--rig", rig, "--out", out, "--no-figures"});
+        QVERIFY(p.waitForStarted());
+        QTRY_VERIFY_WITH_TIMEOUT(test::linesIn(watched) > 1 + 3 * 50, 120000);
+        if (fault == "stream")
+            e.bench->yarp().dropReaders();
+        else if (fault == "unplug")
+            e.bench->brick().injectFault(FakeNxtBrick::Fault::Unplug);
+        else
+            e.bench->rcx().injectFault(emu::FakeRcxController::Fault::NoReply);
+        QVERIFY(p.waitForFinished(60000));
+        QCOMPARE(p.exitStatus(), QProcess::NormalExit);
+        const QString err = p.readAllStandardError();
+        QCOMPARE(p.exitCode(), 1);
+        QVERIFY2(err.contains("run failed") && err.contains(says), qPrintable(err));
+        // Every tap on disk is whole, and the recordings read back.
+        for (const char* file : {"/data/taps.csv", "/data/following_taps.csv"}) {
+            if (!QFile::exists(out + file)) continue;
+            QCOMPARE((test::linesIn(out + file) - 1) % 50, 0);
+            const test::CliOutcome check = test::runCli({"check", out + file});
+            QVERIFY2(check.exitCode == 0, qPrintable(check.err));
+        }
+        if (inTraining) {
+            QVERIFY(!QFile::exists(out + "/summary.json"));
+            QVERIFY(!QFile::exists(out + "/data/following_taps.csv"));
+        } else {
+            const QJsonObject s = test::readJson(out + "/summary.json");
+            QCOMPARE(s["run_finished"].toBool(), false);
+            QVERIFY2(s["failure"].toString().contains(says), qPrintable(s["failure"].toString()));
+            QCOMPARE(test::linesIn(out + "/data/taps.csv"), 1 + 2 * 72 * 50);
+        }
+        QVERIFY(test::readJson(out + "/run.json")["finished"].toBool());
+        // Safe: an unplugged brick's motor stops at its tacho limit on its own.
+        if (fault == "unplug") {
+            QTRY_VERIFY(!e.bench->brick().motorRunning(0));
+        } else {
+            QTRY_VERIFY(e.retracted());
+        }
+        QTRY_VERIFY(!e.bench->rcx().moving());
+        QTRY_COMPARE_WITH_TIMEOUT(e.bench->yarp().readers(), 0, 10000);
     }
 
     void theHeadlessRunnerRunsOnTheWholeBenchARigFileNames() {

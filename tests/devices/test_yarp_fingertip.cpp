@@ -255,6 +255,74 @@ private slots:
         }
     }
 
+    void hostileFramingEndsInAFault_data() {
+        QTest::addColumn<bool>("binary");
+        QTest::addColumn<QByteArray>("bytes");
+        QTest::addColumn<QString>("says");
+        auto binaryHeader = [](std::vector<std::int32_t> lengths) {
+            QByteArray m("YA");
+            std::int32_t total = 0;
+            for (auto l : lengths) total += l;
+            m.append(reinterpret_cast<const char*>(&total), 4);
+            m.append("RP");
+            const std::int32_t blocks = static_cast<std::int32_t>(lengths.size());
+            m.append(reinterpret_cast<const char*>(&blocks), 4);
+            for (auto l : lengths) m.append(reinterpret_cast<const char*>(&l), 4);
+            const std::int32_t reply = 0;
+            m.append(reinterpret_cast<const char*>(&reply), 4);
+            return m;
+        };
+        QTest::newRow("a negative block length")
+            << true << binaryHeader({-1000, 100}) << "a block of -1000 bytes";
+        QTest::newRow("an oversized block length")
+            << true << binaryHeader({8, 5 << 20}) << "a block of 5242880 bytes";
+        QTest::newRow("a block length of INT32_MAX")
+            << true << binaryHeader({8, 2147483647}) << "a block of 2147483647 bytes";
+        QTest::newRow("a text line without end")
+            << false << QByteArray("d\n") + QByteArray(200000, '7') << "a text line runs past";
+    }
+    void hostileFramingEndsInAFault() {
+        // Lengths the stream claims are checked before they are trusted: the fingertip faults
+        // with a message, every wait reports it, and disconnect() returns.
+        QFETCH(bool, binary);
+        QFETCH(QByteArray, bytes);
+        QFETCH(QString, says);
+        FakeYarpSettings s;
+        s.rate_hz = 200;
+        FakeYarp yarp(s, ramp);
+        yarp.start();
+        auto c = clientFor(yarp, s);
+        c.binaryCarrier = binary;
+        YarpFingertip tip(c);
+        tip.connect();
+        double frame[12];
+        QVERIFY(tip.waitFrame(0, 1000, frame) > 0);
+        yarp.injectRawBytes(bytes.toStdString());
+        try {
+            for (int i = 0; i < 100; ++i) tip.waitFrame(tip.framesReceived(), 100, frame);
+            QFAIL("the hostile framing did not fault the fingertip");
+        } catch (const RigError& e) {
+            QVERIFY2(QString(e.what()).contains(says) && QString(e.what()).contains(s.portName.c_str()),
+                     e.what());
+        }
+        tip.disconnect();  // returns: a hang fails the test at ctest's limit
+        QTRY_COMPARE_WITH_TIMEOUT(yarp.readers(), 0, 5000);
+    }
+
+    void aStreamThatDropsFaultsTheFingertip() {
+        Connected c(100);
+        double frame[12];
+        QVERIFY(c.tip.waitFrame(0, 1000, frame) > 0);
+        c.yarp.dropReaders();
+        try {
+            for (int i = 0; i < 100; ++i) c.tip.waitFrame(c.tip.framesReceived(), 100, frame);
+            QFAIL("a dropped stream went unreported");
+        } catch (const RigError& e) {
+            QVERIFY2(QString(e.what()).contains("closed the connection"), e.what());
+        }
+        c.tip.disconnect();
+    }
+
     void disconnectReturnsPromptly() {
         FakeYarpSettings s;
         FakeYarp yarp(s, ramp);

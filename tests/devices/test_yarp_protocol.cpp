@@ -6,6 +6,7 @@
 #include "devices/yarp/YarpProtocol.h"
 
 using namespace activetouch::yarp;
+Q_DECLARE_METATYPE(std::vector<std::int32_t>)
 
 namespace {
 std::vector<std::uint8_t> binaryVector(std::int32_t tag, const std::vector<double>& values,
@@ -117,6 +118,68 @@ private slots:
             last = v;
         }
         QVERIFY(last < first);
+    }
+
+    void theStreamDecoderFramesWhateverArrives() {
+        // A whole message split anywhere gives the same values; what cannot be read is a Bad
+        // event and skipped, what cannot be framed a Fatal one that ends the stream.
+        std::string text = "do\n";
+        for (int i = 0; i < 192; ++i) text += std::to_string(i % 9) + (i < 191 ? " " : "\n");
+        for (std::size_t chunk : {std::size_t{1}, std::size_t{7}, text.size()}) {
+            StreamDecoder d(false);
+            std::vector<StreamDecoder::Event> events;
+            for (std::size_t at = 0; at < text.size(); at += chunk)
+                for (auto& e : d.feed(text.data() + at, std::min(chunk, text.size() - at)))
+                    events.push_back(e);
+            QCOMPARE(events.size(), std::size_t{1});
+            QCOMPARE(events[0].kind, StreamDecoder::Event::Values);
+            QCOMPARE(events[0].values.size(), std::size_t{192});
+            QCOMPARE(d.buffered(), std::size_t{0});
+        }
+        StreamDecoder bad(false);
+        const std::string garbage = "hello\nd\n1 x 3\n";
+        const auto events = bad.feed(garbage.data(), garbage.size());
+        QCOMPARE(events.size(), std::size_t{2});
+        QCOMPARE(events[0].kind, StreamDecoder::Event::Bad);
+        QCOMPARE(events[1].kind, StreamDecoder::Event::Bad);
+        QVERIFY(!bad.dead());
+
+        StreamDecoder endless(false);
+        const std::string line(StreamDecoder::kMaxTextLineBytes + 10, '5');
+        const auto fatal = endless.feed(line.data(), line.size());
+        QCOMPARE(fatal.size(), std::size_t{1});
+        QCOMPARE(fatal[0].kind, StreamDecoder::Event::Fatal);
+        QVERIFY(endless.dead());
+        QCOMPARE(endless.feed("d\n", 2).size(), std::size_t{0});  // nothing after the end
+    }
+
+    void theStreamDecoderChecksEveryBlockLength_data() {
+        QTest::addColumn<std::vector<std::int32_t>>("lengths");
+        QTest::addColumn<bool>("fatal");
+        QTest::newRow("negative") << std::vector<std::int32_t>{-1000, 100} << true;
+        QTest::newRow("INT32_MAX") << std::vector<std::int32_t>{8, 2147483647} << true;
+        QTest::newRow("over a megabyte together")
+            << std::vector<std::int32_t>{700000, 700000} << true;
+        QTest::newRow("a torn vector") << std::vector<std::int32_t>{4, 13} << false;
+    }
+    void theStreamDecoderChecksEveryBlockLength() {
+        QFETCH(std::vector<std::int32_t>, lengths);
+        QFETCH(bool, fatal);
+        std::string m = "YA";
+        auto put = [&](std::int32_t v) { m.append(reinterpret_cast<const char*>(&v), 4); };
+        put(0);
+        m += "RP";
+        put(static_cast<std::int32_t>(lengths.size()));
+        for (auto l : lengths) put(l);
+        put(0);
+        if (!fatal)
+            for (auto l : lengths) m.append(static_cast<std::size_t>(l), '\x01');
+        StreamDecoder d(true);
+        const auto events = d.feed(m.data(), m.size());
+        QCOMPARE(events.size(), std::size_t{1});
+        QCOMPARE(events[0].kind, fatal ? StreamDecoder::Event::Fatal : StreamDecoder::Event::Bad);
+        QCOMPARE(d.dead(), fatal);
+        QVERIFY(d.buffered() < 64);  // nothing of a claimed length is waited for
     }
 };
 
