@@ -132,6 +132,10 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     };
     // The passive trials not lost at a corner, the active trials lost, then the paths misnamed.
     QStringList shortfalls;
+    if (o.failed())  // a device or rig error: the run failed, its later trials were not run
+        shortfalls << tr("run failed (%1 trials not run): %2")
+                          .arg(o.trialsNotRun)
+                          .arg(QString::fromStdString(o.runFailure));
     for (const auto& f : o.passiveShortfalls) shortfalls << QString::fromStdString(f);
     for (const auto& f : o.failures) shortfalls << QString::fromStdString(f);
     for (const auto& m : o.misnamed()) shortfalls << QString::fromStdString(m);
@@ -152,13 +156,15 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     auto* shortfall = new QTableWidgetItem(shortfalls.join("; "));
     shortfall->setToolTip(shortfalls.join("\n"));
     table_->setItem(row, 8, shortfall);
-    // A run that lost an active trial is red; one that only misnamed a path (paper's rule), amber.
+    // A run that failed on a device is grey; one that lost an active trial red; one that only
+    // misnamed a path (paper's rule), amber.
     const bool lostActive = o.activeCompleted < o.activeTrials,
                misnamedRaw = o.recognisedRaw() < o.recognitionTrials();
-    if (lostActive || misnamedRaw)
+    if (o.failed() || lostActive || misnamedRaw)
         for (int c = 0; c < table_->columnCount(); ++c)
-            table_->item(row, c)->setBackground(lostActive ? QColor(255, 235, 230)
-                                                           : QColor(255, 246, 214));
+            table_->item(row, c)->setBackground(o.failed()   ? QColor(225, 225, 225)
+                                                : lostActive ? QColor(255, 235, 230)
+                                                             : QColor(255, 246, 214));
     table_->scrollToBottom();
     buildSeedRatesFigure(plot_->plot(), rates_, experiment_, true);
     plot_->requestReplot();

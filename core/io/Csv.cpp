@@ -108,19 +108,30 @@ std::ifstream openRecording(const std::string& path) {
 }
 
 bool RecordingRows::readLine(std::string& line) {
-    line.clear();
-    std::streambuf* buffer = in_.rdbuf();
     for (;;) {
-        const int c = buffer->sbumpc();
-        if (c == std::char_traits<char>::eof()) return !line.empty();
-        if (c == '\n') return true;
-        if (line.size() >= kMaxRecordingLineBytes)
+        const std::size_t nl = buffer_.find('\n', start_);
+        if (nl != std::string::npos && nl - start_ <= kMaxRecordingLineBytes) {
+            line.assign(buffer_, start_, nl - start_);
+            start_ = nl + 1;
+            return true;
+        }
+        if (buffer_.size() - start_ > kMaxRecordingLineBytes)
             throw InputError(path_, "line " + std::to_string(line_ + 1),
                              "the line is longer than " +
                                  std::to_string(kMaxRecordingLineBytes >> 10) +
                                  " KiB; a recording's rows are well under one, so this is not a "
                                  "recording the workbench wrote");
-        line += static_cast<char>(c);
+        if (!in_) {  // the end: a last line without its newline
+            if (start_ >= buffer_.size()) return false;
+            line.assign(buffer_, start_, std::string::npos);
+            start_ = buffer_.size();
+            return true;
+        }
+        buffer_.erase(0, start_);
+        start_ = 0;
+        char chunk[1 << 16];
+        in_.read(chunk, sizeof chunk);
+        buffer_.append(chunk, static_cast<std::size_t>(in_.gcount()));
     }
 }
 

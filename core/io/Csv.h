@@ -83,6 +83,8 @@ private:
     bool readLine(std::string& line);
 
     std::istream& in_;
+    std::string buffer_;     ///< read ahead of the lines given so far
+    std::size_t start_ = 0;  ///< where the next line begins in buffer_
     std::string path_;
     std::vector<std::string> header_;
     int line_ = 1, brokenAt_ = 0;

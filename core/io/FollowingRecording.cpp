@@ -136,8 +136,7 @@ FollowingRecordingContents parseFollowingRecording(const std::string& path,
         for (int i = 0; i < kFixed + taxels; ++i) {
             if (i == kShape || i == kMode || i == kEnding || i == kShapeClass || i == kRule)
                 continue;
-            const std::string column =
-                i < kFixed ? kFixedColumns[i] : header[static_cast<std::size_t>(i)];
+            const std::string& column = header[static_cast<std::size_t>(i)];  // checked above
             const std::string& field = f[static_cast<std::size_t>(i)];
             const bool counts = i == kTrial || i == kTap || i == kPosition || i == kSample;
             v[static_cast<std::size_t>(i)] = counts ? csvInteger(field, path, lineNo, column)

@@ -146,7 +146,7 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
                                  " samples, as many as the run's run.json gives");
         std::vector<double> frame(static_cast<std::size_t>(taxels));
         for (int k = 0; k < taxels; ++k) {
-            const std::string column = "taxel_" + std::to_string(k);
+            const std::string& column = header[static_cast<std::size_t>(kFixed + k)];
             const double v = number(f[static_cast<std::size_t>(kFixed + k)], column);
             if (v < 0.0 || v > 255.0)
                 throw InputError(path, "line " + std::to_string(lineNo) + ", column " + column,
