@@ -56,11 +56,16 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
         spec.mode = parseMode(t, "mode", "active");
         spec.object = parseObject(t.object("object"));
         spec.label = t.text("label", spec.object.shape);
-        if (spec.label.empty() || spec.label.find_first_of(",\"\r\n") != std::string::npos)
+        const bool control = std::any_of(spec.label.begin(), spec.label.end(), [](char c) {
+            return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+        });
+        if (spec.label.empty() || control ||
+            spec.label.find_first_of(",\"\r\n") != std::string::npos)
             t.fail("label",
                    "'" + spec.label +
                        "' cannot name a trial: labels go into the run's CSV files as they are, so "
-                       "give a name without commas, quotes or line breaks");
+                       "give a name without commas, quotes, line breaks or other control "
+                       "characters");
         spec.repeats = t.integer("repeats", 1, 1000, 1);
         if (const std::string problem = objectPlacementProblem(spec.object, e.scene);
             !problem.empty())
@@ -92,6 +97,9 @@ std::vector<double> sweepRange(const JsonFields& f, const std::string& key, doub
     if (!f.raw(key).is_array() || f.raw(key).empty())
         f.fail(key, "'" + key + "' must be a non-empty list of " + what +
                         "; an empty sweep measures nothing");
+    if (f.raw(key).size() > static_cast<std::size_t>(kMaxSweepValues))
+        f.fail(key, "a sweep of " + std::to_string(f.raw(key).size()) + " values; at most " +
+                        std::to_string(kMaxSweepValues) + " (split it into several experiments)");
     std::vector<double> v;
     for (std::size_t i = 0; i < f.raw(key).size(); ++i) {
         const Json& x = f.raw(key)[i];
@@ -211,6 +219,10 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
             e.classes.orientationsDeg = c.numbers("orientations_deg", -360.0, 360.0);
             const auto& o = e.classes.orientationsDeg;
             if (o.empty()) c.fail("orientations_deg", "list at least one orientation");
+            if (o.size() > static_cast<std::size_t>(kMaxOrientations))
+                c.fail("orientations_deg",
+                       std::to_string(o.size()) + " orientations; at most " +
+                           std::to_string(kMaxOrientations) + ", one per degree");
             // Two entries facing the same way would make classes no tap can tell apart.
             for (std::size_t i = 0; i < o.size(); ++i)
                 for (std::size_t j = 0; j < i; ++j)

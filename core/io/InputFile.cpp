@@ -11,6 +11,12 @@ std::ifstream openInputFile(const std::string& path, std::ios::openmode mode) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw InputError(path, "", "this is a folder, not a file; give the path of a file in it");
+    // A pipe with no writer would block the open forever, a device never end: only regular
+    // files are read.
+    if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+        throw InputError(path, "",
+                         "this is not a regular file (a device, a pipe or a socket); give the "
+                         "path of a file");
     std::ifstream in(path, mode);
     if (!in) {
         const bool exists = std::filesystem::exists(path, ec);

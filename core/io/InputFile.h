@@ -6,8 +6,8 @@
 
 namespace activetouch {
 
-/// `path` opened for reading. Throws InputError naming `path` if it does not exist, is a folder
-/// or cannot be read.
+/// `path` opened for reading. Throws InputError naming `path` if it does not exist, is a folder,
+/// is no regular file (a device, a pipe, a socket) or cannot be read.
 std::ifstream openInputFile(const std::string& path, std::ios::openmode mode = std::ios::in);
 
 }  // namespace activetouch

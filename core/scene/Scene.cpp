@@ -1,5 +1,6 @@
 #include "core/scene/Scene.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
@@ -53,12 +54,21 @@ FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& re
     if (!f.has("taxels_mm") || !f.raw("taxels_mm").is_array() || f.raw("taxels_mm").empty())
         f.fail("taxels_mm", "expected a non-empty list of [x, y, z] taxel positions in mm");
     const Json& taxels = f.raw("taxels_mm");
+    if (taxels.size() > static_cast<std::size_t>(kMaxTaxels))
+        f.fail("taxels_mm", "a fingertip of " + std::to_string(taxels.size()) +
+                                " taxels; at most " + std::to_string(kMaxTaxels) +
+                                " (a whole iCub hand has 192)");
     for (std::size_t i = 0; i < taxels.size(); ++i) {
         const Json& t = taxels[i];
         if (!t.is_array() || t.size() != 3 || !t[0].is_number() || !t[1].is_number() ||
             !t[2].is_number())
             throw InputError(file, "/taxels_mm/" + std::to_string(i),
                              "expected [x, y, z] in mm, found " + describeJson(t));
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite(t[c].get<double>()) || std::abs(t[c].get<double>()) > 100.0)
+                throw InputError(file, "/taxels_mm/" + std::to_string(i),
+                                 "a taxel lies " + describeJson(t[c]) +
+                                     " mm from the fingertip's frame; taxels lie within 100 mm");
         spec.taxels.push_back({t[0].get<double>(), t[1].get<double>(), t[2].get<double>()});
     }
     const JsonFields body = f.object("body");

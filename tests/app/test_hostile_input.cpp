@@ -2,6 +2,7 @@
 // workbench reads is refused by file, place and problem (exit 2), a run that fails on a device
 // says so (exit 1), and nothing ends in a signal, a hang or a runaway of memory (docs/limits.md).
 #include <sys/resource.h>
+#include <sys/stat.h>
 
 #include <csignal>
 
@@ -186,6 +187,42 @@ private slots:
                             "polygon_mm": %1, "offset_mm": [325, 150]}}})")
                              .arg(regularPolygon(20000, 100)))
                 << "/scene/object/polygon_mm" << "at most 10000 vertices, got 20000";
+            // The fault is the fingertip file's, named as such.
+            const QString tip = write(c + "_tip.json",
+                                      QString(R"({"name": "many", "taxels_mm": [%1],
+                                          "body": {"radius_mm": 7, "cap_start_mm": 0,
+                                          "tip_end_mm": 14}, "mount": {"tilt_deg": 30,
+                                          "heading_deg": 0}, "receptive_field_sigma_mm": 1,
+                                          "counts_per_mm": 60})")
+                                          .arg(repeated("[0, 0, 1], ", 1999) + "[0, 0, 1]"));
+            QTest::addRow("%s: a fingertip of 2000 taxels", command)
+                << c
+                << write(c + "_taxels.json",
+                         QString(R"({"name": "t", "scene": {"object": {"shape": "rectangle"},
+                            "fingertip": "%1"}})").arg(tip))
+                << tip + ": at /taxels_mm" << "a fingertip of 2000 taxels; at most 1024";
+            QTest::addRow("%s: 400 orientations", command)
+                << c
+                << paperWith(c + "_orientations.json",
+                             QString(R"("classes": {"orientations_deg": [%1]})").arg([] {
+                                 QStringList o;
+                                 for (int i = 0; i < 400; ++i) o << QString::number(0.5 * i);
+                                 return o.join(", ");
+                             }()))
+                << "/classes/orientations_deg" << "400 orientations; at most 360";
+            QTest::addRow("%s: a sweep of 100,000 values", command)
+                << c
+                << paperWith(c + "_sweep.json",
+                             QString(R"("sweeps": {"compute": {"bins": [%1],
+                                "samples_per_tap": [50]}})")
+                                 .arg(repeated("20, ", 99999) + "20"))
+                << "/sweeps/compute/bins" << "a sweep of 100000 values; at most 64";
+            QTest::addRow("%s: a label with a control character", command)
+                << c
+                << paperWith(c + "_label.json",
+                             R"("following": {"trials": [{"label": "a\u0007b",
+                                "object": {"shape": "cross"}}]}, "recognition": null)")
+                << "/following/trials/0/label" << "control characters";
             QTest::addRow("%s: a trial whose path can leave the travel", command)
                 << c
                 << paperWith(c + "_edge.json",
@@ -206,10 +243,21 @@ private slots:
         const Outcome o = command == "run" ? cli({"run", file, "--out", out, "--no-figures"})
                                            : cli({"check", file});
         QCOMPARE(o.exitCode, 2);
-        QVERIFY2(o.err.contains(file) && o.err.contains(place) && o.err.contains(problem),
+        // The file at fault is named: the one given, or the one its place names (a fingertip).
+        const QString named = place.contains(": at ") ? place.section(": at ", 0, 0) : file;
+        QVERIFY2(o.err.contains(named) && o.err.contains(place) && o.err.contains(problem),
                  qPrintable(o.err.left(2000)));
         QVERIFY2(o.err.size() < 4000, "the message shows the start of a value, not all of it");
         QVERIFY(!QFileInfo::exists(out));
+    }
+
+    void aPipeIsNotWaitedOn() {
+        // Opening a pipe nobody writes to would block forever: only regular files are read.
+        const QString fifo = dir_.filePath("pipe.json");
+        QVERIFY(::mkfifo(fifo.toLocal8Bit().constData(), 0600) == 0);
+        const Outcome o = cli({"check", fifo});
+        QCOMPARE(o.exitCode, 2);
+        QVERIFY2(o.err.contains(fifo) && o.err.contains("not a regular file"), qPrintable(o.err));
     }
 
     void longPlansRunWhenAskedFor() {
