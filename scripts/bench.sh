@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Set up, build the benchmarks and print each figure beside its budget (DESIGN.md §7).
+# Set up, build the benchmarks and print each figure beside its budget (docs/benchmarks.md).
 # Benchmarks measure; they never fail on time.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"

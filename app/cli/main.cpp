@@ -1,4 +1,4 @@
-// activetouch-cli: the headless runner (DESIGN.md §4).
+// activetouch-cli: the headless runner (docs/design.md §5).
 //   activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--rig <rig>] [--no-figures]
 //   activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>] [--no-figures]
 //   activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>] [--no-figures]
@@ -83,7 +83,7 @@ void printHelp() {
         "      --seed overrides the experiment's seed (one seed = one whole run).\n"
         "      --rig takes the taps on the devices a rig file names instead (the Yamaha stage,\n"
         "      the NXT tapper with the fingertip over YARP, or a mix with simulated ones; see\n"
-        "      the README): the scene's object must be the one mounted. Ctrl-C stops after the\n"
+        "      docs/real-rig.md): the scene's object must be the one mounted. Ctrl-C stops after the\n"
         "      tap in flight, keeping every tap taken (while connecting, it stops the stage's\n"
         "      origin search).\n"
         "  activetouch-cli seeds <experiment.json> --from A --to B [--jobs N] [--out <dir>]\n"

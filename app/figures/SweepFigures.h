@@ -1,5 +1,5 @@
 #pragma once
-// The accuracy-versus-time plots (DESIGN.md §6), each with the paper's operating point marked.
+// The accuracy-versus-time plots (docs/accuracy-vs-time.md), each with the paper's operating point marked.
 class QCustomPlot;
 
 namespace activetouch {

@@ -1,5 +1,5 @@
 #pragma once
-// The device panels (DESIGN.md §5): the XY stage (port, connect, home, jog, go-to, position, soft
+// The device panels (docs/window.md): the XY stage (port, connect, home, jog, go-to, position, soft
 // limits), the NXT tapper (connect, battery, motor state, test tap, contact threshold) and the
 // fingertip source. Every button posts to the device thread; readouts update from its signals.
 #include <QWidget>

@@ -1,5 +1,5 @@
 #pragma once
-// The contour following tab (DESIGN.md §5): active and passive paths side by side over the
+// The contour following tab (docs/window.md): active and passive paths side by side over the
 // outline, per-trial statistics, and a step-by-step replay of one trial with the percept and the
 // rule that fired at each tap.
 #include <QTimer>

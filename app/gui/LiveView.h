@@ -1,5 +1,5 @@
 #pragma once
-// The live tab (DESIGN.md §5): 12 taxel bars on a fixed 0-255 scale with numeric readouts,
+// The live tab (docs/window.md): 12 taxel bars on a fixed 0-255 scale with numeric readouts,
 // updated at 50 Hz; the last tap's 50-sample traces; the stage position and the current percept.
 // A GUI timer draws the newest state from the LiveFeed; data never drives a replot. A frame redraws
 // the bars' own layer alone, and nothing is drawn while the tab is hidden.

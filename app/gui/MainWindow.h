@@ -1,5 +1,5 @@
 #pragma once
-// The workbench window (DESIGN.md §5): tabs for the live view, training and validation, contour
+// The workbench window (docs/window.md): tabs for the live view, training and validation, contour
 // following and recognition; docks for the scene, the devices and the log; runs with progress,
 // cancel and a clear final state; every plot exportable. Layout and settings persist.
 #include <QMainWindow>

@@ -1,5 +1,5 @@
 #pragma once
-// The scene panel (DESIGN.md §5): the training object (library shape or polygon file), its pose,
+// The scene panel (docs/window.md): the training object (library shape or polygon file), its pose,
 // and every effect of the simulated rig as a toggle with its parameters. A run uses exactly what
 // the panel shows.
 #include <QWidget>

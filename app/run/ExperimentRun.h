@@ -1,6 +1,6 @@
 #pragma once
 // Running an experiment end to end, on the simulated rig or on a connected one, and writing its
-// artefacts (DESIGN.md §4): summary.json, data/*.csv (taps appended as they are taken), and the
+// artefacts (docs/design.md §5): summary.json, data/*.csv (taps appended as they are taken), and the
 // tables behind every figure. Figures are drawn by app/figures from the same result.
 #include <atomic>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Outcome rates over many seeds (DESIGN.md §2: one seed is a whole run, its own data sets,
+// Outcome rates over many seeds (docs/design.md §3: one seed is a whole run, its own data sets,
 // training, valid range and trials). A single training draw can make a setting look much better
 // or worse than it is, so the paper's claims are reported as rates with their 95 % intervals.
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Accuracy costs time (DESIGN.md §6): measured trade-offs.
+// Accuracy costs time (docs/accuracy-vs-time.md): measured trade-offs.
 //   (a) sequential perception: perception error vs mean taps per decision, over belief thresholds
 //   (b) contour following: completion, path error, taps and robot time vs follow step,
 //       repositioning step and belief threshold, active and passive

@@ -1,5 +1,5 @@
 #pragma once
-// The paper's histogram maximum-likelihood classifier (eq. 1, 2; DESIGN.md §2).
+// The paper's histogram maximum-likelihood classifier (eq. 1, 2; docs/design.md §3).
 //
 // Per class c and taxel k, a histogram of all training samples over B uniform bins spanning that
 // taxel's min..max over the training set; P_k(s|c) = (h + alpha) / (sum h + B alpha). A tap's
@@ -55,8 +55,8 @@ inline constexpr double kMaxKernelSigma_bins = 50.0;
 struct ClassifierSettings {
     int bins = 100;  ///< B (paper: 100)
     double smoothing =
-        0.01;  ///< alpha, additive pseudo-count per bin, > 0 (see README: chosen by validation)
-    double kernelSigma_bins = 0.0;  ///< 0 = the paper's histogram; README: a choice beyond it
+        0.01;  ///< alpha, additive pseudo-count per bin, > 0 (docs/results.md: chosen by validation)
+    double kernelSigma_bins = 0.0;  ///< 0 = the paper's histogram; docs/results.md: a choice beyond it
     /// Why the settings cannot train a classifier, or empty.
     std::string problem() const;
 };

@@ -1,5 +1,5 @@
 #pragma once
-// The settings of the perception-action loop and of a trial's termination (DESIGN.md §2). Every
+// The settings of the perception-action loop and of a trial's termination (docs/design.md §3). Every
 // step length of the rules table is one of these numbers.
 #include <optional>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// An experiment file: a scene plus the protocol to run on it (DESIGN.md §4). The paper's
+// An experiment file: a scene plus the protocol to run on it (docs/design.md §5). The paper's
 // experiment is experiments/paper.json.
 #include <cstdint>
 #include <optional>
@@ -31,7 +31,7 @@ struct RecognitionSpec {
     FollowingMode ofMode = FollowingMode::Active;
 };
 
-/// Accuracy-versus-time sweeps (DESIGN.md §6); each part runs only if given.
+/// Accuracy-versus-time sweeps (docs/accuracy-vs-time.md); each part runs only if given.
 struct SweepSpec {
     // (a) sequential perception: error vs mean taps per decision over belief thresholds
     std::vector<double> beliefThresholds;

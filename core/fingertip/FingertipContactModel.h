@@ -1,5 +1,5 @@
 #pragma once
-// Contact physics of the ideal fingertip (DESIGN.md §3): the tilted rounded tip pressed into a
+// Contact physics of the ideal fingertip (docs/simulated-rig.md): the tilted rounded tip pressed into a
 // compliant pad on a flat object's top face. Each taxel reads the mean indentation over its
 // receptive field, counted only where the object's top face lies under the tip, so edges,
 // corners and concavities come out of geometry alone.

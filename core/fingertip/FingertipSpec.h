@@ -15,7 +15,7 @@ struct TaxelPosition {
 
 struct FingertipSpec {
     std::string name;
-    std::vector<TaxelPosition> taxels;  ///< published layout (PROTOCOLS.md §4)
+    std::vector<TaxelPosition> taxels;  ///< published layout (docs/protocols.md §4)
     // Body: a cylinder of radius `radius` closed by a half-ellipsoid cap from `capStart` to
     // `tipEnd` along the axis. Taxels are placed on this surface at their published axial position
     // and angle around the axis.

@@ -1,7 +1,7 @@
 #pragma once
 // The paper's test objects as outlines centred on their bounding box. The paper gives only the
 // rectangle's size (48 x 58 mm); the cross, C and L default to 60 x 60 mm with 20 mm arms and a
-// 20 mm C opening (DESIGN.md §2). Any scene may give its own polygon instead.
+// 20 mm C opening (docs/design.md §3). Any scene may give its own polygon instead.
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,7 +29,7 @@ std::optional<std::string> libraryShapeName(const std::string& name);
 /// wider than the shape...).
 Polygon libraryShape(const std::string& name, const ShapeSize& size);
 
-/// The defaults DESIGN.md gives for each library shape.
+/// The defaults docs/design.md gives for each library shape.
 ShapeSize defaultShapeSize(const std::string& name);
 
 }  // namespace activetouch

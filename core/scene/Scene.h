@@ -1,5 +1,5 @@
 #pragma once
-// A scene (DESIGN.md §3): the object on the stage, the fingertip, how the tapper taps, the stage,
+// A scene (docs/simulated-rig.md): the object on the stage, the fingertip, how the tapper taps, the stage,
 // a seed, and the list of physical effects to simulate. Only listed effects run.
 #include <cstdint>
 #include <string>
@@ -25,7 +25,7 @@ struct ObjectSpec {
     Polygon outline() const;
 };
 
-/// The tapper's stroke (DESIGN.md §2): lower from the retract height at constant speed, stop when
+/// The tapper's stroke (docs/design.md §3): lower from the retract height at constant speed, stop when
 /// the fingertip's total pressure crosses the threshold (or at the stroke limit), hold, return.
 struct TapSpec {
     double retractHeight_mm = 12.0;  ///< fingertip first-contact point above the table

@@ -1,5 +1,5 @@
 #pragma once
-// The perceptual classes: edge orientations x positions across the edge (DESIGN.md §2). Class
+// The perceptual classes: edge orientations x positions across the edge (docs/design.md §3). Class
 // index = orientation index * positions + position index. Position p (1-based) puts the tip
 // centre at signed distance (p - centre) * step along the edge's outward normal, where centre =
 // (positions + 1) / 2 (9.5 for the paper's 18 positions: p = 1 on the plane, p = 18 in the air).

@@ -8,7 +8,7 @@
 
 namespace activetouch {
 
-inline constexpr int kSamplesPerTap = 50;    ///< T: 1 s at 50 Hz (DESIGN.md §2)
+inline constexpr int kSamplesPerTap = 50;    ///< T: 1 s at 50 Hz (docs/design.md §3)
 inline constexpr int kFingertipTaxels = 12;  ///< K
 inline constexpr double kSampleRateHz = 50.0;
 

@@ -1,5 +1,5 @@
 #pragma once
-// Which region (plane, edge, air) each class's taps belong to (DESIGN.md §2): tap the ideal
+// Which region (plane, edge, air) each class's taps belong to (docs/design.md §3): tap the ideal
 // fingertip at the class's offset from a straight edge; plane = the whole pressed patch lies on
 // the object, air = no taxel above the noise floor, edge = the rest. A tilted tip is not
 // symmetric, so the map differs by orientation.

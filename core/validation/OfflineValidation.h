@@ -1,5 +1,5 @@
 #pragma once
-// Offline validation (paper Figures 5, 6; DESIGN.md §2): classify every test tap and measure,
+// Offline validation (paper Figures 5, 6; docs/design.md §3): classify every test tap and measure,
 // per (orientation, position), the mean angle error (deg) and position error (mm); average over
 // orientations with +-1 std; derive the valid range for repositioning from those errors.
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// The training protocol (DESIGN.md §2, paper §3.1): at the middle of each edge of the training
+// The training protocol (docs/design.md §3, paper §3.1): at the middle of each edge of the training
 // object, tap at every position across the edge; one data set = one tap per class (or several).
 // Sets are numbered from 1; some train, the rest test. Test sets may be shifted off the training
 // grid so validation does not overstate accuracy. Between sets the object is re-placed with a

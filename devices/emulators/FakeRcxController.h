@@ -1,5 +1,5 @@
 #pragma once
-// An emulated Yamaha RCX controller on a pseudo-terminal (PROTOCOLS.md §2): the driver opens the
+// An emulated Yamaha RCX controller on a pseudo-terminal (docs/protocols.md §2): the driver opens the
 // pty's slave like a serial port. Dialect rcx22x or rcx340; state (servo, origin done, position);
 // travel time from distance and speed; NG for moves before the origin search or beyond the travel;
 // ETX stops. Faults for tests: no reply, NG, garbage, dropped END (or OK), the port vanishing.

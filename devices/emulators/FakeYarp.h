@@ -1,5 +1,5 @@
 #pragma once
-// An emulated YARP name server and skin publisher on loopback TCP (PROTOCOLS.md §3, §4): the
+// An emulated YARP name server and skin publisher on loopback TCP (docs/protocols.md §3, §4): the
 // name server answers CONNACK / query; the publisher streams a 192-value hand vector at a set rate
 // over the text carrier ('d' or 'D' headers, with or without an envelope) or the binary carrier
 // (Vector tag 0x10A or 0x114). The fingertip's 12 values come from a callback. Faults: name server

@@ -1,5 +1,5 @@
 #pragma once
-// The LEGO NXT tapper (PROTOCOLS.md §1): motor A lowers the fingertip at a regulated speed with the
+// The LEGO NXT tapper (docs/protocols.md §1): motor A lowers the fingertip at a regulated speed with the
 // stroke as tacho limit; the fingertip's total pressure crossing the contact threshold is the
 // reflex that brakes it; after the contact time the motor returns to the retract angle (tacho 0,
 // set when the tapper connects). The tap records the fingertip stream's frames from the start of

@@ -1,5 +1,5 @@
 #pragma once
-// The LEGO NXT direct-command telegram codec (PROTOCOLS.md §1): bytes in, messages out, no
+// The LEGO NXT direct-command telegram codec (docs/protocols.md §1): bytes in, messages out, no
 // device. Over USB a telegram is the bulk payload itself, at most 64 bytes, little-endian
 // integers. A request is [type][opcode][parameters]; 0x00 / 0x01 ask for a reply, 0x80 / 0x81 do
 // not (and the brick then sends nothing). A reply is [0x02][opcode][status][payload].

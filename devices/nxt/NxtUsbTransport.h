@@ -1,5 +1,5 @@
 #pragma once
-// The NXT over USB with libusb-1.0 (PROTOCOLS.md §1): finds 0694:0002 (refusing the SAM-BA boot
+// The NXT over USB with libusb-1.0 (docs/protocols.md §1): finds 0694:0002 (refusing the SAM-BA boot
 // loader 03EB:6124 by name), detaches a kernel driver, resets, selects configuration 1, claims
 // interface 0 and moves telegrams over bulk OUT 0x01 / IN 0x82 with bounded timeouts. A vanished
 // device is reported as unplugged.

@@ -1,5 +1,5 @@
 #pragma once
-// A recorded trial replayed as a rig (DESIGN.md §4: a recording can be replayed as a rig). The
+// A recorded trial replayed as a rig (docs/design.md §5: a recording can be replayed as a rig). The
 // stage goes wherever it is sent; each tap is the recorded trial's next tap, served only if the
 // stage stands where that tap was taken. A run with the recorded run's classifier, valid range
 // and controller settings retraces the recording tap for tap; a run that decides otherwise

@@ -1,5 +1,5 @@
 #pragma once
-// A rig from any mix of real and simulated devices (DESIGN.md §1): the stage simulated or a
+// A rig from any mix of real and simulated devices (docs/design.md §1): the stage simulated or a
 // Yamaha RCX on a serial port; the tapper and fingertip simulated together, or the NXT tapper
 // with the fingertip over YARP (the NXT's reflex needs the real fingertip's pressure). A simulated
 // tapper on a real stage taps where the stage reports itself. The experiment code sees only the

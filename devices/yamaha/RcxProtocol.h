@@ -1,5 +1,5 @@
 #pragma once
-// The Yamaha RCX controller's line protocol (PROTOCOLS.md §2): commands are '@' + text + CR LF,
+// The Yamaha RCX controller's line protocol (docs/protocols.md §2): commands are '@' + text + CR LF,
 // at most 80 characters; replies are CR LF lines. Two dialects: RCX22x answers OK or NG (and
 // [POS] lines for positions); RCX340 answers RUN at once and END when a motion finishes, and a
 // line of numbers for positions. Pure text in and out; no port.

@@ -1,5 +1,5 @@
 #pragma once
-// The Yamaha XY stage behind an RCX controller (PROTOCOLS.md §2) as a Stage: servo on, origin
+// The Yamaha XY stage behind an RCX controller (docs/protocols.md §2) as a Stage: servo on, origin
 // search, absolute moves at a speed, the position query, arrival confirmed by polling the position
 // within a tolerance, soft limits checked before anything is sent, and stop (ETX). Every line in
 // both directions goes to the raw log; every wait has a bound.

@@ -1,5 +1,5 @@
 #pragma once
-// The iCub fingertip read over YARP (PROTOCOLS.md §3, §4): finds the skin port through the name
+// The iCub fingertip read over YARP (docs/protocols.md §3, §4): finds the skin port through the name
 // server, connects to it as a reader (text carrier by default, binary as an option), and keeps
 // the chosen fingertip's latest 12 values, compensating a raw stream skinManager-style if asked.
 // The socket lives in the client's own thread; nothing waits without a bound.

@@ -1,5 +1,5 @@
 #pragma once
-// Reading an iCub skin stream over YARP (PROTOCOLS.md §3, §4), as pure codecs: the name-server
+// Reading an iCub skin stream over YARP (docs/protocols.md §3, §4), as pure codecs: the name-server
 // query, the text-carrier data lines, the binary Vector-of-doubles payload (tag 0x10A before YARP
 // 4, 0x114 from YARP 4), picking one fingertip's 12 values out of the 192-value hand vector, and
 // skinManager-style compensation of a raw stream. No sockets here.

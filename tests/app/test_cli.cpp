@@ -176,7 +176,7 @@ private slots:
     }
 
     void checkCautionsAboutEdgesNoTrainedOrientationFaces() {
-        // The run is allowed (the README measures how following degrades with rotation), but the
+        // The run is allowed (docs/results.md measures how following degrades with rotation), but the
         // person is told before any tap which trial and edge, and what would follow it.
         const QString path = write(
             "turned.json",

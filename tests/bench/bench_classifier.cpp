@@ -1,5 +1,5 @@
 // Microseconds to classify one tap (72 classes, T = 50, K = 12) with a classifier trained on the
-// paper scene's data set 1. Budget (DESIGN.md §7): <= 2 us on one core.
+// paper scene's data set 1. Budget (docs/benchmarks.md): <= 2 us on one core.
 #include <cstdio>
 
 #include "app/run/ExperimentRun.h"

@@ -1,4 +1,4 @@
-// CPU share of the live view at 50 Hz (DESIGN.md §7: <= 10 % of one core): the Live tab's taxel
+// CPU share of the live view at 50 Hz (docs/benchmarks.md: <= 10 % of one core): the Live tab's taxel
 // bars and traces fed frames at 50 Hz and a new tap every second, for 10 s; process CPU time
 // (user + system) over wall time. Run offscreen or under Xvfb.
 #include <sys/resource.h>

@@ -1,5 +1,5 @@
 // Microseconds to simulate one tap on the paper rectangle, across the lower edge: the ideal
-// scene and with every effect listed. Budgets (DESIGN.md §7): ideal <= 10 us, all effects <= 50 us.
+// scene and with every effect listed. Budgets (docs/benchmarks.md): ideal <= 10 us, all effects <= 50 us.
 #include <cstdio>
 
 #include "bench/BenchHarness.h"

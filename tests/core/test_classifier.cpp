@@ -1,4 +1,4 @@
-// The histogram classifier's hard cases (DESIGN.md §2): every degenerate input stays finite and
+// The histogram classifier's hard cases (docs/design.md §3): every degenerate input stays finite and
 // decides exactly as an independent long-double implementation of eq. 1-2 does.
 #include <QtTest>
 #include <cmath>

@@ -389,7 +389,7 @@ private slots:
             r.validation.angleError_deg, r.validation.positionError_mm, int(t.taps.size()),
             trialEndName(t.end), t.meanContourDistance_mm, t.coverage, r.robotTime_s);
         // What it learnt there decides how far it follows (the bench's taps are noise-free, so one
-        // training tap per class gives spiky histograms; see the README); whatever the outcome,
+        // training tap per class gives spiky histograms; see docs/results.md); whatever the outcome,
         // the trial ends with its reason, not with a device fault.
         QVERIFY2(t.end != TrialEnd::DeviceError && t.end != TrialEnd::Cancelled, t.detail.c_str());
         QVERIFY(t.taps.size() >= 5);

@@ -1,4 +1,4 @@
-// The NXT telegram codec against the byte-exact examples of PROTOCOLS.md §1, round trips, every
+// The NXT telegram codec against the byte-exact examples of docs/protocols.md §1, round trips, every
 // status code, and the replies it must refuse.
 #include <QtTest>
 

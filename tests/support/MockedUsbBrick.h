@@ -1,6 +1,6 @@
 #pragma once
 // A mocked NXT on a mocked USB bus (umockdev): the device and configuration descriptors of
-// PROTOCOLS.md §1 in a mocked sysfs, and the usbdevfs ioctls that libusb issues (claim, reset,
+// docs/protocols.md §1 in a mocked sysfs, and the usbdevfs ioctls that libusb issues (claim, reset,
 // bulk URBs on 0x01 / 0x82, discards on timeout) answered by an emulated brick. Tests using it run
 // under umockdev-wrapper (see tests/CMakeLists.txt). Include it before any Qt header: GLib's
 // headers use names that Qt defines as keywords.

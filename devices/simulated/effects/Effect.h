@@ -1,5 +1,5 @@
 #pragma once
-// A physical effect of the simulated rig beyond the ideal model (DESIGN.md §3). An effect exists
+// A physical effect of the simulated rig beyond the ideal model (docs/simulated-rig.md). An effect exists
 // only if the scene lists it: the pipeline constructs exactly the listed ones, so an unlisted
 // effect costs nothing at run time. Each effect acts at one place:
 //   pose      - where the stage really puts the fingertip (stage_error)

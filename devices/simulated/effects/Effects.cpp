@@ -141,7 +141,7 @@ private:
 
 /// Thermal drift of each taxel's baseline (a random walk) and skinManager's compensation, which
 /// nudges its baseline estimate toward the reading by gain * 0.02 * d / threshold per sample
-/// (PROTOCOLS.md §4): compensation leaves a residual and slowly eats into a sustained press.
+/// (docs/protocols.md §4): compensation leaves a residual and slowly eats into a sustained press.
 class BaselineDrift final : public Effect {
 public:
     BaselineDrift(double rate, double threshold, double freeGain, double touchGain, int taxels,
