@@ -31,6 +31,7 @@
 #include "app/run/PairedComparison.h"
 #include "app/run/RunFolder.h"
 #include "app/run/SeedRates.h"
+#include "app/run/SeedShards.h"
 #include "core/experiment/Experiment.h"
 #include "core/experiment/RunPlan.h"
 #include "core/io/Csv.h"
@@ -100,6 +101,13 @@ void printHelp() {
         "      the rates so far with their intervals). --out defaults to\n"
         "      results/<experiment name>_seeds. --jobs runs N seeds at once (default: one per\n"
         "      core); every row and rate is the same for any N, reported in seed order.\n"
+        "  activetouch-cli seeds <experiment.json> --from A --to B --shard K/N [...]\n"
+        "      Runs only the K-th of N contiguous blocks of seeds A..B (for sweeps split across\n"
+        "      machines); its folder keeps every seed's outcome in seed_outcomes.json.\n"
+        "  activetouch-cli merge <folder>... --out <dir> [--no-figures]\n"
+        "      Merges the folders of every shard of one seeds sweep into what one seeds run over\n"
+        "      the whole range writes (rates.csv, rates.json, figures); refuses shards that\n"
+        "      overlap, leave seeds out, or ran other settings, naming the seeds and folders.\n"
         "  activetouch-cli compare <a.json> <b.json> --from A --to B [--jobs N] [--out <dir>]\n"
         "                          [--no-figures]\n"
         "      Runs both experiments once per seed A..B and compares them trial by trial: a\n"
@@ -643,19 +651,55 @@ int failedRunsExit(int code, int failedRuns, const std::string& outDir, const ch
     return kRunFailed;
 }
 
+/// What a seeds run or a merge prints as each seed finishes.
+bool printSeedOutcome(const SeedOutcome& o) {
+    std::printf("seed %llu: passive lost %d/%d, active completed %d/%d",
+                static_cast<unsigned long long>(o.seed), o.passiveLost, o.passiveTrials,
+                o.activeCompleted, o.activeTrials);
+    if (o.recognition)
+        std::printf(", recognised %d (smoothed %d) of %d", o.recognisedRaw(),
+                    o.recognisedSmoothed(), o.recognitionTrials());
+    std::printf("\n");
+    if (o.failed())
+        std::printf("    run failed, %d trials not run: %s\n", o.trialsNotRun, o.runFailure.c_str());
+    for (const auto& f : o.passiveShortfalls) std::printf("    %s\n", f.c_str());
+    for (const auto& f : o.failures) std::printf("    %s\n", f.c_str());
+    for (const auto& m : o.misnamed()) std::printf("    %s\n", m.c_str());
+    std::fflush(stdout);
+    return true;
+}
+
+/// The closing report of a seeds run or a merge: the rates over `first`..`last`.
+void printSeedRates(const std::string& name, const SeedRates& rates, std::uint64_t first,
+                    std::uint64_t last) {
+    std::printf("\n%s over %zu seeds (%llu-%llu):\n", name.c_str(), rates.seeds.size(),
+                static_cast<unsigned long long>(first), static_cast<unsigned long long>(last));
+    for (const std::string& line : describeRates(rates)) std::printf("%s\n", line.c_str());
+}
+
 int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     const RunArguments parsed =
-        parseRunArguments(args, "seeds", {"--from", "--to", "--jobs"}, true);
+        parseRunArguments(args, "seeds", {"--from", "--to", "--jobs"}, true, false,
+                          {{"--shard", "K/N, e.g. 2/3 for the second of three shards"}});
     if (!parsed.error.empty()) return usageError(parsed.error);
     const std::string& experimentPath = parsed.experimentPath;
     std::string outDir = parsed.outDir;
     const SeedRange range = seedRangeOf(parsed, "seeds --from 1 --to 10");
     if (!range.error.empty()) return usageError(range.error);
+    Shard shard;
+    if (const std::string text = parsed.text("--shard"); !text.empty()) {
+        std::string error;
+        const auto read = parseShard(text, &error);
+        if (!read) return usageError(error);
+        shard = *read;
+    }
+    // This shard's block of the range; a shard of more shards than seeds may have none.
+    const auto seeds = shardSeeds(range.first, range.last, shard);
     const auto loaded = loadForRun(experimentPath);
     if (!loaded) return kBadInput;
     const ExperimentSpec& spec = *loaded;
-    if (!planAccepted(spec, double(range.last - range.first + 1), parsed.allowLongPlan))
-        return kBadInput;
+    const double runs = seeds ? double(seeds->second - seeds->first + 1) : 0.0;
+    if (!planAccepted(spec, runs, parsed.allowLongPlan)) return kBadInput;
     if (outDir.empty()) outDir = (fs::path("results") / (spec.name + "_seeds")).string();
     const auto claimed = claimOrSay(outDir, "seeds", spec, runFactsOf(spec), parsed.replace);
     if (!claimed) return kBadInput;
@@ -663,32 +707,79 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     const int code = overSeeds(
         "run failed", outDir, "rates.csv", parsed.figures, range.jobs, argc, argv,
         [&] {
-            const SeedRates rates = runSeeds(
-                spec, range.first, range.last, outDir,
-                [](const SeedOutcome& o) {
-                    std::printf("seed %llu: passive lost %d/%d, active completed %d/%d",
-                                static_cast<unsigned long long>(o.seed), o.passiveLost,
-                                o.passiveTrials, o.activeCompleted, o.activeTrials);
-                    if (o.recognition)
-                        std::printf(", recognised %d (smoothed %d) of %d", o.recognisedRaw(),
-                                    o.recognisedSmoothed(), o.recognitionTrials());
-                    std::printf("\n");
-                    for (const auto& f : o.passiveShortfalls) std::printf("    %s\n", f.c_str());
-                    for (const auto& f : o.failures) std::printf("    %s\n", f.c_str());
-                    for (const auto& m : o.misnamed()) std::printf("    %s\n", m.c_str());
-                    std::fflush(stdout);
-                    return true;
-                },
-                range.jobs);
+            const SeedRates rates =
+                seeds ? runSeeds(spec, seeds->first, seeds->second, outDir, printSeedOutcome,
+                                 range.jobs)
+                      : runSeeds(spec, 1, 0, outDir);
             failedRuns = rates.runsFailed().count;
-            std::printf("\n%s over %zu seeds (%llu-%llu):\n", spec.name.c_str(), rates.seeds.size(),
-                        static_cast<unsigned long long>(range.first),
-                        static_cast<unsigned long long>(range.last));
-            for (const std::string& line : describeRates(rates)) std::printf("%s\n", line.c_str());
+            // Every seed's whole outcome, so that shards merge into exactly one run's files.
+            writeSeedShardFile(outDir, {spec.name, experimentFingerprint(experimentPath, spec),
+                                        range.first, range.last, shard, rates.seeds});
+            if (shard.count > 1)
+                std::printf("\nshard %d/%d of seeds %llu-%llu: %s\n", shard.index, shard.count,
+                            static_cast<unsigned long long>(range.first),
+                            static_cast<unsigned long long>(range.last),
+                            seeds ? (std::to_string(seeds->first) + "-" +
+                                     std::to_string(seeds->second))
+                                        .c_str()
+                                  : "no seeds");
+            printSeedRates(spec.name, rates, seeds ? seeds->first : range.first,
+                           seeds ? seeds->second : range.first);
             return rates;
         },
         [&](const SeedRates& rates) {
             writeSeedFigures(rates, QString::fromStdString(spec.name),
+                             QString::fromStdString(outDir));
+        });
+    return failedRunsExit(code, failedRuns, outDir, "rates.csv");
+}
+
+int commandMerge(const std::vector<std::string>& args, int argc, char** argv) {
+    std::vector<std::string> folders;
+    std::string outDir;
+    bool figures = true, replace = false;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        if (args[i] == "--out") {
+            if (i + 1 >= args.size()) return usageError("--out needs a folder");
+            outDir = args[++i];
+        } else if (args[i] == "--no-figures") {
+            figures = false;
+        } else if (args[i] == "--replace") {
+            replace = true;
+        } else if (!args[i].empty() && args[i][0] == '-') {
+            return usageError("unknown option '" + args[i] + "'");
+        } else {
+            folders.push_back(args[i]);
+        }
+    }
+    if (folders.empty())
+        return usageError("merge needs the folders of the shards, e.g. merge S1 S2 S3 --out M");
+    if (outDir.empty()) return usageError("merge needs --out, the folder to write");
+    SeedShardFile merged;
+    try {
+        merged = mergeSeedShards(folders);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    }
+    ExperimentSpec named;
+    named.name = merged.experiment;
+    RunFacts facts;
+    const auto claimed = claimOrSay(outDir, "merge", named, facts, replace);
+    if (!claimed) return kBadInput;
+    int failedRuns = 0;
+    const int code = overSeeds(
+        "merge failed", outDir, "rates.csv", figures, 1, argc, argv,
+        [&] {
+            const SeedRates rates = writeMergedSeeds(merged, outDir);
+            failedRuns = rates.runsFailed().count;
+            std::printf("merged %zu shard folders: %zu seeds\n", folders.size(),
+                        merged.outcomes.size());
+            printSeedRates(merged.experiment, rates, merged.first, merged.last);
+            return rates;
+        },
+        [&](const SeedRates& rates) {
+            writeSeedFigures(rates, QString::fromStdString(merged.experiment),
                              QString::fromStdString(outDir));
         });
     return failedRunsExit(code, failedRuns, outDir, "rates.csv");
@@ -954,6 +1045,7 @@ int main(int argc, char** argv) {
     if (command == "replay") return commandAnalyse(args, argc, argv, true);
     if (command == "compare") return commandCompare(args, argc, argv);
     if (command == "check") return commandCheck(args);
+    if (command == "merge") return commandMerge(args, argc, argv);
     return usageError("unknown command '" + command +
-                      "'; use run, seeds, compare, analyse, replay or check");
+                      "'; use run, seeds, merge, compare, analyse, replay or check");
 }

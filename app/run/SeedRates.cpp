@@ -567,22 +567,42 @@ Rate SeedRates::runsFailed() const {
     return r;
 }
 
+void startRatesTable(std::optional<OutputFile>& file, const std::string& outDir) {
+    startAppendedTable(
+        file, outDir, "rates.csv", "rates.json",
+        "seed,passive_trials,passive_lost,passive_lost_at_a_corner,active_trials,"
+        "active_completed,"
+        "recognition_trials,recognised_raw,recognised_smoothed,completed_taps,"
+        "completed_robot_time_s,"
+        "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
+        "valid_range_positions,"
+        "paper_result,paper_result_smoothed,active_failures,misnamed_paths,"
+        "passive_not_lost_at_a_corner,run_failure,trials_not_run\n");
+}
+
+void appendRatesRow(OutputFile& file, const SeedOutcome& o) {
+    // Where the experiment does not have the paper's parts, its result is left empty.
+    const char* paper = !o.paperResultApplies() ? "" : o.paperResult() ? "1" : "0";
+    const char* smoothed = !o.paperResultApplies()   ? ""
+                           : o.paperResultSmoothed() ? "1"
+                                                     : "0";
+    file.print("%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s,%s,%s,%s,%d\n",
+               static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
+               o.passiveLostAtCorner(), o.activeTrials, o.activeCompleted, o.recognitionTrials(),
+               o.recognisedRaw(), o.recognisedSmoothed(), o.completedTaps, o.completedRobotTime_s,
+               o.runRobotTime_s, o.angleError_deg, o.positionError_mm, o.validRange.span().c_str(),
+               paper, smoothed, csvField(o.failures).c_str(), csvField(o.misnamed()).c_str(),
+               csvField(o.passiveShortfalls).c_str(),
+               o.failed() ? csvField({o.runFailure}).c_str() : "", o.trialsNotRun);
+    file.flush();
+}
+
 SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
                    const std::string& outDir,
                    const std::function<bool(const SeedOutcome&)>& seedDone, int jobs) {
     SeedRates rates;
     std::optional<OutputFile> file;
-    if (!outDir.empty())
-        startAppendedTable(
-            file, outDir, "rates.csv", "rates.json",
-            "seed,passive_trials,passive_lost,passive_lost_at_a_corner,active_trials,"
-            "active_completed,"
-            "recognition_trials,recognised_raw,recognised_smoothed,completed_taps,"
-            "completed_robot_time_s,"
-            "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
-            "valid_range_positions,"
-            "paper_result,paper_result_smoothed,active_failures,misnamed_paths,"
-            "passive_not_lost_at_a_corner,run_failure,trials_not_run\n");
+    if (!outDir.empty()) startRatesTable(file, outDir);
     const auto run = [&spec](std::uint64_t seed) {
         RunOptions options;
         options.seed = seed;
@@ -590,24 +610,7 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
     };
     forEachSeed(first, last, jobs, run, [&](std::uint64_t, SeedOutcome&& o) {
         rates.seeds.push_back(o);
-        if (file) {
-            // Where the experiment does not have the paper's parts, its result is left empty.
-            const char* paper = !o.paperResultApplies() ? "" : o.paperResult() ? "1" : "0";
-            const char* smoothed = !o.paperResultApplies()   ? ""
-                                   : o.paperResultSmoothed() ? "1"
-                                                             : "0";
-            file->print(
-                "%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s,%s,%s,%s,%d\n",
-                        static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
-                        o.passiveLostAtCorner(), o.activeTrials, o.activeCompleted,
-                        o.recognitionTrials(), o.recognisedRaw(), o.recognisedSmoothed(),
-                        o.completedTaps, o.completedRobotTime_s, o.runRobotTime_s, o.angleError_deg,
-                        o.positionError_mm, o.validRange.span().c_str(), paper, smoothed,
-                        csvField(o.failures).c_str(), csvField(o.misnamed()).c_str(),
-                        csvField(o.passiveShortfalls).c_str(),
-                        o.failed() ? csvField({o.runFailure}).c_str() : "", o.trialsNotRun);
-            file->flush();
-        }
+        if (file) appendRatesRow(*file, o);
         return !seedDone || seedDone(o);
     });
     if (file) {

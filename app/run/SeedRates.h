@@ -4,12 +4,14 @@
 // or worse than it is, so the paper's claims are reported as rates with their 95 % intervals.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "app/run/ExperimentRun.h"
 #include "app/run/SeedPool.h"
+#include "core/io/OutputFile.h"
 
 namespace activetouch {
 
@@ -204,6 +206,11 @@ SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_
                    int jobs = defaultSeedJobs());
 
 Json seedRatesJson(const SeedRates& rates);
+
+/// Opens <outDir>/rates.csv with its header (removing a rates.json beside it), and appends one
+/// seed's row: what runSeeds writes, and a merge of shards writes again.
+void startRatesTable(std::optional<OutputFile>& file, const std::string& outDir);
+void appendRatesRow(OutputFile& file, const SeedOutcome& outcome);
 
 /// The rates as lines of text, one per rate ("<what>  count / total  p %  (95 % interval lo-hi
 /// %)", or that there are none; with more than one trial label, active completion per label under

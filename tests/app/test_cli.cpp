@@ -529,6 +529,56 @@ private slots:
         QVERIFY2(taps.out.contains("360 taps"), qPrintable(taps.out));
     }
 
+    void shardsMergeIntoWhatOneRunWrites() {
+        // seeds 1-30 of the paper in three shards, merged: the same rates.json, rates.csv and
+        // seed outcomes as one run over every seed (figures drawn from the same rates).
+        const QString paper = sourceFile("experiments/paper.json");
+        QStringList shards;
+        for (int k = 1; k <= 3; ++k) {
+            shards << dir_.filePath(QString("shard%1").arg(k));
+            const Outcome o = runCli({"seeds", paper, "--from", "1", "--to", "30", "--shard",
+                                      QString("%1/3").arg(k), "--out", shards.last(),
+                                      "--no-figures"});
+            QVERIFY2(o.exitCode == 0, qPrintable(o.err));
+            QCOMPARE(linesIn(shards.last() + "/rates.csv"), 1 + 10);
+        }
+        const QString merged = dir_.filePath("merged"), whole = dir_.filePath("whole");
+        const Outcome m = runCli({"merge", shards[0], shards[1], shards[2], "--out", merged,
+                                  "--no-figures"});
+        QVERIFY2(m.exitCode == 0, qPrintable(m.err));
+        QVERIFY(runCli({"seeds", paper, "--from", "1", "--to", "30", "--out", whole,
+                        "--no-figures"})
+                    .exitCode == 0);
+        for (const char* f : {"rates.json", "rates.csv", "seed_outcomes.json"}) {
+            QFile a(merged + "/" + f), b(whole + "/" + f);
+            QVERIFY(a.open(QIODevice::ReadOnly) && b.open(QIODevice::ReadOnly));
+            QVERIFY2(a.readAll() == b.readAll(), f);
+        }
+        // Overlapping and missing shards are refused, naming the seeds and the folders.
+        const Outcome twice = runCli({"merge", shards[0], shards[1], shards[1], shards[2],
+                                      "--out", dir_.filePath("twice")});
+        QCOMPARE(twice.exitCode, 2);
+        QVERIFY2(twice.err.contains("seeds 11-20 are in both " + shards[1]), qPrintable(twice.err));
+        const Outcome gap =
+            runCli({"merge", shards[0], shards[2], "--out", dir_.filePath("gap")});
+        QCOMPARE(gap.exitCode, 2);
+        QVERIFY2(gap.err.contains("seeds 11-20 of 1-30 are in no shard given"),
+                 qPrintable(gap.err));
+        QVERIFY(!QFileInfo::exists(dir_.filePath("gap")));
+        // Shards of other settings never merge.
+        const QString other = dir_.filePath("other_shard");
+        QVERIFY(runCli({"seeds", sourceFile("experiments/paper_kernel.json"), "--from", "1",
+                        "--to", "30", "--shard", "2/3", "--out", other, "--no-figures"})
+                    .exitCode == 0);
+        const Outcome mixed =
+            runCli({"merge", shards[0], other, shards[2], "--out", dir_.filePath("mixed")});
+        QCOMPARE(mixed.exitCode, 2);
+        QVERIFY2(mixed.err.contains(other) && mixed.err.contains("other settings"),
+                 qPrintable(mixed.err));
+        QCOMPARE(runCli({"seeds", paper, "--from", "1", "--to", "3", "--shard", "4/3"}).exitCode,
+                 2);
+    }
+
     void checkReadsTapRecordings() {
         const QString out = dir_.filePath("csvrun");
         QCOMPARE(runCli({"run", sourceFile("experiments/paper.json"), "--out", out, "--no-figures"})

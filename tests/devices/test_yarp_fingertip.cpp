@@ -2,7 +2,9 @@
 // skin publisher: text carrier ('d', 'do', 'D', with and without envelope), binary carrier with
 // both Vector tags, compensation of a raw stream, and every stream fault.
 #include <QtTest>
+#include <algorithm>
 #include <atomic>
+#include <climits>
 #include <chrono>
 
 #include "devices/emulators/FakeYarp.h"
@@ -261,8 +263,9 @@ private slots:
         QTest::addColumn<QString>("says");
         auto binaryHeader = [](std::vector<std::int32_t> lengths) {
             QByteArray m("YA");
-            std::int32_t total = 0;
-            for (auto l : lengths) total += l;
+            std::int64_t sum = 0;
+            for (auto l : lengths) sum += l;
+            const auto total = static_cast<std::int32_t>(std::min<std::int64_t>(sum, INT32_MAX));
             m.append(reinterpret_cast<const char*>(&total), 4);
             m.append("RP");
             const std::int32_t blocks = static_cast<std::int32_t>(lengths.size());
