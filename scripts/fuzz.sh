@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes every parser of outside data (docs/fuzzing.md): builds the libFuzzer harnesses with
 # clang under AddressSanitizer + UndefinedBehaviorSanitizer into build-fuzz/ (or
-# $ACTIVETOUCH_FUZZ_BUILD_DIR), then runs each for SECONDS (default 60) from its checked-in
-# corpus, two at a time, and prints each harness's executions and findings.
+# $ACTIVETOUCH_FUZZ_BUILD_DIR), then runs each from its checked-in corpus, as many at a time as
+# there are cores, for SECONDS (default 60) or until it has run $ACTIVETOUCH_FUZZ_RUNS inputs
+# (default 1,000,000), whichever comes first, and prints each harness's executions and findings.
 #   bash scripts/fuzz.sh [SECONDS] [HARNESS...]     e.g. bash scripts/fuzz.sh 600
 # New inputs the fuzzer finds go to build-fuzz/corpus/<harness>/, never into the repository; a
 # finding is written to build-fuzz/findings/<harness>/ and the script exits 1.
@@ -25,7 +26,8 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="print_stack
 run_one() {
   local name="$1" work="$build/corpus/$1" findings="$build/findings/$1"
   mkdir -p "$work" "$findings"
-  "$build/fuzz/fuzz_$name" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  "$build/fuzz/fuzz_$name" -max_total_time="$seconds" -runs="${ACTIVETOUCH_FUZZ_RUNS:-1000000}" \
+    -timeout=10 -rss_limit_mb=2048 \
     -artifact_prefix="$findings/" -print_final_stats=1 "$work" "$top/fuzz/corpus/$name" \
     > "$build/fuzz_$name.log" 2>&1
 }
@@ -37,13 +39,14 @@ for name in "${harnesses[@]}"; do
   if [ ${#pids[@]} -ge "$(nproc)" ]; then wait "${pids[0]}" || true; pids=("${pids[@]:1}"); fi
 done
 wait || true
-printf '%-22s %12s %10s  %s\n' harness executions "per second" findings
+printf '%-22s %12s %10s %8s  %s\n' harness executions "per second" seconds findings
 for name in "${harnesses[@]}"; do
   log="$build/fuzz_$name.log"
   runs=$(grep -oE 'stat::number_of_executed_units: *[0-9]+' "$log" | grep -oE '[0-9]+$' || echo 0)
   rate=$(grep -oE 'stat::average_exec_per_sec: *[0-9]+' "$log" | grep -oE '[0-9]+$' || echo 0)
+  took=$(grep -oE 'Done [0-9]+ runs in [0-9]+ second' "$log" | grep -oE '[0-9]+ second' | grep -oE '[0-9]+' || echo "$seconds")
   found=$(find "$build/findings/$name" -type f | wc -l)
-  printf '%-22s %12s %10s  %s\n' "$name" "$runs" "$rate" "$found"
+  printf '%-22s %12s %10s %8s  %s\n' "$name" "$runs" "$rate" "${took:-$seconds}" "$found"
   if [ "$found" -gt 0 ] || grep -qE 'ERROR: (AddressSanitizer|libFuzzer)|runtime error:' "$log"; then
     failed=1
     echo "  finding: see $log and $build/findings/$name/" >&2
