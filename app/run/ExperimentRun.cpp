@@ -82,18 +82,19 @@ int plannedTapEstimate(const ExperimentSpec& spec) {
 }
 
 RecordedRun readRecordedRun(const std::string& runDir, const ClassSet& classes) {
-    if (!fs::is_directory(runDir))
+    std::error_code ec;  // a path the system cannot look up is not a run's folder
+    if (!fs::is_directory(runDir, ec))
         throw InputError(runDir, "",
                          "not a folder; give the folder a run wrote (it holds data/taps.csv and "
                          "data/following_taps.csv)");
     const fs::path data = fs::path(runDir) / "data";
     const std::string following = (data / "following_taps.csv").string(),
                       taps = (data / "taps.csv").string();
-    if (!fs::exists(following))
+    if (!fs::exists(following, ec))
         throw InputError(following, "",
                          "the run recorded no contour following, so there is nothing to replay; "
                          "re-analyse its training taps instead (analyse)");
-    if (!fs::exists(taps))
+    if (!fs::exists(taps, ec))
         throw InputError(taps, "",
                          "no training taps beside the following recording: this run followed "
                          "with a classifier trained in an earlier run; copy that run's "

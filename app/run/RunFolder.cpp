@@ -256,7 +256,8 @@ void checkOneRun(const std::string& dir, const std::vector<std::string>& read, s
 }
 
 std::optional<std::string> runFolderOf(const std::string& recording) {
-    const fs::path p = fs::absolute(recording).lexically_normal();
+    std::error_code ec;
+    const fs::path p = fs::absolute(recording, ec).lexically_normal();
     if (p.parent_path().filename() != "data") return std::nullopt;
     return p.parent_path().parent_path().string();
 }
@@ -265,9 +266,12 @@ RecordingBounds checkedRecordingBounds(const std::string& recording, std::string
     RecordingBounds bounds;
     const auto dir = runFolderOf(recording);
     if (!dir) return bounds;
-    checkOneRun(*dir,
-                {fs::absolute(recording).lexically_normal().lexically_relative(*dir).generic_string()},
-                note);
+    std::error_code ignored;
+    const std::string relative = fs::absolute(recording, ignored)
+                                     .lexically_normal()
+                                     .lexically_relative(*dir)
+                                     .generic_string();
+    checkOneRun(*dir, {relative}, note);
     if (const auto m = readRunManifest(*dir)) {
         bounds.samplesPerTap = m->facts.samplesPerTap;
         if (m->facts.stageTravel_mm.x > 0 && m->facts.stageTravel_mm.y > 0)

@@ -7,6 +7,12 @@
 
 namespace activetouch {
 
+/// `text` as a message quotes a value from a file: the whole of a short one, the start of a long
+/// one (a path thousands of characters long is still refused in a readable sentence).
+inline std::string shortened(const std::string& text, std::size_t most = 160) {
+    return text.size() <= most ? text : text.substr(0, most) + "...";
+}
+
 class InputError : public std::runtime_error {
 public:
     InputError(std::string source, std::string place, std::string problem)

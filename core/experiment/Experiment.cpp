@@ -202,9 +202,10 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
     if (scene.is_string()) {
         fs::path p(scene.get<std::string>());
         if (p.is_relative()) p = fs::path(baseDirectory) / p;
-        if (!fs::exists(p))
+        std::error_code ec;
+        if (!fs::exists(p, ec))
             f.fail("scene",
-                   "scene file '" + p.string() +
+                   "scene file '" + shortened(p.string()) +
                        "' does not exist; check the path (relative to the experiment file)");
         e.scene = loadScene(p.string());
     } else {
@@ -366,7 +367,10 @@ void mergePatch(Json& target, const Json& patch) {
 // its scene path made absolute, patched by this one's keys. `chain` holds the files on the way,
 // to refuse a circle.
 Json resolvedExperiment(const std::string& path, std::vector<std::string>& chain) {
-    const std::string canonical = fs::weakly_canonical(fs::path(path)).string();
+    // Paths come from files: one the system cannot even look up (too long, say) is not there.
+    std::error_code ec;
+    std::string canonical = fs::weakly_canonical(fs::path(path), ec).string();
+    if (ec) canonical = fs::path(path).lexically_normal().string();
     if (std::find(chain.begin(), chain.end(), canonical) != chain.end()) {
         std::string circle;
         for (const auto& c : chain) circle += fs::path(c).filename().string() + " -> ";
@@ -389,7 +393,7 @@ Json resolvedExperiment(const std::string& path, std::vector<std::string>& chain
     if (j.contains("scene") && j["scene"].is_string()) {
         const fs::path scene(j["scene"].get<std::string>());
         if (scene.is_relative())
-            j["scene"] = fs::absolute(directory / scene).lexically_normal().string();
+            j["scene"] = fs::absolute(directory / scene, ec).lexically_normal().string();
     }
     if (!j.contains("extends")) return j;
     const Json& extends = j["extends"];
@@ -399,9 +403,9 @@ Json resolvedExperiment(const std::string& path, std::vector<std::string>& chain
                          "\"paper.json\"");
     fs::path basePath(extends.get<std::string>());
     if (basePath.is_relative()) basePath = directory / basePath;
-    if (!fs::exists(basePath))
+    if (!fs::exists(basePath, ec))
         throw InputError(path, "/extends",
-                         "the experiment it extends, '" + basePath.string() +
+                         "the experiment it extends, '" + shortened(basePath.string()) +
                              "', does not exist; give its path relative to this file");
     chain.push_back(canonical);
     Json merged = resolvedExperiment(basePath.string(), chain);

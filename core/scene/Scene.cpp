@@ -39,9 +39,11 @@ FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& re
     } else {
         path = fs::path(resourceDirectory()) / "fingertip" / (nameOrPath + ".json");
     }
-    if (!fs::exists(path))
+    std::error_code ec;
+    if (!fs::exists(path, ec))
         throw InputError(source, place,
-                         "fingertip '" + nameOrPath + "' not found (looked for " + path.string() +
+                         "fingertip '" + shortened(nameOrPath) + "' not found (looked for " +
+                             shortened(path.string()) +
                              "); use a name from resources/fingertip/ or a path to a .json file");
     const std::string file = path.string();
     const Json j = readJsonFile(file);

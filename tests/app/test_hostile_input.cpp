@@ -223,6 +223,16 @@ private slots:
                              R"("following": {"trials": [{"label": "a\u0007b",
                                 "object": {"shape": "cross"}}]}, "recognition": null)")
                 << "/following/trials/0/label" << "control characters";
+            QTest::addRow("%s: an extends path too long to look up", command)
+                << c
+                << write(c + "_long_extends.json",
+                         QString(R"({"extends": "%1.json", "name": "x"})").arg(repeated("a", 5000)))
+                << "/extends" << "does not exist";
+            QTest::addRow("%s: a scene path too long to look up", command)
+                << c
+                << write(c + "_long_scene.json",
+                         QString(R"({"name": "x", "scene": "%1.json"})").arg(repeated("b", 5000)))
+                << "/scene" << "does not exist";
             QTest::addRow("%s: a trial whose path can leave the travel", command)
                 << c
                 << paperWith(c + "_edge.json",

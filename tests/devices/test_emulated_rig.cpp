@@ -94,6 +94,23 @@ struct Emulated {
         const Vec2 lo = outline.boundingBoxMin(), hi = outline.boundingBoxMax();
         return {0.5 * (lo.x + hi.x), lo.y + 9.0};
     }
+    /// The rig file a user writes for the whole bench: the RCX on its pty, the NXT on the
+    /// mocked USB bus, the fingertip over YARP on loopback.
+    QJsonObject rigFile() const {
+        const yarp::YarpFingertipSettings tip = bench->fingertipSettings();
+        return {{"description", "the emulated bench"},
+                {"stage", QJsonObject{{"device", "yamaha"},
+                                      {"port", QString::fromStdString(
+                                                   bench->stageSettings().serial.portName)}}},
+                {"tapper", QJsonObject{{"device", "nxt"},
+                                       {"usb_bus", 1},
+                                       {"usb_address", 2},
+                                       {"degrees_per_mm", bench->tapperSettings().degreesPerMm}}},
+                {"fingertip", QJsonObject{{"device", "yarp"},
+                                          {"name_server_port", tip.nameServerPort},
+                                          {"port", QString::fromStdString(tip.port)}}},
+                {"time_scale", bench->timeScale()}};
+    }
     bool retracted() {
         qInfo("motor at %.1f degrees, %s", bench->brick().rotationDegrees(0),
               bench->brick().motorRunning(0) ? "running" : "stopped");
@@ -477,23 +494,10 @@ private slots:
         QFETCH(QString, says);
         Emulated e(20.0);
         const QTemporaryDir dir;
-        const yarp::YarpFingertipSettings tip = e.bench->fingertipSettings();
-        const QJsonObject rigFile{
-            {"stage", QJsonObject{{"device", "yamaha"},
-                                  {"port", QString::fromStdString(
-                                               e.bench->stageSettings().serial.portName)}}},
-            {"tapper", QJsonObject{{"device", "nxt"},
-                                   {"usb_bus", 1},
-                                   {"usb_address", 2},
-                                   {"degrees_per_mm", e.bench->tapperSettings().degreesPerMm}}},
-            {"fingertip", QJsonObject{{"device", "yarp"},
-                                      {"name_server_port", tip.nameServerPort},
-                                      {"port", QString::fromStdString(tip.port)}}},
-            {"time_scale", e.bench->timeScale()}};
         const QString rig = dir.filePath("rig.json");
         QFile r(rig);
         QVERIFY(r.open(QIODevice::WriteOnly));
-        r.write(QJsonDocument(rigFile).toJson());
+        r.write(QJsonDocument(e.rigFile()).toJson());
         r.close();
         const QString experiment = dir.filePath("faulty.json");
         QFile x(experiment);
@@ -557,23 +561,11 @@ private slots:
         Emulated e(20.0);
         const QTemporaryDir dir;
         const QString pty = QString::fromStdString(e.bench->stageSettings().serial.portName);
-        const yarp::YarpFingertipSettings tip = e.bench->fingertipSettings();
-        const QJsonObject rigFile{
-            {"description", "the emulated bench"},
-            {"stage", QJsonObject{{"device", "yamaha"}, {"port", pty}}},
-            {"tapper", QJsonObject{{"device", "nxt"},
-                                   {"usb_bus", 1},
-                                   {"usb_address", 2},
-                                   {"degrees_per_mm", e.bench->tapperSettings().degreesPerMm}}},
-            {"fingertip", QJsonObject{{"device", "yarp"},
-                                      {"name_server_port", tip.nameServerPort},
-                                      {"port", QString::fromStdString(tip.port)}}},
-            {"time_scale", e.bench->timeScale()}};
         const QString rig = dir.filePath("bench_rig.json");
         {
             QFile f(rig);
             QVERIFY(f.open(QIODevice::WriteOnly));
-            f.write(QJsonDocument(rigFile).toJson());
+            f.write(QJsonDocument(e.rigFile()).toJson());
         }
         const QString experiment = dir.filePath("on_the_bench.json");
         {
