@@ -1,6 +1,5 @@
 #include "core/io/JsonText.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -217,7 +216,6 @@ private:
             throw InputError(source_, start.text(),
                              "a number " + std::to_string(token.size()) +
                                  " characters long; write it with an exponent (e.g. 1.5e3)");
-        errno = 0;
         const double v = std::strtod(token.c_str(), nullptr);
         if (std::isinf(v))
             throw InputError(source_, start.text(),
