@@ -1,7 +1,8 @@
 // Experiment files through the command line's entry (loadCheckedExperiment), "extends" included:
 // the input may extend base.json, a small valid experiment beside it.
-#include "app/run/ExperimentFiles.h"
+#include "core/run/ExperimentFiles.h"
 #include "core/common/InputError.h"
+#include "devices/simulated/SimulatedWorld.h"
 #include "fuzz/FuzzInput.h"
 
 using namespace activetouch;
@@ -17,7 +18,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string path = fuzz::writeInput("experiment.json", data, size);
     try {
-        loadCheckedExperiment(path, true);
+        loadCheckedExperiment(path, true, simulatedRigs());
     } catch (const InputError&) {
     }
     return 0;

@@ -1,6 +1,6 @@
 // Contour-following recordings (data/following_taps.csv), as replay and check read them.
 #include "core/common/InputError.h"
-#include "core/io/FollowingRecording.h"
+#include "core/records/FollowingRecording.h"
 #include "fuzz/FuzzInput.h"
 
 using namespace activetouch;

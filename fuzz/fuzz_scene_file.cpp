@@ -1,6 +1,7 @@
 // Scene files (and anything else `check` reads as JSON) through the command line's entry.
-#include "app/run/ExperimentFiles.h"
+#include "core/run/ExperimentFiles.h"
 #include "core/common/InputError.h"
+#include "devices/simulated/SimulatedWorld.h"
 #include "fuzz/FuzzInput.h"
 
 using namespace activetouch;
@@ -8,7 +9,7 @@ using namespace activetouch;
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string path = fuzz::writeInput("scene.json", data, size);
     try {
-        loadCheckedExperiment(path, false);
+        loadCheckedExperiment(path, false, simulatedRigs());
     } catch (const InputError&) {
     }
     return 0;

@@ -1,6 +1,6 @@
 // Training and test tap recordings (data/taps.csv), as analyse and check read them.
 #include "core/common/InputError.h"
-#include "core/io/TapCsv.h"
+#include "core/records/TapCsv.h"
 #include "fuzz/FuzzInput.h"
 
 using namespace activetouch;

@@ -26,17 +26,17 @@
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
-#include "app/run/ExperimentFiles.h"
-#include "app/run/ExperimentRun.h"
-#include "app/run/PairedComparison.h"
-#include "app/run/RunFolder.h"
-#include "app/run/SeedRates.h"
-#include "app/run/SeedShards.h"
+#include "core/run/ExperimentFiles.h"
+#include "core/run/ExperimentRun.h"
+#include "core/run/PairedComparison.h"
+#include "core/run/RunFolder.h"
+#include "core/run/SeedRates.h"
+#include "core/run/SeedShards.h"
 #include "core/experiment/Experiment.h"
 #include "core/experiment/RunPlan.h"
 #include "core/io/Csv.h"
-#include "core/io/FollowingRecording.h"
-#include "core/io/TapCsv.h"
+#include "core/records/FollowingRecording.h"
+#include "core/records/TapCsv.h"
 #include "core/rig/Rig.h"
 #include "devices/rigs/RigAssembly.h"
 #include "devices/rigs/RigFile.h"
@@ -174,7 +174,7 @@ void printCautions(const ExperimentSpec& spec) {
 /// message is printed and nothing is returned.
 std::optional<ExperimentSpec> loadForRun(const std::string& path) {
     try {
-        ExperimentSpec spec = loadCheckedExperiment(path, true);
+        ExperimentSpec spec = loadCheckedExperiment(path, true, simulatedRigs());
         printCautions(spec);
         return spec;
     } catch (const InputError& e) {
@@ -446,6 +446,7 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
     RunResult result;
     try {
         RunOptions options;
+        options.simulated = &simulatedRigs();
         options.outDir = outDir;
         options.seed = seed;
         if (rigConfig) {
@@ -547,6 +548,7 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv, 
         const std::vector<CollectedTap>& taps = recorded.taps;
         const std::string& cut = recorded.tapsCutOff;
         RunOptions options;
+        options.simulated = &simulatedRigs();
         options.outDir = outDir;
         options.recordedTaps = &taps;
         options.recordedTrials = replay ? &recorded.trials : nullptr;
@@ -708,9 +710,9 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
         "run failed", outDir, "rates.csv", parsed.figures, range.jobs, argc, argv,
         [&] {
             const SeedRates rates =
-                seeds ? runSeeds(spec, seeds->first, seeds->second, outDir, printSeedOutcome,
+                seeds ? runSeeds(simulatedRigs(), spec, seeds->first, seeds->second, outDir, printSeedOutcome,
                                  range.jobs)
-                      : runSeeds(spec, 1, 0, outDir);
+                      : runSeeds(simulatedRigs(), spec, 1, 0, outDir);
             failedRuns = rates.runsFailed().count;
             // Every seed's whole outcome, so that shards merge into exactly one run's files.
             writeSeedShardFile(outDir, {spec.name, experimentFingerprint(experimentPath, spec),
@@ -831,7 +833,7 @@ int showTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, const TrialR
                   const std::string& outDir, bool figures, int argc, char** argv) {
     try {
         const auto start = std::chrono::steady_clock::now();
-        const TrialPairRun pair = runTrialPair(a, b, ref.seed, ref.mode, ref.label, ref.trial);
+        const TrialPairRun pair = runTrialPair(simulatedRigs(), a, b, ref.seed, ref.mode, ref.label, ref.trial);
         const int nameWidth = int(std::max(pair.nameA.size(), pair.nameB.size()));
         std::printf("seed %llu, %s trial %d of %s, as each experiment ran it:\n",
                     static_cast<unsigned long long>(ref.seed), modeName(ref.mode), ref.trial,
@@ -905,7 +907,7 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
     const int code = overSeeds(
         "compare failed", outDir, "compare.csv", parsed.figures, range.jobs, argc, argv,
         [&] {
-            const PairedComparison c = comparePaired(
+            const PairedComparison c = comparePaired(simulatedRigs(),
                 *a, *b, range.first, range.last, outDir,
                 [](std::uint64_t seed, const std::vector<PairedTrial>& pairs,
                    const PairedComparison&) {
@@ -996,7 +998,7 @@ int commandCheck(const std::vector<std::string>& argsIn) {
             std::printf("%s: ok (rig: %s)\n", file.c_str(), rig.describe().c_str());
             return kOk;
         }
-        const ExperimentSpec spec = loadCheckedExperiment(file, false);
+        const ExperimentSpec spec = loadCheckedExperiment(file, false, simulatedRigs());
         const bool experiment = !spec.name.empty();
         if (experiment && !planAccepted(spec, 1, allowLongPlan)) return kBadInput;
         std::printf("%s: ok (%s; object %s, %zu effect%s listed)\n", file.c_str(),

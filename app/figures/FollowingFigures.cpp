@@ -9,8 +9,8 @@
 #include "app/figures/FigureLayout.h"
 #include "app/figures/SweepFigures.h"
 #include "app/figures/ValidationFigures.h"
-#include "app/run/ExperimentRun.h"
-#include "app/run/SeedRates.h"
+#include "core/run/ExperimentRun.h"
+#include "core/run/SeedRates.h"
 #include "qcustomplot.h"
 
 namespace activetouch {

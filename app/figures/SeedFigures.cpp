@@ -4,7 +4,7 @@
 
 #include "app/figures/FigureExport.h"
 #include "app/figures/FigureLayout.h"
-#include "app/run/SeedRates.h"
+#include "core/run/SeedRates.h"
 #include "qcustomplot.h"
 
 namespace activetouch {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "app/figures/FigureLayout.h"
-#include "app/run/ExperimentRun.h"
+#include "core/run/ExperimentRun.h"
 #include "qcustomplot.h"
 
 namespace activetouch {

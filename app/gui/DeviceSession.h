@@ -9,7 +9,7 @@
 #include <mutex>
 
 #include "app/gui/LiveFeed.h"
-#include "app/run/ExperimentRun.h"
+#include "core/run/ExperimentRun.h"
 #include "core/scene/Scene.h"
 #include "devices/rigs/RigAssembly.h"
 

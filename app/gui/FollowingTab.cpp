@@ -15,7 +15,7 @@
 #include "app/figures/FigureLayout.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/gui/PlotPanel.h"
-#include "app/run/ExperimentRun.h"
+#include "core/run/ExperimentRun.h"
 #include "qcustomplot.h"
 
 namespace activetouch {

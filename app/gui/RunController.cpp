@@ -7,7 +7,8 @@
 #include <thread>
 
 #include "app/figures/FollowingFigures.h"
-#include "app/run/RunFolder.h"
+#include "core/run/RunFolder.h"
+#include "devices/simulated/SimulatedWorld.h"
 
 namespace activetouch {
 
@@ -102,6 +103,7 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
     launch(outDir, [this, spec, outDir, what, pace, trained, connected, recorded]() mutable {
         const auto started = std::chrono::steady_clock::now();
         RunOptions options;
+        options.simulated = &simulatedRigs();
         options.outDir = outDir.toStdString();
         options.cancel = &cancel_;
         options.connected = connected.get();
@@ -181,7 +183,7 @@ bool RunController::startSeeds(const ExperimentSpec& spec, std::uint64_t first, 
             const RunFolderClaim claim(outDir.toStdString(), "seeds", spec.name, runFactsOf(spec),
                                        true);
             auto rates = std::make_shared<SeedRates>(
-                runSeeds(spec, first, last, outDir.toStdString(), [&](const SeedOutcome& o) {
+                runSeeds(simulatedRigs(), spec, first, last, outDir.toStdString(), [&](const SeedOutcome& o) {
                     emit seedFinished(o);
                     const double left = clock.tick();
                     emit progress(clock.done, clock.planned,
@@ -209,7 +211,7 @@ bool RunController::startComparison(const ExperimentSpec& a, const ExperimentSpe
         try {
             const RunFolderClaim claim(outDir.toStdString(), "compare", a.name, runFactsOf(a),
                                        true);
-            auto comparison = std::make_shared<PairedComparison>(comparePaired(
+            auto comparison = std::make_shared<PairedComparison>(comparePaired(simulatedRigs(),
                 a, b, first, last, outDir.toStdString(),
                 [&](std::uint64_t seed, const std::vector<PairedTrial>& pairs,
                     const PairedComparison& soFar) {
@@ -246,7 +248,7 @@ bool RunController::startTrialPair(const ExperimentSpec& a, const ExperimentSpec
                       0.0);
         try {
             auto pair =
-                std::make_shared<const TrialPairRun>(runTrialPair(a, b, seed, mode, label, trial));
+                std::make_shared<const TrialPairRun>(runTrialPair(simulatedRigs(), a, b, seed, mode, label, trial));
             emit progress(1, 1, tr("seed %1 run in both experiments").arg(seed), 0.0);
             emit trialPairFinished(pair, outDir);
         } catch (const std::exception& e) {

@@ -8,9 +8,9 @@
 #include <memory>
 
 #include "app/gui/LiveFeed.h"
-#include "app/run/ExperimentRun.h"
-#include "app/run/PairedComparison.h"
-#include "app/run/SeedRates.h"
+#include "core/run/ExperimentRun.h"
+#include "core/run/PairedComparison.h"
+#include "core/run/SeedRates.h"
 
 namespace activetouch {
 

@@ -7,7 +7,7 @@
 #include <memory>
 #include <optional>
 
-#include "app/run/SeedRates.h"
+#include "core/run/SeedRates.h"
 
 class QLabel;
 class QPushButton;

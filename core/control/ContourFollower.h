@@ -11,6 +11,7 @@
 
 #include "core/classify/HistogramClassifier.h"
 #include "core/control/DecisionRules.h"
+#include "core/geometry/Polygon.h"
 #include "core/rig/Rig.h"
 
 namespace activetouch {

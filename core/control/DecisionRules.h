@@ -28,7 +28,7 @@
 
 #include "core/control/FollowingSettings.h"
 #include "core/control/ShortTermMemory.h"
-#include "core/validation/OfflineValidation.h"
+#include "core/classify/Percept.h"
 
 namespace activetouch {
 

@@ -5,7 +5,7 @@
 #include <optional>
 
 #include "core/geometry/Vec2.h"
-#include "core/validation/OfflineValidation.h"
+#include "core/classify/Percept.h"
 
 namespace activetouch {
 

@@ -184,4 +184,22 @@ void SimulatedStage::moveTo(Vec2 target) {
     world_.moveStage(target);
 }
 
+namespace {
+
+class SimulatedRigFactory final : public SimulatedRigs {
+public:
+    void checkEffects(const SceneSpec& scene) const override { validateEffects(scene); }
+    std::unique_ptr<SceneRig> build(
+        const SceneSpec& scene, std::shared_ptr<const FingertipContactModel> model) const override {
+        return std::make_unique<SimulatedRig>(scene, std::move(model));
+    }
+};
+
+}  // namespace
+
+const SimulatedRigs& simulatedRigs() {
+    static const SimulatedRigFactory factory;
+    return factory;
+}
+
 }  // namespace activetouch

@@ -9,6 +9,7 @@
 
 #include "core/fingertip/FingertipContactModel.h"
 #include "core/rig/Rig.h"
+#include "core/run/SimulatedRigs.h"
 #include "core/scene/Scene.h"
 #include "devices/simulated/effects/Effect.h"
 
@@ -87,12 +88,15 @@ private:
 };
 
 /// A complete simulated rig that owns its world and devices.
-class SimulatedRig {
+class SimulatedRig final : public SceneRig {
 public:
     SimulatedRig(const SceneSpec& scene, std::shared_ptr<const FingertipContactModel> model)
         : world_(scene, std::move(model)), stage_(world_), tapper_(world_), sensor_(world_) {}
-    Rig rig() { return Rig{stage_, tapper_, sensor_, world_}; }
+    Rig rig() override { return Rig{stage_, tapper_, sensor_, world_}; }
     SimulatedWorld& world() { return world_; }
+    const Polygon& object() const override { return world_.object(); }
+    std::vector<std::string> activeEffects() const override { return world_.activeEffects(); }
+    std::uint64_t tapsSimulated() const override { return world_.tapsSimulated(); }
 
 private:
     SimulatedWorld world_;
@@ -103,5 +107,8 @@ private:
 
 /// Checks every effect entry of `scene` (name and parameters) without building a world.
 void validateEffects(const SceneSpec& scene);
+
+/// The simulated rigs the run service builds (core/run/SimulatedRigs.h).
+const SimulatedRigs& simulatedRigs();
 
 }  // namespace activetouch

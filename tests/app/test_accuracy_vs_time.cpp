@@ -3,8 +3,9 @@
 // samples cost accuracy; following trades robot time against path error.
 #include <QtTest>
 
-#include "app/run/ExperimentRun.h"
+#include "core/run/ExperimentRun.h"
 #include "support/Paths.h"
+#include "support/SimulatedRun.h"
 
 using namespace activetouch;
 
@@ -17,7 +18,7 @@ private slots:
         const ExperimentSpec spec =
             loadExperiment(test::sourcePath("experiments/accuracy_vs_time.json"));
         for (std::uint64_t seed : {1u, 2u, 3u}) {
-            RunOptions options;
+            RunOptions options = test::onSimulatedRig();
             options.seed = seed;
             runs_.push_back(runExperiment(spec, options));
         }

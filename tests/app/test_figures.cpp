@@ -7,12 +7,13 @@
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
-#include "app/run/ExperimentRun.h"
-#include "app/run/PairedComparison.h"
-#include "app/run/SeedRates.h"
+#include "core/run/ExperimentRun.h"
+#include "core/run/PairedComparison.h"
+#include "core/run/SeedRates.h"
 #include "qcustomplot.h"
 #include "support/FigureChecks.h"
 #include "support/Paths.h"
+#include "support/SimulatedRun.h"
 
 using namespace activetouch;
 
@@ -23,7 +24,7 @@ class TestFigures : public QObject {
 private slots:
     void initTestCase() {
         for (const char* file : {"experiments/paper.json", "experiments/accuracy_vs_time.json"})
-            runs_.push_back(runExperiment(loadExperiment(test::sourcePath(file)), RunOptions{}));
+            runs_.push_back(runExperiment(loadExperiment(test::sourcePath(file)), test::onSimulatedRig()));
     }
 
     void everyExportedFigureReadsCleanly() {
@@ -117,7 +118,7 @@ private slots:
         QVERIFY2(!paper.contains("kernel"), qPrintable(paper));
         ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper_kernel.json"));
         spec.trials.clear();  // the validation is all Figure 6 needs
-        const RunResult kernel = runExperiment(spec, RunOptions{});
+        const RunResult kernel = runExperiment(spec, test::onSimulatedRig());
         const QString named = title(kernel);
         QVERIFY2(named.endsWith("; kernel 2.5 bins"), qPrintable(named));
     }
@@ -143,7 +144,7 @@ private slots:
                                                      "Figure 8 - active contour following (ACF)"}));
         ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper_retrained.json"));
         spec.classifier.kernelSigma_bins = 2.5;
-        const QStringList named = titles(runExperiment(spec, RunOptions{}));
+        const QStringList named = titles(runExperiment(spec, test::onSimulatedRig()));
         QCOMPARE(named.size(), 2);
         for (const QString& t : named)
             QVERIFY2(t.endsWith("; kernel 2.5 bins; trained on all 5 data sets"), qPrintable(t));
@@ -185,7 +186,7 @@ private slots:
 
     void theSeedRatesFigureReadsCleanly() {
         const SeedRates rates =
-            runSeeds(loadExperiment(test::sourcePath("experiments/paper.json")), 1, 3, "");
+            runSeeds(simulatedRigs(), loadExperiment(test::sourcePath("experiments/paper.json")), 1, 3, "");
         QCOMPARE(rates.seeds.size(), std::size_t(3));
         // Side by side at the exported size and narrower; stacked in a panel taller than wide,
         // as the window shows it, down to a narrow one: the legends take fewer entries to a line
@@ -337,7 +338,7 @@ private slots:
         // kernel's completes it (compare over seeds 1-10 lists it).
         const ExperimentSpec a = loadExperiment(test::sourcePath("experiments/paper.json"));
         const ExperimentSpec b = loadExperiment(test::sourcePath("experiments/paper_kernel.json"));
-        const TrialPairRun pair = runTrialPair(a, b, 3, FollowingMode::Active, "cross", 2);
+        const TrialPairRun pair = runTrialPair(simulatedRigs(), a, b, 3, FollowingMode::Active, "cross", 2);
         QCOMPARE(pair.seed, std::uint64_t(3));
         QVERIFY2(trialOutcome(pair.a).rfind("lost at a corner", 0) == 0,
                  trialOutcome(pair.a).c_str());
@@ -375,7 +376,7 @@ private slots:
         // A trial one of them does not run is refused, naming it.
         QString message;
         try {
-            runTrialPair(a, b, 3, FollowingMode::Active, "cross", 3);
+            runTrialPair(simulatedRigs(), a, b, 3, FollowingMode::Active, "cross", 3);
         } catch (const std::exception& e) {
             message = e.what();
         }

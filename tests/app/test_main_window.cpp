@@ -54,6 +54,7 @@
 #include "support/FileSizeLimit.h"
 #include "support/Files.h"
 #include "support/Paths.h"
+#include "support/SimulatedRun.h"
 
 using namespace activetouch;
 using test::linesIn;
@@ -844,7 +845,7 @@ private slots:
         if (QTest::currentTestFailed()) return;
         QVERIFY(showPair->isEnabled());
         const TrialPairRun direct =
-            runTrialPair(loadExperiment(sourceFile("experiments/paper.json").toStdString()),
+            runTrialPair(simulatedRigs(), loadExperiment(sourceFile("experiments/paper.json").toStdString()),
                          loadExperiment(sourceFile("experiments/paper_kernel.json").toStdString()),
                          seed, mode, label.toStdString(), trial);
         // The row said they ended differently; so does the rerun.
@@ -982,7 +983,7 @@ private slots:
         QVERIFY(run->isEnabled());
 
         // Each row is that seed's whole run, as the headless runner computes it.
-        const SeedRates direct = runSeeds(window_->experimentAsShown(), 2, 4, "");
+        const SeedRates direct = runSeeds(simulatedRigs(), window_->experimentAsShown(), 2, 4, "");
         QTableWidget* table = tab->table();
         QCOMPARE(table->rowCount(), 3);
         for (int i = 0; i < 3; ++i) {

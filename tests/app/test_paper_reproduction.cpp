@@ -16,10 +16,11 @@
 #include <stdexcept>
 #include <thread>
 
-#include "app/run/ExperimentRun.h"
-#include "app/run/PairedComparison.h"
-#include "app/run/SeedRates.h"
+#include "core/run/ExperimentRun.h"
+#include "core/run/PairedComparison.h"
+#include "core/run/SeedRates.h"
 #include "support/Paths.h"
+#include "support/SimulatedRun.h"
 
 using namespace activetouch;
 
@@ -29,7 +30,7 @@ class TestPaperReproduction : public QObject {
     SeedRates rates_, sequential_, fiveTaps_, kernel_, retrained_;
 
     static SeedRates seeds1To10(const char* experiment) {
-        return runSeeds(loadExperiment(test::sourcePath(experiment)), 1, 10, "");
+        return runSeeds(simulatedRigs(), loadExperiment(test::sourcePath(experiment)), 1, 10, "");
     }
     static void report(const char* what, const SeedRates& r) {
         const Rate a = r.activeCompleted(), raw = r.recognisedRaw(), sm = r.recognisedSmoothed(),
@@ -49,7 +50,7 @@ private slots:
         // The paper's runs are kept whole: the tests look into their trials.
         const ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
         for (std::uint64_t seed = 1; seed <= 10; ++seed) {
-            RunOptions options;
+            RunOptions options = test::onSimulatedRig();
             options.seed = seed;
             runs_.push_back(runExperiment(spec, options));
             rates_.seeds.push_back(seedOutcome(runs_.back()));
@@ -240,7 +241,7 @@ private slots:
         // experiment's order, adds up to the whole and is printed under it.
         ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
         spec.trials[2].mode = FollowingMode::Passive;  // the cross
-        const SeedRates r = runSeeds(spec, 1, 3, "");
+        const SeedRates r = runSeeds(simulatedRigs(), spec, 1, 3, "");
         const auto byLabel = r.passiveLostByLabel();
         QCOMPARE(int(byLabel.size()), 2);
         QCOMPARE(byLabel[0].first, std::string("rectangle"));
@@ -275,7 +276,7 @@ private slots:
         ExperimentSpec four = eight;
         four.classes.orientationsDeg = {270.0, 0.0, 90.0, 180.0};
         four.scene = loadExperiment(test::sourcePath("experiments/paper.json")).scene;
-        const SeedRates r8 = runSeeds(eight, 1, 10, ""), r4 = runSeeds(four, 1, 10, "");
+        const SeedRates r8 = runSeeds(simulatedRigs(), eight, 1, 10, ""), r4 = runSeeds(simulatedRigs(), four, 1, 10, "");
         auto diagonal = [](const SeedRates& r) {
             Rate sum;
             for (const auto& [label, rate] : r.activeCompletedByLabel())
@@ -405,7 +406,7 @@ private slots:
         spec.recognition.enabled = false;
         std::erase_if(spec.trials,
                       [](const TrialSpec& t) { return t.mode == FollowingMode::Passive; });
-        RunOptions options;
+        RunOptions options = test::onSimulatedRig();
         options.seed = 1;
         SeedRates rates;
         rates.seeds.push_back(seedOutcome(runExperiment(spec, options)));
@@ -456,7 +457,7 @@ private slots:
         ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
         spec.scene.effects.clear();
         spec.trials.clear();
-        const RunResult ideal = runExperiment(spec, {});
+        const RunResult ideal = runExperiment(spec, test::onSimulatedRig());
         QVERIFY(ideal.measuredNoiseFloor.has_value());
         QCOMPARE(ideal.measuredNoiseFloor->counts, 0.0);
         QCOMPARE(ideal.noiseFloor_counts, spec.scene.tap.noiseFloor);
@@ -576,8 +577,7 @@ private slots:
         // report them in seed order; a stop after the fourth keeps four.
         const ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
         std::vector<std::uint64_t> heard;
-        const SeedRates side = runSeeds(
-            spec, 1, 10, "",
+        const SeedRates side = runSeeds(simulatedRigs(), spec, 1, 10, "",
             [&](const SeedOutcome& o) {
                 heard.push_back(o.seed);
                 return true;
@@ -595,8 +595,7 @@ private slots:
             QCOMPARE(a.runRobotTime_s, b.runRobotTime_s);
             QCOMPARE(a.angleError_deg, b.angleError_deg);
         }
-        const SeedRates stopped = runSeeds(
-            spec, 1, 10, "", [](const SeedOutcome& o) { return o.seed < 4; }, 3);
+        const SeedRates stopped = runSeeds(simulatedRigs(), spec, 1, 10, "", [](const SeedOutcome& o) { return o.seed < 4; }, 3);
         QCOMPARE(stopped.seeds.size(), std::size_t(4));
         QCOMPARE(stopped.seeds.back().seed, std::uint64_t(4));
     }
@@ -662,8 +661,7 @@ private slots:
         // totals are that experiment's own rates, and every trial the two ended differently is
         // among the disagreements.
         std::vector<int> heard;  // seeds compared, as each seed reports it
-        const PairedComparison c = comparePaired(
-            loadExperiment(test::sourcePath("experiments/paper.json")),
+        const PairedComparison c = comparePaired(simulatedRigs(), loadExperiment(test::sourcePath("experiments/paper.json")),
             loadExperiment(test::sourcePath("experiments/paper_kernel.json")), 1, 10, "",
             [&](std::uint64_t seed, const std::vector<PairedTrial>& pairs,
                 const PairedComparison& soFar) {
@@ -705,7 +703,7 @@ private slots:
         // classifier the trials follow with learns from all five sets, at no extra tap.
         const ExperimentSpec spec =
             loadExperiment(test::sourcePath("experiments/paper_retrained.json"));
-        RunOptions options;
+        RunOptions options = test::onSimulatedRig();
         options.seed = 1;
         const RunResult r = runExperiment(spec, options);
         const RunResult& paper = runs_.front();
@@ -736,7 +734,7 @@ private slots:
         // Following again with that classifier (the window's "Run following") says the same.
         ExperimentSpec oneTrial = spec;
         oneTrial.trials.resize(1);
-        const RunResult again = runFollowing(r, oneTrial, RunOptions{});
+        const RunResult again = runFollowing(r, oneTrial, test::onSimulatedRig());
         QCOMPARE(followingClassifierNote(again), followingClassifierNote(r));
 
         // What it buys, over ten whole runs: active following completes at least as often as

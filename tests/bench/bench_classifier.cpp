@@ -2,10 +2,11 @@
 // paper scene's data set 1. Budget (docs/benchmarks.md): <= 2 us on one core.
 #include <cstdio>
 
-#include "app/run/ExperimentRun.h"
+#include "core/run/ExperimentRun.h"
 #include "bench/BenchHarness.h"
 #include "core/classify/SequentialPerception.h"
 #include "core/experiment/Experiment.h"
+#include "support/SimulatedRun.h"
 
 using namespace activetouch;
 
@@ -13,7 +14,7 @@ int main(int argc, char** argv) {
     const std::string experiment =
         argc > 1 ? argv[1] : std::string(ACTIVETOUCH_SOURCE_DIR) + "/experiments/paper.json";
     const ExperimentSpec spec = loadExperiment(experiment);
-    const RunResult run = runExperiment(spec, {});
+    const RunResult run = runExperiment(spec, test::onSimulatedRig());
     std::vector<const Tap*> tests;
     for (const auto& t : run.taps)
         if (!spec.training.isTrainingSet(t.dataSet)) tests.push_back(&t.record.tap);

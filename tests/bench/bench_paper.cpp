@@ -7,8 +7,9 @@
 #include <cstdio>
 
 #include "app/figures/FollowingFigures.h"
-#include "app/run/ExperimentRun.h"
+#include "core/run/ExperimentRun.h"
 #include "bench/BenchHarness.h"
+#include "support/SimulatedRun.h"
 
 using namespace activetouch;
 
@@ -20,7 +21,7 @@ int main(int argc, char** argv) {
         loadExperiment(std::string(ACTIVETOUCH_SOURCE_DIR) + "/experiments/paper.json");
     QTemporaryDir dir;
     auto once = [&](bool figures) {
-        RunOptions options;
+        RunOptions options = test::onSimulatedRig();
         options.outDir = dir.path().toStdString();
         const RunResult r = runExperiment(spec, options);
         writeRunTables(r, options.outDir);

@@ -6,8 +6,8 @@
 #include <functional>
 
 #include "core/experiment/Experiment.h"
-#include "core/io/FollowingRecording.h"
-#include "core/io/TapCsv.h"
+#include "core/records/FollowingRecording.h"
+#include "core/records/TapCsv.h"
 #include "support/Paths.h"
 
 using namespace activetouch;

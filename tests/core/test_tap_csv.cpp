@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "core/common/InputError.h"
-#include "core/io/FollowingRecording.h"
-#include "core/io/TapCsv.h"
+#include "core/records/FollowingRecording.h"
+#include "core/records/TapCsv.h"
 #include "support/FileSizeLimit.h"
 
 using namespace activetouch;

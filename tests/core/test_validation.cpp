@@ -2,9 +2,10 @@
 // the paper scene emerging from the physics, over several seeds.
 #include <QtTest>
 
-#include "app/run/ExperimentRun.h"
+#include "core/run/ExperimentRun.h"
 #include "core/validation/OfflineValidation.h"
 #include "support/Paths.h"
+#include "support/SimulatedRun.h"
 
 using namespace activetouch;
 
@@ -44,7 +45,7 @@ private slots:
         // the air; angle errors are large on the plane and in the air, small in the band.
         const ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
         for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
-            RunOptions options;
+            RunOptions options = test::onSimulatedRig();
             options.seed = seed;
             const RunResult r = runExperiment(spec, options);
             const auto& v = r.validation;
@@ -81,7 +82,7 @@ private slots:
     void cancellingKeepsTheTapsTaken() {
         const ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
         std::atomic<bool> cancel{false};
-        RunOptions options;
+        RunOptions options = test::onSimulatedRig();
         options.cancel = &cancel;
         options.progress = [&](const RunProgress& p) {
             if (p.tapsDone == 100) cancel = true;

@@ -20,13 +20,14 @@
 #include <mutex>
 #include <thread>
 
-#include "app/run/ExperimentRun.h"
+#include "core/run/ExperimentRun.h"
 #include "devices/emulators/EmulatedBench.h"
 #include "devices/rigs/RigAssembly.h"
 #include "devices/simulated/SimulatedWorld.h"
 #include "support/Cli.h"
 #include "support/Files.h"
 #include "support/Paths.h"
+#include "support/SimulatedRun.h"
 
 using namespace activetouch;
 using activetouch::emu::EmulatedBench;
@@ -153,7 +154,7 @@ private slots:
         ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
         spec.trials.clear();
         spec.recognition.enabled = false;
-        RunOptions options;
+        RunOptions options = test::onSimulatedRig();
         options.seed = 1;
         trained_ = runExperiment(spec, options);
         QVERIFY(trained_.failure.empty());
@@ -374,7 +375,7 @@ private slots:
         spec.following.tapCapPerimeters = 0.35;
         spec.recognition.enabled = false;
         const ConnectedRig connected{e.rig->rig(), spec.scene.object, e.rig->config().describe()};
-        RunOptions options;
+        RunOptions options = test::onSimulatedRig();
         options.connected = &connected;
         const QTemporaryDir out;
         options.outDir = out.path().toStdString();
@@ -421,7 +422,7 @@ private slots:
         // The rig's recording replayed without the devices: the same validation from the
         // recorded taps, and the trial retraces the path it took on the rig to the same end.
         const RecordedRun recorded = readRecordedRun(out.path().toStdString(), spec.classes);
-        RunOptions replay;
+        RunOptions replay = test::onSimulatedRig();
         replay.recordedTaps = &recorded.taps;
         replay.recordedTrials = &recorded.trials;
         replay.recordingName = recorded.name;
@@ -444,7 +445,7 @@ private slots:
         spec.trials[0].object.size = defaultShapeSize("cross");
         spec.trials[0].label = "cross";
         const ConnectedRig connected{e.rig->rig(), spec.scene.object, "emulated"};
-        RunOptions options;
+        RunOptions options = test::onSimulatedRig();
         options.connected = &connected;
         const auto commands = e.bench->rcx().commands().size();
         try {

@@ -2,7 +2,7 @@
 // recorded order; anything else ends the replay with a sentence saying where it parted.
 #include <QtTest>
 
-#include "devices/replay/ReplayRig.h"
+#include "core/run/ReplayRig.h"
 
 using namespace activetouch;
 

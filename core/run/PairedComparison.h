@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "app/run/SeedRates.h"
+#include "core/run/SeedRates.h"
 
 namespace activetouch {
 
@@ -106,7 +106,7 @@ void checkComparable(const ExperimentSpec& a, const ExperimentSpec& b);
 /// comparison so far; returning false stops after it. checkComparable before any run.
 using ComparedSeed = std::function<bool(std::uint64_t seed, const std::vector<PairedTrial>& pairs,
                                         const PairedComparison& soFar)>;
-PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
+PairedComparison comparePaired(const SimulatedRigs& rigs, const ExperimentSpec& a, const ExperimentSpec& b,
                                std::uint64_t first, std::uint64_t last, const std::string& outDir,
                                const ComparedSeed& seedDone = {}, int jobs = defaultSeedJobs());
 
@@ -123,7 +123,7 @@ struct TrialPairRun {
 /// Runs `a` and `b` with `seed` and returns the trial both have as `mode`, `label` and repeat
 /// `trial`, as each ran it: the same trial compare pairs. Throws InputError naming the trial if
 /// either experiment lacks it.
-TrialPairRun runTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t seed,
+TrialPairRun runTrialPair(const SimulatedRigs& rigs, const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t seed,
                           FollowingMode mode, const std::string& label, int trial);
 
 /// The name a pair's table and figure take, e.g. "trial_pair_seed3_active_cross_2" (characters

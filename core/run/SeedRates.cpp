@@ -1,4 +1,4 @@
-#include "app/run/SeedRates.h"
+#include "core/run/SeedRates.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <optional>
 #include <utility>
 
-#include "app/run/OutputFiles.h"
+#include "core/run/OutputFiles.h"
 
 namespace activetouch {
 
@@ -597,14 +597,15 @@ void appendRatesRow(OutputFile& file, const SeedOutcome& o) {
     file.flush();
 }
 
-SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
+SeedRates runSeeds(const SimulatedRigs& rigs, const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
                    const std::string& outDir,
                    const std::function<bool(const SeedOutcome&)>& seedDone, int jobs) {
     SeedRates rates;
     std::optional<OutputFile> file;
     if (!outDir.empty()) startRatesTable(file, outDir);
-    const auto run = [&spec](std::uint64_t seed) {
+    const auto run = [&spec, &rigs](std::uint64_t seed) {
         RunOptions options;
+        options.simulated = &rigs;
         options.seed = seed;
         return seedOutcome(runExperimentOrFailure(spec, options));
     };

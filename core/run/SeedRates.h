@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "app/run/ExperimentRun.h"
-#include "app/run/SeedPool.h"
+#include "core/run/ExperimentRun.h"
+#include "core/run/SeedPool.h"
 #include "core/io/OutputFile.h"
 
 namespace activetouch {
@@ -200,7 +200,7 @@ struct SeedRates {
 /// appended to <outDir>/rates.csv as it finishes, in seed order, and <outDir>/rates.json is
 /// written at the end. `seedDone` sees each outcome in seed order; returning false stops after
 /// that seed.
-SeedRates runSeeds(const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
+SeedRates runSeeds(const SimulatedRigs& rigs, const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
                    const std::string& outDir,
                    const std::function<bool(const SeedOutcome&)>& seedDone = {},
                    int jobs = defaultSeedJobs());

@@ -1,4 +1,4 @@
-#include "app/run/Sweeps.h"
+#include "core/run/Sweeps.h"
 
 #include <chrono>
 #include <cmath>
@@ -6,10 +6,9 @@
 #include <map>
 #include <memory>
 
-#include "app/run/ExperimentRun.h"
+#include "core/run/ExperimentRun.h"
 #include "core/classify/SequentialPerception.h"
 #include "core/validation/TrainingProtocol.h"
-#include "devices/simulated/SimulatedWorld.h"
 
 namespace activetouch {
 namespace {
@@ -28,12 +27,12 @@ std::vector<PerceptionSweepRow> perceptionSweep(const RunResult& r, const RunOpt
     auto model = std::make_shared<const FingertipContactModel>(r.spec.scene.fingertip);
     SceneSpec scene = r.spec.scene;
     scene.seed = RandomStream::derived(r.spec.scene.seed, "sweep:perception").next() >> 1;
-    SimulatedRig simulated(scene, model);
-    Rig rig = simulated.rig();
+    const auto simulated = simulatedRigsOf(options).build(scene, model);
+    Rig rig = simulated->rig();
     TrainingProtocolSettings protocol = r.spec.training;
     protocol.dataSets = std::max(2, sw.tapsPerClass);
     protocol.trainingSets = {};
-    const auto taps = collectTrainingTaps(rig, simulated.world().object(), r.classes, protocol,
+    const auto taps = collectTrainingTaps(rig, simulated->object(), r.classes, protocol,
                                           RandomStream::derived(scene.seed, "sweep:placement"),
                                           [&](const CollectedTap&) { return !cancelled(options); });
     std::map<int, std::vector<const CollectedTap*>> byClass;
@@ -112,13 +111,13 @@ std::vector<FollowingSweepRow> followingSweep(const RunResult& r, const RunOptio
                                                  object->label + ":" + std::to_string(k))
                                              .next() >>
                                          1;
-                            SimulatedRig simulated(scene, model);
-                            Rig rig = simulated.rig();
+                            const auto simulated = simulatedRigsOf(options).build(scene, model);
+                            Rig rig = simulated->rig();
                             FollowingSettings settings = r.spec.following;
                             settings.followStep_mm = follow;
                             settings.repositionStep_mm = reposition;
                             settings.beliefThreshold = threshold;
-                            const Polygon outline = simulated.world().object();
+                            const Polygon outline = simulated->object();
                             const TrialSetup setup =
                                 trialSetupFor(r, mode, settings, outline, object->start);
                             const TrialResult t =

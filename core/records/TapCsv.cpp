@@ -1,4 +1,4 @@
-#include "core/io/TapCsv.h"
+#include "core/records/TapCsv.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,11 @@
-#include "app/run/SeedShards.h"
+#include "core/run/SeedShards.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 
-#include "app/run/OutputFiles.h"
+#include "core/run/OutputFiles.h"
 #include "core/common/InputError.h"
 #include "core/io/JsonFields.h"
 

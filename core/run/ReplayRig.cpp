@@ -1,4 +1,4 @@
-#include "devices/replay/ReplayRig.h"
+#include "core/run/ReplayRig.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "app/run/PairedComparison.h"
+#include "core/run/PairedComparison.h"
 
 #include <algorithm>
 #include <cctype>
@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "app/run/OutputFiles.h"
+#include "core/run/OutputFiles.h"
 #include "core/common/InputError.h"
 
 namespace activetouch {
@@ -82,7 +82,7 @@ std::string endedText(const std::string& outcome, const std::string& named) {
     return named.empty() ? outcome : outcome + ", named " + named;
 }
 
-TrialPairRun runTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t seed,
+TrialPairRun runTrialPair(const SimulatedRigs& rigs, const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t seed,
                           FollowingMode mode, const std::string& label, int trial) {
     for (const ExperimentSpec* spec : {&a, &b}) {
         int repeats = 0;
@@ -95,6 +95,7 @@ TrialPairRun runTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, std:
                                  "'; choose a trial both experiments run");
     }
     RunOptions options;
+    options.simulated = &rigs;
     options.seed = seed;
     TrialPairRun pair{a.name, b.name, seed, {}, {}};
     auto find = [&](const RunResult& run, TrialRun& out) {
@@ -225,7 +226,7 @@ void checkComparable(const ExperimentSpec& a, const ExperimentSpec& b) {
                          "trials");
 }
 
-PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
+PairedComparison comparePaired(const SimulatedRigs& rigs, const ExperimentSpec& a, const ExperimentSpec& b,
                                std::uint64_t first, std::uint64_t last, const std::string& outDir,
                                const ComparedSeed& seedDone, int jobs) {
     PairedComparison c;
@@ -240,8 +241,9 @@ PairedComparison comparePaired(const ExperimentSpec& a, const ExperimentSpec& b,
                            "seeds_compared,seed,part,pairs,a,b,only_a,only_b,"
                            "difference_b_minus_a,ci95_low,ci95_high,mcnemar_p\n");
     }
-    const auto run = [&a, &b](std::uint64_t seed) {
+    const auto run = [&a, &b, &rigs](std::uint64_t seed) {
         RunOptions options;
+        options.simulated = &rigs;
         options.seed = seed;
         return std::make_pair(runExperimentOrFailure(a, options),
                               runExperimentOrFailure(b, options));

@@ -1,12 +1,13 @@
-#include "app/run/ExperimentFiles.h"
+#include "core/run/ExperimentFiles.h"
 
 #include <filesystem>
 
-#include "devices/simulated/SimulatedWorld.h"
+#include "core/io/JsonText.h"
 
 namespace activetouch {
 
-ExperimentSpec loadCheckedExperiment(const std::string& path, bool requireExperiment) {
+ExperimentSpec loadCheckedExperiment(const std::string& path, bool requireExperiment,
+                                     const SimulatedRigs& rigs) {
     const Json j = readJsonFile(path);
     ExperimentSpec spec;
     if (looksLikeExperiment(j)) {
@@ -20,7 +21,7 @@ ExperimentSpec loadCheckedExperiment(const std::string& path, bool requireExperi
         spec.scene =
             parseScene(j, path, "", std::filesystem::path(path).parent_path().string());
     }
-    validateEffects(spec.scene);
+    rigs.checkEffects(spec.scene);
     return spec;
 }
 

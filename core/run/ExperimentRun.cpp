@@ -1,4 +1,4 @@
-#include "app/run/ExperimentRun.h"
+#include "core/run/ExperimentRun.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,16 +9,17 @@
 #include <memory>
 #include <optional>
 
-#include "app/run/OutputFiles.h"
-#include "app/run/RunFolder.h"
+#include "core/run/OutputFiles.h"
+#include "core/run/RunFolder.h"
 #include "core/common/NumberText.h"
+#include "core/control/ControllerRange.h"
 #include "core/experiment/RunPlan.h"
 #include "core/geometry/ShapeLibrary.h"
-#include "core/io/FollowingRecording.h"
-#include "core/io/TapCsv.h"
+#include "core/records/FollowingRecording.h"
+#include "core/records/TapCsv.h"
+#include "core/recognition/ShapeRecognition.h"
 #include "core/validation/ClassRegions.h"
-#include "devices/replay/ReplayRig.h"
-#include "devices/simulated/SimulatedWorld.h"
+#include "core/run/ReplayRig.h"
 
 namespace activetouch {
 namespace fs = std::filesystem;
@@ -70,6 +71,12 @@ TrialSetup trialSetupFor(const RunResult& trained, FollowingMode mode,
     setup.noiseFloor = trained.noiseFloor_counts;
     setup.start = start ? *start : lowerEdgeStart(outline, trained.validOffsets);
     return setup;
+}
+
+const SimulatedRigs& simulatedRigsOf(const RunOptions& options) {
+    if (!options.simulated)
+        throw std::logic_error("a run on the simulated rig was given no simulated rigs");
+    return *options.simulated;
 }
 
 int plannedTapEstimate(const ExperimentSpec& spec) {
@@ -175,7 +182,7 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
             // On the simulated rig each trial gets its own world on the trial's object, with its
             // own noise; a connected rig has the one object mounted; a replay serves the
             // recorded trial.
-            std::optional<SimulatedRig> simulated;
+            std::unique_ptr<SceneRig> simulated;
             std::optional<ReplayRig> replay;
             if (!replayed.empty()) {
                 replay.emplace(*replayed[static_cast<std::size_t>(trialIndex)],
@@ -187,7 +194,7 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
                     RandomStream::derived(spec.scene.seed, "trial:" + std::to_string(trialIndex))
                         .next() >>
                     1;
-                simulated.emplace(scene, model);
+                simulated = simulatedRigsOf(options).build(scene, model);
             }
             Rig rig = replay              ? replay->rig()
                       : options.connected ? options.connected->rig
@@ -198,7 +205,7 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
                     static_cast<int>(replayed[static_cast<std::size_t>(trialIndex)]->taps.size());
             run.label = ts.label;
             run.trial = ++counters[ts.label + "/" + modeName(ts.mode)];
-            run.outline = simulated ? simulated->world().object() : ts.object.outline();
+            run.outline = simulated ? simulated->object() : ts.object.outline();
             const TrialSetup setup =
                 trialSetupFor(result, ts.mode, spec.following, run.outline, ts.start);
             run.start = setup.start;
@@ -225,7 +232,7 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
             if (replay && run.result.end == TrialEnd::LeftRecording)
                 noteWhereReplayLeft(*replayed[static_cast<std::size_t>(trialIndex)], run.result);
             result.robotTime_s += run.result.robotTime_s;
-            if (simulated) result.tapsSimulated += simulated->world().tapsSimulated();
+            if (simulated) result.tapsSimulated += simulated->tapsSimulated();
             result.trials.push_back(std::move(run));
             if (result.trials.back().result.end == TrialEnd::DeviceError) {
                 result.failure = result.trials.back().result.detail;
@@ -238,20 +245,12 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
         }
     }
     if (!spec.recognition.enabled) return;
-    // Templates: where a perfect follower would tap on each distinct object, at the centre of the
-    // valid range, every follow step, averaged over where along the outline it starts.
-    const double centre = 0.5 * (result.validOffsets.low + result.validOffsets.high);
-    for (const TrialRun& run : result.trials) {
-        bool seen = false;
-        for (const auto& t : result.templates) seen = seen || t.shape == run.label;
-        if (seen) continue;
-        ShapeTemplate t;
-        t.shape = run.label;
-        t.raw = idealFollowingHistogram(run.outline, centre, spec.following.followStep_mm,
-                                        spec.recognition.bins);
-        t.smooth = smoothed(t.raw, spec.recognition.smoothingSigmaBins);
-        result.templates.push_back(t);
-    }
+    // Templates at the centre of the valid range, one per distinct object followed.
+    std::vector<NamedOutline> shapes;
+    for (const TrialRun& run : result.trials) shapes.push_back({run.label, &run.outline});
+    result.templates = shapeTemplates(
+        shapes, 0.5 * (result.validOffsets.low + result.validOffsets.high),
+        spec.following.followStep_mm, spec.recognition.bins, spec.recognition.smoothingSigmaBins);
     int recognised = 0, correct = 0, correctSmoothed = 0;
     for (TrialRun& run : result.trials) {
         if (run.result.mode != spec.recognition.ofMode) continue;
@@ -341,10 +340,10 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
                             "tap window");
     }
     if (options.connected) checkRunnableOn(spec, *options.connected);
-    std::optional<SimulatedRig> simulated;
-    if (!options.connected && !recorded) simulated.emplace(spec.scene, model);
+    std::unique_ptr<SceneRig> simulated;
+    if (!options.connected && !recorded) simulated = simulatedRigsOf(options).build(spec.scene, model);
     if (simulated) {
-        result.activeEffects = simulated->world().activeEffects();
+        result.activeEffects = simulated->activeEffects();
     } else if (recorded) {
         result.rig = (options.recordedTrials ? "replay of " : "recording ") + options.recordingName;
     } else {
@@ -393,12 +392,12 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
         Rig rig = options.connected ? options.connected->rig : simulated->rig();
         const double robotStart_s = rig.clock.now_s();
         result.taps = collectTrainingTaps(
-            rig, simulated ? simulated->world().object() : spec.scene.object.outline(),
+            rig, simulated ? simulated->object() : spec.scene.object.outline(),
             result.classes, spec.training,
             RandomStream::derived(spec.scene.seed, "protocol:placement"), onTap);
         result.robotTime_s = rig.clock.now_s() - robotStart_s;
     }
-    if (simulated) result.tapsSimulated = simulated->world().tapsSimulated();
+    if (simulated) result.tapsSimulated = simulated->tapsSimulated();
     if (recorded ? result.taps.size() < recorded->size()
                  : static_cast<std::int64_t>(result.taps.size()) < spec.plannedTaps()) {
         result.cancelled = true;
@@ -429,25 +428,10 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
         HistogramClassifier::train(training, result.classes.classCount(), spec.classifier);
     result.validation =
         validateOffline(result.classifier, result.classes, tests, spec.validRangeWidth);
-    // The controller's valid range: the class positions' span, half a step wide on each side.
-    const double half = 0.5 * result.classes.positionStep_mm;
-    result.validOffsets = {result.classes.offsetOf(result.validation.validRange.first) - half,
-                           result.classes.offsetOf(result.validation.validRange.last) + half};
-    // Where the perceived orientation can be used: the run of positions around the valid range
-    // whose mean angle error is within the trust limit.
-    const auto& angle = result.validation.angleMean;
-    const double limit = spec.following.orientationTrustMaxError_deg;
-    int lo = result.validation.validRange.first, hi = result.validation.validRange.last;
-    if (limit >= 180.0) {
-        lo = 1;
-        hi = result.classes.positions;
-    } else {
-        while (lo > 1 && angle[static_cast<std::size_t>(lo - 2)] <= limit) --lo;
-        while (hi < result.classes.positions && angle[static_cast<std::size_t>(hi)] <= limit) ++hi;
-    }
-    result.trustedPositions = {lo, hi};
-    result.validOffsets.trustedLow = result.classes.offsetOf(lo) - half;
-    result.validOffsets.trustedHigh = result.classes.offsetOf(hi) + half;
+    const ControllerRange range = controllerRange(result.classes, result.validation,
+                                                  spec.following.orientationTrustMaxError_deg);
+    result.validOffsets = range.offsets;
+    result.trustedPositions = range.trustedPositions;
     if (spec.training.retrainOnAllSets) {
         // Validated on held-out sets, the classifier then learns from every tap taken: the trials
         // get the test taps too, at no extra tap.

@@ -1,4 +1,4 @@
-#include "app/run/OutputFiles.h"
+#include "core/run/OutputFiles.h"
 
 #include <filesystem>
 

@@ -9,13 +9,14 @@
 #include <string>
 #include <vector>
 
-#include "app/run/Sweeps.h"
+#include "core/run/Sweeps.h"
 #include "core/classify/HistogramClassifier.h"
 #include "core/control/ContourFollower.h"
 #include "core/experiment/Experiment.h"
-#include "core/io/FollowingRecording.h"
+#include "core/records/FollowingRecording.h"
 #include "core/recognition/PathHistogram.h"
 #include "core/rig/Rig.h"
+#include "core/run/SimulatedRigs.h"
 #include "core/validation/ClassRegions.h"
 #include "core/validation/OfflineValidation.h"
 #include "core/validation/TrainingProtocol.h"
@@ -78,6 +79,10 @@ struct RunResult {
 };
 
 struct RunOptions {
+    /// Builds the simulated rigs that training, trials and sweeps take their taps on unless
+    /// `connected` or `recordedTaps` says otherwise (not owned): the window and the command line
+    /// give devices/simulated's.
+    const SimulatedRigs* simulated = nullptr;
     std::string outDir;  ///< empty: write nothing
     std::optional<std::uint64_t> seed;
     std::function<void(const RunProgress&)> progress;
@@ -113,6 +118,9 @@ struct RecordedRun {
     std::string note;
     bool replay() const { return !trials.empty(); }
 };
+
+/// `options.simulated`; throws std::logic_error when a run that needs simulated rigs was given none.
+const SimulatedRigs& simulatedRigsOf(const RunOptions& options);
 
 /// Reads the recording of the run in `runDir` for a replay. Throws InputError naming the file
 /// and what to do: not a folder, no following recording, or no training taps beside it (a

@@ -1,11 +1,11 @@
-#include "app/run/RunFolder.h"
+#include "core/run/RunFolder.h"
 
 #include <chrono>
 #include <ctime>
 #include <filesystem>
 #include <random>
 
-#include "app/run/OutputFiles.h"
+#include "core/run/OutputFiles.h"
 #include "core/common/InputError.h"
 #include "core/experiment/Experiment.h"
 #include "core/io/JsonFields.h"

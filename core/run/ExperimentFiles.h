@@ -5,11 +5,14 @@
 #include <string>
 
 #include "core/experiment/Experiment.h"
+#include "core/run/SimulatedRigs.h"
 
 namespace activetouch {
 
 /// Loads an experiment (with "extends" resolved) or, unless `requireExperiment`, a bare scene,
-/// and checks everything a run would check, the scene's effects included. Throws InputError.
-ExperimentSpec loadCheckedExperiment(const std::string& path, bool requireExperiment);
+/// and checks everything a run would check, the scene's effects included (as `rigs` would
+/// simulate them). Throws InputError.
+ExperimentSpec loadCheckedExperiment(const std::string& path, bool requireExperiment,
+                                     const SimulatedRigs& rigs);
 
 }  // namespace activetouch

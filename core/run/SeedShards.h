@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "app/run/SeedRates.h"
+#include "core/run/SeedRates.h"
 
 namespace activetouch {
 

@@ -1,4 +1,4 @@
-#include "core/io/FollowingRecording.h"
+#include "core/records/FollowingRecording.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 // times.
 #include <string>
 
-#include "core/io/FollowingRecording.h"
+#include "core/records/FollowingRecording.h"
 #include "core/rig/Rig.h"
 
 namespace activetouch {
