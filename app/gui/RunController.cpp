@@ -8,6 +8,7 @@
 
 #include "app/figures/FollowingFigures.h"
 #include "core/run/RunFolder.h"
+#include "core/run/RunArtefacts.h"
 #include "devices/simulated/SimulatedWorld.h"
 
 namespace activetouch {

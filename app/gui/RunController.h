@@ -9,6 +9,7 @@
 
 #include "app/gui/LiveFeed.h"
 #include "core/run/ExperimentRun.h"
+#include "core/run/RecordedRuns.h"
 #include "core/run/PairedComparison.h"
 #include "core/run/SeedRates.h"
 

@@ -105,39 +105,8 @@ struct RunOptions {
     std::function<void()> beforeWriting;
 };
 
-/// A recording read back whole: training and test taps to analyse instead of taking any, and for
-/// a replay a run's trials too.
-struct RecordedRun {
-    std::string name;                   ///< where it came from (a file, or a run's folder)
-    std::vector<CollectedTap> taps;     ///< <runDir>/data/taps.csv
-    std::vector<RecordedTrial> trials;  ///< <runDir>/data/following_taps.csv; none: analyse
-    int followingTaps = 0;
-    /// Empty, or what a run stopped while writing cut from the end of each file.
-    std::string tapsCutOff, trialsCutOff;
-    /// Empty, or why the files could not be checked to come from one run (no run.json).
-    std::string note;
-    bool replay() const { return !trials.empty(); }
-};
-
 /// `options.simulated`; throws std::logic_error when a run that needs simulated rigs was given none.
 const SimulatedRigs& simulatedRigsOf(const RunOptions& options);
-
-/// Reads the recording of the run in `runDir` for a replay. Throws InputError naming the file
-/// and what to do: not a folder, no following recording, or no training taps beside it (a
-/// following-only run's classifier was trained in another run's folder).
-RecordedRun readRecordedRun(const std::string& runDir, const ClassSet& classes);
-
-/// The recorded trial each of the experiment's trials replays, in the experiment's order.
-/// Throws InputError naming `name` and the trial the recording lacks.
-std::vector<const RecordedTrial*> replayedTrialsFor(const ExperimentSpec& spec,
-                                                    const std::vector<RecordedTrial>& recorded,
-                                                    const std::string& name);
-
-/// Refuses recorded taps the experiment cannot be validated on: a data set outside the
-/// experiment's, a class of a training set without a tap, no test tap, or taps with another
-/// number of taxels than the fingertip's. Throws InputError naming `name` and what is missing.
-void checkRecordingCovers(const ExperimentSpec& spec, const std::vector<CollectedTap>& taps,
-                          int taxels, const std::string& name);
 
 /// Refuses, before any tap, what cannot run on `connected`: a scene or trial whose object is not
 /// the one mounted there, or a sweep (sweeps replay on simulated rigs). Throws InputError naming
@@ -182,23 +151,5 @@ TrialSetup trialSetupFor(const RunResult& trained, FollowingMode mode,
 
 /// How many taps a run will take: exact for training, estimated for following trials.
 int plannedTapEstimate(const ExperimentSpec& spec);
-
-/// The columns each tap of a trial has in following_paths.csv, after the trial's own.
-inline constexpr const char* kTrialTapColumns =
-    "tap,x_mm,y_mm,shape_class,orientation_deg,position,rule,move_x_mm,move_y_mm,progress_mm,"
-    "contour_distance_mm";
-/// Appends a row per tap of `t` to `f`: `prefix` (the row's leading columns, ending in a comma),
-/// then the kTrialTapColumns.
-void printTrialTaps(OutputFile& f, const std::string& prefix, const TrialRun& t);
-
-/// Writes the tables (data/*.csv) of a finished run.
-void writeRunTables(const RunResult& result, const std::string& outDir);
-
-/// Writes <outDir>/summary.json atomically; `timing` adds keys under "timing".
-void writeSummary(const RunResult& result, const std::string& outDir, double wall_s,
-                  double figures_s);
-
-/// The summary document itself (what writeSummary writes).
-Json summaryJson(const RunResult& result, double wall_s, double figures_s);
 
 }  // namespace activetouch

@@ -1,4 +1,5 @@
 #include "core/run/PairedComparison.h"
+#include "core/run/RunArtefacts.h"
 
 #include <algorithm>
 #include <cctype>

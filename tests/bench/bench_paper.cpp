@@ -8,6 +8,7 @@
 
 #include "app/figures/FollowingFigures.h"
 #include "core/run/ExperimentRun.h"
+#include "core/run/RunArtefacts.h"
 #include "bench/BenchHarness.h"
 #include "support/SimulatedRun.h"
 

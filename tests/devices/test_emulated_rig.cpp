@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "core/run/ExperimentRun.h"
+#include "core/run/RecordedRuns.h"
 #include "devices/emulators/EmulatedBench.h"
 #include "devices/rigs/RigAssembly.h"
 #include "devices/simulated/SimulatedWorld.h"
