@@ -1,0 +1,311 @@
+#include "app/cli/CliSupport.h"
+#include "app/cli/CommandLine.h"
+
+#include <QApplication>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <variant>
+#include <vector>
+
+#include "app/figures/ComparisonFigures.h"
+#include "app/figures/FigureExport.h"
+#include "app/figures/FollowingFigures.h"
+#include "app/figures/SeedFigures.h"
+#include "core/run/ExperimentFiles.h"
+#include "core/run/RunArtefacts.h"
+#include "core/run/ExperimentRun.h"
+#include "core/run/RecordedRuns.h"
+#include "core/run/PairedComparison.h"
+#include "core/run/RunFolder.h"
+#include "core/run/SeedRates.h"
+#include "core/run/SeedShards.h"
+#include "core/experiment/Experiment.h"
+#include "core/experiment/RunPlan.h"
+#include "core/io/Csv.h"
+#include "core/records/FollowingRecording.h"
+#include "core/records/TapCsv.h"
+#include "core/rig/Rig.h"
+#include "devices/rigs/RigAssembly.h"
+#include "devices/rigs/RigFile.h"
+#include "devices/simulated/SimulatedWorld.h"
+
+namespace activetouch::cli {
+
+namespace fs = std::filesystem;
+
+/// Set by Ctrl-C (SIGINT) or SIGTERM on devices: while connecting, the stage's origin search is
+/// stopped; in the run, the run stops after the tap in flight, leaves the tapper retracted and
+/// the stage still, and keeps every tap taken.
+std::atomic<bool> gInterrupted{false};
+
+static_assert(std::atomic<bool>::is_always_lock_free);
+
+extern "C" void onInterrupt(int) {
+    gInterrupted.store(true);
+}
+
+int usageError(const std::string& message) {
+    std::fprintf(stderr, "activetouch-cli: %s\nRun 'activetouch-cli --help' for usage.\n",
+                 message.c_str());
+    return kBadInput;
+}
+
+/// Says, before any tap, what an experiment will run but cannot do well.
+void printCautions(const ExperimentSpec& spec) {
+    for (const std::string& c : untrainedEdgeCautions(spec))
+        std::fprintf(stderr, "caution: %s\n", c.c_str());
+}
+
+/// The experiment a run or seeds command takes, checked, its cautions printed; on bad input the
+/// message is printed and nothing is returned.
+std::optional<ExperimentSpec> loadForRun(const std::string& path) {
+    try {
+        ExperimentSpec spec = loadCheckedExperiment(path, true, simulatedRigs());
+        printCautions(spec);
+        return spec;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return std::nullopt;
+    }
+}
+
+/// Refuses (printing why) a plan of `runs` runs of `spec` beyond the bounds, unless allowed;
+/// `onRig`: its taps are taken on a rig, so its robot time is bounded too.
+bool planAccepted(const ExperimentSpec& spec, double runs, bool allowed, bool onRig) {
+    const RunPlan plan = planOf(spec).times(runs);
+    const PlanProblem problem = planProblem(
+        plan,
+        runs > 1 ? std::to_string(static_cast<long long>(runs)) + " runs of the experiment"
+                 : "the experiment",
+        onRig);
+    if (problem.empty() || allowed) return true;
+    std::fprintf(stderr, "error: %s\n",
+                 InputError::compose(spec.source, problem.place, problem.problem).c_str());
+    return false;
+}
+
+/// Claims `outDir` for a run (printing why not); while it lives, the folder's run.json is
+/// completed with the run's files whenever the command ends.
+std::optional<RunFolderClaim> claimOrSay(const std::string& outDir, const char* command,
+                                         const ExperimentSpec& spec, const RunFacts& facts,
+                                         bool replace) {
+    try {
+        return std::optional<RunFolderClaim>(std::in_place, outDir, command, spec.name, facts,
+                                             replace);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return std::nullopt;
+    }
+}
+
+void setUpHeadlessDisplay() {
+    const char* display = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    const char* platform = std::getenv("QT_QPA_PLATFORM");
+    if ((!display || !*display) && (!wayland || !*wayland) && (!platform || !*platform))
+        setenv("QT_QPA_PLATFORM", "offscreen", 1);
+}
+
+double drawFigures(int argc, char** argv, const std::function<void()>& write) {
+    const auto start = std::chrono::steady_clock::now();
+    setUpHeadlessDisplay();
+    QApplication app(argc, argv);
+    write();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::optional<std::uint64_t> parseSeed(const std::string& v) {
+    char* end = nullptr;
+    const long long n = std::strtoll(v.c_str(), &end, 10);
+    if (v.empty() || *end != '\0' || n < 0 || n > 2147483647LL) return std::nullopt;
+    return static_cast<std::uint64_t>(n);
+}
+
+/// `textOptions` maps each text option the command takes to what it needs, e.g. {"--rig", "a rig
+/// file, e.g. rig.json"}.
+RunArguments parseRunArguments(const std::vector<std::string>& args, const char* command,
+                               const std::vector<std::string>& seedOptions, bool figuresOption,
+                               bool takesRecording,
+                               const std::map<std::string, std::string>& textOptions) {
+    RunArguments r;
+    auto fail = [&](const std::string& message) {
+        r.error = message;
+        return r;
+    };
+    const std::string name = command;
+    CommandSyntax syntax;
+    syntax.values.push_back({"--out", "a folder"});
+    for (const std::string& o : seedOptions) syntax.values.push_back({o, "a whole number"});
+    for (const auto& [o, what] : textOptions) syntax.values.push_back({o, what});
+    syntax.flags.push_back("--replace");
+    if (figuresOption) syntax.flags.push_back("--no-figures");
+    if (name != "analyse" && name != "replay") syntax.flags.push_back("--allow-long-plan");
+    const CommandLine line = parseCommandLine(syntax, args);
+    if (!line.error.empty()) return fail(line.error);
+    r.outDir = line.value("--out");
+    for (const std::string& o : seedOptions) {
+        if (!line.values.count(o)) continue;
+        const std::string& v = line.values.at(o);
+        const auto n = parseSeed(v);
+        if (!n) return fail(o + " '" + v + "' is not a whole number between 0 and 2147483647");
+        r.seeds[o] = *n;
+    }
+    for (const auto& [o, what] : textOptions)
+        if (line.values.count(o)) r.texts[o] = line.values.at(o);
+    r.figures = !line.has("--no-figures");
+    r.replace = line.has("--replace");
+    r.allowLongPlan = line.has("--allow-long-plan");
+    const std::size_t wanted = takesRecording ? 2 : 1;
+    if (line.positional.size() > wanted)
+        return fail("unexpected argument '" + line.positional[wanted] + "'");
+    if (!line.positional.empty()) r.experimentPath = line.positional[0];
+    if (line.positional.size() > 1) r.recordingPath = line.positional[1];
+    if (r.experimentPath.empty())
+        return fail(std::string(command) +
+                    " needs an experiment file, e.g. experiments/paper.json");
+    if (takesRecording && r.recordingPath.empty())
+        return fail(std::string(command) +
+                    (std::string(command) == "replay"
+                         ? " needs a run's folder after the experiment, e.g. results/paper"
+                     : std::string(command) == "compare"
+                         ? " needs a second experiment to compare with, e.g. "
+                           "experiments/paper_kernel.json"
+                         : " needs a recording of training and test taps after the experiment, "
+                           "e.g. results/paper/data/taps.csv"));
+    return r;
+}
+
+/// `example` is the command with a range, e.g. "seeds --from 1 --to 10".
+SeedRange seedRangeOf(const RunArguments& parsed, const std::string& example) {
+    SeedRange r;
+    const std::string command = example.substr(0, example.find(' '));
+    if (!parsed.seeds.count("--from") || !parsed.seeds.count("--to")) {
+        r.error = command + " needs --from and --to, e.g. " + example.substr(command.size() + 1);
+        return r;
+    }
+    r.first = parsed.seeds.at("--from");
+    r.last = parsed.seeds.at("--to");
+    if (r.first > r.last)
+        r.error = "--from " + std::to_string(r.first) + " is after --to " + std::to_string(r.last) +
+                  "; give the first seed first";
+    r.jobs = defaultSeedJobs();
+    if (const auto jobs = parsed.seeds.find("--jobs"); jobs != parsed.seeds.end()) {
+        if (jobs->second < 1 || jobs->second > 1024)
+            r.error = "--jobs " + std::to_string(jobs->second) +
+                      " cannot run seeds; give how many seeds run at once, from 1 (one after "
+                      "another) to 1024";
+        r.jobs = static_cast<int>(std::min<std::uint64_t>(jobs->second, 1024));
+    }
+    return r;
+}
+
+/// Writes a finished run's tables, its figures if asked, and last its summary.json.
+Timing writeArtefacts(const RunResult& result, const std::string& outDir, bool figures, int argc,
+                      char** argv, std::chrono::steady_clock::time_point start) {
+    writeRunTables(result, outDir);
+    Timing t;
+    if (figures)
+        t.figures_s = drawFigures(argc, argv,
+                                  [&] { writeRunFigures(result, QString::fromStdString(outDir)); });
+    t.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    writeSummary(result, outDir, t.wall_s, t.figures_s);
+    return t;
+}
+
+/// How a trial ended and what it measured, as a run's report gives it after "trial N: ".
+void printTrialMeasures(const TrialRun& t) {
+    std::printf(
+        "%-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, contour distance mean %.2f max "
+        "%.2f mm%s%s%s\n",
+        trialEndName(t.result.end), t.result.taps.size(), t.result.robotTime_s,
+        100.0 * t.result.coverage, t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
+        t.recognised ? ", recognised as " : "", t.recognised ? t.recognition.predicted.c_str() : "",
+        t.result.completed() ? "" : (", furthest " + describePlace(t.result.furthest)).c_str());
+}
+
+/// What a run or an analysis found: validation, noise floor, trials, recognition, where it went.
+void printReport(const RunResult& result, double wall, double figures_s,
+                 const std::string& outDir) {
+    const ExperimentSpec& spec = result.spec;
+    const auto& v = result.validation;
+    std::printf(
+        "validation: angle error %.2f deg, position error %.3f mm, class accuracy %.1f %%, "
+        "%s\n",
+        v.angleError_deg, v.positionError_mm, 100.0 * v.correctFraction,
+        v.validRange.text().c_str());
+    if (const std::string note = followingClassifierNote(result); !note.empty())
+        std::printf("%s\n", note.c_str());
+    if (const auto& m = result.measuredNoiseFloor)
+        std::printf(
+            "noise floor: %.1f counts (measured from %d taps that touched nothing; "
+            "scene %.1f); classes whose ideal tap stays below it are air\n",
+            result.noiseFloor_counts, m->taps, result.spec.scene.tap.noiseFloor);
+    else
+        std::printf(
+            "noise floor: %.1f counts, the scene's (no class lies wholly in the air to "
+            "measure it from)\n",
+            result.noiseFloor_counts);
+    int labelWidth = 9;  // the columns line up whatever the trials are called
+    for (const auto& t : result.trials) labelWidth = std::max(labelWidth, int(t.label.size()));
+    for (const auto& t : result.trials) {
+        std::printf("%-7s %-*s trial %d: ", modeName(t.result.mode), labelWidth, t.label.c_str(),
+                    t.trial);
+        printTrialMeasures(t);
+    }
+    if (!result.templates.empty())
+        std::printf("recognition: %.0f %% of %s paths (smoothed histograms: %.0f %%)\n",
+                    100.0 * result.recognitionAccuracy, modeName(spec.recognition.ofMode),
+                    100.0 * result.recognitionAccuracySmoothed);
+    std::printf("wall time %.3f s (figures %.3f s); results in %s\n", wall, figures_s,
+                outDir.c_str());
+}
+
+/// A command over seeds whose runs all ended but some failed on a device or rig error exits 1,
+/// saying so: such a run is no outcome of the experiment.
+int failedRunsExit(int code, int failedRuns, const std::string& outDir, const char* where) {
+    if (code != kOk || failedRuns == 0) return code;
+    std::fprintf(stderr,
+                 "%d run%s failed on a device or rig error (not counted as lost trials); see "
+                 "%s/%s\n",
+                 failedRuns, failedRuns == 1 ? "" : "s", outDir.c_str(), where);
+    return kRunFailed;
+}
+
+/// What a seeds run or a merge prints as each seed finishes.
+bool printSeedOutcome(const SeedOutcome& o) {
+    std::printf("seed %llu: passive lost %d/%d, active completed %d/%d",
+                static_cast<unsigned long long>(o.seed), o.passiveLost, o.passiveTrials,
+                o.activeCompleted, o.activeTrials);
+    if (o.recognition)
+        std::printf(", recognised %d (smoothed %d) of %d", o.recognisedRaw(),
+                    o.recognisedSmoothed(), o.recognitionTrials());
+    std::printf("\n");
+    if (o.failed())
+        std::printf("    run failed, %d trials not run: %s\n", o.trialsNotRun, o.runFailure.c_str());
+    for (const auto& f : o.passiveShortfalls) std::printf("    %s\n", f.c_str());
+    for (const auto& f : o.failures) std::printf("    %s\n", f.c_str());
+    for (const auto& m : o.misnamed()) std::printf("    %s\n", m.c_str());
+    std::fflush(stdout);
+    return true;
+}
+
+/// The closing report of a seeds run or a merge: the rates over `first`..`last`.
+void printSeedRates(const std::string& name, const SeedRates& rates, std::uint64_t first,
+                    std::uint64_t last) {
+    std::printf("\n%s over %zu seeds (%llu-%llu):\n", name.c_str(), rates.seeds.size(),
+                static_cast<unsigned long long>(first), static_cast<unsigned long long>(last));
+    for (const std::string& line : describeRates(rates)) std::printf("%s\n", line.c_str());
+}
+
+}  // namespace activetouch::cli
