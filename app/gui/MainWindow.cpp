@@ -37,9 +37,11 @@
 #include "app/gui/LiveView.h"
 #include "app/gui/PlotPanel.h"
 #include "app/gui/ProtocolPanel.h"
+#include "app/gui/ResultTabs.h"
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
 #include "app/gui/WholeFile.h"
+#include "core/run/ExperimentFiles.h"
 #include "core/run/RunFolder.h"
 #include "core/experiment/RunPlan.h"
 #include "core/run/SeedRates.h"
@@ -50,78 +52,37 @@
 
 namespace activetouch {
 
-namespace {
-/// `table` as one rule's confusion: a row per shape traced, a column per shape named; the cells
-/// off the diagonal that are not zero stand out.
-void fillConfusion(QTableWidget* table, const RecognitionConfusion& confusion, bool smoothed) {
-    const auto& counts = smoothed ? confusion.smoothed : confusion.raw;
-    const int n = static_cast<int>(confusion.labels.size());
-    table->clear();
-    table->setRowCount(n);
-    table->setColumnCount(n);
-    QStringList names;
-    for (const auto& s : confusion.labels) names << QString::fromStdString(s);
-    table->setHorizontalHeaderLabels(names);
-    table->setVerticalHeaderLabels(names);
-    for (int a = 0; a < n; ++a)
-        for (int b = 0; b < n; ++b) {
-            const int count = counts[std::size_t(a)][std::size_t(b)];
-            auto* cell = new QTableWidgetItem(QString::number(count));
-            if (a != b && count > 0) cell->setBackground(QColor(255, 220, 200));
-            table->setItem(a, b, cell);
-        }
-}
-}  // namespace
-
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), devices_(feed_) {
     setWindowTitle(tr("ActiveTouch Workbench"));
     setObjectName("mainWindow");
     QSettings settings;
     outputBase_ = settings.value("outputBase", QDir::current().filePath("results")).toString();
+    buildTabs();
+    buildDocks();
+    buildToolBar(settings);
+    buildStatusBar();
+    connectRuns();
+    restoreGeometry(settings.value("geometry").toByteArray());
+    restoreState(settings.value("windowState").toByteArray());
+    const QString last = settings.value("lastExperiment").toString();
+    const QString fallback = QDir(ACTIVETOUCH_SOURCE_DIR).filePath("experiments/paper.json");
+    if (!(QFileInfo::exists(last) && openExperiment(last)) && QFileInfo::exists(fallback))
+        openExperiment(fallback);
+    updateActions();
+}
 
+void MainWindow::buildTabs() {
     tabs_ = new QTabWidget;
     live_ = new LiveView(feed_);
     tabs_->addTab(live_, tr("Live"));
-    auto* validation = new QTabWidget;
-    taps_ = new PlotPanel("figure5_taps");
-    errors_ = new PlotPanel("figure6_errors");
-    validation->addTab(errors_, tr("Errors by orientation and position (Figure 6)"));
-    validation->addTab(taps_, tr("Taps across each edge (Figure 5)"));
-    tabs_->addTab(validation, tr("Training && validation"));
+    validation_ = new ValidationTab;
+    tabs_->addTab(validation_, tr("Training && validation"));
     following_ = new FollowingTab;
     tabs_->addTab(following_, tr("Contour following"));
-    auto* recognition = new QSplitter(Qt::Vertical);
-    recognition_ = new PlotPanel("figure9_recognition");
-    recognition->addWidget(recognition_);
-    auto* confusionBox = new QGroupBox(
-        tr("Confusion over the recognised trials (rows: the shape traced; columns: the shape "
-           "named)"));
-    auto* confusionRow = new QHBoxLayout(confusionBox);
-    for (auto [table, title, name] :
-         {std::tuple{&confusionRaw_, &confusionRawTitle_, "confusionPaperRule"},
-          std::tuple{&confusionSmoothed_, &confusionSmoothedTitle_, "confusionSmoothed"}}) {
-        auto* column = new QVBoxLayout;
-        *title = new QLabel;
-        *table = new QTableWidget;
-        (*table)->setObjectName(name);
-        (*table)->setEditTriggers(QAbstractItemView::NoEditTriggers);
-        column->addWidget(*title);
-        column->addWidget(*table, 1);
-        confusionRow->addLayout(column, 1);
-    }
-    recognition->addWidget(confusionBox);
-    recognition->setStretchFactor(0, 4);
-    tabs_->addTab(recognition, tr("Recognition"));
-    auto* sweeps = new QTabWidget;
-    sweepPerception_ = new PlotPanel("sweep_a_sequential_perception");
-    sweepFollowing_ = new PlotPanel("sweep_b_following");
-    sweepCompute_ = new PlotPanel("sweep_c_compute");
-    sweeps->addTab(sweepPerception_, tr("(a) taps per decision"));
-    sweeps->addTab(sweepFollowing_, tr("(b) following steps"));
-    sweeps->addTab(sweepCompute_, tr("(c) compute"));
-    sweeps->setToolTip(
-        tr("Run an experiment with sweeps, such as experiments/accuracy_vs_time.json"));
-    tabs_->addTab(sweeps, tr("Accuracy vs time"));
+    recognition_ = new RecognitionTab;
+    tabs_->addTab(recognition_, tr("Recognition"));
+    sweeps_ = new SweepsTab;
+    tabs_->addTab(sweeps_, tr("Accuracy vs time"));
     seeds_ = new SeedsTab;
     tabs_->addTab(seeds_, tr("Rates over seeds"));
     connect(seeds_, &SeedsTab::runRequested, this,
@@ -141,22 +102,13 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
                 startTrialPair(seed, mode, label, trial);
             });
     setCentralWidget(tabs_);
-    const QString training =
-        tr("Click Run whole protocol, or Run training & validation, to tap the "
-           "training and test sets on the rig and validate the classifier.");
-    taps_->setEmptyHint(training);
-    errors_->setEmptyHint(training);
-    recognition_->setEmptyHint(recognitionHint());
-    for (PlotPanel* p : {sweepPerception_, sweepFollowing_, sweepCompute_})
-        p->setEmptyHint(
-            tr("No sweeps measured yet. Open experiments/accuracy_vs_time.json (or any "
-               "experiment with a \"sweeps\" section) and click Run whole protocol "
-               "to measure what accuracy costs in time."));
     for (PlotPanel* p : plotPanels()) {
         connect(p, &PlotPanel::exported, this, &MainWindow::log);
         connect(p, &PlotPanel::failed, this, &MainWindow::showError);
     }
+}
 
+void MainWindow::buildDocks() {
     scene_ = new ScenePanel;
     auto* sceneDock = new QDockWidget(tr("Scene"));
     sceneDock->setObjectName("sceneDock");
@@ -189,7 +141,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     logDock->setObjectName("logDock");
     logDock->setWidget(log_);
     addDockWidget(Qt::BottomDockWidgetArea, logDock);
+}
 
+void MainWindow::buildToolBar(const QSettings& settings) {
     auto* bar = addToolBar(tr("Run"));
     bar->setObjectName("runToolBar");
     bar->addAction(tr("Open..."), this, [this] {
@@ -244,7 +198,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
             QFileDialog::getExistingDirectory(this, tr("Export all figures into"), lastOutDir_);
         if (!dir.isEmpty()) exportAllFigures(dir);
     });
+}
 
+void MainWindow::buildStatusBar() {
     progress_ = new QProgressBar;
     progress_->setRange(0, 1);
     progress_->setValue(0);
@@ -253,7 +209,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
     status_ = new QLabel;
     statusBar()->addPermanentWidget(status_, 1);
     statusBar()->addPermanentWidget(progress_);
+}
 
+void MainWindow::connectRuns() {
     connect(&runs_, &RunController::progress, this,
             [this](int done, int planned, const QString& step, double left) {
                 progress_->setRange(0, std::max(planned, done));
@@ -282,14 +240,6 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), dev
         emit runEnded(false);
     });
     connect(&runs_, &RunController::idle, this, &MainWindow::updateActions);
-
-    restoreGeometry(settings.value("geometry").toByteArray());
-    restoreState(settings.value("windowState").toByteArray());
-    const QString last = settings.value("lastExperiment").toString();
-    const QString fallback = QDir(ACTIVETOUCH_SOURCE_DIR).filePath("experiments/paper.json");
-    if (!(QFileInfo::exists(last) && openExperiment(last)) && QFileInfo::exists(fallback))
-        openExperiment(fallback);
-    updateActions();
 }
 
 MainWindow::~MainWindow() {
@@ -299,15 +249,15 @@ MainWindow::~MainWindow() {
 QList<PlotPanel*> MainWindow::plotPanels() const {
     return {live_->barsPanel(),
             live_->tracesPanel(),
-            taps_,
-            errors_,
+            validation_->tapsPanel(),
+            validation_->errorsPanel(),
             following_->activePanel(),
             following_->passivePanel(),
             following_->replayPanel(),
-            recognition_,
-            sweepPerception_,
-            sweepFollowing_,
-            sweepCompute_,
+            recognition_->panel(),
+            sweeps_->perceptionPanel(),
+            sweeps_->followingPanel(),
+            sweeps_->computePanel(),
             seeds_->ratesPanel(),
             comparison_->plotPanel(),
             comparison_->pairPanel()};
@@ -331,21 +281,10 @@ void MainWindow::showError(const QString& message) {
     emit errorShown(message);
 }
 
-namespace {
-/// The experiment file at `path`, read with every check a run makes; its document in `j`.
-ExperimentSpec readExperimentChecked(const QString& path, Json& j) {
-    j = readExperimentFile(path.toStdString());
-    ExperimentSpec spec =
-        parseExperiment(j, path.toStdString(), QFileInfo(path).path().toStdString());
-    validateEffects(spec.scene);
-    return spec;
-}
-}  // namespace
-
 bool MainWindow::openExperiment(const QString& path) {
     try {
         Json j;
-        ExperimentSpec spec = readExperimentChecked(path, j);
+        ExperimentSpec spec = loadCheckedExperiment(path.toStdString(), true, simulatedRigs(), &j);
         // Only a fully valid file replaces the session.
         spec_ = spec;
         experimentJson_ = j;
@@ -427,397 +366,6 @@ std::optional<ExperimentSpec> MainWindow::experimentToRun() {
         showError(tr("The experiment as shown cannot run: %1").arg(e.what()));
         return std::nullopt;
     }
-}
-
-QString MainWindow::recognitionHint() const {
-    return tr(
-        "The active paths are recognised after active following: click Run whole protocol, "
-        "or Run following once the classifier is trained.");
-}
-
-QString MainWindow::newRunDirectory(const QString& stem) const {
-    return QDir(outputBase_)
-        .filePath(stem + "-" + QDateTime::currentDateTime().toString("yyyyMMdd-hhmmss-zzz"));
-}
-
-bool MainWindow::startRun(RunController::What what) {
-    const auto toRun = experimentToRun();
-    if (!toRun) return false;
-    // With devices connected, the run takes its taps on them; otherwise on the simulated rig.
-    std::shared_ptr<const ConnectedRig> connected;
-    if (devices_.session()->connected()) {
-        QString why;
-        connected = devices_.session()->lend(&why);
-        if (!connected) {
-            showError(tr("The run cannot use the connected devices: %1.").arg(why));
-            return false;
-        }
-    }
-    return launch(*toRun, what, QString::fromStdString(toRun->name), connected);
-}
-
-bool MainWindow::startSeedRun(std::uint64_t seed) {
-    auto toRun = seedsSpec_ ? seedsSpec_ : experimentToRun();
-    if (!toRun) return false;
-    // A seed stands for a whole run on the simulated rig, as in the seeds run, whatever devices
-    // are connected.
-    toRun->scene.seed = seed;
-    if (!launch(*toRun, RunController::What::Everything,
-                QString("%1_seed%2").arg(QString::fromStdString(toRun->name)).arg(seed), nullptr))
-        return false;
-    tabs_->setCurrentWidget(following_);
-    return true;
-}
-
-bool MainWindow::analyseRecording(const QString& path) {
-    return startOnRecording(path, false);
-}
-
-bool MainWindow::replayRun(const QString& runDir) {
-    return startOnRecording(runDir, true);
-}
-
-bool MainWindow::startOnRecording(const QString& path, bool replay) {
-    const auto toRun = experimentToRun();
-    if (!toRun) return false;
-    std::shared_ptr<RecordedRun> recorded;
-    try {
-        if (replay) {
-            recorded =
-                std::make_shared<RecordedRun>(readRecordedRun(path.toStdString(), toRun->classes));
-        } else {
-            recorded = std::make_shared<RecordedRun>();
-            recorded->name = path.toStdString();
-            recorded->taps = readTapCsv(recorded->name, toRun->classes, &recorded->tapsCutOff);
-        }
-        checkRecordingCovers(*toRun, recorded->taps,
-                             FingertipContactModel(toRun->scene.fingertip).taxelCount(),
-                             recorded->name);
-        if (replay) replayedTrialsFor(*toRun, recorded->trials, recorded->name);
-        for (const std::string& c : {recorded->tapsCutOff, recorded->trialsCutOff})
-            if (!c.empty())
-                log(tr("the recording in %1 was cut short at the end, as by a run stopped while "
-                       "writing: %2; that tap is left out")
-                        .arg(path, QString::fromStdString(c)));
-    } catch (const std::exception& e) {
-        showError((replay ? tr("Could not replay %1:\n%2") : tr("Could not analyse %1:\n%2"))
-                      .arg(path, e.what()));
-        return false;
-    }
-    return launch(*toRun,
-                  replay ? RunController::What::Everything : RunController::What::TrainingOnly,
-                  QString::fromStdString(toRun->name) + (replay ? "_replay" : "_analysis"), nullptr,
-                  recorded);
-}
-
-bool MainWindow::mayWriteRun(const ExperimentSpec& spec, double runs, const QString& dir) {
-    // A plan past the bounds (docs/limits.md) runs only when the user says it is meant.
-    const RunPlan plan = planOf(spec).times(runs);
-    if (const PlanProblem problem =
-            planProblem(plan, "the experiment", devices_.session()->connected());
-        !problem.empty()) {
-        QMessageBox ask(QMessageBox::Question, tr("ActiveTouch Workbench"),
-                        tr("%1 asks for more than a run should:\n%2\n\nRun it anyway?")
-                            .arg(QString::fromStdString(spec.name),
-                                 QString::fromStdString(problem.problem)),
-                        QMessageBox::Yes | QMessageBox::No, this);
-        ask.setObjectName("longPlanQuestion");
-        ask.setDefaultButton(QMessageBox::No);
-        if (ask.exec() != QMessageBox::Yes) {
-            log(tr("not started: %1").arg(QString::fromStdString(problem.problem)));
-            return false;
-        }
-    }
-    // A folder never holds two runs' files: one that holds a run is replaced only when asked.
-    if (holdsRun(dir.toStdString())) {
-        QMessageBox ask(QMessageBox::Question, tr("ActiveTouch Workbench"),
-                        tr("%1 already holds a run. Replace it? Its files are removed first.")
-                            .arg(dir),
-                        QMessageBox::Yes | QMessageBox::No, this);
-        ask.setObjectName("replaceRunQuestion");
-        ask.setDefaultButton(QMessageBox::No);
-        if (ask.exec() != QMessageBox::Yes) return false;
-    }
-    return true;
-}
-
-bool MainWindow::launch(const ExperimentSpec& spec, RunController::What what, const QString& stem,
-                        std::shared_ptr<const ConnectedRig> connected,
-                        std::shared_ptr<const RecordedRun> recorded) {
-    const QString dir = newRunDirectory(stem);
-    if (!mayWriteRun(spec, recorded ? 0 : 1, dir)) return false;  // a recording takes no taps
-    if (!runs_.start(spec, dir, what, static_cast<Pace>(pace_->currentIndex()), last_, connected,
-                     recorded))
-        return false;
-    countingSeeds_ = false;
-    lastOutDir_ = dir;
-    int recordedTaps = recorded ? static_cast<int>(recorded->taps.size()) : 0;
-    if (recorded)
-        for (const RecordedTrial& t : recorded->trials)
-            recordedTaps += static_cast<int>(t.taps.size());
-    progress_->setRange(0, recorded ? recordedTaps : plannedTapEstimate(spec));
-    progress_->setValue(0);
-    if (recorded && recorded->replay())
-        log(tr("replay started: %1 on the run recorded in %2 (%3 taps, %4 trials), writing %5")
-                .arg(QString::fromStdString(spec.name), QString::fromStdString(recorded->name))
-                .arg(recordedTaps)
-                .arg(recorded->trials.size())
-                .arg(dir));
-    else if (recorded)
-        log(tr("analysis started: %1 on the %2 taps recorded in %3, writing %4")
-                .arg(QString::fromStdString(spec.name))
-                .arg(recorded->taps.size())
-                .arg(QString::fromStdString(recorded->name), dir));
-    else
-        log(tr("run started: %1, seed %2, on %3, writing %4")
-                .arg(QString::fromStdString(spec.name), QString::number(spec.scene.seed),
-                     connected ? tr("the connected rig (%1)")
-                                     .arg(QString::fromStdString(connected->description))
-                               : tr("the simulated rig"),
-                     dir));
-    updateActions();
-    return true;
-}
-
-bool MainWindow::startSeeds(std::uint64_t first, std::uint64_t last) {
-    const auto toRun = experimentToRun();
-    if (!toRun) return false;
-    const ExperimentSpec& spec = *toRun;
-    const QString name = QString::fromStdString(spec.name);
-    const QString dir = newRunDirectory(name + "_seeds");
-    if (!mayWriteRun(spec, double(last - first + 1), dir)) return false;
-    if (!runs_.startSeeds(spec, first, last, dir)) return false;
-    countingSeeds_ = true;
-    lastSeedsDir_ = dir;
-    seedsSpec_ = spec;
-    seeds_->begin(name);
-    tabs_->setCurrentWidget(seeds_);
-    progress_->setRange(0, static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX)));
-    progress_->setValue(0);
-    log(tr("seeds run started: %1, seeds %2-%3, each a whole run on the simulated rig, %4 at a "
-           "time, writing %5")
-            .arg(name)
-            .arg(first)
-            .arg(last)
-            .arg(defaultSeedJobs())
-            .arg(dir));
-    updateActions();
-    return true;
-}
-
-bool MainWindow::startComparison(const QString& otherPath, std::uint64_t first,
-                                 std::uint64_t last) {
-    const auto toRun = experimentToRun();
-    if (!toRun) return false;
-    ExperimentSpec other;
-    try {
-        Json j;
-        other = readExperimentChecked(otherPath, j);
-        checkComparable(*toRun, other);
-    } catch (const std::exception& e) {
-        showError(tr("Could not compare with %1:\n%2").arg(otherPath, e.what()));
-        return false;
-    }
-    const QString a = QString::fromStdString(toRun->name), b = QString::fromStdString(other.name);
-    const QString dir = newRunDirectory(a + "_vs_" + b);
-    if (!mayWriteRun(*toRun, double(last - first + 1), dir) ||
-        !mayWriteRun(other, double(last - first + 1), dir))
-        return false;
-    if (!runs_.startComparison(*toRun, other, first, last, dir)) return false;
-    countingSeeds_ = true;
-    lastComparisonDir_ = dir;
-    compared_ = std::make_pair(*toRun, other);
-    comparison_->begin(a, b, first, last);
-    tabs_->setCurrentWidget(comparison_);
-    progress_->setRange(0, static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX)));
-    progress_->setValue(0);
-    log(tr("comparison started: %1 (A) against %2 (B, %3), seeds %4-%5, trial by trial, %6 at a "
-           "time, writing %7")
-            .arg(a, b, otherPath)
-            .arg(first)
-            .arg(last)
-            .arg(defaultSeedJobs())
-            .arg(dir));
-    updateActions();
-    return true;
-}
-
-bool MainWindow::startTrialPair(std::uint64_t seed, FollowingMode mode, const QString& label,
-                                int trial) {
-    if (!compared_ || runs_.running()) return false;
-    if (!runs_.startTrialPair(compared_->first, compared_->second, seed, mode, label.toStdString(),
-                              trial, lastComparisonDir_))
-        return false;
-    countingSeeds_ = true;
-    progress_->setRange(0, 1);
-    progress_->setValue(0);
-    log(tr("running seed %1 in %2 (A) and %3 (B) to show %4 trial %5 of %6")
-            .arg(seed)
-            .arg(QString::fromStdString(compared_->first.name),
-                 QString::fromStdString(compared_->second.name), modeName(mode))
-            .arg(trial)
-            .arg(label));
-    updateActions();
-    return true;
-}
-
-void MainWindow::showComparison(std::shared_ptr<const PairedComparison> comparison,
-                                const QString& dir, bool cancelled) {
-    comparison_->finish(*comparison, dir, cancelled);
-    QString figures;
-    try {
-        const QStringList files = writeComparisonFigures(*comparison, dir);
-        if (!files.isEmpty()) figures = tr("; figure %1").arg(files.first());
-    } catch (const std::exception& e) {
-        showError(tr("Could not write the comparison figure: %1").arg(e.what()));
-    }
-    const QString state = cancelled ? tr("cancelled") : tr("finished");
-    progress_->setFormat(tr("comparison %1: %2 seeds").arg(state).arg(comparison->seeds));
-    status_->setText(tr("comparison %1, results in %2").arg(state, dir));
-    const PairedRate& active = comparison->activeCompleted;
-    log(tr("comparison %1 after %2 seeds: active completed %3 (A) and %4 (B) of %5, %6 only by "
-           "A, %7 only by B (McNemar p %8); compare.csv and compare.json in %9%10")
-            .arg(state)
-            .arg(comparison->seeds)
-            .arg(active.a().count)
-            .arg(active.b().count)
-            .arg(active.pairs())
-            .arg(active.onlyA)
-            .arg(active.onlyB)
-            .arg(active.mcnemarP(), 0, 'g', 3)
-            .arg(dir, figures));
-    emit runEnded(!cancelled);
-}
-
-void MainWindow::showTrialPair(const std::shared_ptr<const TrialPairRun>& pair,
-                               const QString& dir) {
-    comparison_->showTrialPair(*pair);
-    const QString how =
-        tr("seed %1, %2 trial %3 of %4: A %5, B %6")
-            .arg(pair->seed)
-            .arg(modeName(pair->a.result.mode))
-            .arg(pair->a.trial)
-            .arg(QString::fromStdString(pair->a.label), QString::fromStdString(endedText(pair->a)),
-                 QString::fromStdString(endedText(pair->b)));
-    progress_->setFormat(tr("trial shown in both experiments"));
-    status_->setText(how);
-    // The same table and figure compare --show writes, beside the comparison's own files.
-    QString files;
-    try {
-        writeTrialPairTable(*pair, dir.toStdString());
-        writeTrialPairFigures(*pair, dir);
-        files = tr("; its table and figure %1.* in %2")
-                    .arg(QString::fromStdString(trialPairFileStem(*pair)), dir);
-    } catch (const std::exception& e) {
-        showError(tr("Could not write the trial's table and figure: %1").arg(e.what()));
-    }
-    log(how + files);
-    emit runEnded(true);
-}
-
-void MainWindow::showSeeds(std::shared_ptr<const SeedRates> rates, const QString& dir,
-                           bool cancelled) {
-    seeds_->finish(dir, cancelled);
-    QString figures;
-    try {
-        const QStringList files = writeSeedFigures(*rates, seeds_->experiment(), dir);
-        if (!files.isEmpty()) figures = tr("; figure %1").arg(files.first());
-    } catch (const std::exception& e) {
-        showError(tr("Could not write the seeds figure: %1").arg(e.what()));
-    }
-    const QString state = cancelled ? tr("cancelled") : tr("finished");
-    progress_->setFormat(tr("seeds %1: %2").arg(state).arg(rates->seeds.size()));
-    status_->setText(tr("seeds %1, results in %2").arg(state, dir));
-    const Rate completed = rates->activeCompleted(), lost = rates->passiveLost();
-    log(tr("seeds run %1 after %2 seeds: active completed %3/%4, passive lost %5/%6; rates.csv "
-           "and rates.json in %7%8")
-            .arg(state)
-            .arg(rates->seeds.size())
-            .arg(completed.count)
-            .arg(completed.total)
-            .arg(lost.count)
-            .arg(lost.total)
-            .arg(dir, figures));
-    emit runEnded(!cancelled);
-}
-
-void MainWindow::cancelRun() {
-    if (!runs_.running()) return;
-    runs_.cancel();
-    log(tr("cancelling: the run stops after the tap in flight; every tap taken is kept"));
-}
-
-void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString& dir) {
-    const RunResult& r = *result;
-    const bool trainingRun =
-        !r.taps.empty();  // a following-only run keeps the training figures shown
-    // Of recorded taps, none taken: an analysis, or a replay that also followed on them.
-    const bool replay = r.rig.rfind("replay of ", 0) == 0;
-    const bool analysis = replay || r.rig.rfind("recording ", 0) == 0;
-    last_ = result;
-    lastOutDir_ = dir;
-    if (trainingRun) buildTapFigure(taps_->plot(), r);
-    if (!r.validation.byClass.empty()) buildErrorFigure(errors_->plot(), r);
-    for (auto* p : {taps_, errors_}) p->plot().replot();
-    following_->showRun(result);
-    recognition_->setEmptyHint(r.spec.recognition.enabled
-                                   ? recognitionHint()
-                                   : tr("This experiment has no recognition step: add a "
-                                        "\"recognition\" section, as experiments/paper.json has, "
-                                        "to recognise the shapes from the traced paths."));
-    buildRecognitionFigure(recognition_->plot(), r);
-    recognition_->plot().replot();
-    if (!r.sweeps.empty()) {
-        if (analysis)
-            for (PlotPanel* p : {sweepPerception_, sweepFollowing_})
-                p->setEmptyHint(
-                    tr("This sweep takes new taps and follows contours on simulated "
-                       "rigs: run the experiment to measure it. An analysed or replayed "
-                       "recording measures only the compute sweep (c), on its own taps."));
-        buildPerceptionSweepFigure(sweepPerception_->plot(), r);
-        buildFollowingSweepFigure(sweepFollowing_->plot(), r);
-        buildComputeSweepFigure(sweepCompute_->plot(), r);
-        for (auto* p : {sweepPerception_, sweepFollowing_, sweepCompute_}) p->plot().replot();
-    }
-    // Confusion over the recognised trials, traced shape x named, for each rule.
-    const RecognitionConfusion confusion = recognitionConfusion(r);
-    fillConfusion(confusionRaw_, confusion, false);
-    fillConfusion(confusionSmoothed_, confusion, true);
-    confusionRawTitle_->setText(
-        tr("paper's rule: %1 % named rightly").arg(100.0 * r.recognitionAccuracy, 0, 'f', 0));
-    confusionSmoothedTitle_->setText(tr("smoothed histograms (sigma %1 bins): %2 % named rightly")
-                                         .arg(r.spec.recognition.smoothingSigmaBins)
-                                         .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0));
-    progress_->setRange(0, std::max(1, progress_->value()));
-    progress_->setValue(progress_->maximum());
-    const QString state =
-        r.cancelled ? tr("cancelled") : (r.failure.empty() ? tr("finished") : tr("failed"));
-    // Taps taken: simulated ones (sweeps included), or those of the devices or the recording.
-    std::uint64_t taps = r.tapsSimulated;
-    if (r.rig != "simulated") {
-        taps = r.taps.size();
-        for (const auto& t : r.trials) taps += t.result.taps.size();
-    }
-    const QString what = replay ? tr("replay") : analysis ? tr("analysis") : tr("run");
-    progress_->setFormat(tr("%1: %2 taps").arg(state).arg(taps));
-    status_->setText(tr("%1, results in %2").arg(state, dir));
-    if (!r.validation.byClass.empty())
-        log(tr("validation: angle error %1 deg, position error %2 mm, %3")
-                .arg(r.validation.angleError_deg, 0, 'f', 2)
-                .arg(r.validation.positionError_mm, 0, 'f', 3)
-                .arg(QString::fromStdString(r.validation.validRange.text())));
-    if (const std::string note = followingClassifierNote(r); !note.empty())
-        log(QString::fromStdString(note));
-    for (const auto& t : r.trials)
-        log(tr("%1 %2 trial %3: %4")
-                .arg(modeName(t.result.mode), QString::fromStdString(t.label))
-                .arg(t.trial)
-                .arg(QString::fromStdString(t.result.detail)));
-    log(tr("%1 %2: %3 taps, results in %4").arg(what, state).arg(taps).arg(dir));
-    if (!r.failure.empty())
-        showError(tr("The run stopped: %1. Every tap taken so far is in %2/data.")
-                      .arg(QString::fromStdString(r.failure), dir));
-    emit runEnded(!r.cancelled && r.failure.empty());
 }
 
 QStringList MainWindow::exportAllFigures(const QString& dir) {

@@ -16,7 +16,7 @@ class QComboBox;
 class QLabel;
 class QPlainTextEdit;
 class QProgressBar;
-class QTableWidget;
+class QSettings;
 class QTabWidget;
 
 namespace activetouch {
@@ -25,6 +25,9 @@ class DevicesPanel;
 class FollowingTab;
 class LiveView;
 class PlotPanel;
+class RecognitionTab;
+class SweepsTab;
+class ValidationTab;
 class ProtocolPanel;
 class ScenePanel;
 class SeedsTab;
@@ -123,7 +126,13 @@ private:
                 std::shared_ptr<const RecordedRun> recorded = {});
     /// A new folder under the output base for a run: <stem>-<date and time>.
     QString newRunDirectory(const QString& stem) const;
-    QString recognitionHint() const;
+    // The constructor's parts: the tabs, the docks, the run tool bar and the status bar, and the
+    // run controller's signals.
+    void buildTabs();
+    void buildDocks();
+    void buildToolBar(const QSettings& settings);
+    void buildStatusBar();
+    void connectRuns();
     void log(const QString& text);
     void showRun(std::shared_ptr<const RunResult> result, const QString& dir);
     void showSeeds(std::shared_ptr<const SeedRates> rates, const QString& dir, bool cancelled);
@@ -151,12 +160,12 @@ private:
 
     QTabWidget* tabs_;
     LiveView* live_;
-    PlotPanel *taps_, *errors_, *recognition_, *sweepPerception_, *sweepFollowing_, *sweepCompute_;
+    ValidationTab* validation_;
     FollowingTab* following_;
+    RecognitionTab* recognition_;
+    SweepsTab* sweeps_;
     SeedsTab* seeds_;
     ComparisonTab* comparison_;
-    QTableWidget *confusionRaw_, *confusionSmoothed_;  ///< traced shape x named, each rule
-    QLabel *confusionRawTitle_, *confusionSmoothedTitle_;
     ScenePanel* scene_;
     ProtocolPanel* protocol_;
     DevicesPanel* devicesPanel_;

@@ -7,11 +7,13 @@
 namespace activetouch {
 
 ExperimentSpec loadCheckedExperiment(const std::string& path, bool requireExperiment,
-                                     const SimulatedRigs& rigs) {
+                                     const SimulatedRigs& rigs, Json* document) {
     const Json j = readJsonFile(path);
     ExperimentSpec spec;
     if (looksLikeExperiment(j)) {
-        spec = loadExperiment(path);
+        Json resolved = readExperimentFile(path);
+        spec = parseExperiment(resolved, path, std::filesystem::path(path).parent_path().string());
+        if (document) *document = std::move(resolved);
     } else if (requireExperiment) {
         throw InputError(
             path, "/",

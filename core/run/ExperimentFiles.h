@@ -1,7 +1,7 @@
 #pragma once
 // Loading the files a run starts from, with every check the run itself would make, so that a
 // bad file is refused (by file, place and problem) before any tap: the one entry the command
-// line, and the fuzzing harnesses, read experiment and scene files through.
+// line, the window and the fuzzing harnesses read experiment and scene files through.
 #include <string>
 
 #include "core/experiment/Experiment.h"
@@ -11,8 +11,9 @@ namespace activetouch {
 
 /// Loads an experiment (with "extends" resolved) or, unless `requireExperiment`, a bare scene,
 /// and checks everything a run would check, the scene's effects included (as `rigs` would
-/// simulate them). Throws InputError.
+/// simulate them). With `document`, an experiment's document with "extends" resolved is given
+/// there too (what the window's panels show and save). Throws InputError.
 ExperimentSpec loadCheckedExperiment(const std::string& path, bool requireExperiment,
-                                     const SimulatedRigs& rigs);
+                                     const SimulatedRigs& rigs, Json* document = nullptr);
 
 }  // namespace activetouch
