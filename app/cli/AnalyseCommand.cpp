@@ -83,7 +83,7 @@ int commandAnalyse(const std::vector<std::string>& args, int argc, char** argv, 
             claimed.emplace(outDir, command, spec.name, runFactsOf(spec, &taps), parsed.replace);
         };
         const RunResult result = runExperiment(spec, options);
-        const Timing t = writeArtefacts(result, outDir, parsed.figures, argc, argv, start);
+        const ArtefactTiming t = writeArtefacts(result, outDir, parsed.figures, argc, argv, start);
         if (replay)
             std::printf(
                 "%s: %zu recorded training and test taps and %d following taps over %d trials "

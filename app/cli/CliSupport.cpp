@@ -211,16 +211,13 @@ SeedRange seedRangeOf(const RunArguments& parsed, const std::string& example) {
 }
 
 /// Writes a finished run's tables, its figures if asked, and last its summary.json.
-Timing writeArtefacts(const RunResult& result, const std::string& outDir, bool figures, int argc,
-                      char** argv, std::chrono::steady_clock::time_point start) {
-    writeRunTables(result, outDir);
-    Timing t;
-    if (figures)
-        t.figures_s = drawFigures(argc, argv,
-                                  [&] { writeRunFigures(result, QString::fromStdString(outDir)); });
-    t.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    writeSummary(result, outDir, t.wall_s, t.figures_s);
-    return t;
+ArtefactTiming writeArtefacts(const RunResult& result, const std::string& outDir, bool figures,
+                              int argc, char** argv, std::chrono::steady_clock::time_point start) {
+    if (!figures) return writeRunArtefacts(result, outDir, start);
+    return writeRunArtefacts(result, outDir, start, [&] {
+        return drawFigures(argc, argv,
+                           [&] { writeRunFigures(result, QString::fromStdString(outDir)); });
+    });
 }
 
 /// How a trial ended and what it measured, as a run's report gives it after "trial N: ".

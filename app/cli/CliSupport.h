@@ -15,6 +15,7 @@
 #include "core/common/InputError.h"
 #include "core/experiment/Experiment.h"
 #include "core/run/ExperimentRun.h"
+#include "core/run/RunArtefacts.h"
 #include "core/run/RunFolder.h"
 #include "core/run/SeedRates.h"
 
@@ -107,13 +108,9 @@ struct SeedRange {
 /// `example` is the command with a range, e.g. "seeds --from 1 --to 10".
 SeedRange seedRangeOf(const RunArguments& parsed, const std::string& example);
 
-struct Timing {
-    double wall_s = 0.0, figures_s = 0.0;
-};
-
 /// Writes a finished run's tables, its figures if asked, and last its summary.json.
-Timing writeArtefacts(const RunResult& result, const std::string& outDir, bool figures, int argc,
-                      char** argv, std::chrono::steady_clock::time_point start);
+ArtefactTiming writeArtefacts(const RunResult& result, const std::string& outDir, bool figures,
+                              int argc, char** argv, std::chrono::steady_clock::time_point start);
 
 /// How a trial ended and what it measured, as a run's report gives it after "trial N: ".
 void printTrialMeasures(const TrialRun& t);

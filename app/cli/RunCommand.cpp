@@ -107,16 +107,18 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
             const ConnectedRig connected{assembled->rig(), spec.scene.object,
                                          rigConfig->describe()};
             options.connected = &connected;
-            options.cancel = &gInterrupted;
+            StopFlag stop(gInterrupted);
+            options.observer = &stop;
             result = runExperiment(spec, options);
             assembled->shutdown();
         } else {
             // Ctrl-C stops after the tap in flight, as on a rig, keeping every tap taken.
             const InterruptHandlers handlers;
-            options.cancel = &gInterrupted;
+            StopFlag stop(gInterrupted);
+            options.observer = &stop;
             result = runExperiment(spec, options);
         }
-        const Timing t = writeArtefacts(result, outDir, figures, argc, argv, start);
+        const ArtefactTiming t = writeArtefacts(result, outDir, figures, argc, argv, start);
         if (rigConfig) {
             std::size_t taps = result.taps.size();
             for (const auto& trial : result.trials) taps += trial.result.taps.size();

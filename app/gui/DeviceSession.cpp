@@ -246,16 +246,14 @@ DeviceThread::DeviceThread(LiveFeed& live, QObject* parent)
     : QObject(parent), session_(new DeviceSession(live)) {
     qRegisterMetaType<SceneSpec>();
     qRegisterMetaType<DeviceChoice>();
-    session_->moveToThread(&thread_);
-    connect(&thread_, &QThread::finished, session_, &QObject::deleteLater);
-    thread_.setObjectName("devices");
-    thread_.start();
+    thread_.startEventLoop();
+    session_->moveToThread(thread_.thread());
+    connect(thread_.thread(), &QThread::finished, session_, &QObject::deleteLater);
 }
 
 DeviceThread::~DeviceThread() {
     session_->interrupt();  // a tap or move in progress stops now
-    thread_.quit();
-    thread_.wait(2000);  // bounded: device calls never block for long
+    thread_.stop();  // bounded: every device call the session makes has a timeout
 }
 
 }  // namespace activetouch

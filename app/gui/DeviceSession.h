@@ -12,6 +12,7 @@
 #include "core/run/ExperimentRun.h"
 #include "core/scene/Scene.h"
 #include "devices/rigs/RigAssembly.h"
+#include "devices/common/DeviceWorker.h"
 
 namespace activetouch {
 
@@ -89,7 +90,7 @@ public:
     DeviceSession* session() const { return session_; }
 
 private:
-    QThread thread_;
+    DeviceWorker thread_{"devices"};  ///< the session's event loop (docs/design.md §2)
     DeviceSession* session_;
 };
 

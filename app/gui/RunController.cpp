@@ -13,6 +13,46 @@
 
 namespace activetouch {
 
+/// Hears a run's taps for the window: each tap into the live feed, paced as asked, and the
+/// progress with an estimate of the time left; a cancel stops the run after the tap in flight.
+class RunController::Observer final : public RunObserver {
+public:
+    Observer(RunController& controller, Pace pace, std::chrono::steady_clock::time_point started)
+        : c_(controller), pace_(pace), started_(started) {}
+
+    void progressed(const RunProgress& p) override {
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+        const double left =
+            p.tapsDone > 0 ? elapsed / p.tapsDone * std::max(0, p.tapsPlanned - p.tapsDone) : 0.0;
+        emit c_.progress(p.tapsDone, p.tapsPlanned, QString::fromStdString(p.step), left);
+    }
+
+    void tapTaken(const TapRecord& r, const std::string& what) override {
+        c_.live_.publishTap(r, QString::fromStdString(what));
+        if (pace_ == Pace::Fastest) return;  // the live view replays the newest tap
+        // Pace the frames as the fingertip streams them; stop within a frame on cancel.
+        for (int s = 0; s < r.tap.sampleCount() && !c_.cancel_; ++s) {
+            c_.live_.publishFrame(r.tap.frame(s), r.tap.taxels);
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+        if (pace_ == Pace::RobotTime) {
+            const auto settle = std::chrono::duration<double>(
+                std::max(0.0, r.cycleTime_s - r.tap.sampleCount() * 0.02));
+            const auto until = std::chrono::steady_clock::now() + settle;
+            while (!c_.cancel_ && std::chrono::steady_clock::now() < until)
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+    }
+
+    bool stopRequested() const override { return c_.cancel_.load(); }
+
+private:
+    RunController& c_;
+    Pace pace_;
+    std::chrono::steady_clock::time_point started_;
+};
+
 namespace {
 /// The seeds a run over seeds has done, and how long the rest will take at the pace so far.
 struct SeedClock {
@@ -41,12 +81,15 @@ RunController::RunController(LiveFeed& live, QObject* parent) : QObject(parent),
 
 RunController::~RunController() {
     if (!thread_) return;
-    // Once finished, the thread is ours to delete: its finished slot will not run after this.
-    // The run refers to this controller and to the live feed, so it must end before they go;
-    // every device call it can be inside has a bound of its own, well within this one (a tap's
-    // deadline is seconds; an interrupted stage move ends at once). Only a run stuck past it is
-    // left to end with the process, never destroyed running.
-    if (stopAndWait(30000)) delete thread_;
+    // The run refers to this controller and to the live feed, so it must end before they go.
+    // By the device-thread policy (docs/design.md §2) it does, soon: it stops after the tap in
+    // flight, and every device call it can be inside has a bound of its own (a tap's deadline is
+    // seconds; an interrupted stage move ends at once). Once finished, the thread is ours to
+    // delete: its finished slot will not run after this. It is never destroyed running or left
+    // to run on.
+    cancel_ = true;
+    thread_->wait();
+    delete thread_;
 }
 
 void RunController::cancel() {
@@ -106,37 +149,14 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
         RunOptions options;
         options.simulated = &simulatedRigs();
         options.outDir = outDir.toStdString();
-        options.cancel = &cancel_;
         options.connected = connected.get();
         if (recorded) {
             options.recordedTaps = &recorded->taps;
             if (recorded->replay()) options.recordedTrials = &recorded->trials;
             options.recordingName = recorded->name;
         }
-        options.progress = [this, started](const RunProgress& p) {
-            const double elapsed =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-            const double left = p.tapsDone > 0
-                                    ? elapsed / p.tapsDone * std::max(0, p.tapsPlanned - p.tapsDone)
-                                    : 0.0;
-            emit progress(p.tapsDone, p.tapsPlanned, QString::fromStdString(p.step), left);
-        };
-        options.tapTaken = [this, pace](const TapRecord& r, const std::string& what) {
-            live_.publishTap(r, QString::fromStdString(what));
-            if (pace == Pace::Fastest) return;  // the live view replays the newest tap
-            // Pace the frames as the fingertip streams them; stop within a frame on cancel.
-            for (int s = 0; s < r.tap.sampleCount() && !cancel_; ++s) {
-                live_.publishFrame(r.tap.frame(s), r.tap.taxels);
-                std::this_thread::sleep_for(std::chrono::milliseconds(20));
-            }
-            if (pace == Pace::RobotTime) {
-                const auto settle = std::chrono::duration<double>(
-                    std::max(0.0, r.cycleTime_s - r.tap.sampleCount() * 0.02));
-                const auto until = std::chrono::steady_clock::now() + settle;
-                while (!cancel_ && std::chrono::steady_clock::now() < until)
-                    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-            }
-        };
+        Observer observer(*this, pace, started);
+        options.observer = &observer;
         try {
             // The window asked before replacing a run in the folder (MainWindow::mayWriteRun).
             const RunFolderClaim claim(options.outDir, recorded ? (recorded->replay() ? "replay" : "analyse") : "run",
@@ -146,10 +166,7 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
             auto result = std::make_shared<RunResult>(what == What::FollowingOnly
                                                           ? runFollowing(*trained, spec, options)
                                                           : runExperiment(spec, options));
-            writeRunTables(*result, options.outDir);
-            const double wall =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-            writeSummary(*result, options.outDir, wall, 0.0);
+            writeRunArtefacts(*result, options.outDir, started);
             connected.reset();  // the devices are free again before anyone hears of the end
             emit finished(result, outDir);
         } catch (const std::exception& e) {

@@ -90,6 +90,8 @@ private:
     template <typename Work>
     void launch(const QString& outDir, Work work);
 
+    class Observer;  // the run's taps into the live feed and the progress signal
+
     LiveFeed& live_;
     QThread* thread_ = nullptr;
     std::atomic<bool> cancel_{false};

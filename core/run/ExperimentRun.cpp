@@ -159,8 +159,8 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
                          [&](const FollowedTap& tap) {
                              if (recording)
                                  recording->append(run.label, ts.mode, run.trial, tapIndex, tap);
-                             if (options.tapTaken)
-                                 options.tapTaken(
+                             if (options.observer)
+                                 options.observer->tapTaken(
                                      tap.record, std::string(modeName(ts.mode)) + " " + run.label +
                                                      " trial " + std::to_string(run.trial) + ": " +
                                                      tap.percept.shapeClass() + ", position " +
@@ -168,8 +168,8 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
                                                      ruleFor(tap.decision.rule).name);
                              ++tapIndex;
                              ++progress.tapsDone;
-                             if (options.progress) options.progress(progress);
-                             return !(options.cancel && options.cancel->load());
+                             if (options.observer) options.observer->progressed(progress);
+                             return !(options.observer && options.observer->stopRequested());
                          });
             if (replay && run.result.end == TrialEnd::LeftRecording)
                 noteWhereReplayLeft(*replayed[static_cast<std::size_t>(trialIndex)], run.result);
@@ -271,15 +271,15 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
         progress.tapsPlanned += static_cast<int>(t->taps.size());
     auto onTap = [&](const CollectedTap& tap) {
         if (recording) recording->append(tap, result.classes);
-        if (options.tapTaken)
-            options.tapTaken(
+        if (options.observer)
+            options.observer->tapTaken(
                 tap.record,
                 "training set " + std::to_string(tap.dataSet) + ": " +
                     ClassSet::orientationName(result.classes.orientationDegOf(tap.cls)) +
                     " edge, position " + std::to_string(result.classes.positionOf(tap.cls)));
         ++progress.tapsDone;
-        if (options.progress) options.progress(progress);
-        return !(options.cancel && options.cancel->load());
+        if (options.observer) options.observer->progressed(progress);
+        return !(options.observer && options.observer->stopRequested());
     };
     if (recorded) {
         for (const CollectedTap& tap : *recorded) {
@@ -350,7 +350,7 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
             runTrials(result, model, options, progress, replayed);
         if (!spec.sweeps.bins.empty() && !result.cancelled && result.failure.empty()) {
             progress.step = "compute sweep on the recorded taps";
-            if (options.progress) options.progress(progress);
+            if (options.observer) options.observer->progressed(progress);
             result.sweeps = runSweeps(result, options, true);
         }
         result.runWall_s =
@@ -360,7 +360,7 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     runTrials(result, model, options, progress);
     if (spec.sweeps.any() && !result.cancelled && result.failure.empty()) {
         progress.step = "accuracy-versus-time sweeps";
-        if (options.progress) options.progress(progress);
+        if (options.observer) options.observer->progressed(progress);
         result.sweeps = runSweeps(result, options);
     }
     result.runWall_s =

@@ -29,6 +29,33 @@ struct RunProgress {
     std::string step;
 };
 
+/// The one way a run's taps reach anyone besides the recording: the window's live view and
+/// progress bar, the command line's Ctrl-C. Every call comes on the thread that runs the
+/// experiment, after the tap is recorded.
+class RunObserver {
+public:
+    virtual ~RunObserver() = default;
+    /// A tap as it is taken, with a sentence saying what it was ("active cross trial 1: ...").
+    virtual void tapTaken(const TapRecord& tap, const std::string& what) {
+        (void)tap;
+        (void)what;
+    }
+    /// How far the run has got: after every tap, and as each step begins.
+    virtual void progressed(const RunProgress& progress) { (void)progress; }
+    /// Asked after every tap: true stops the run there, keeping every tap taken.
+    virtual bool stopRequested() const { return false; }
+};
+
+/// An observer that only stops the run when `flag` is set (Ctrl-C, a cancel button).
+class StopFlag final : public RunObserver {
+public:
+    explicit StopFlag(const std::atomic<bool>& flag) : flag_(flag) {}
+    bool stopRequested() const override { return flag_.load(); }
+
+private:
+    const std::atomic<bool>& flag_;
+};
+
 struct TrialRun {
     std::string label;
     int trial = 1;  ///< 1-based within its label and mode
@@ -85,11 +112,8 @@ struct RunOptions {
     const SimulatedRigs* simulated = nullptr;
     std::string outDir;  ///< empty: write nothing
     std::optional<std::uint64_t> seed;
-    std::function<void(const RunProgress&)> progress;
-    /// Sees every tap as it is taken, with a sentence saying what it was (for live views). Runs on
-    /// the thread that runs the experiment.
-    std::function<void(const TapRecord&, const std::string& what)> tapTaken;
-    const std::atomic<bool>* cancel = nullptr;
+    /// Hears every tap and the progress, and may stop the run (not owned; none: nobody listens).
+    RunObserver* observer = nullptr;
     /// Take the taps on this rig instead of simulated ones (not owned; must outlive the run).
     const ConnectedRig* connected = nullptr;
     /// Re-analyse these recorded training and test taps instead of taking any (not owned): the

@@ -1,6 +1,8 @@
 #pragma once
 // What a finished run leaves in its folder besides the taps recorded as they were taken
 // (docs/file-formats.md): the tables behind every figure under data/, and summary.json.
+#include <chrono>
+#include <functional>
 #include <string>
 
 #include "core/io/JsonFields.h"
@@ -26,5 +28,17 @@ void writeSummary(const RunResult& result, const std::string& outDir, double wal
 
 /// The summary document itself (what writeSummary writes).
 Json summaryJson(const RunResult& result, double wall_s, double figures_s);
+
+struct ArtefactTiming {
+    double wall_s = 0.0;     ///< since the run started, figures included
+    double figures_s = 0.0;  ///< drawing and exporting the figures
+};
+
+/// Writes what a finished run leaves besides its recordings, as the window and the command line
+/// both do: the tables, then the figures `drawFigures` writes (if given; it returns the seconds
+/// it took), then summary.json last, with the wall time since `started`.
+ArtefactTiming writeRunArtefacts(const RunResult& result, const std::string& outDir,
+                                 std::chrono::steady_clock::time_point started,
+                                 const std::function<double()>& drawFigures = {});
 
 }  // namespace activetouch

@@ -201,4 +201,16 @@ void writeSummary(const RunResult& r, const std::string& outDir, double wall_s, 
     writeJsonAtomically((fs::path(outDir) / "summary.json").string(), summary);
 }
 
+ArtefactTiming writeRunArtefacts(const RunResult& result, const std::string& outDir,
+                                 std::chrono::steady_clock::time_point started,
+                                 const std::function<double()>& drawFigures) {
+    writeRunTables(result, outDir);
+    ArtefactTiming t;
+    if (drawFigures) t.figures_s = drawFigures();
+    t.wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    writeSummary(result, outDir, t.wall_s, t.figures_s);
+    return t;
+}
+
 }  // namespace activetouch

@@ -14,7 +14,7 @@ namespace activetouch {
 namespace {
 
 bool cancelled(const RunOptions& o) {
-    return o.cancel && o.cancel->load();
+    return o.observer && o.observer->stopRequested();
 }
 
 double angleError(const ClassSet& cs, int perceived, int truth) {

@@ -6,17 +6,15 @@
 namespace activetouch::rcx {
 
 SerialLineChannel::SerialLineChannel() {
-    thread_.setObjectName("serial");
+    thread_.startEventLoop();
     context_ = new QObject;
-    context_->moveToThread(&thread_);
-    QObject::connect(&thread_, &QThread::finished, context_, &QObject::deleteLater);
-    thread_.start();
+    context_->moveToThread(thread_.thread());
+    QObject::connect(thread_.thread(), &QThread::finished, context_, &QObject::deleteLater);
 }
 
 SerialLineChannel::~SerialLineChannel() {
     close();
-    thread_.quit();
-    thread_.wait(2000);
+    thread_.stop();  // every slot in the port's thread returns at once or within its timeout
 }
 
 bool SerialLineChannel::isOpen() const {

@@ -2,7 +2,6 @@
 // A serial line in its own thread: QSerialPort lives in a worker thread; callers on any thread
 // write bytes and read CR LF lines with a timeout. A port that vanishes (cable pulled, adapter
 // unplugged) fails every later call with a sentence naming it.
-#include <QThread>
 #include <condition_variable>
 #include <deque>
 #include <mutex>
@@ -10,6 +9,7 @@
 #include <string>
 
 #include "core/rig/Rig.h"
+#include "devices/common/DeviceWorker.h"
 
 class QSerialPort;
 
@@ -58,7 +58,7 @@ private:
     static constexpr std::size_t kMaxUnreadLines = 1000;
 
     SerialSettings settings_;
-    QThread thread_;
+    DeviceWorker thread_{"serial"};  ///< the port's event loop
     QObject* context_ = nullptr;   ///< lives in thread_
     QSerialPort* port_ = nullptr;  ///< lives in thread_
     mutable std::mutex mutex_;

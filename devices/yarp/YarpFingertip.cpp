@@ -58,28 +58,25 @@ void YarpFingertip::connect() {
         compensation_ = SkinCompensation(kFingertipTaxels);
     }
     badMessages_ = 0;
-    stop_ = false;
     std::promise<std::string> ready;
     auto result = ready.get_future();
-    thread_ = std::thread([this, &ready] { run(&ready); });
+    thread_.start([this, &ready] { run(&ready); });
     // The thread answers within its own bounded waits (name server, data port, welcome).
     if (result.wait_for(std::chrono::milliseconds(3 * s_.connectTimeoutMs + 1000)) !=
         std::future_status::ready) {
-        stop_ = true;
-        thread_.join();
+        thread_.stop();
         throw RigError("YARP: connecting to " + s_.port + " did not finish in time");
     }
     const std::string problem = result.get();
     if (!problem.empty()) {
-        thread_.join();
+        thread_.stop();
         throw RigError(problem);
     }
     running_ = true;
 }
 
 void YarpFingertip::disconnect() {
-    stop_ = true;
-    if (thread_.joinable()) thread_.join();
+    thread_.stop();
     running_ = false;
     cv_.notify_all();
 }
@@ -227,7 +224,7 @@ void YarpFingertip::serve(std::promise<std::string>* ready, bool& answered) {
         }
     };
     if (!buffer.isEmpty()) decode(buffer);  // what came with the welcome
-    while (!stop_) {
+    while (!thread_.stopRequested()) {
         {
             std::lock_guard lock(mutex_);
             if (!failure_.empty()) break;
@@ -287,7 +284,7 @@ std::uint64_t YarpFingertip::waitFrame(std::uint64_t after, int timeoutMs, doubl
     if (!running_ && failure_.empty())
         throw RigError("YARP fingertip: not connected to " + s_.port + "; connect it first");
     cv_.wait_for(lock, std::chrono::milliseconds(timeoutMs),
-                 [&] { return seq_ > after || !failure_.empty() || stop_; });
+                 [&] { return seq_ > after || !failure_.empty() || thread_.stopRequested(); });
     if (!failure_.empty()) throw RigError(failure_);
     if (seq_ <= after) return 0;
     // The frame right after `after` if it is still held (so that a tap sees every frame), else

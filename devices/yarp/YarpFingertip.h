@@ -11,12 +11,12 @@
 #include <future>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <QtGlobal>
 
 #include "core/rig/Rig.h"
+#include "devices/common/DeviceWorker.h"
 #include "devices/yarp/YarpProtocol.h"
 
 namespace activetouch::yarp {
@@ -74,8 +74,8 @@ private:
 
     YarpFingertipSettings s_;
     RawLog log_;
-    std::thread thread_;
-    std::atomic<bool> running_{false}, stop_{false};
+    DeviceWorker thread_{"yarp fingertip"};  ///< reads the data port (its loop waits <= 50 ms)
+    std::atomic<bool> running_{false};
     mutable std::mutex mutex_;
     std::condition_variable cv_;
     static constexpr std::size_t kHistory = 256;

@@ -81,12 +81,14 @@ private slots:
 
     void cancellingKeepsTheTapsTaken() {
         const ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
-        std::atomic<bool> cancel{false};
+        // Asked to stop once the 100th tap is in.
+        struct StopAt100 final : RunObserver {
+            bool stop = false;
+            void progressed(const RunProgress& p) override { stop = stop || p.tapsDone == 100; }
+            bool stopRequested() const override { return stop; }
+        } observer;
         RunOptions options = test::onSimulatedRig();
-        options.cancel = &cancel;
-        options.progress = [&](const RunProgress& p) {
-            if (p.tapsDone == 100) cancel = true;
-        };
+        options.observer = &observer;
         const RunResult r = runExperiment(spec, options);
         QVERIFY(r.cancelled);
         QCOMPARE(int(r.taps.size()), 100);
