@@ -1,5 +1,6 @@
 #include "app/cli/Commands.h"
 #include "app/cli/CliSupport.h"
+#include "core/run/ComparisonShards.h"
 
 #include <QApplication>
 #include <algorithm>
@@ -127,7 +128,8 @@ int showTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, const TrialR
 int commandCompare(const std::vector<std::string>& args, int argc, char** argv) {
     const RunArguments parsed =
         parseRunArguments(args, "compare", {"--from", "--to", "--jobs"}, true, true,
-                          {{"--show", "a trial: seed,mode,label,trial, e.g. 3,active,cross,2"}});
+                          {{"--show", "a trial: seed,mode,label,trial, e.g. 3,active,cross,2"},
+                           {"--shard", "K/N, e.g. 2/3 for the second of three shards"}});
     if (!parsed.error.empty()) return usageError(parsed.error);
     const std::string show = parsed.text("--show");
     std::optional<TrialRef> ref;
@@ -140,10 +142,21 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
         auto read = parseTrialRef(show);
         if (auto* error = std::get_if<std::string>(&read)) return usageError(*error);
         ref = std::get<TrialRef>(read);
+        if (!parsed.text("--shard").empty())
+            return usageError("--show runs the one seed it names; leave out --shard");
     } else {
         range = seedRangeOf(parsed, "compare --from 1 --to 100");
         if (!range.error.empty()) return usageError(range.error);
     }
+    Shard shard;
+    if (const std::string text = parsed.text("--shard"); !text.empty()) {
+        std::string error;
+        const auto read = parseShard(text, &error);
+        if (!read) return usageError(error);
+        shard = *read;
+    }
+    // This shard's block of the range; a shard of more shards than seeds may have none.
+    const auto seeds = shardSeeds(range.first, range.last, shard);
     const auto a = loadForRun(parsed.experimentPath);
     if (!a) return kBadInput;
     const auto b = loadForRun(parsed.recordingPath);
@@ -158,9 +171,9 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
         std::fprintf(stderr, "error: %s\n", e.what());
         return kBadInput;
     }
-    const double seeds = double(range.last - range.first + 1);
-    if (!planAccepted(*a, seeds, parsed.allowLongPlan) ||
-        !planAccepted(*b, seeds, parsed.allowLongPlan))
+    const double runs = seeds ? double(seeds->second - seeds->first + 1) : 0.0;
+    if (!planAccepted(*a, runs, parsed.allowLongPlan) ||
+        !planAccepted(*b, runs, parsed.allowLongPlan))
         return kBadInput;
     const auto claimed = claimOrSay(outDir, "compare", *a, runFactsOf(*a), parsed.replace);
     if (!claimed) return kBadInput;
@@ -168,8 +181,9 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
     const int code = overSeeds(
         "compare failed", outDir, "compare.csv", parsed.figures, range.jobs, argc, argv,
         [&] {
-            const PairedComparison c = comparePaired(simulatedRigs(),
-                *a, *b, range.first, range.last, outDir,
+            const PairedComparison c = comparePaired(
+                simulatedRigs(), *a, *b, seeds ? seeds->first : 1, seeds ? seeds->second : 0,
+                outDir,
                 [](std::uint64_t seed, const std::vector<PairedTrial>& pairs,
                    const PairedComparison&) {
                     int differ = 0;
@@ -186,6 +200,20 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
                     return true;
                 },
                 range.jobs);
+            // Every seed's record, so that shards merge into exactly one comparison's files.
+            writeComparisonShardFile(
+                outDir, {a->name, b->name,
+                         experimentFingerprint(parsed.experimentPath, *a) + "+" +
+                             experimentFingerprint(parsed.recordingPath, *b),
+                         range.first, range.last, shard, c.records});
+            if (shard.count > 1)
+                std::printf("\nshard %d/%d of seeds %llu-%llu: %s\n", shard.index, shard.count,
+                            static_cast<unsigned long long>(range.first),
+                            static_cast<unsigned long long>(range.last),
+                            seeds ? (std::to_string(seeds->first) + "-" +
+                                     std::to_string(seeds->second))
+                                        .c_str()
+                                  : "no seeds");
             std::printf("\n");
             for (const std::string& line : describeComparison(c)) std::printf("%s\n", line.c_str());
             failedRuns = static_cast<int>(c.failedRuns.size());

@@ -1,5 +1,6 @@
 #include "app/cli/Commands.h"
 #include "app/cli/CliSupport.h"
+#include "core/run/ComparisonShards.h"
 #include "app/cli/CommandLine.h"
 
 #include <QApplication>
@@ -45,6 +46,41 @@ namespace activetouch::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+/// merge over the folders of a compare run's shards.
+int mergeComparisons(const std::vector<std::string>& folders, const std::string& outDir,
+                     bool figures, bool replace, int argc, char** argv) {
+    ComparisonShardFile merged;
+    try {
+        merged = mergeComparisonShards(folders);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    }
+    ExperimentSpec named;
+    named.name = merged.nameA;
+    const auto claimed = claimOrSay(outDir, "merge", named, RunFacts{}, replace);
+    if (!claimed) return kBadInput;
+    int failedRuns = 0;
+    const int code = overSeeds(
+        "merge failed", outDir, "compare.csv", figures, 1, argc, argv,
+        [&] {
+            const PairedComparison c = writeMergedComparison(merged, outDir);
+            failedRuns = static_cast<int>(c.failedRuns.size());
+            std::printf("merged %zu shard folders: %zu seeds\n\n", folders.size(),
+                        merged.records.size());
+            for (const std::string& line : describeComparison(c)) std::printf("%s\n", line.c_str());
+            return c;
+        },
+        [&](const PairedComparison& c) {
+            writeComparisonFigures(c, QString::fromStdString(outDir));
+        });
+    return failedRunsExit(code, failedRuns, outDir, "compare.json");
+}
+
+}  // namespace
+
 int commandMerge(const std::vector<std::string>& args, int argc, char** argv) {
     const CommandLine line =
         parseCommandLine({{{"--out", "a folder"}}, {"--no-figures", "--replace"}}, args);
@@ -55,6 +91,13 @@ int commandMerge(const std::vector<std::string>& args, int argc, char** argv) {
     if (folders.empty())
         return usageError("merge needs the folders of the shards, e.g. merge S1 S2 S3 --out M");
     if (outDir.empty()) return usageError("merge needs --out, the folder to write");
+    std::size_t comparisons = 0;
+    for (const std::string& f : folders) comparisons += holdsComparisonShard(f);
+    if (comparisons > 0 && comparisons < folders.size())
+        return usageError("merge takes the shards of one seeds run or of one compare run; " +
+                          std::to_string(comparisons) + " of the " +
+                          std::to_string(folders.size()) + " folders hold a comparison");
+    if (comparisons > 0) return mergeComparisons(folders, outDir, figures, replace, argc, argv);
     SeedShardFile merged;
     try {
         merged = mergeSeedShards(folders);

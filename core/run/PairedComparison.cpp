@@ -173,48 +173,75 @@ double PairedComparison::robotTimeDifferenceSd_s() const {
     return std::sqrt(std::max(0.0, (robotTimeDiffSquares - seeds * mean * mean) / (seeds - 1)));
 }
 
-void addSeed(PairedComparison& c, const RunResult& a, const RunResult& b,
-             std::vector<PairedTrial>* trials) {
-    if (!a.failure.empty() || !b.failure.empty()) {
-        for (const auto& [side, run] : {std::pair{"a", &a}, std::pair{"b", &b}})
-            if (!run->failure.empty())
-                c.failedRuns.push_back("seed " + std::to_string(run->spec.scene.seed) + ", " +
-                                       side + " (" + run->spec.name + "): " + run->failure);
-        return;
-    }
-    ++c.seeds;
-    c.robotTimeSumA_s += a.robotTime_s;
-    c.robotTimeSumB_s += b.robotTime_s;
-    const double diff = b.robotTime_s - a.robotTime_s;
-    c.robotTimeDiffSquares += diff * diff;
+SeedPairRecord seedPairRecord(const RunResult& a, const RunResult& b) {
+    SeedPairRecord r;
+    r.seed = a.spec.scene.seed;
+    for (const auto& [side, run] : {std::pair{"a", &a}, std::pair{"b", &b}})
+        if (!run->failure.empty())
+            r.failedRuns.push_back("seed " + std::to_string(run->spec.scene.seed) + ", " + side +
+                                   " (" + run->spec.name + "): " + run->failure);
+    if (!r.failedRuns.empty()) return r;
+    r.robotTimeA_s = a.robotTime_s;
+    r.robotTimeB_s = b.robotTime_s;
     const auto inA = trialsByKey(a), inB = trialsByKey(b);
-    for (const TrialRun& run : a.trials) {  // in the order experiment A runs them
-        const TrialRun* ta = &run;
-        const auto found = inB.find({run.result.mode, run.label, run.trial});
+    for (const TrialRun& ta : a.trials) {  // in the order experiment A runs them
+        const auto found = inB.find({ta.result.mode, ta.label, ta.trial});
         if (found == inB.end()) {
-            ++c.unpairedTrials;
+            ++r.unpairedTrials;
             continue;
         }
         const TrialRun& tb = *found->second;
-        const TrialResult &ra = ta->result, &rb = tb.result;
-        if (ra.mode == FollowingMode::Active) {
-            c.activeCompleted.add(ra.completed(), rb.completed());
-            if (ra.completed() && rb.completed() && ta->recognised && tb.recognised)
-                c.recognisedRaw.add(ta->recognition.predicted == ta->label,
-                                    tb.recognition.predicted == tb.label);
-        } else {
-            c.passiveLostAtCorner.add(ra.stoppedAtCorner(), rb.stoppedAtCorner());
-        }
-        if (trials)
-            trials->push_back({a.spec.scene.seed, ra.mode, ta->label, ta->trial, trialOutcome(*ta),
-                               trialOutcome(tb), namedPath(*ta), namedPath(tb)});
+        const TrialResult &ra = ta.result, &rb = tb.result;
+        SeedPairRecord::Trial t;
+        t.pair = {r.seed,          ra.mode,           ta.label,      ta.trial,
+                  trialOutcome(ta), trialOutcome(tb), namedPath(ta), namedPath(tb)};
+        t.completedA = ra.completed();
+        t.completedB = rb.completed();
+        t.atCornerA = ra.stoppedAtCorner();
+        t.atCornerB = rb.stoppedAtCorner();
+        t.recognitionApplies = ra.mode == FollowingMode::Active && t.completedA && t.completedB &&
+                               ta.recognised && tb.recognised;
+        t.namedRightA = t.recognitionApplies && ta.recognition.predicted == ta.label;
+        t.namedRightB = t.recognitionApplies && tb.recognition.predicted == tb.label;
+        r.trials.push_back(std::move(t));
     }
     for (const auto& entry : inB)
-        if (!inA.count(entry.first)) ++c.unpairedTrials;
+        if (!inA.count(entry.first)) ++r.unpairedTrials;
     const SeedOutcome oa = seedOutcome(a), ob = seedOutcome(b);
-    if (oa.paperResultApplies() && ob.paperResultApplies())
-        c.paperResult.add(oa.paperResult(), ob.paperResult());
+    r.paperResultApplies = oa.paperResultApplies() && ob.paperResultApplies();
+    r.paperResultA = r.paperResultApplies && oa.paperResult();
+    r.paperResultB = r.paperResultApplies && ob.paperResult();
+    return r;
+}
+
+void addSeedRecord(PairedComparison& c, const SeedPairRecord& r, std::vector<PairedTrial>* trials) {
+    c.records.push_back(r);
+    if (!r.failedRuns.empty()) {
+        c.failedRuns.insert(c.failedRuns.end(), r.failedRuns.begin(), r.failedRuns.end());
+        return;
+    }
+    ++c.seeds;
+    c.robotTimeSumA_s += r.robotTimeA_s;
+    c.robotTimeSumB_s += r.robotTimeB_s;
+    const double diff = r.robotTimeB_s - r.robotTimeA_s;
+    c.robotTimeDiffSquares += diff * diff;
+    c.unpairedTrials += r.unpairedTrials;
+    for (const SeedPairRecord::Trial& t : r.trials) {
+        if (t.pair.mode == FollowingMode::Active) {
+            c.activeCompleted.add(t.completedA, t.completedB);
+            if (t.recognitionApplies) c.recognisedRaw.add(t.namedRightA, t.namedRightB);
+        } else {
+            c.passiveLostAtCorner.add(t.atCornerA, t.atCornerB);
+        }
+        if (trials) trials->push_back(t.pair);
+    }
+    if (r.paperResultApplies) c.paperResult.add(r.paperResultA, r.paperResultB);
     c.soFar.push_back(static_cast<const PairedParts&>(c));
+}
+
+void addSeed(PairedComparison& c, const RunResult& a, const RunResult& b,
+             std::vector<PairedTrial>* trials) {
+    addSeedRecord(c, seedPairRecord(a, b), trials);
 }
 
 void checkComparable(const ExperimentSpec& a, const ExperimentSpec& b) {
@@ -227,6 +254,34 @@ void checkComparable(const ExperimentSpec& a, const ExperimentSpec& b) {
                          "trials");
 }
 
+void startComparisonTables(std::optional<OutputFile>& table, std::optional<OutputFile>& soFar,
+                           const std::string& outDir) {
+    startAppendedTable(table, outDir, "compare.csv", "compare.json",
+                       "seed,mode,label,trial,outcome_a,outcome_b,named_a,named_b\n");
+    startAppendedTable(soFar, outDir, "compare_so_far.csv", "compare.json",
+                       "seeds_compared,seed,part,pairs,a,b,only_a,only_b,"
+                       "difference_b_minus_a,ci95_low,ci95_high,mcnemar_p\n");
+}
+
+void appendComparedSeed(OutputFile& table, OutputFile& soFar, const PairedComparison& c,
+                        const std::vector<PairedTrial>& pairs) {
+    for (const PairedTrial& p : pairs)
+        table.print("%llu,%s,%s,%d,%s,%s,%s,%s\n", static_cast<unsigned long long>(p.seed),
+                    modeName(p.mode), csvField({p.label}).c_str(), p.trial, p.outcomeA.c_str(),
+                    p.outcomeB.c_str(), p.namedA.c_str(), p.namedB.c_str());
+    table.flush();
+    const std::uint64_t seed = c.records.back().seed;
+    for (const PairedPart& part : kPairedParts) {
+        const PairedRate& r = c.*part.rate;
+        if (r.pairs() == 0) continue;
+        soFar.print("%d,%llu,%s,%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g\n", c.seeds,
+                    static_cast<unsigned long long>(seed), part.key, r.pairs(), r.a().count,
+                    r.b().count, r.onlyA, r.onlyB, r.difference(), r.differenceLow(),
+                    r.differenceHigh(), r.mcnemarP());
+    }
+    soFar.flush();
+}
+
 PairedComparison comparePaired(const SimulatedRigs& rigs, const ExperimentSpec& a, const ExperimentSpec& b,
                                std::uint64_t first, std::uint64_t last, const std::string& outDir,
                                const ComparedSeed& seedDone, int jobs) {
@@ -235,13 +290,7 @@ PairedComparison comparePaired(const SimulatedRigs& rigs, const ExperimentSpec& 
     c.nameB = b.name;
     checkComparable(a, b);
     std::optional<OutputFile> table, soFar;
-    if (!outDir.empty()) {
-        startAppendedTable(table, outDir, "compare.csv", "compare.json",
-                           "seed,mode,label,trial,outcome_a,outcome_b,named_a,named_b\n");
-        startAppendedTable(soFar, outDir, "compare_so_far.csv", "compare.json",
-                           "seeds_compared,seed,part,pairs,a,b,only_a,only_b,"
-                           "difference_b_minus_a,ci95_low,ci95_high,mcnemar_p\n");
-    }
+    if (!outDir.empty()) startComparisonTables(table, soFar, outDir);
     const auto run = [&a, &b, &rigs](std::uint64_t seed) {
         RunOptions options;
         options.simulated = &rigs;
@@ -251,25 +300,11 @@ PairedComparison comparePaired(const SimulatedRigs& rigs, const ExperimentSpec& 
     };
     // Each seed in turn: its pairs into the comparison, then its rows into the tables.
     const auto record = [&](std::uint64_t seed, std::pair<RunResult, RunResult>&& runs) {
+        SeedPairRecord r = seedPairRecord(runs.first, runs.second);
+        r.seed = seed;
         std::vector<PairedTrial> pairs;
-        addSeed(c, runs.first, runs.second, &pairs);
-        if (table) {
-            for (const PairedTrial& p : pairs)
-                table->print("%llu,%s,%s,%d,%s,%s,%s,%s\n", static_cast<unsigned long long>(p.seed),
-                             modeName(p.mode), csvField({p.label}).c_str(), p.trial,
-                             p.outcomeA.c_str(), p.outcomeB.c_str(), p.namedA.c_str(),
-                             p.namedB.c_str());
-            table->flush();
-            for (const PairedPart& part : kPairedParts) {
-                const PairedRate& r = c.*part.rate;
-                if (r.pairs() == 0) continue;
-                soFar->print("%d,%llu,%s,%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g\n", c.seeds,
-                             static_cast<unsigned long long>(seed), part.key, r.pairs(),
-                             r.a().count, r.b().count, r.onlyA, r.onlyB, r.difference(),
-                             r.differenceLow(), r.differenceHigh(), r.mcnemarP());
-            }
-            soFar->flush();
-        }
+        addSeedRecord(c, r, &pairs);
+        if (table) appendComparedSeed(*table, *soFar, c, pairs);
         return !seedDone || seedDone(seed, pairs, c);
     };
     forEachSeed(first, last, jobs, run, record);

@@ -6,9 +6,11 @@
 // whose outcomes differ carry information (McNemar's test).
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/io/OutputFile.h"
 #include "core/run/SeedRates.h"
 
 namespace activetouch {
@@ -70,6 +72,28 @@ inline constexpr PairedPart kPairedParts[] = {
     {"paper_result", "runs with the paper's result whole", &PairedParts::paperResult},
 };
 
+/// All a comparison takes from one seed's two runs, kept so that shards of a comparison run on
+/// other machines merge into exactly what one run writes (docs/command-line.md).
+struct SeedPairRecord {
+    std::uint64_t seed = 0;
+    /// "seed 3, a (name): ..." for each run that failed; then nothing else of the seed counts.
+    std::vector<std::string> failedRuns;
+    double robotTimeA_s = 0.0, robotTimeB_s = 0.0;
+    int unpairedTrials = 0;
+    struct Trial {
+        PairedTrial pair;
+        bool completedA = false, completedB = false;
+        bool atCornerA = false, atCornerB = false;  ///< passive: stopped at a corner
+        bool recognitionApplies = false;            ///< active, both completed and recognised
+        bool namedRightA = false, namedRightB = false;
+    };
+    std::vector<Trial> trials;  ///< in the order experiment A runs them
+    bool paperResultApplies = false, paperResultA = false, paperResultB = false;
+};
+
+/// The record of one seed: `a` and `b` are the two experiments' runs with that seed.
+SeedPairRecord seedPairRecord(const RunResult& a, const RunResult& b);
+
 struct PairedComparison : PairedParts {
     std::string nameA, nameB;
     int seeds = 0;
@@ -88,7 +112,13 @@ struct PairedComparison : PairedParts {
     /// The standard deviation over seeds of B's robot time minus A's, per run (0 for fewer than
     /// two seeds).
     double robotTimeDifferenceSd_s() const;
+    /// Every seed added, in the order added.
+    std::vector<SeedPairRecord> records;
 };
+
+/// Adds one seed's record; `trials` (if given) gets each pair.
+void addSeedRecord(PairedComparison& c, const SeedPairRecord& record,
+                   std::vector<PairedTrial>* trials = nullptr);
 
 /// Adds one seed: `a` and `b` are the two experiments' runs with that seed. Trials pair by mode,
 /// label and repeat; `trials` (if given) gets each pair.
@@ -111,6 +141,14 @@ PairedComparison comparePaired(const SimulatedRigs& rigs, const ExperimentSpec& 
                                const ComparedSeed& seedDone = {}, int jobs = defaultSeedJobs());
 
 Json pairedComparisonJson(const PairedComparison& c);
+
+/// Starts <outDir>/compare.csv and compare_so_far.csv with their headers.
+void startComparisonTables(std::optional<OutputFile>& table, std::optional<OutputFile>& soFar,
+                           const std::string& outDir);
+/// Appends the seed `c` added last: its pairs to compare.csv, each part so far to
+/// compare_so_far.csv (a failed seed adds its parts unchanged, as it stood).
+void appendComparedSeed(OutputFile& table, OutputFile& soFar, const PairedComparison& c,
+                        const std::vector<PairedTrial>& pairs);
 
 /// One trial of one seed as each of two experiments ran it: to see where a setting made them
 /// part.

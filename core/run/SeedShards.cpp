@@ -237,25 +237,22 @@ SeedShardFile readSeedShardFile(const std::string& dir) {
     return s;
 }
 
-SeedShardFile mergeSeedShards(const std::vector<std::string>& dirs) {
-    if (dirs.empty()) throw InputError("merge", "", "give the folders of the shards to merge");
-    std::vector<SeedShardFile> parts;
-    for (const std::string& d : dirs) parts.push_back(readSeedShardFile(d));
-    const SeedShardFile& first = parts.front();
+void checkShardsCover(const std::vector<ShardPart>& parts, const std::string& command) {
+    if (parts.empty()) throw InputError("merge", "", "give the folders of the shards to merge");
+    const ShardPart& first = parts.front();
     for (std::size_t i = 1; i < parts.size(); ++i) {
-        const SeedShardFile& p = parts[i];
-        if (p.fingerprint != first.fingerprint || p.experiment != first.experiment)
-            throw InputError(dirs[i], "",
-                             "ran '" + p.experiment + "' with other settings than " + dirs[0] +
-                                 " ('" + first.experiment +
-                                 "'); merge only shards of one experiment file");
+        const ShardPart& p = parts[i];
+        if (p.fingerprint != first.fingerprint || p.ran != first.ran)
+            throw InputError(p.dir, "",
+                             "ran " + p.ran + " with other settings than " + first.dir + " (" +
+                                 first.ran + "); merge only shards of one " + command + " run");
         if (p.first != first.first || p.last != first.last || p.shard.count != first.shard.count)
-            throw InputError(dirs[i], "",
+            throw InputError(p.dir, "",
                              "is shard " + std::to_string(p.shard.index) + "/" +
                                  std::to_string(p.shard.count) + " of seeds " +
                                  std::to_string(p.first) + "-" + std::to_string(p.last) + ", but " +
-                                 dirs[0] + " is shard " + std::to_string(first.shard.index) + "/" +
-                                 std::to_string(first.shard.count) + " of seeds " +
+                                 first.dir + " is shard " + std::to_string(first.shard.index) +
+                                 "/" + std::to_string(first.shard.count) + " of seeds " +
                                  std::to_string(first.first) + "-" + std::to_string(first.last) +
                                  "; merge shards of one range, split one way");
     }
@@ -263,20 +260,20 @@ SeedShardFile mergeSeedShards(const std::vector<std::string>& dirs) {
     std::map<std::uint64_t, std::size_t> holder;
     std::map<std::pair<std::size_t, std::size_t>, std::vector<std::uint64_t>> overlaps;
     for (std::size_t i = 0; i < parts.size(); ++i)
-        for (const SeedOutcome& o : parts[i].outcomes) {
-            if (o.seed < first.first || o.seed > first.last)
-                throw InputError(dirs[i], "",
-                                 "holds seed " + std::to_string(o.seed) + ", outside its range " +
+        for (const std::uint64_t seed : parts[i].seeds) {
+            if (seed < first.first || seed > first.last)
+                throw InputError(parts[i].dir, "",
+                                 "holds seed " + std::to_string(seed) + ", outside its range " +
                                      std::to_string(first.first) + "-" +
                                      std::to_string(first.last) + "; the folder is damaged");
-            const auto [at, fresh] = holder.emplace(o.seed, i);
-            if (!fresh) overlaps[{at->second, i}].push_back(o.seed);
+            const auto [at, fresh] = holder.emplace(seed, i);
+            if (!fresh) overlaps[{at->second, i}].push_back(seed);
         }
     if (!overlaps.empty()) {
         std::string text;
         for (const auto& [pair, seeds] : overlaps)
             text += (text.empty() ? "" : "; ") + std::string("seeds ") + seedList(seeds) +
-                    " are in both " + dirs[pair.first] + " and " + dirs[pair.second];
+                    " are in both " + parts[pair.first].dir + " and " + parts[pair.second].dir;
         throw InputError("merge", "", "the shards overlap: " + text + "; merge each shard once");
     }
     std::vector<std::uint64_t> missing;
@@ -287,10 +284,24 @@ SeedShardFile mergeSeedShards(const std::vector<std::string>& dirs) {
     if (!missing.empty())
         throw InputError("merge", "",
                          "seeds " + seedList(missing) + " of " + std::to_string(first.first) +
-                             "-" + std::to_string(first.last) +
-                             " are in no shard given; run their shards (seeds --shard K/" +
+                             "-" + std::to_string(first.last) + " are in no shard given; run their " +
+                             "shards (" + command + " --shard K/" +
                              std::to_string(first.shard.count) + ") and give their folders too");
-    SeedShardFile merged = first;
+}
+
+SeedShardFile mergeSeedShards(const std::vector<std::string>& dirs) {
+    if (dirs.empty()) throw InputError("merge", "", "give the folders of the shards to merge");
+    std::vector<SeedShardFile> parts;
+    std::vector<ShardPart> cover;
+    for (const std::string& d : dirs) {
+        parts.push_back(readSeedShardFile(d));
+        const SeedShardFile& p = parts.back();
+        ShardPart c{d, "'" + p.experiment + "'", p.fingerprint, p.first, p.last, p.shard, {}};
+        for (const SeedOutcome& o : p.outcomes) c.seeds.push_back(o.seed);
+        cover.push_back(std::move(c));
+    }
+    checkShardsCover(cover, "seeds");
+    SeedShardFile merged = parts.front();
     merged.shard = {1, 1};
     merged.outcomes.clear();
     for (const SeedShardFile& p : parts)

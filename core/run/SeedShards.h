@@ -48,6 +48,20 @@ void writeSeedShardFile(const std::string& dir, const SeedShardFile& file);
 /// Reads <dir>/seed_outcomes.json; InputError naming the folder if it is no seeds folder.
 SeedShardFile readSeedShardFile(const std::string& dir);
 
+/// What a shard folder says of itself, to check that a set of them covers one range once.
+struct ShardPart {
+    std::string dir;
+    std::string ran;  ///< what it ran, for messages: "'paper'", "'paper' against 'kernel'"
+    std::string fingerprint;
+    std::uint64_t first = 0, last = 0;  ///< the whole range
+    Shard shard;
+    std::vector<std::uint64_t> seeds;  ///< the seeds it holds
+};
+
+/// Refuses (InputError naming the seeds and the folders) shards that ran other settings, another
+/// range or split, overlap, or leave seeds out. `command`: "seeds" or "compare", for the advice.
+void checkShardsCover(const std::vector<ShardPart>& parts, const std::string& command);
+
 /// The shards in `dirs` merged: checks they ran one experiment over one range in as many shards,
 /// and refuses (InputError naming the seeds and the folders) shards that overlap or leave seeds
 /// out. The outcomes come back in seed order.

@@ -57,6 +57,37 @@ private slots:
                  2);
     }
 
+    void comparisonShardsMergeIntoWhatOneComparisonWrites() {
+        // compare --shard k/3 on three machines, merged: the files of one compare over 1-6.
+        const QString a = sourceFile("experiments/paper.json");
+        const QString b = sourceFile("experiments/paper_kernel.json");
+        QStringList shards;
+        for (int k = 1; k <= 3; ++k) {
+            shards << dir_.filePath(QString("cmp_shard%1").arg(k));
+            const Outcome o = runCli({"compare", a, b, "--from", "1", "--to", "6", "--shard",
+                                      QString("%1/3").arg(k), "--out", shards.back(),
+                                      "--no-figures"});
+            QVERIFY2(o.exitCode == 0, qPrintable(o.err));
+        }
+        const QString merged = dir_.filePath("cmp_merged"), whole = dir_.filePath("cmp_whole");
+        const Outcome m = runCli({"merge", shards[2], shards[0], shards[1], "--out", merged});
+        QVERIFY2(m.exitCode == 0, qPrintable(m.err));
+        QVERIFY(QFile::exists(merged + "/figures/compare.png"));
+        QVERIFY(runCli({"compare", a, b, "--from", "1", "--to", "6", "--out", whole,
+                        "--no-figures"})
+                    .exitCode == 0);
+        for (const char* file : {"compare.csv", "compare_so_far.csv", "compare.json"})
+            QVERIFY2(linesOf(merged + "/" + file) == linesOf(whole + "/" + file), file);
+        // A missing shard, one given twice, or a seeds shard among them is refused by name.
+        const Outcome gap = runCli({"merge", shards[0], shards[2], "--out", dir_.filePath("g")});
+        QCOMPARE(gap.exitCode, 2);
+        QVERIFY2(gap.err.contains("seeds 3-4 of 1-6 are in no shard given"), qPrintable(gap.err));
+        const Outcome twice = runCli(
+            {"merge", shards[0], shards[1], shards[1], shards[2], "--out", dir_.filePath("t")});
+        QCOMPARE(twice.exitCode, 2);
+        QVERIFY2(twice.err.contains("seeds 3-4 are in both " + shards[1]), qPrintable(twice.err));
+    }
+
     void seedsReportsRatesOverWholeRuns() {
         // Three whole runs: a row per seed, totals with 95 % intervals, and each seed's outcome
         // the same as that seed's own run.
