@@ -24,10 +24,20 @@ namespace activetouch {
 DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
     : QWidget(parent), session_(session) {
     auto* layout = new QVBoxLayout(this);
-    auto call = [this](auto&&... slotAndArgs) {
-        QMetaObject::invokeMethod(session_, slotAndArgs..., Qt::QueuedConnection);
-    };
+    addConnectionButtons(layout);
+    addStageBox(layout);
+    addTapperBox(layout);
+    addFingertipBox(layout);
+    addRawLog(layout);
+    refreshPorts();
+    connectSession();
+}
 
+void DevicesPanel::callSession(void (DeviceSession::*slot)()) {
+    QMetaObject::invokeMethod(session_, slot, Qt::QueuedConnection);
+}
+
+void DevicesPanel::addConnectionButtons(QVBoxLayout* layout) {
     connect_ = new QPushButton(tr("Connect"));
     connect_->setObjectName("connectDevices");
     layout->addWidget(connect_);
@@ -64,7 +74,9 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
                                                           tr("Rig files (*.json)"));
         if (!path.isEmpty()) saveRigFile(path);
     });
+}
 
+void DevicesPanel::addStageBox(QVBoxLayout* layout) {
     auto* stage = new QGroupBox(tr("XY stage"));
     auto* sf = new QFormLayout(stage);
     stageKind_ = new QComboBox;
@@ -127,7 +139,7 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
     jogButton("-y", 2, 1, 0, -1);
     auto* home = new QPushButton(tr("Home"));
     jog->addWidget(home, 1, 1);
-    connect(home, &QPushButton::clicked, this, [call] { call(&DeviceSession::home); });
+    connect(home, &QPushButton::clicked, this, [this] { callSession(&DeviceSession::home); });
     sf->addRow(jog);
     gotoX_ = new QDoubleSpinBox;
     gotoY_ = new QDoubleSpinBox;
@@ -150,7 +162,9 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
             session_, [s = session_, x, y] { s->goTo(x, y); }, Qt::QueuedConnection);
     });
     layout->addWidget(stage);
+}
 
+void DevicesPanel::addTapperBox(QVBoxLayout* layout) {
     auto* tapper = new QGroupBox(tr("NXT tapper"));
     auto* tf = new QFormLayout(tapper);
     tapperKind_ = new QComboBox;
@@ -175,14 +189,16 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
     tf->addRow(tr("Battery"), battery_);
     tf->addRow(tr("Contact threshold"), threshold_);
     tf->addRow(testTap);
-    connect(testTap, &QPushButton::clicked, this, [call] { call(&DeviceSession::testTap); });
+    connect(testTap, &QPushButton::clicked, this, [this] { callSession(&DeviceSession::testTap); });
     connect(threshold_, &QDoubleSpinBox::editingFinished, this, [this] {
         const double v = threshold_->value();
         QMetaObject::invokeMethod(
             session_, [s = session_, v] { s->setContactThreshold(v); }, Qt::QueuedConnection);
     });
     layout->addWidget(tapper);
+}
 
+void DevicesPanel::addFingertipBox(QVBoxLayout* layout) {
     auto* finger = new QGroupBox(tr("Fingertip"));
     auto* ff = new QFormLayout(finger);
     nameServerHost_ = new QLineEdit("127.0.0.1");
@@ -210,7 +226,9 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
     ff->addRow(compensate_);
     ff->addRow(new QLabel(tr("Used with the NXT tapper; its taxels show live in the Live tab.")));
     layout->addWidget(finger);
+}
 
+void DevicesPanel::addRawLog(QVBoxLayout* layout) {
     auto* rawBox = new QGroupBox(tr("Raw protocol log"));
     auto* rl = new QVBoxLayout(rawBox);
     rawLog_ = new QPlainTextEdit;
@@ -220,8 +238,9 @@ DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
     rawLog_->setFont(QFont("monospace", 8));
     rl->addWidget(rawLog_);
     layout->addWidget(rawBox, 1);
-    refreshPorts();
+}
 
+void DevicesPanel::connectSession() {
     connect(session_, &DeviceSession::connectedChanged, this, [this](bool on, const QString& what) {
         connected_ = on;
         connect_->setText(on ? tr("Disconnect") : tr("Connect"));

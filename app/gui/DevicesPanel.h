@@ -6,6 +6,7 @@
 
 #include "app/gui/DeviceSession.h"
 
+class QVBoxLayout;
 class QLabel;
 class QDoubleSpinBox;
 class QComboBox;
@@ -40,6 +41,15 @@ signals:
     void failed(const QString& message);
 
 private:
+    // The constructor's parts, in the order shown, then the session's signals.
+    void addConnectionButtons(QVBoxLayout* layout);
+    void addStageBox(QVBoxLayout* layout);
+    void addTapperBox(QVBoxLayout* layout);
+    void addFingertipBox(QVBoxLayout* layout);
+    void addRawLog(QVBoxLayout* layout);
+    void connectSession();
+    /// Queues `slot` to run in the session's thread.
+    void callSession(void (DeviceSession::*slot)());
     void showRig(const RigConfig& rig);
     DeviceSession* session_;
     SceneSpec scene_;

@@ -57,22 +57,42 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
     note->setWordWrap(true);
     layout->addWidget(note);
 
-    auto group = [&](const QString& title) {
-        auto* box = new QGroupBox(title);
-        new QFormLayout(box);
-        layout->addWidget(box);
-        return box;
-    };
+    addRunFields(layout);
+    addClassifierFields(layout);
+    addTrainingFields(layout);
+    addFollowingFields(layout);
+    addTrialsTable(layout);
+    addRecognitionFields(layout);
+
+    auto* reset = new QPushButton(tr("Show the file's values"));
+    reset->setObjectName("protocol_reset");
+    reset->setToolTip(tr("Show the experiment file's settings again, as opened"));
+    connect(reset, &QPushButton::clicked, this, &ProtocolPanel::resetRequested);
+    layout->addWidget(reset);
+    layout->addStretch();
+}
+
+QGroupBox* ProtocolPanel::addGroup(QVBoxLayout* layout, const QString& title) {
+    auto* box = new QGroupBox(title);
+    new QFormLayout(box);
+    layout->addWidget(box);
+    return box;
+}
+
+void ProtocolPanel::addRunFields(QVBoxLayout* layout) {
     using E = const ExperimentSpec&;
     const QString run = tr("Run");
-    auto* runBox = group(run);
+    auto* runBox = addGroup(layout, run);
     addField(runBox, {"", "seed", run, tr("Seed"),
                       tr("The run's seed: its data sets, noise and trials. The Rates over seeds "
                          "tab runs a range of seeds."),
                       Kind::Integer, 0, 2147483647, 1, [](E e) { return double(e.scene.seed); }});
+}
 
+void ProtocolPanel::addClassifierFields(QVBoxLayout* layout) {
+    using E = const ExperimentSpec&;
     const QString classifier = tr("Classifier");
-    auto* classifierBox = group(classifier);
+    auto* classifierBox = addGroup(layout, classifier);
     addField(classifierBox,
              {"classifier", "bins", classifier, tr("Histogram bins"),
               tr("Bins per taxel over its trained range (paper: 100)"), Kind::Integer, 1, 100000,
@@ -88,9 +108,12 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
                  "neighbouring bins by a Gaussian this wide"),
               Kind::Number, 0.0, kMaxKernelSigma_bins, 0.5,
               [](E e) { return e.classifier.kernelSigma_bins; }});
+}
 
+void ProtocolPanel::addTrainingFields(QVBoxLayout* layout) {
+    using E = const ExperimentSpec&;
     const QString training = tr("Training and validation");
-    auto* trainingBox = group(training);
+    auto* trainingBox = addGroup(layout, training);
     orientations_ = new QLineEdit;
     orientations_->setObjectName("protocol_classes_orientations_deg");
     orientations_->setToolTip(
@@ -138,9 +161,12 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
               tr("Width of the window of positions the validation picks as the valid range "
                  "(paper: 4)"),
               Kind::Integer, 1, 200, 1, [](E e) { return double(e.validRangeWidth); }});
+}
 
+void ProtocolPanel::addFollowingFields(QVBoxLayout* layout) {
+    using E = const ExperimentSpec&;
     const QString following = tr("Following");
-    auto* followingBox = group(following);
+    auto* followingBox = addGroup(layout, following);
     // The file's numbers, with the ranges it may give (followingNumbers); here their labels.
     struct Step {
         QString label, tip;
@@ -212,7 +238,9 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
              {"following", "lost_plane_or_air_taps", following, tr("Lost after plane/air taps"),
               tr("Lost after this many plane or air decisions in a row"), Kind::Integer, 1, 100000,
               1, [](E e) { return double(e.following.lostPlaneOrAirTaps); }});
+}
 
+void ProtocolPanel::addTrialsTable(QVBoxLayout* layout) {
     auto* trialsBox = new QGroupBox(tr("Trials"));
     auto* trialsLayout = new QVBoxLayout(trialsBox);
     trials_ = new QTableWidget(0, 3);
@@ -263,7 +291,10 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
         trials_->removeRow(row);
         emit changed();
     });
+}
 
+void ProtocolPanel::addRecognitionFields(QVBoxLayout* layout) {
+    using E = const ExperimentSpec&;
     recognition_ = new QGroupBox(tr("Recognition"));
     recognition_->setObjectName("protocol_recognition");
     recognition_->setCheckable(true);
@@ -287,13 +318,6 @@ ProtocolPanel::ProtocolPanel(QWidget* parent) : QWidget(parent) {
     static_cast<QFormLayout*>(recognition_->layout())->addRow(tr("Of the trials"), recognitionOf_);
     connect(recognition_, &QGroupBox::toggled, this, &ProtocolPanel::changed);
     connect(recognitionOf_, &QComboBox::currentIndexChanged, this, &ProtocolPanel::changed);
-
-    auto* reset = new QPushButton(tr("Show the file's values"));
-    reset->setObjectName("protocol_reset");
-    reset->setToolTip(tr("Show the experiment file's settings again, as opened"));
-    connect(reset, &QPushButton::clicked, this, &ProtocolPanel::resetRequested);
-    layout->addWidget(reset);
-    layout->addStretch();
 }
 
 void ProtocolPanel::addField(QGroupBox* box, Field f) {

@@ -16,6 +16,7 @@
 class QCheckBox;
 class QComboBox;
 class QGroupBox;
+class QVBoxLayout;
 class QLineEdit;
 class QSpinBox;
 class QTableWidget;
@@ -55,6 +56,14 @@ private:
         QWidget* widget = nullptr;
     };
     void addField(QGroupBox* box, Field field);
+    // The constructor's parts, a group of fields each, in the order shown.
+    QGroupBox* addGroup(QVBoxLayout* layout, const QString& title);
+    void addRunFields(QVBoxLayout* layout);
+    void addClassifierFields(QVBoxLayout* layout);
+    void addTrainingFields(QVBoxLayout* layout);
+    void addFollowingFields(QVBoxLayout* layout);
+    void addTrialsTable(QVBoxLayout* layout);
+    void addRecognitionFields(QVBoxLayout* layout);
     void addTrialRow(int row, const QString& what, bool passive, int repeats);
     QComboBox* modeBox(int row) const;
     QSpinBox* repeatsBox(int row) const;
