@@ -24,6 +24,133 @@ Json placeJson(const TrialResult& t) {
     return j;
 }
 
+// summary.json's sections.
+
+Json validationJson(const RunResult& r) {
+    const ClassSet& cs = r.classes;
+    const auto& v = r.validation;
+    Json byClass = Json::array();
+    for (const auto& e : v.byClass) {
+        const double deg = cs.orientationsDeg[static_cast<std::size_t>(e.orientationIndex)];
+        byClass.push_back({{"orientation_deg", deg},
+                           {"orientation", ClassSet::orientationName(deg)},
+                           {"position", e.position},
+                           {"region", regionName(e.region)},
+                           {"test_taps", e.taps},
+                           {"angle_error_deg", e.angleError_deg},
+                           {"position_error_mm", e.positionError_mm},
+                           {"correct_fraction", e.correctFraction}});
+    }
+    Json byPosition = Json::array();
+    for (int p = 1; p <= cs.positions; ++p) {
+        const auto i = static_cast<std::size_t>(p - 1);
+        byPosition.push_back({{"position", p},
+                              {"angle_error_deg_mean", v.angleMean[i]},
+                              {"angle_error_deg_std", v.angleStd[i]},
+                              {"position_error_mm_mean", v.positionMean[i]},
+                              {"position_error_mm_std", v.positionStd[i]}});
+    }
+    return {
+        {"angle_error_deg_mean", v.angleError_deg},
+        {"position_error_mm_mean", v.positionError_mm},
+        {"class_accuracy", v.correctFraction},
+        {"valid_range_mm",
+         {v.validRange.first * cs.positionStep_mm, v.validRange.last * cs.positionStep_mm}},
+        {"valid_range_positions", {v.validRange.first, v.validRange.last}},
+        {"valid_range_offset_mm",
+         {cs.offsetOf(v.validRange.first), cs.offsetOf(v.validRange.last)}},
+        {"valid_range_rule", "the window of " + std::to_string(r.spec.validRangeWidth) +
+                                 " consecutive positions with the lowest sum of "
+                                 "orientation-averaged angle and position errors, "
+                                 "each normalised by its maximum over positions; ties to the "
+                                 "window nearest the edge"},
+        {"test_taps", v.percepts.size()},
+        {"by_class", byClass},
+        {"by_position", byPosition}};
+}
+
+Json followingJson(const RunResult& r) {
+    Json following = Json::array();
+    for (const auto& t : r.trials) {
+        following.push_back({{"shape", t.label},
+                             {"mode", modeName(t.result.mode)},
+                             {"trial", t.trial},
+                             {"completed", t.result.completed()},
+                             {"reason", trialEndName(t.result.end)},
+                             {"detail", t.result.detail},
+                             {"taps", t.result.taps.size()},
+                             {"robot_time_s", t.result.robotTime_s},
+                             {"coverage", t.result.coverage},
+                             {"mean_contour_distance_mm", t.result.meanContourDistance_mm},
+                             {"max_contour_distance_mm", t.result.maxContourDistance_mm},
+                             {"progress_mm", t.result.progress_mm},
+                             {"start_mm", {t.start.x, t.start.y}},
+                             {"furthest", placeJson(t.result)},
+                             {"corners_rounded",
+                              {{"convex", t.result.cornersRounded.convex},
+                               {"concave", t.result.cornersRounded.concave}}}});
+        if (t.recordedTaps >= 0) following.back()["recorded_taps"] = t.recordedTaps;
+    }
+    return following;
+}
+
+Json recognitionJson(const RunResult& r) {
+    Json trials = Json::array();
+    std::map<std::string, std::map<std::string, int>> confusion, confusionSmoothed;
+    for (const auto& t : r.trials) {
+        if (!t.recognised) continue;
+        trials.push_back({{"shape", t.label},
+                          {"trial", t.trial},
+                          {"predicted", t.recognition.predicted},
+                          {"predicted_smoothed", t.recognition.predictedSmoothed},
+                          {"distances", t.recognition.distances},
+                          {"smoothed_distances", t.recognition.smoothedDistances}});
+        ++confusion[t.label][t.recognition.predicted];
+        ++confusionSmoothed[t.label][t.recognition.predictedSmoothed];
+    }
+    return {{"accuracy", r.recognitionAccuracy},
+                        {"accuracy_smoothed", r.recognitionAccuracySmoothed},
+                        {"of_mode", modeName(r.spec.recognition.ofMode)},
+                        {"bins", r.spec.recognition.bins},
+                        {"smoothing_sigma_bins", r.spec.recognition.smoothingSigmaBins},
+                        {"trials", trials},
+                        {"confusion", confusion},
+                        {"confusion_smoothed", confusionSmoothed}};
+}
+
+Json sweepsJson(const SweepResults& sweeps) {
+    Json perception = Json::array(), following = Json::array(), compute = Json::array();
+    for (const auto& row : sweeps.perception)
+        perception.push_back({{"belief_threshold", row.threshold},
+                              {"mean_taps_per_decision", row.meanTaps},
+                              {"angle_error_deg", row.angleError_deg},
+                              {"position_error_mm", row.positionError_mm},
+                              {"correct_fraction", row.correctFraction}});
+    for (const auto& row : sweeps.following)
+        following.push_back(
+            {{"mode", modeName(row.mode)},
+             {"follow_step_mm", row.followStep_mm},
+             {"reposition_step_mm", row.repositionStep_mm},
+             {"belief_threshold", row.beliefThreshold},
+             {"trials", row.trials},
+             {"completed", row.completed},
+             {"mean_contour_distance_mm", row.meanContourDistance_mm},
+             {"mean_taps", row.meanTaps},
+             {"mean_robot_time_s", row.meanRobotTime_s},
+             {"robot_time_per_completion_s", std::isfinite(row.robotTimePerCompletion_s)
+                                                 ? Json(row.robotTimePerCompletion_s)
+                                                 : Json()},
+             {"paper_setting", row.paperSetting}});
+    for (const auto& row : sweeps.compute)
+        compute.push_back({{"bins", row.bins},
+                           {"samples_per_tap", row.samples},
+                           {"angle_error_deg", row.angleError_deg},
+                           {"position_error_mm", row.positionError_mm},
+                           {"microseconds_per_decision", row.microsecondsPerDecision},
+                           {"paper_setting", row.paperSetting}});
+    return {{"perception", perception}, {"following", following}, {"compute", compute}};
+}
+
 }  // namespace
 
 Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
@@ -61,47 +188,7 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
                      {"test_offset_mm", r.spec.training.testOffset_mm},
                      {"placement_jitter_mm", r.spec.training.placementJitter_mm},
                      {"retrain_on_all_sets", r.spec.training.retrainOnAllSets}};
-    if (!r.validation.byClass.empty()) {
-        const auto& v = r.validation;
-        Json byClass = Json::array();
-        for (const auto& e : v.byClass) {
-            const double deg = cs.orientationsDeg[static_cast<std::size_t>(e.orientationIndex)];
-            byClass.push_back({{"orientation_deg", deg},
-                               {"orientation", ClassSet::orientationName(deg)},
-                               {"position", e.position},
-                               {"region", regionName(e.region)},
-                               {"test_taps", e.taps},
-                               {"angle_error_deg", e.angleError_deg},
-                               {"position_error_mm", e.positionError_mm},
-                               {"correct_fraction", e.correctFraction}});
-        }
-        Json byPosition = Json::array();
-        for (int p = 1; p <= cs.positions; ++p) {
-            const auto i = static_cast<std::size_t>(p - 1);
-            byPosition.push_back({{"position", p},
-                                  {"angle_error_deg_mean", v.angleMean[i]},
-                                  {"angle_error_deg_std", v.angleStd[i]},
-                                  {"position_error_mm_mean", v.positionMean[i]},
-                                  {"position_error_mm_std", v.positionStd[i]}});
-        }
-        j["validation"] = {
-            {"angle_error_deg_mean", v.angleError_deg},
-            {"position_error_mm_mean", v.positionError_mm},
-            {"class_accuracy", v.correctFraction},
-            {"valid_range_mm",
-             {v.validRange.first * cs.positionStep_mm, v.validRange.last * cs.positionStep_mm}},
-            {"valid_range_positions", {v.validRange.first, v.validRange.last}},
-            {"valid_range_offset_mm",
-             {cs.offsetOf(v.validRange.first), cs.offsetOf(v.validRange.last)}},
-            {"valid_range_rule", "the window of " + std::to_string(r.spec.validRangeWidth) +
-                                     " consecutive positions with the lowest sum of "
-                                     "orientation-averaged angle and position errors, "
-                                     "each normalised by its maximum over positions; ties to the "
-                                     "window nearest the edge"},
-            {"test_taps", v.percepts.size()},
-            {"by_class", byClass},
-            {"by_position", byPosition}};
-    }
+    if (!r.validation.byClass.empty()) j["validation"] = validationJson(r);
     if (!r.failure.empty()) j["failure"] = r.failure;
     j["cautions"] = untrainedEdgeCautions(r.spec);
     j["controller"] = {
@@ -109,83 +196,9 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
         {"orientation_trusted_positions", {r.trustedPositions.first, r.trustedPositions.second}},
         {"orientation_trusted_offsets_mm", {r.validOffsets.trustedLow, r.validOffsets.trustedHigh}},
         {"orientation_trust_max_error_deg", r.spec.following.orientationTrustMaxError_deg}};
-    Json following = Json::array();
-    for (const auto& t : r.trials) {
-        following.push_back({{"shape", t.label},
-                             {"mode", modeName(t.result.mode)},
-                             {"trial", t.trial},
-                             {"completed", t.result.completed()},
-                             {"reason", trialEndName(t.result.end)},
-                             {"detail", t.result.detail},
-                             {"taps", t.result.taps.size()},
-                             {"robot_time_s", t.result.robotTime_s},
-                             {"coverage", t.result.coverage},
-                             {"mean_contour_distance_mm", t.result.meanContourDistance_mm},
-                             {"max_contour_distance_mm", t.result.maxContourDistance_mm},
-                             {"progress_mm", t.result.progress_mm},
-                             {"start_mm", {t.start.x, t.start.y}},
-                             {"furthest", placeJson(t.result)},
-                             {"corners_rounded",
-                              {{"convex", t.result.cornersRounded.convex},
-                               {"concave", t.result.cornersRounded.concave}}}});
-        if (t.recordedTaps >= 0) following.back()["recorded_taps"] = t.recordedTaps;
-    }
-    j["following"] = following;
-    if (!r.templates.empty()) {
-        Json trials = Json::array();
-        std::map<std::string, std::map<std::string, int>> confusion, confusionSmoothed;
-        for (const auto& t : r.trials) {
-            if (!t.recognised) continue;
-            trials.push_back({{"shape", t.label},
-                              {"trial", t.trial},
-                              {"predicted", t.recognition.predicted},
-                              {"predicted_smoothed", t.recognition.predictedSmoothed},
-                              {"distances", t.recognition.distances},
-                              {"smoothed_distances", t.recognition.smoothedDistances}});
-            ++confusion[t.label][t.recognition.predicted];
-            ++confusionSmoothed[t.label][t.recognition.predictedSmoothed];
-        }
-        j["recognition"] = {{"accuracy", r.recognitionAccuracy},
-                            {"accuracy_smoothed", r.recognitionAccuracySmoothed},
-                            {"of_mode", modeName(r.spec.recognition.ofMode)},
-                            {"bins", r.spec.recognition.bins},
-                            {"smoothing_sigma_bins", r.spec.recognition.smoothingSigmaBins},
-                            {"trials", trials},
-                            {"confusion", confusion},
-                            {"confusion_smoothed", confusionSmoothed}};
-    }
-    if (!r.sweeps.empty()) {
-        Json perception = Json::array(), following = Json::array(), compute = Json::array();
-        for (const auto& row : r.sweeps.perception)
-            perception.push_back({{"belief_threshold", row.threshold},
-                                  {"mean_taps_per_decision", row.meanTaps},
-                                  {"angle_error_deg", row.angleError_deg},
-                                  {"position_error_mm", row.positionError_mm},
-                                  {"correct_fraction", row.correctFraction}});
-        for (const auto& row : r.sweeps.following)
-            following.push_back(
-                {{"mode", modeName(row.mode)},
-                 {"follow_step_mm", row.followStep_mm},
-                 {"reposition_step_mm", row.repositionStep_mm},
-                 {"belief_threshold", row.beliefThreshold},
-                 {"trials", row.trials},
-                 {"completed", row.completed},
-                 {"mean_contour_distance_mm", row.meanContourDistance_mm},
-                 {"mean_taps", row.meanTaps},
-                 {"mean_robot_time_s", row.meanRobotTime_s},
-                 {"robot_time_per_completion_s", std::isfinite(row.robotTimePerCompletion_s)
-                                                     ? Json(row.robotTimePerCompletion_s)
-                                                     : Json()},
-                 {"paper_setting", row.paperSetting}});
-        for (const auto& row : r.sweeps.compute)
-            compute.push_back({{"bins", row.bins},
-                               {"samples_per_tap", row.samples},
-                               {"angle_error_deg", row.angleError_deg},
-                               {"position_error_mm", row.positionError_mm},
-                               {"microseconds_per_decision", row.microsecondsPerDecision},
-                               {"paper_setting", row.paperSetting}});
-        j["sweeps"] = {{"perception", perception}, {"following", following}, {"compute", compute}};
-    }
+    j["following"] = followingJson(r);
+    if (!r.templates.empty()) j["recognition"] = recognitionJson(r);
+    if (!r.sweeps.empty()) j["sweeps"] = sweepsJson(r.sweeps);
     j["timing"] = {{"wall_s", wall_s},
                    {"run_wall_s", r.runWall_s},
                    {"figures_wall_s", figures_s},
