@@ -209,6 +209,49 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
     }
 }
 
+/// Trains the classifier on the training sets of `result.taps` and validates it on the others:
+/// the measured noise floor and the class regions from it, the offline validation, the valid
+/// range and trusted span the controller follows with, and (if the experiment asks) the
+/// classifier trained again on every set.
+void trainAndValidate(RunResult& result, const std::vector<IdealClassContact>& ideal) {
+    const ExperimentSpec& spec = result.spec;
+    // The taps that touched nothing give the floor a tap must rise above to count as contact;
+    // classes whose ideal tap stays below it are air.
+    std::vector<ClassTap> all;
+    for (const auto& t : result.taps) all.push_back({t.cls, &t.record.tap});
+    result.measuredNoiseFloor = measureNoiseFloor(ideal, all);
+    if (result.measuredNoiseFloor)
+        result.noiseFloor_counts =
+            std::max(result.noiseFloor_counts, result.measuredNoiseFloor->counts);
+    result.classes.regions = classRegions(ideal, result.noiseFloor_counts);
+
+    std::vector<LabelledTap> training;
+    std::vector<const CollectedTap*> tests;
+    for (const auto& t : result.taps) {
+        if (spec.training.isTrainingSet(t.dataSet))
+            training.push_back({&t.record.tap, t.cls});
+        else
+            tests.push_back(&t);
+    }
+    result.classifier =
+        HistogramClassifier::train(training, result.classes.classCount(), spec.classifier);
+    result.validation =
+        validateOffline(result.classifier, result.classes, tests, spec.validRangeWidth);
+    const ControllerRange range = controllerRange(result.classes, result.validation,
+                                                  spec.following.orientationTrustMaxError_deg);
+    result.validOffsets = range.offsets;
+    result.trustedPositions = range.trustedPositions;
+    if (spec.training.retrainOnAllSets) {
+        // Validated on held-out sets, the classifier then learns from every tap taken: the trials
+        // get the test taps too, at no extra tap.
+        std::vector<LabelledTap> everySet;
+        for (const auto& t : result.taps) everySet.push_back({&t.record.tap, t.cls});
+        result.classifier =
+            HistogramClassifier::train(everySet, result.classes.classCount(), spec.classifier);
+        result.classifierRetrainedOnTaps = static_cast<int>(everySet.size());
+    }
+}
+
 }  // namespace
 
 RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options) {
@@ -225,20 +268,7 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     std::vector<const RecordedTrial*> replayed;
     if (recorded && options.recordedTrials) {
         replayed = replayedTrialsFor(spec, *options.recordedTrials, options.recordingName);
-        const Tap& first = recorded->front().record.tap;
-        for (const RecordedTrial* t : replayed)
-            for (const TapRecord& r : t->taps)
-                if (r.tap.taxels != first.taxels || r.tap.sampleCount() != first.sampleCount())
-                    throw InputError(
-                        options.recordingName,
-                        std::string(modeName(t->mode)) + " " + t->label + " trial " +
-                            std::to_string(t->trial),
-                        "its taps have " + std::to_string(r.tap.taxels) + " taxels and " +
-                            std::to_string(r.tap.sampleCount()) +
-                            " samples, the training and test taps " + std::to_string(first.taxels) +
-                            " and " + std::to_string(first.sampleCount()) +
-                            "; replay a run whose recordings were taken with one fingertip and "
-                            "tap window");
+        checkReplayedTapsMatch(replayed, recorded->front().record.tap, options.recordingName);
     }
     if (options.connected) checkRunnableOn(spec, *options.connected);
     std::unique_ptr<SceneRig> simulated;
@@ -307,41 +337,7 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
         return result;
     }
 
-    // The taps that touched nothing give the floor a tap must rise above to count as contact;
-    // classes whose ideal tap stays below it are air.
-    std::vector<ClassTap> all;
-    for (const auto& t : result.taps) all.push_back({t.cls, &t.record.tap});
-    result.measuredNoiseFloor = measureNoiseFloor(ideal, all);
-    if (result.measuredNoiseFloor)
-        result.noiseFloor_counts =
-            std::max(result.noiseFloor_counts, result.measuredNoiseFloor->counts);
-    result.classes.regions = classRegions(ideal, result.noiseFloor_counts);
-
-    std::vector<LabelledTap> training;
-    std::vector<const CollectedTap*> tests;
-    for (const auto& t : result.taps) {
-        if (spec.training.isTrainingSet(t.dataSet))
-            training.push_back({&t.record.tap, t.cls});
-        else
-            tests.push_back(&t);
-    }
-    result.classifier =
-        HistogramClassifier::train(training, result.classes.classCount(), spec.classifier);
-    result.validation =
-        validateOffline(result.classifier, result.classes, tests, spec.validRangeWidth);
-    const ControllerRange range = controllerRange(result.classes, result.validation,
-                                                  spec.following.orientationTrustMaxError_deg);
-    result.validOffsets = range.offsets;
-    result.trustedPositions = range.trustedPositions;
-    if (spec.training.retrainOnAllSets) {
-        // Validated on held-out sets, the classifier then learns from every tap taken: the trials
-        // get the test taps too, at no extra tap.
-        std::vector<LabelledTap> everySet;
-        for (const auto& t : result.taps) everySet.push_back({&t.record.tap, t.cls});
-        result.classifier =
-            HistogramClassifier::train(everySet, result.classes.classCount(), spec.classifier);
-        result.classifierRetrainedOnTaps = static_cast<int>(everySet.size());
-    }
+    trainAndValidate(result, ideal);
 
     if (recorded) {
         // A recording is analysed offline: its trials, if any, replay on the recorded taps, and

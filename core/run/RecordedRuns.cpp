@@ -109,4 +109,20 @@ void checkRecordingCovers(const ExperimentSpec& spec, const std::vector<Collecte
                          "record test sets, or train on fewer sets (training.training_sets)");
 }
 
+void checkReplayedTapsMatch(const std::vector<const RecordedTrial*>& replayed, const Tap& first,
+                            const std::string& name) {
+    for (const RecordedTrial* t : replayed)
+        for (const TapRecord& r : t->taps)
+            if (r.tap.taxels != first.taxels || r.tap.sampleCount() != first.sampleCount())
+                throw InputError(
+                    name,
+                    std::string(modeName(t->mode)) + " " + t->label + " trial " +
+                        std::to_string(t->trial),
+                    "its taps have " + std::to_string(r.tap.taxels) + " taxels and " +
+                        std::to_string(r.tap.sampleCount()) + " samples, the training and test taps " +
+                        std::to_string(first.taxels) + " and " + std::to_string(first.sampleCount()) +
+                        "; replay a run whose recordings were taken with one fingertip and tap "
+                        "window");
+}
+
 }  // namespace activetouch

@@ -35,6 +35,11 @@ std::vector<const RecordedTrial*> replayedTrialsFor(const ExperimentSpec& spec,
                                                     const std::vector<RecordedTrial>& recorded,
                                                     const std::string& name);
 
+/// Refuses a replay whose trials' taps have another number of taxels or samples than `first`,
+/// the first training tap: InputError naming `name` and the trial.
+void checkReplayedTapsMatch(const std::vector<const RecordedTrial*>& replayed, const Tap& first,
+                            const std::string& name);
+
 /// Refuses recorded taps the experiment cannot be validated on: a data set outside the
 /// experiment's, a class of a training set without a tap, no test tap, or taps with another
 /// number of taxels than the fingertip's. Throws InputError naming `name` and what is missing.
