@@ -109,70 +109,84 @@ void YarpFingertip::fault(const std::string& problem, std::promise<std::string>*
 }
 
 void YarpFingertip::serve(std::promise<std::string>* ready, bool& answered) {
-    auto say = [&](const std::string& dir, const std::string& text) {
-        if (log_) log_(dir, text);
-    };
-    const auto deadline = [&] {
-        return Clock::now() + std::chrono::milliseconds(s_.connectTimeoutMs);
-    };
     QByteArray buffer;
     Registration reg;
-    {
-        QTcpSocket ns;
-        ns.connectToHost(QString::fromStdString(s_.nameServerHost),
-                         static_cast<quint16>(s_.nameServerPort));
-        if (!ns.waitForConnected(s_.connectTimeoutMs)) {
-            ready->set_value("YARP: the name server at " + where(s_) + " does not answer (" +
-                             ns.errorString().toStdString() +
-                             "); start yarpserver there or set the name server's address");
-            return;
-        }
-        say("->", "CONNACK extern");
-        ns.write(QByteArray::fromStdString(nameServerGreeting()));
-        const auto welcome = readLine(ns, buffer, deadline());
-        if (!welcome || welcome->rfind("Welcome", 0) != 0) {
-            ready->set_value("YARP: the server at " + where(s_) +
-                             " did not greet like a YARP name server; check its address");
-            return;
-        }
-        say("<-", *welcome);
-        say("->", "query " + s_.port);
-        ns.write(QByteArray::fromStdString(nameServerQuery(s_.port)));
-        std::vector<std::string> lines;
-        const auto until = deadline();
-        for (;;) {
-            const auto line = readLine(ns, buffer, until);
-            if (!line) {
-                ready->set_value("YARP: the name server at " + where(s_) +
-                                 " did not finish its answer about " + s_.port);
-                return;
-            }
-            say("<-", *line);
-            lines.push_back(*line);
-            if (line->rfind("*** end of message", 0) == 0) break;
-        }
-        try {
-            const auto r = parseRegistration(lines);
-            if (!r) {
-                ready->set_value("YARP: the port " + s_.port +
-                                 " is not registered with the name server at " + where(s_) +
-                                 "; check the port name ('yarp name list') and that the skin "
-                                 "module is running");
-                return;
-            }
-            reg = *r;
-        } catch (const YarpError& e) {
-            ready->set_value(std::string("YARP: ") + e.what());
-            return;
-        }
+    if (const std::string problem = lookUpPort(&reg, buffer); !problem.empty()) {
+        ready->set_value(problem);
+        return;
     }
     QTcpSocket data;
+    if (const std::string problem = openDataPort(data, reg, buffer); !problem.empty()) {
+        ready->set_value(problem);
+        return;
+    }
+    data.flush();
+    ready->set_value(std::string());
+    answered = true;
+    readFrames(data, buffer, ready, answered);
+}
+
+void YarpFingertip::say(const std::string& direction, const std::string& text) const {
+    if (log_) log_(direction, text);
+}
+
+std::chrono::steady_clock::time_point YarpFingertip::connectDeadline() const {
+    return Clock::now() + std::chrono::milliseconds(s_.connectTimeoutMs);
+}
+
+std::string YarpFingertip::lookUpPort(Registration* reg, QByteArray& buffer) {
+    QTcpSocket ns;
+    ns.connectToHost(QString::fromStdString(s_.nameServerHost),
+                     static_cast<quint16>(s_.nameServerPort));
+    if (!ns.waitForConnected(s_.connectTimeoutMs)) {
+        return "YARP: the name server at " + where(s_) + " does not answer (" +
+               ns.errorString().toStdString() +
+               "); start yarpserver there or set the name server's address";
+    }
+    say("->", "CONNACK extern");
+    ns.write(QByteArray::fromStdString(nameServerGreeting()));
+    const auto welcome = readLine(ns, buffer, connectDeadline());
+    if (!welcome || welcome->rfind("Welcome", 0) != 0) {
+        return "YARP: the server at " + where(s_) +
+               " did not greet like a YARP name server; check its address";
+    }
+    say("<-", *welcome);
+    say("->", "query " + s_.port);
+    ns.write(QByteArray::fromStdString(nameServerQuery(s_.port)));
+    std::vector<std::string> lines;
+    const auto until = connectDeadline();
+    for (;;) {
+        const auto line = readLine(ns, buffer, until);
+        if (!line) {
+            return "YARP: the name server at " + where(s_) + " did not finish its answer about " +
+                   s_.port;
+        }
+        say("<-", *line);
+        lines.push_back(*line);
+        if (line->rfind("*** end of message", 0) == 0) break;
+    }
+    try {
+        const auto r = parseRegistration(lines);
+        if (!r) {
+            return "YARP: the port " + s_.port + " is not registered with the name server at " +
+                   where(s_) +
+                   "; check the port name ('yarp name list') and that the skin "
+                   "module is running";
+        }
+        *reg = *r;
+    } catch (const YarpError& e) {
+        return std::string("YARP: ") + e.what();
+    }
+    return std::string();
+}
+
+std::string YarpFingertip::openDataPort(QTcpSocket& data, const Registration& reg,
+                                        QByteArray& buffer) {
     data.connectToHost(QString::fromStdString(reg.host), static_cast<quint16>(reg.tcpPort));
     if (!data.waitForConnected(s_.connectTimeoutMs)) {
-        ready->set_value("YARP: " + s_.port + " is registered at " + reg.host + ":" +
-                         std::to_string(reg.tcpPort) + " but refuses connections (" +
-                         data.errorString().toStdString() + "); is the skin module still running?");
-        return;
+        return "YARP: " + s_.port + " is registered at " + reg.host + ":" +
+               std::to_string(reg.tcpPort) + " but refuses connections (" +
+               data.errorString().toStdString() + "); is the skin module still running?";
     }
     buffer.clear();
     if (s_.binaryCarrier) {
@@ -188,21 +202,21 @@ void YarpFingertip::serve(std::promise<std::string>* ready, bool& answered) {
     } else {
         say("->", "CONNECT extern");
         data.write(QByteArray::fromStdString(dataGreeting()));
-        const auto welcome = readLine(data, buffer, deadline());
+        const auto welcome = readLine(data, buffer, connectDeadline());
         if (!welcome || welcome->rfind("Welcome", 0) != 0) {
-            ready->set_value("YARP: " + s_.port +
-                             " did not welcome the connection; is it a "
-                             "YARP port speaking the text carrier?");
-            return;
+            return "YARP: " + s_.port +
+                   " did not welcome the connection; is it a "
+                   "YARP port speaking the text carrier?";
         }
         say("<-", *welcome);
         say("->", "r");
         data.write(QByteArray::fromStdString(becomeReader()));
     }
-    data.flush();
-    ready->set_value(std::string());
-    answered = true;
+    return std::string();
+}
 
+void YarpFingertip::readFrames(QTcpSocket& data, const QByteArray& buffer,
+                               std::promise<std::string>* ready, bool& answered) {
     StreamDecoder decoder(s_.binaryCarrier);
     auto decode = [&](const QByteArray& bytes) {
         for (StreamDecoder::Event& e :

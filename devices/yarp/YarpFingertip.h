@@ -1,8 +1,10 @@
 #pragma once
-// The iCub fingertip read over YARP (docs/protocols.md §3, §4): finds the skin port through the name
-// server, connects to it as a reader (text carrier by default, binary as an option), and keeps
+// The iCub fingertip read over YARP (docs/protocols.md §3, §4): finds the skin port through the
+// name server, connects to it as a reader (text carrier by default, binary as an option), and keeps
 // the chosen fingertip's latest 12 values, compensating a raw stream skinManager-style if asked.
 // The socket lives in the client's own thread; nothing waits without a bound.
+#include <QByteArray>
+#include <QtGlobal>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -13,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include <QtGlobal>
+class QTcpSocket;
 
 #include "core/rig/Rig.h"
 #include "devices/common/DeviceWorker.h"
@@ -65,6 +67,15 @@ private:
     void run(std::promise<std::string>* ready);
     /// The thread's work: connect, answer `ready`, then read until stopped or failed.
     void serve(std::promise<std::string>* ready, bool& answered);
+    // serve's steps. The first two return why they failed, or nothing; each wait is bounded by
+    // the connect timeout. `buffer` keeps what came after the last line read.
+    std::string lookUpPort(Registration* reg, QByteArray& buffer);
+    std::string openDataPort(QTcpSocket& data, const Registration& reg, QByteArray& buffer);
+    /// Reads frames until stopped, failed or closed; `buffer`: what came with the welcome.
+    void readFrames(QTcpSocket& data, const QByteArray& buffer, std::promise<std::string>* ready,
+                    bool& answered);
+    void say(const std::string& direction, const std::string& text) const;
+    std::chrono::steady_clock::time_point connectDeadline() const;
     /// Ends the device in a fault: answers `ready` if the connect is still waiting, else sets
     /// the failure every wait then reports.
     void fault(const std::string& problem, std::promise<std::string>* ready, bool answered);
