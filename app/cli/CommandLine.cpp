@@ -20,7 +20,9 @@ std::string typedAs(const std::vector<std::string>& args, const QString& name) {
         const std::string word = a.substr(0, a.find('='));
         if (bare(word) == name) return word;
     }
-    return "-" + name.toStdString();
+    std::string word = "-";  // one dash: QCommandLineParser reads -word as --word
+    word += name.toStdString();
+    return word;
 }
 
 }  // namespace

@@ -96,7 +96,7 @@ void printHelp() {
         "      a rig file or a recording (training taps,\n"
         "      or following taps: a run stopped while writing leaves every finished tap whole\n"
         "      and the cut is reported) and says what is wrong, if anything.\n"
-        "  activetouch-cli --help\n\n"
+        "  activetouch-cli --help | --version\n\n"
         "Every command that writes a folder refuses one that already holds a run (its run.json,\n"
         "summary, tables or data) unless given --replace, which removes that run's files first;\n"
         "files of yours in the folder are left alone. run, seeds and compare refuse a plan\n"
@@ -118,6 +118,10 @@ int main(int argc, char** argv) {
     args.erase(args.begin());
     if (command == "--help" || command == "-h" || command == "help") {
         printHelp();
+        return kOk;
+    }
+    if (command == "--version") {
+        std::printf("activetouch-cli %s\n", ACTIVETOUCH_VERSION);
         return kOk;
     }
     if (command == "run") return commandRun(args, argc, argv);

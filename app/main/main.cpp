@@ -24,10 +24,12 @@ int main(int argc, char** argv) {
     QApplication app(argc, argv);
     QApplication::setOrganizationName("ActiveTouch");
     QApplication::setApplicationName("Workbench");
+    QApplication::setApplicationVersion(ACTIVETOUCH_VERSION);
     QCommandLineParser parser;
     parser.setApplicationDescription(
         "ActiveTouch Workbench: active tactile perception experiments on a simulated or real rig.");
     parser.addHelpOption();
+    parser.addVersionOption();
     QCommandLineOption shots("screenshots",
                              "Run the experiment, then over seeds 1-10, then compare it with "
                              "paper_kernel.json beside it (if there) over seeds 1-10, save a "

@@ -202,8 +202,8 @@ private slots:
                  qPrintable(refused.err));
         QVERIFY(QFile::exists(out + "/summary.json/kept"));
         QVERIFY(!QFile::exists(out + "/run.json"));
-        const Outcome o = runCli(
-            {"run", sourceFile("experiments/paper.json"), "--out", out, "--no-figures", "--replace"});
+        const Outcome o = runCli({"run", sourceFile("experiments/paper.json"), "--out", out,
+                                  "--no-figures", "--replace"});
         QCOMPARE(o.exitCode, 0);
         QVERIFY(QFileInfo(out + "/summary.json").isFile());
         QVERIFY(QFile::exists(mine));
@@ -219,8 +219,7 @@ private slots:
                                     "--out=" + out, "--no-figures"});
         QCOMPARE(run.exitCode, 0);
         QCOMPARE(readJson(out + "/summary.json")["seed"].toInt(), 3);
-        const Outcome unknown =
-            runCli({"run", sourceFile("experiments/paper.json"), "--sed", "3"});
+        const Outcome unknown = runCli({"run", sourceFile("experiments/paper.json"), "--sed", "3"});
         QCOMPARE(unknown.exitCode, 2);
         QVERIFY2(unknown.err.contains("unknown option '--sed'"), qPrintable(unknown.err));
         const Outcome noValue = runCli({"seeds", sourceFile("experiments/paper.json"), "--to"});
@@ -243,6 +242,12 @@ private slots:
         const Outcome help = runCli({"--help"});
         QCOMPARE(help.exitCode, 0);
         QVERIFY(help.out.contains("run <experiment.json>"));
+        const Outcome version = runCli({"--version"});
+        QCOMPARE(version.exitCode, 0);
+        QVERIFY2(QRegularExpression("^activetouch-cli \\d+\\.\\d+\\.\\d+\n$")
+                     .match(version.out)
+                     .hasMatch(),
+                 qPrintable(version.out));
     }
 };
 
