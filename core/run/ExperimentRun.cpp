@@ -11,6 +11,7 @@
 
 #include "core/run/OutputFiles.h"
 #include "core/run/RecordedRuns.h"
+#include "core/run/Sweeps.h"
 #include "core/run/RunFolder.h"
 #include "core/common/NumberText.h"
 #include "core/control/ControllerRange.h"

@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "core/run/Sweeps.h"
 #include "core/classify/HistogramClassifier.h"
 #include "core/control/ContourFollower.h"
 #include "core/experiment/Experiment.h"
@@ -17,6 +16,7 @@
 #include "core/recognition/PathHistogram.h"
 #include "core/rig/Rig.h"
 #include "core/run/SimulatedRigs.h"
+#include "core/run/SweepResults.h"
 #include "core/validation/ClassRegions.h"
 #include "core/validation/OfflineValidation.h"
 #include "core/validation/TrainingProtocol.h"
