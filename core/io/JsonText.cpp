@@ -117,8 +117,10 @@ private:
 
     std::string pointer() const {
         std::string p;
-        for (const Frame& f : stack_)
-            p += "/" + (f.object ? pointerEscaped(f.key) : std::to_string(f.index));
+        for (const Frame& f : stack_) {
+            p += '/';
+            p += f.object ? pointerEscaped(f.key) : std::to_string(f.index);
+        }
         return p;
     }
 

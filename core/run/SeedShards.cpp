@@ -85,8 +85,12 @@ std::string seedList(const std::vector<std::uint64_t>& seeds) {
     for (std::size_t i = 0; i < seeds.size();) {
         std::size_t j = i;
         while (j + 1 < seeds.size() && seeds[j + 1] == seeds[j] + 1) ++j;
-        out += (out.empty() ? "" : ", ") + std::to_string(seeds[i]) +
-               (j > i ? "-" + std::to_string(seeds[j]) : "");
+        if (!out.empty()) out += ", ";
+        out += std::to_string(seeds[i]);
+        if (j > i) {
+            out += '-';
+            out += std::to_string(seeds[j]);
+        }
         i = j + 1;
     }
     return out;
