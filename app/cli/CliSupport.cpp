@@ -207,7 +207,23 @@ SeedRange seedRangeOf(const RunArguments& parsed, const std::string& example) {
                       "another) to 1024";
         r.jobs = static_cast<int>(std::min<std::uint64_t>(jobs->second, 1024));
     }
+    if (const std::string text = parsed.text("--shard"); !text.empty() && r.error.empty()) {
+        const auto read = parseShard(text, &r.error);
+        if (read) r.shard = *read;
+    }
+    if (r.error.empty()) r.seeds = shardSeeds(r.first, r.last, r.shard);
     return r;
+}
+
+void printShardBlock(const SeedRange& range) {
+    if (range.shard.count <= 1) return;
+    std::printf("\nshard %d/%d of seeds %llu-%llu: %s\n", range.shard.index, range.shard.count,
+                static_cast<unsigned long long>(range.first),
+                static_cast<unsigned long long>(range.last),
+                range.seeds ? (std::to_string(range.seeds->first) + "-" +
+                               std::to_string(range.seeds->second))
+                                  .c_str()
+                            : "no seeds");
 }
 
 /// Writes a finished run's tables, its figures if asked, and last its summary.json.

@@ -18,6 +18,7 @@
 #include "core/run/RunArtefacts.h"
 #include "core/run/RunFolder.h"
 #include "core/run/SeedRates.h"
+#include "core/run/SeedShards.h"
 
 namespace activetouch::cli {
 
@@ -102,11 +103,20 @@ RunArguments parseRunArguments(const std::vector<std::string>& args, const char*
 struct SeedRange {
     std::uint64_t first = 0, last = 0;
     int jobs = 1;
+    Shard shard;  ///< --shard K/N, else 1/1
+    /// The shard's block of first..last; nothing for a shard of more shards than seeds.
+    std::optional<std::pair<std::uint64_t, std::uint64_t>> seeds;
     std::string error;
+    /// How many runs the block holds.
+    double runs() const { return seeds ? double(seeds->second - seeds->first + 1) : 0.0; }
 };
 
-/// `example` is the command with a range, e.g. "seeds --from 1 --to 10".
+/// `example` is the command with a range, e.g. "seeds --from 1 --to 10". Reads --shard too, if
+/// the command takes it.
 SeedRange seedRangeOf(const RunArguments& parsed, const std::string& example);
+
+/// For a shard of more than one, the line saying which block of the range it ran.
+void printShardBlock(const SeedRange& range);
 
 /// Writes a finished run's tables, its figures if asked, and last its summary.json.
 ArtefactTiming writeArtefacts(const RunResult& result, const std::string& outDir, bool figures,

@@ -148,15 +148,7 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
         range = seedRangeOf(parsed, "compare --from 1 --to 100");
         if (!range.error.empty()) return usageError(range.error);
     }
-    Shard shard;
-    if (const std::string text = parsed.text("--shard"); !text.empty()) {
-        std::string error;
-        const auto read = parseShard(text, &error);
-        if (!read) return usageError(error);
-        shard = *read;
-    }
-    // This shard's block of the range; a shard of more shards than seeds may have none.
-    const auto seeds = shardSeeds(range.first, range.last, shard);
+    const auto& seeds = range.seeds;  // this shard's block; none if it has no seed
     const auto a = loadForRun(parsed.experimentPath);
     if (!a) return kBadInput;
     const auto b = loadForRun(parsed.recordingPath);
@@ -171,7 +163,7 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
         std::fprintf(stderr, "error: %s\n", e.what());
         return kBadInput;
     }
-    const double runs = seeds ? double(seeds->second - seeds->first + 1) : 0.0;
+    const double runs = range.runs();
     if (!planAccepted(*a, runs, parsed.allowLongPlan) ||
         !planAccepted(*b, runs, parsed.allowLongPlan))
         return kBadInput;
@@ -205,15 +197,8 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
                 outDir, {a->name, b->name,
                          experimentFingerprint(parsed.experimentPath, *a) + "+" +
                              experimentFingerprint(parsed.recordingPath, *b),
-                         range.first, range.last, shard, c.records});
-            if (shard.count > 1)
-                std::printf("\nshard %d/%d of seeds %llu-%llu: %s\n", shard.index, shard.count,
-                            static_cast<unsigned long long>(range.first),
-                            static_cast<unsigned long long>(range.last),
-                            seeds ? (std::to_string(seeds->first) + "-" +
-                                     std::to_string(seeds->second))
-                                        .c_str()
-                                  : "no seeds");
+                         range.first, range.last, range.shard, c.records});
+            printShardBlock(range);
             std::printf("\n");
             for (const std::string& line : describeComparison(c)) std::printf("%s\n", line.c_str());
             failedRuns = static_cast<int>(c.failedRuns.size());

@@ -53,19 +53,11 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     std::string outDir = parsed.outDir;
     const SeedRange range = seedRangeOf(parsed, "seeds --from 1 --to 10");
     if (!range.error.empty()) return usageError(range.error);
-    Shard shard;
-    if (const std::string text = parsed.text("--shard"); !text.empty()) {
-        std::string error;
-        const auto read = parseShard(text, &error);
-        if (!read) return usageError(error);
-        shard = *read;
-    }
-    // This shard's block of the range; a shard of more shards than seeds may have none.
-    const auto seeds = shardSeeds(range.first, range.last, shard);
+    const auto& seeds = range.seeds;  // this shard's block; none if it has no seed
     const auto loaded = loadForRun(experimentPath);
     if (!loaded) return kBadInput;
     const ExperimentSpec& spec = *loaded;
-    const double runs = seeds ? double(seeds->second - seeds->first + 1) : 0.0;
+    const double runs = range.runs();
     if (!planAccepted(spec, runs, parsed.allowLongPlan)) return kBadInput;
     if (outDir.empty()) outDir = (fs::path("results") / (spec.name + "_seeds")).string();
     const auto claimed = claimOrSay(outDir, "seeds", spec, runFactsOf(spec), parsed.replace);
@@ -81,15 +73,8 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
             failedRuns = rates.runsFailed().count;
             // Every seed's whole outcome, so that shards merge into exactly one run's files.
             writeSeedShardFile(outDir, {spec.name, experimentFingerprint(experimentPath, spec),
-                                        range.first, range.last, shard, rates.seeds});
-            if (shard.count > 1)
-                std::printf("\nshard %d/%d of seeds %llu-%llu: %s\n", shard.index, shard.count,
-                            static_cast<unsigned long long>(range.first),
-                            static_cast<unsigned long long>(range.last),
-                            seeds ? (std::to_string(seeds->first) + "-" +
-                                     std::to_string(seeds->second))
-                                        .c_str()
-                                  : "no seeds");
+                                        range.first, range.last, range.shard, rates.seeds});
+            printShardBlock(range);
             printSeedRates(spec.name, rates, seeds ? seeds->first : range.first,
                            seeds ? seeds->second : range.first);
             return rates;

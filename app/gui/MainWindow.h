@@ -141,6 +141,8 @@ private:
     /// Draws a trial pair in the Compare tab and writes its table and figure into `dir`.
     void showTrialPair(const std::shared_ptr<const TrialPairRun>& pair, const QString& dir);
     void updateActions();
+    /// The progress bar counts the seeds first..last, from none.
+    void resetProgressToSeeds(std::uint64_t first, std::uint64_t last);
 
     LiveFeed feed_;
     RunController runs_;

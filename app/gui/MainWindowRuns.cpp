@@ -211,8 +211,7 @@ bool MainWindow::startSeeds(std::uint64_t first, std::uint64_t last) {
     seedsSpec_ = spec;
     seeds_->begin(name);
     tabs_->setCurrentWidget(seeds_);
-    progress_->setRange(0, static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX)));
-    progress_->setValue(0);
+    resetProgressToSeeds(first, last);
     log(tr("seeds run started: %1, seeds %2-%3, each a whole run on the simulated rig, %4 at a "
            "time, writing %5")
             .arg(name)
@@ -248,8 +247,7 @@ bool MainWindow::startComparison(const QString& otherPath, std::uint64_t first,
     compared_ = std::make_pair(*toRun, other);
     comparison_->begin(a, b, first, last);
     tabs_->setCurrentWidget(comparison_);
-    progress_->setRange(0, static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX)));
-    progress_->setValue(0);
+    resetProgressToSeeds(first, last);
     log(tr("comparison started: %1 (A) against %2 (B, %3), seeds %4-%5, trial by trial, %6 at a "
            "time, writing %7")
             .arg(a, b, otherPath)
@@ -407,6 +405,11 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
         showError(tr("The run stopped: %1. Every tap taken so far is in %2/data.")
                       .arg(QString::fromStdString(r.failure), dir));
     emit runEnded(!r.cancelled && r.failure.empty());
+}
+
+void MainWindow::resetProgressToSeeds(std::uint64_t first, std::uint64_t last) {
+    progress_->setRange(0, static_cast<int>(std::min<std::uint64_t>(last - first + 1, INT_MAX)));
+    progress_->setValue(0);
 }
 
 }  // namespace activetouch

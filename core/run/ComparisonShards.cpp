@@ -147,15 +147,7 @@ ComparisonShardFile readComparisonShardFile(const std::string& dir) {
     s.nameA = f.text("a");
     s.nameB = f.text("b");
     s.fingerprint = f.text("fingerprint");
-    const Json& range = need(f, "range");
-    if (!range.is_array() || range.size() != 2 || !range[0].is_number_unsigned() ||
-        !range[1].is_number_unsigned())
-        f.fail("range", "expected [first, last] seeds; the file is damaged");
-    std::tie(s.first, s.last) = pairAt<std::uint64_t>(f, j, "range");
-    if (s.first > s.last) f.fail("range", "expected [first, last] seeds; the file is damaged");
-    std::tie(s.shard.index, s.shard.count) = pairAt<int>(f, j, "shard");
-    if (s.shard.index < 1 || s.shard.index > s.shard.count)
-        f.fail("shard", "expected [K, N]; the file is damaged");
+    readShardPlace(f, &s.first, &s.last, &s.shard);
     const Json& seeds = need(f, "seeds");
     if (!seeds.is_array()) f.fail("seeds", "expected each seed's record; the file is damaged");
     for (std::size_t i = 0; i < seeds.size(); ++i)

@@ -209,6 +209,22 @@ void writeSeedShardFile(const std::string& dir, const SeedShardFile& f) {
                          {"outcomes", outcomes}});
 }
 
+void readShardPlace(const JsonFields& f, std::uint64_t* first, std::uint64_t* last, Shard* shard) {
+    static const Json kMissing;
+    const Json& range = f.has("range") ? f.raw("range") : kMissing;
+    const Json& part = f.has("shard") ? f.raw("shard") : kMissing;
+    if (!range.is_array() || range.size() != 2 || !range[0].is_number_unsigned() ||
+        !range[1].is_number_unsigned() || range[0].get<std::uint64_t>() > range[1].get<std::uint64_t>())
+        f.fail("range", "expected [first, last] seeds; the file is damaged");
+    if (!part.is_array() || part.size() != 2 || !part[0].is_number_integer() ||
+        !part[1].is_number_integer() || part[0].get<int>() < 1 ||
+        part[0].get<int>() > part[1].get<int>())
+        f.fail("shard", "expected [K, N]; the file is damaged");
+    *first = range[0].get<std::uint64_t>();
+    *last = range[1].get<std::uint64_t>();
+    *shard = {part[0].get<int>(), part[1].get<int>()};
+}
+
 SeedShardFile readSeedShardFile(const std::string& dir) {
     const std::string path = (fs::path(dir) / kShardFile).string();
     std::error_code ec;
@@ -222,18 +238,7 @@ SeedShardFile readSeedShardFile(const std::string& dir) {
     SeedShardFile s;
     s.experiment = f.text("experiment");
     s.fingerprint = f.text("fingerprint");
-    const Json& range = f.raw("range");
-    const Json& shard = f.raw("shard");
-    if (!range.is_array() || range.size() != 2 || !range[0].is_number_unsigned() ||
-        !range[1].is_number_unsigned() || range[0].get<std::uint64_t>() > range[1].get<std::uint64_t>())
-        f.fail("range", "expected [first, last] seeds; the file is damaged");
-    if (!shard.is_array() || shard.size() != 2 || !shard[0].is_number_integer() ||
-        !shard[1].is_number_integer() || shard[0].get<int>() < 1 ||
-        shard[0].get<int>() > shard[1].get<int>())
-        f.fail("shard", "expected [K, N]; the file is damaged");
-    s.first = range[0].get<std::uint64_t>();
-    s.last = range[1].get<std::uint64_t>();
-    s.shard = {shard[0].get<int>(), shard[1].get<int>()};
+    readShardPlace(f, &s.first, &s.last, &s.shard);
     const Json& outcomes = f.raw("outcomes");
     if (!outcomes.is_array()) f.fail("outcomes", "expected each seed's outcome");
     for (std::size_t i = 0; i < outcomes.size(); ++i)

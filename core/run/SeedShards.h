@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/io/JsonFields.h"
 #include "core/run/SeedRates.h"
 
 namespace activetouch {
@@ -42,6 +43,10 @@ std::string experimentFingerprint(const std::string& path, const ExperimentSpec&
 
 Json seedOutcomeJson(const SeedOutcome& o);
 SeedOutcome seedOutcomeFromJson(const Json& j, const std::string& source, const std::string& place);
+
+/// Reads a shard file's "range" ([first, last]) and "shard" ([K, N]); fails through `f`, naming
+/// the key, if either is missing or damaged.
+void readShardPlace(const JsonFields& f, std::uint64_t* first, std::uint64_t* last, Shard* shard);
 
 /// Writes <dir>/seed_outcomes.json atomically.
 void writeSeedShardFile(const std::string& dir, const SeedShardFile& file);
