@@ -55,8 +55,7 @@ bool boolAt(const JsonFields& f, const char* key) {
 
 /// The pair of values at `key` of `f`, each of type T.
 template <typename T>
-std::pair<T, T> pairAt(const JsonFields& f, const Json& j, const char* key) {
-    (void)j;
+std::pair<T, T> pairAt(const JsonFields& f, const char* key) {
     const Json& v = need(f, key);
     if (!v.is_array() || v.size() != 2) f.fail(key, "expected [a, b]; the file is damaged");
     try {
@@ -82,10 +81,10 @@ SeedPairRecord recordFromJson(const Json& j, const std::string& path, const std:
         if (!line.is_string()) f.fail("failed_runs", "expected a list of texts; the file is damaged");
         r.failedRuns.push_back(line.get<std::string>());
     }
-    std::tie(r.robotTimeA_s, r.robotTimeB_s) = pairAt<double>(f, j, "robot_time_s");
+    std::tie(r.robotTimeA_s, r.robotTimeB_s) = pairAt<double>(f, "robot_time_s");
     r.unpairedTrials = f.integer("unpaired_trials", 0, 1000000);
     r.paperResultApplies = boolAt(f, "paper_result_applies");
-    std::tie(r.paperResultA, r.paperResultB) = pairAt<bool>(f, j, "paper_result");
+    std::tie(r.paperResultA, r.paperResultB) = pairAt<bool>(f, "paper_result");
     const Json& trials = need(f, "trials");
     if (!trials.is_array()) f.fail("trials", "expected the paired trials; the file is damaged");
     for (std::size_t i = 0; i < trials.size(); ++i) {
@@ -104,12 +103,12 @@ SeedPairRecord recordFromJson(const Json& j, const std::string& path, const std:
         out.pair.label = t.text("label");
         out.pair.trial = t.integer("trial", 1, 1000000);
         std::tie(out.pair.outcomeA, out.pair.outcomeB) =
-            pairAt<std::string>(t, trials[i], "outcome");
-        std::tie(out.pair.namedA, out.pair.namedB) = pairAt<std::string>(t, trials[i], "named");
-        std::tie(out.completedA, out.completedB) = pairAt<bool>(t, trials[i], "completed");
-        std::tie(out.atCornerA, out.atCornerB) = pairAt<bool>(t, trials[i], "at_a_corner");
+            pairAt<std::string>(t, "outcome");
+        std::tie(out.pair.namedA, out.pair.namedB) = pairAt<std::string>(t, "named");
+        std::tie(out.completedA, out.completedB) = pairAt<bool>(t, "completed");
+        std::tie(out.atCornerA, out.atCornerB) = pairAt<bool>(t, "at_a_corner");
         out.recognitionApplies = boolAt(t, "recognition_applies");
-        std::tie(out.namedRightA, out.namedRightB) = pairAt<bool>(t, trials[i], "named_rightly");
+        std::tie(out.namedRightA, out.namedRightB) = pairAt<bool>(t, "named_rightly");
         r.trials.push_back(std::move(out));
     }
     return r;
