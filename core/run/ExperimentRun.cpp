@@ -9,19 +9,19 @@
 #include <memory>
 #include <optional>
 
-#include "core/run/OutputFiles.h"
-#include "core/run/RecordedRuns.h"
-#include "core/run/Sweeps.h"
-#include "core/run/RunFolder.h"
 #include "core/common/NumberText.h"
 #include "core/control/ControllerRange.h"
 #include "core/experiment/RunPlan.h"
 #include "core/geometry/ShapeLibrary.h"
+#include "core/recognition/ShapeRecognition.h"
 #include "core/records/FollowingRecording.h"
 #include "core/records/TapCsv.h"
-#include "core/recognition/ShapeRecognition.h"
-#include "core/validation/ClassRegions.h"
+#include "core/run/OutputFiles.h"
+#include "core/run/RecordedRuns.h"
 #include "core/run/ReplayRig.h"
+#include "core/run/RunFolder.h"
+#include "core/run/Sweeps.h"
+#include "core/validation/ClassRegions.h"
 
 namespace activetouch {
 namespace fs = std::filesystem;
@@ -155,23 +155,23 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
             progress.step = std::string(modeName(ts.mode)) + " following, " + ts.label + " trial " +
                             std::to_string(run.trial);
             int tapIndex = 0;
-            run.result =
-                runTrial(rig, result.classifier, result.classes, run.outline, setup,
-                         [&](const FollowedTap& tap) {
-                             if (recording)
-                                 recording->append(run.label, ts.mode, run.trial, tapIndex, tap);
-                             if (options.observer)
-                                 options.observer->tapTaken(
-                                     tap.record, std::string(modeName(ts.mode)) + " " + run.label +
-                                                     " trial " + std::to_string(run.trial) + ": " +
-                                                     tap.percept.shapeClass() + ", position " +
-                                                     std::to_string(tap.percept.position) + " -> " +
-                                                     ruleFor(tap.decision.rule).name);
-                             ++tapIndex;
-                             ++progress.tapsDone;
-                             if (options.observer) options.observer->progressed(progress);
-                             return !(options.observer && options.observer->stopRequested());
-                         });
+            run.result = runTrial(
+                rig, result.classifier, result.classes, run.outline, setup,
+                [&](const FollowedTap& tap) {
+                    if (recording) recording->append(run.label, ts.mode, run.trial, tapIndex, tap);
+                    if (options.observer)
+                        options.observer->tapTaken(
+                            tap.record,
+                            std::string(modeName(ts.mode)) + " " + run.label + " trial " +
+                                std::to_string(run.trial) + ": " + tap.percept.shapeClass() +
+                                ", position " + std::to_string(tap.percept.position) + " -> " +
+                                ruleFor(tap.decision.rule).name,
+                            RunObserver::Stage::Following);
+                    ++tapIndex;
+                    ++progress.tapsDone;
+                    if (options.observer) options.observer->progressed(progress);
+                    return !(options.observer && options.observer->stopRequested());
+                });
             if (replay && run.result.end == TrialEnd::LeftRecording)
                 noteWhereReplayLeft(*replayed[static_cast<std::size_t>(trialIndex)], run.result);
             result.robotTime_s += run.result.robotTime_s;
@@ -273,7 +273,8 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     }
     if (options.connected) checkRunnableOn(spec, *options.connected);
     std::unique_ptr<SceneRig> simulated;
-    if (!options.connected && !recorded) simulated = simulatedRigsOf(options).build(spec.scene, model);
+    if (!options.connected && !recorded)
+        simulated = simulatedRigsOf(options).build(spec.scene, model);
     if (simulated) {
         result.activeEffects = simulated->activeEffects();
     } else if (recorded) {
@@ -307,7 +308,8 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
                 tap.record,
                 "training set " + std::to_string(tap.dataSet) + ": " +
                     ClassSet::orientationName(result.classes.orientationDegOf(tap.cls)) +
-                    " edge, position " + std::to_string(result.classes.positionOf(tap.cls)));
+                    " edge, position " + std::to_string(result.classes.positionOf(tap.cls)),
+                RunObserver::Stage::Training);
         ++progress.tapsDone;
         if (options.observer) options.observer->progressed(progress);
         return !(options.observer && options.observer->stopRequested());
@@ -324,9 +326,8 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
         Rig rig = options.connected ? options.connected->rig : simulated->rig();
         const double robotStart_s = rig.clock.now_s();
         result.taps = collectTrainingTaps(
-            rig, simulated ? simulated->object() : spec.scene.object.outline(),
-            result.classes, spec.training,
-            RandomStream::derived(spec.scene.seed, "protocol:placement"), onTap);
+            rig, simulated ? simulated->object() : spec.scene.object.outline(), result.classes,
+            spec.training, RandomStream::derived(spec.scene.seed, "protocol:placement"), onTap);
         result.robotTime_s = rig.clock.now_s() - robotStart_s;
     }
     if (simulated) result.tapsSimulated = simulated->tapsSimulated();

@@ -1,7 +1,7 @@
 #pragma once
 // Running an experiment end to end, on the simulated rig or on a connected one, and writing its
-// artefacts (docs/design.md §5): summary.json, data/*.csv (taps appended as they are taken), and the
-// tables behind every figure. Figures are drawn by app/figures from the same result.
+// artefacts (docs/design.md §5): summary.json, data/*.csv (taps appended as they are taken), and
+// the tables behind every figure. Figures are drawn by app/figures from the same result.
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -12,8 +12,8 @@
 #include "core/classify/HistogramClassifier.h"
 #include "core/control/ContourFollower.h"
 #include "core/experiment/Experiment.h"
-#include "core/records/FollowingRecording.h"
 #include "core/recognition/PathHistogram.h"
+#include "core/records/FollowingRecording.h"
 #include "core/rig/Rig.h"
 #include "core/run/SimulatedRigs.h"
 #include "core/run/SweepResults.h"
@@ -35,10 +35,14 @@ struct RunProgress {
 class RunObserver {
 public:
     virtual ~RunObserver() = default;
+    /// Which part of the run a tap belongs to: training and test taps are taken on a class the
+    /// run chose; following taps are perceived.
+    enum class Stage { Training, Following };
     /// A tap as it is taken, with a sentence saying what it was ("active cross trial 1: ...").
-    virtual void tapTaken(const TapRecord& tap, const std::string& what) {
+    virtual void tapTaken(const TapRecord& tap, const std::string& what, Stage stage) {
         (void)tap;
         (void)what;
+        (void)stage;
     }
     /// How far the run has got: after every tap, and as each step begins.
     virtual void progressed(const RunProgress& progress) { (void)progress; }
@@ -129,7 +133,8 @@ struct RunOptions {
     std::function<void()> beforeWriting;
 };
 
-/// `options.simulated`; throws std::logic_error when a run that needs simulated rigs was given none.
+/// `options.simulated`; throws std::logic_error when a run that needs simulated rigs was given
+/// none.
 const SimulatedRigs& simulatedRigsOf(const RunOptions& options);
 
 /// Refuses, before any tap, what cannot run on `connected`: a scene or trial whose object is not

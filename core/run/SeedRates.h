@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/io/OutputFile.h"
 #include "core/run/ExperimentRun.h"
 #include "core/run/SeedPool.h"
-#include "core/io/OutputFile.h"
 
 namespace activetouch {
 
@@ -200,8 +200,8 @@ struct SeedRates {
 /// appended to <outDir>/rates.csv as it finishes, in seed order, and <outDir>/rates.json is
 /// written at the end. `seedDone` sees each outcome in seed order; returning false stops after
 /// that seed.
-SeedRates runSeeds(const SimulatedRigs& rigs, const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
-                   const std::string& outDir,
+SeedRates runSeeds(const SimulatedRigs& rigs, const ExperimentSpec& spec, std::uint64_t first,
+                   std::uint64_t last, const std::string& outDir,
                    const std::function<bool(const SeedOutcome&)>& seedDone = {},
                    int jobs = defaultSeedJobs());
 
@@ -219,5 +219,15 @@ void appendRatesRow(OutputFile& file, const SeedOutcome& outcome);
 /// completed active trial and a whole run cost in taps and robot time, and how closely the
 /// completed trials of each mode traced the contour.
 std::vector<std::string> describeRates(const SeedRates& rates);
+
+/// One entry of the rates report: a rate (count of total, with its interval) or a note, and how
+/// far it is indented under the entry it belongs to.
+struct ReportRow {
+    std::string what;
+    std::optional<Rate> rate;  ///< none: a note
+    int indent = 0;
+};
+/// The rates report as entries, in the order describeRates writes them (the window's table).
+std::vector<ReportRow> rateReport(const SeedRates& rates);
 
 }  // namespace activetouch

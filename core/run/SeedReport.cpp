@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <optional>
 
 #include "core/run/OutputFiles.h"
@@ -17,7 +18,6 @@ Json shortJson(const ShortOfPaper& s) {
             {"active_trial_lost", s.activeLost},
             {"path_misnamed_paper_rule", s.misnamedRaw}};
 }
-
 
 Json tracingJson(const Tracing& t) {
     return {{"trials", t.trials},
@@ -116,15 +116,28 @@ Json seedRatesJson(const SeedRates& r) {
             {"intervals", "Wilson score, 95 %"}};
 }
 
-std::vector<std::string> describeRates(const SeedRates& r) {
-    std::vector<std::string> lines;
+std::vector<ReportRow> rateReport(const SeedRates& r) {
+    std::vector<ReportRow> rows;
     char buf[200];
-    // Rate lines are written last, their counts as wide as the widest (four digits at least).
-    std::vector<std::pair<std::size_t, std::pair<std::string, Rate>>> rateLines;
-    auto line = [&](const std::string& what, const Rate& rate) {
-        rateLines.push_back({lines.size(), {what, rate}});
-        lines.emplace_back();
+    // An indented entry ("  per label") belongs to the one above it.
+    auto split = [](const std::string& text) {
+        ReportRow row;
+        std::size_t at = 0;
+        while (at < text.size() && text[at] == ' ') ++at;
+        row.indent = static_cast<int>(at / 2);
+        row.what = text.substr(at);
+        return row;
     };
+    auto line = [&](const std::string& what, const Rate& rate) {
+        ReportRow row = split(what);
+        row.rate = rate;
+        rows.push_back(row);
+    };
+    struct Lines {
+        std::vector<ReportRow>& rows;
+        std::function<ReportRow(const std::string&)> split;
+        void push_back(const std::string& text) { rows.push_back(split(text)); }
+    } lines{rows, split};
     auto perLabel = [&](const RatesByLabel& rates) {
         if (rates.size() > 1)
             for (const auto& [label, rate] : rates) line("  " + label, rate);
@@ -135,8 +148,8 @@ std::vector<std::string> describeRates(const SeedRates& r) {
         for (const SeedOutcome& o : r.seeds)
             if (o.failed())
                 lines.push_back("  seed " + std::to_string(o.seed) + ", " +
-                                std::to_string(o.trialsNotRun) + " trials not run: " +
-                                o.runFailure);
+                                std::to_string(o.trialsNotRun) +
+                                " trials not run: " + o.runFailure);
     }
     line("passive trials lost", r.passiveLost());
     perLabel(r.passiveLostByLabel());
@@ -202,42 +215,50 @@ std::vector<std::string> describeRates(const SeedRates& r) {
                       modeName(mode), 100.0 * t.coverage(), t.meanDistance_mm(), t.trials);
         lines.push_back(buf);
     }
+    return rows;
+}
+
+std::vector<std::string> describeRates(const SeedRates& r) {
+    const std::vector<ReportRow> rows = rateReport(r);
+    // Rate lines have their counts as wide as the widest (four digits at least).
     int digits = 4;
-    for (const auto& [at, rate] : rateLines)
-        digits = std::max(digits, static_cast<int>(std::to_string(rate.second.total).size()));
-    for (const auto& [at, entry] : rateLines) {
-        const auto& [what, rate] = entry;
-        if (rate.total == 0)
+    for (const ReportRow& row : rows)
+        if (row.rate)
+            digits = std::max(digits, static_cast<int>(std::to_string(row.rate->total).size()));
+    std::vector<std::string> lines;
+    char buf[300];
+    for (const ReportRow& row : rows) {
+        const std::string what = std::string(2 * std::size_t(row.indent), ' ') + row.what;
+        if (!row.rate)
+            lines.push_back(what);
+        else if (row.rate->total == 0)
             std::snprintf(buf, sizeof buf, "%-34s  none in this experiment", what.c_str());
         else
-            std::snprintf(buf, sizeof buf,
-                          "%-34s %*d / %-*d %5.1f %%  (95 %% interval %5.1f-%5.1f %%)",
-                          what.c_str(), digits, rate.count, digits, rate.total,
-                          100.0 * rate.fraction(), 100.0 * rate.low(), 100.0 * rate.high());
-        lines[at] = buf;
+            std::snprintf(
+                buf, sizeof buf, "%-34s %*d / %-*d %5.1f %%  (95 %% interval %5.1f-%5.1f %%)",
+                what.c_str(), digits, row.rate->count, digits, row.rate->total,
+                100.0 * row.rate->fraction(), 100.0 * row.rate->low(), 100.0 * row.rate->high());
+        if (row.rate) lines.push_back(buf);
     }
     return lines;
 }
 
 void startRatesTable(std::optional<OutputFile>& file, const std::string& outDir) {
-    startAppendedTable(
-        file, outDir, "rates.csv", "rates.json",
-        "seed,passive_trials,passive_lost,passive_lost_at_a_corner,active_trials,"
-        "active_completed,"
-        "recognition_trials,recognised_raw,recognised_smoothed,completed_taps,"
-        "completed_robot_time_s,"
-        "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
-        "valid_range_positions,"
-        "paper_result,paper_result_smoothed,active_failures,misnamed_paths,"
-        "passive_not_lost_at_a_corner,run_failure,trials_not_run\n");
+    startAppendedTable(file, outDir, "rates.csv", "rates.json",
+                       "seed,passive_trials,passive_lost,passive_lost_at_a_corner,active_trials,"
+                       "active_completed,"
+                       "recognition_trials,recognised_raw,recognised_smoothed,completed_taps,"
+                       "completed_robot_time_s,"
+                       "run_robot_time_s,validation_angle_error_deg,validation_position_error_mm,"
+                       "valid_range_positions,"
+                       "paper_result,paper_result_smoothed,active_failures,misnamed_paths,"
+                       "passive_not_lost_at_a_corner,run_failure,trials_not_run\n");
 }
 
 void appendRatesRow(OutputFile& file, const SeedOutcome& o) {
     // Where the experiment does not have the paper's parts, its result is left empty.
     const char* paper = !o.paperResultApplies() ? "" : o.paperResult() ? "1" : "0";
-    const char* smoothed = !o.paperResultApplies()   ? ""
-                           : o.paperResultSmoothed() ? "1"
-                                                     : "0";
+    const char* smoothed = !o.paperResultApplies() ? "" : o.paperResultSmoothed() ? "1" : "0";
     file.print("%llu,%d,%d,%d,%d,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.4f,%s,%s,%s,%s,%s,%s,%s,%d\n",
                static_cast<unsigned long long>(o.seed), o.passiveTrials, o.passiveLost,
                o.passiveLostAtCorner(), o.activeTrials, o.activeCompleted, o.recognitionTrials(),
@@ -249,8 +270,8 @@ void appendRatesRow(OutputFile& file, const SeedOutcome& o) {
     file.flush();
 }
 
-SeedRates runSeeds(const SimulatedRigs& rigs, const ExperimentSpec& spec, std::uint64_t first, std::uint64_t last,
-                   const std::string& outDir,
+SeedRates runSeeds(const SimulatedRigs& rigs, const ExperimentSpec& spec, std::uint64_t first,
+                   std::uint64_t last, const std::string& outDir,
                    const std::function<bool(const SeedOutcome&)>& seedDone, int jobs) {
     SeedRates rates;
     std::optional<OutputFile> file;
@@ -272,6 +293,5 @@ SeedRates runSeeds(const SimulatedRigs& rigs, const ExperimentSpec& spec, std::u
     }
     return rates;
 }
-
 
 }  // namespace activetouch
