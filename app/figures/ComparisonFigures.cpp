@@ -112,7 +112,10 @@ void addSettling(QCPAxisRect* rect, QCPLegend* legend, const PairedComparison& c
 
 bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& c, bool stacked) {
     const QString a = QString::fromStdString(c.nameA), b = QString::fromStdString(c.nameB);
-    startFigure(plot, QString("%1 (B) against %2 (A), %3 seeds").arg(b, a).arg(c.seeds));
+    startFigure(plot, QString("%1 (B) against %2 (A), %3 seeds").arg(b, a).arg(c.seeds),
+                QString("Robot time per run: A %1 min, B %2 min.")
+                    .arg(std::lround(c.meanRobotTimeA_s() / 60.0))
+                    .arg(std::lround(c.meanRobotTimeB_s() / 60.0)));
     std::vector<Part> rows;
     for (std::size_t i = 0; i < std::size(kPairedParts); ++i)
         if ((c.*kPairedParts[i].rate).pairs() > 0)
@@ -120,10 +123,7 @@ bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& c, bool st
     if (rows.empty()) return false;
 
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    QCPAxisRect* rect = addTitledPanel(grid, 0,
-                                       QString("robot time per run: A %1 min, B %2 min")
-                                           .arg(std::lround(c.meanRobotTimeA_s() / 60.0))
-                                           .arg(std::lround(c.meanRobotTimeB_s() / 60.0)),
+    QCPAxisRect* rect = addTitledPanel(grid, 0, "each outcome, B - A",
                                        "B - A with 95 % interval (percentage points)", "");
     addDifferences(rect, c, rows);
     if (c.soFar.empty()) return true;  // made up without its seeds: nothing to settle
@@ -134,6 +134,8 @@ bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& c, bool st
     sofar->axis(QCPAxis::atBottom)->setLabel("seeds compared");
     sofar->axis(QCPAxis::atLeft)->setLabel("B - A (percentage points)");
     addSettling(sofar, legend, c, rows);
+    // Side by side, the outcomes' names take the left panel's margin: it gets the wider column.
+    if (!stacked) grid->setColumnStretchFactors({1.4, 1.0});
     return true;
 }
 

@@ -30,10 +30,12 @@ bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& comparison
 bool buildTrialPairFigure(QCustomPlot& plot, const TrialPairRun& pair);
 
 /// The size compare is written at: wide, the two panels side by side.
-inline constexpr FigureSize kComparisonFigureSize{2200, 800, 150};
+inline constexpr FigureSize kComparisonFigureSize =
+    FigureSize::physical(kDoubleColumn_mm, 70, kFigureDpi);
 
 /// The size a trial pair is written at: one panel, its legend under it.
-inline constexpr FigureSize kTrialPairFigureSize{1400, 1300, 150};
+inline constexpr FigureSize kTrialPairFigureSize =
+    FigureSize::physical(kDoubleColumn_mm * 0.75, 125, kFigureDpi);
 
 /// Writes <outDir>/figures/<trialPairFileStem>.{png,pdf,svg}; returns the files. Throws
 /// std::runtime_error naming what could not be written.

@@ -2,6 +2,8 @@
 
 #include <QDir>
 #include <QFileInfo>
+#include <QPageSize>
+#include <QPdfWriter>
 #include <QSvgGenerator>
 #include <algorithm>
 #include <cmath>
@@ -57,7 +59,101 @@ bool fitToLayout(QCustomPlot& plot) {
     return fitEqualAspect(plot) || legends;
 }
 
-void layOutAt(QCustomPlot& plot, const FigureSize& size) {
+namespace {
+/// The plot's logical resolution: what its fonts' point sizes are turned into pixels at.
+double logicalDpi(const QCustomPlot& plot) {
+    const int dpi = plot.logicalDpiX();
+    return dpi > 0 ? dpi : 96.0;
+}
+
+/// The size a physical figure is laid out at: its size in the plot's logical pixels.
+QSize logicalSize(const QCustomPlot& plot, const FigureSize& size) {
+    const double dpi = logicalDpi(plot);
+    return {static_cast<int>(std::lround(size.width_mm / 25.4 * dpi)),
+            static_cast<int>(std::lround(size.height_mm / 25.4 * dpi))};
+}
+
+double pointsOf(const QFont& font, double dpi) {
+    return font.pointSizeF() > 0 ? font.pointSizeF() : font.pixelSize() * 72.0 / dpi;
+}
+}  // namespace
+
+std::function<void()> setJournalText(QCustomPlot& plot) {
+    const double dpi = logicalDpi(plot);
+    // Every font a figure draws text with, as a getter and a setter.
+    struct Text {
+        std::function<QFont()> get;
+        std::function<void(const QFont&)> set;
+    };
+    std::vector<Text> texts;
+    auto axis = [&](QCPAxis* a) {
+        texts.push_back(
+            {[a] { return a->labelFont(); }, [a](const QFont& f) { a->setLabelFont(f); }});
+        texts.push_back(
+            {[a] { return a->tickLabelFont(); }, [a](const QFont& f) { a->setTickLabelFont(f); }});
+        texts.push_back({[a] { return a->selectedLabelFont(); },
+                         [a](const QFont& f) { a->setSelectedLabelFont(f); }});
+        texts.push_back({[a] { return a->selectedTickLabelFont(); },
+                         [a](const QFont& f) { a->setSelectedTickLabelFont(f); }});
+    };
+    for (QCPLayoutElement* e : plot.plotLayout()->elements(true)) {
+        if (auto* rect = qobject_cast<QCPAxisRect*>(e)) {
+            for (QCPAxis* a : rect->axes()) axis(a);
+            for (QCPLayoutElement* inset : rect->insetLayout()->elements(true))
+                if (auto* legend = qobject_cast<QCPLegend*>(inset))
+                    for (int i = 0; i < legend->itemCount(); ++i)
+                        if (QCPAbstractLegendItem* item = legend->item(i))
+                            texts.push_back({[item] { return item->font(); },
+                                             [item](const QFont& f) { item->setFont(f); }});
+        } else if (auto* scale = qobject_cast<QCPColorScale*>(e)) {
+            axis(scale->axis());
+        } else if (auto* title = qobject_cast<QCPTextElement*>(e)) {
+            texts.push_back({[title] { return title->font(); },
+                             [title](const QFont& f) { title->setFont(f); }});
+        } else if (auto* legend = qobject_cast<QCPLegend*>(e)) {
+            for (int i = 0; i < legend->itemCount(); ++i)
+                if (QCPAbstractLegendItem* item = legend->item(i))
+                    texts.push_back({[item] { return item->font(); },
+                                     [item](const QFont& f) { item->setFont(f); }});
+        }
+    }
+    // Legends inside panels are in the panels' inset layouts, and so reached above; the plot's
+    // own legend may be anywhere.
+    if (plot.legend)
+        for (int i = 0; i < plot.legend->itemCount(); ++i)
+            if (QCPAbstractLegendItem* item = plot.legend->item(i))
+                texts.push_back({[item] { return item->font(); },
+                                 [item](const QFont& f) { item->setFont(f); }});
+    for (int i = 0; i < plot.itemCount(); ++i)
+        if (auto* text = qobject_cast<QCPItemText*>(plot.item(i)))
+            texts.push_back(
+                {[text] { return text->font(); }, [text](const QFont& f) { text->setFont(f); }});
+
+    double largest = 0.0;
+    for (const Text& t : texts) largest = std::max(largest, pointsOf(t.get(), dpi));
+    std::vector<std::pair<std::function<void(const QFont&)>, QFont>> before;
+    if (largest <= 0.0) return [] {};
+    const double factor = kLargestText_pt / largest;
+    for (const Text& t : texts) {
+        const QFont old = t.get();
+        before.emplace_back(t.set, old);
+        QFont f = old;
+        f.setPointSizeF(std::clamp(pointsOf(old, dpi) * factor, kSmallestText_pt, kLargestText_pt));
+        t.set(f);
+    }
+    return [before] {
+        for (const auto& [set, font] : before) set(font);
+    };
+}
+
+void layOutAt(QCustomPlot& plot, const FigureSize& asked) {
+    FigureSize size = asked;
+    if (asked.isPhysical()) {
+        setJournalText(plot);
+        const QSize logical = logicalSize(plot, asked);
+        size.width_px = logical.width();
+        size.height_px = logical.height();
+    }
     plot.resize(size.width_px, size.height_px);
     plot.setViewport(QRect(0, 0, size.width_px, size.height_px));
     plot.replot(QCustomPlot::rpImmediateRefresh);
@@ -74,8 +170,82 @@ QString figuresDirectory(const QString& outDir) {
     return dir;
 }
 
+namespace {
+/// Writes `plot`, laid out at `size` (physical), in each format: the PNG at size.dpi, the PDF
+/// and SVG at the size itself, their text as the fonts' point sizes.
+QStringList exportPhysical(QCustomPlot& plot, const QString& basePath, const QStringList& formats,
+                           const FigureSize& size) {
+    QStringList written;
+    const double dpi = logicalDpi(plot);
+    const QSize logical = logicalSize(plot, size);
+    const int w = logical.width(), h = logical.height();
+    for (const QString& format : formats) {
+        const QString file = basePath + "." + format.toLower();
+        bool ok = false;
+        if (format.compare("png", Qt::CaseInsensitive) == 0) {
+            // Scaled so that the image is the size's own pixels wide.
+            ok = plot.savePng(file, w, h, double(size.width_px) / w, -1, size.dpi,
+                              QCP::ruDotsPerInch);
+        } else if (format.compare("pdf", Qt::CaseInsensitive) == 0) {
+            QPdfWriter pdf(file);
+            pdf.setCreator("ActiveTouch Workbench");
+            pdf.setTitle(QFileInfo(basePath).baseName());
+            pdf.setResolution(static_cast<int>(dpi));
+            ok = pdf.setPageLayout(
+                QPageLayout(QPageSize(QSizeF(size.width_mm, size.height_mm), QPageSize::Millimeter,
+                                      QString(), QPageSize::ExactMatch),
+                            QPageLayout::Portrait, QMarginsF(0, 0, 0, 0)));
+            QCPPainter painter;
+            ok = ok && painter.begin(&pdf);
+            if (ok) {
+                painter.setMode(QCPPainter::pmVectorized);
+                painter.setMode(QCPPainter::pmNoCaching);
+                painter.setMode(QCPPainter::pmNonCosmetic);
+                plot.toPainter(&painter, w, h);
+                ok = painter.end();
+            }
+        } else if (format.compare("svg", Qt::CaseInsensitive) == 0) {
+            QSvgGenerator svg;
+            svg.setFileName(file);
+            svg.setResolution(static_cast<int>(dpi));
+            svg.setSize(QSize(w, h));
+            svg.setViewBox(QRect(0, 0, w, h));
+            svg.setTitle(QFileInfo(basePath).baseName());
+            QCPPainter painter;
+            ok = painter.begin(&svg);
+            if (ok) {
+                painter.setMode(QCPPainter::pmVectorized);
+                plot.toPainter(&painter, w, h);
+                ok = painter.end();
+            }
+        } else {
+            throw std::runtime_error("unknown figure format '" + format.toStdString() +
+                                     "'; use png, pdf or svg");
+        }
+        if (!ok || !QFileInfo(file).exists() || QFileInfo(file).size() == 0)
+            throw std::runtime_error("could not write " + file.toStdString() +
+                                     "; check the folder is writable");
+        written << file;
+    }
+    return written;
+}
+}  // namespace
+
 QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats,
                          const FigureSize& size) {
+    if (size.isPhysical()) {
+        const std::function<void()> restore = setJournalText(plot);
+        try {
+            FigureSize laidOut = size;
+            layOutAt(plot, laidOut);  // journal text again: already so, unchanged
+            QStringList written = exportPhysical(plot, basePath, formats, size);
+            restore();
+            return written;
+        } catch (...) {
+            restore();
+            throw;
+        }
+    }
     QStringList written;
     // Lay out once at the target size so that every format sees the same geometry.
     layOutAt(plot, size);

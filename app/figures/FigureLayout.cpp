@@ -11,7 +11,7 @@ namespace {
 constexpr const char* kMostPerLine = "mostEntriesPerLine";
 }  // namespace
 
-void startFigure(QCustomPlot& plot, const QString& title) {
+void startFigure(QCustomPlot& plot, const QString& title, const QString& caption) {
     plot.clearPlottables();
     plot.clearItems();
     plot.plotLayout()->clear();
@@ -20,13 +20,27 @@ void startFigure(QCustomPlot& plot, const QString& title) {
     plot.plotLayout()->addElement(0, 0,
                                   new QCPTextElement(&plot, title, QFont("Sans", 12, QFont::Bold)));
     plot.plotLayout()->setRowStretchFactor(0, 0.001);
+    if (caption.isEmpty()) return;
+    // The figure's figures (counts, rates, errors) go under it, as a caption does.
+    auto* text = new QCPTextElement(&plot, caption, QFont("Sans", 10));
+    text->setObjectName("caption");
+    text->setTextFlags(Qt::AlignLeft);
+    plot.plotLayout()->addElement(1, 0, text);
+    plot.plotLayout()->setRowStretchFactor(1, 0.001);
 }
 
 QCPLayoutGrid* addFigureRow(QCustomPlot& plot, double stretch) {
     auto* grid = new QCPLayoutGrid;
-    const int row = plot.plotLayout()->rowCount();
-    plot.plotLayout()->addElement(row, 0, grid);
-    plot.plotLayout()->setRowStretchFactor(row, stretch);
+    QCPLayoutGrid* layout = plot.plotLayout();
+    int row = layout->rowCount();
+    // Rows go above a caption, which stays last.
+    if (row > 1 && layout->element(row - 1, 0) &&
+        layout->element(row - 1, 0)->objectName() == "caption") {
+        layout->insertRow(row - 1);
+        --row;
+    }
+    layout->addElement(row, 0, grid);
+    layout->setRowStretchFactor(row, stretch);
     return grid;
 }
 
@@ -60,6 +74,14 @@ QCPColorGradient heatGradient() {
     QCPColorGradient gradient(QCPColorGradient::gpThermal);
     gradient.setColorStopAt(1.0, QColor(255, 225, 40));
     return gradient;
+}
+
+QColor taxelColour(int k) {
+    static const QColor palette[] = {
+        QColor(0, 114, 178),   QColor(230, 159, 0),   QColor(0, 158, 115), QColor(204, 121, 167),
+        QColor(86, 180, 233),  QColor(213, 94, 0),    QColor(0, 0, 0),     QColor(240, 228, 66),
+        QColor(127, 127, 127), QColor(148, 103, 189), QColor(140, 86, 75), QColor(23, 190, 207)};
+    return palette[((k % 12) + 12) % 12];
 }
 
 QColor seriesColour(int i) {

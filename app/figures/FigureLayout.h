@@ -19,8 +19,10 @@ class QCPColorGradient;
 
 namespace activetouch {
 
-/// Empties `plot` and puts `title` in row 0. Each panel fills its own legend.
-void startFigure(QCustomPlot& plot, const QString& title);
+/// Empties `plot` and puts `title` in row 0, and under the figure's rows a `caption` (if any):
+/// what the figure measured, as a caption gives it (lines broken with \n). Each panel fills its
+/// own legend.
+void startFigure(QCustomPlot& plot, const QString& title, const QString& caption = {});
 
 /// Appends a row holding a grid for panels; `stretch` weighs its height against the other rows.
 QCPLayoutGrid* addFigureRow(QCustomPlot& plot, double stretch);
@@ -37,6 +39,10 @@ QCPColorGradient heatGradient();
 
 /// The colour of the i-th series in a panel (a palette of 8, repeating).
 QColor seriesColour(int i);
+
+/// Taxel k's colour, the same in the window's views and every figure: twelve colours that stay
+/// distinct in print and for the common colour-vision deficiencies.
+QColor taxelColour(int k);
 
 /// Adds a panel at `column` of `grid`'s first row, titled, with axis labels.
 QCPAxisRect* addTitledPanel(QCPLayoutGrid* grid, int column, const QString& title,

@@ -141,15 +141,15 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
     const int bins = r.spec.recognition.bins;
     if (r.templates.empty()) {
         // Nothing recognised (no recognition step, or no run yet): no accuracy to claim.
-        startFigure(plot, QString("Figure 9 - recognition from %1 x %1 path histograms").arg(bins));
+        startFigure(plot, QString("Figure 9 - recognition from %1 × %1 path histograms").arg(bins));
         return false;
     }
-    startFigure(plot, QString("Figure 9 - recognition from %1 x %1 path histograms: %2 % (paper's "
-                              "rule), %3 % (smoothed, sigma %4 bins)")
-                          .arg(bins)
-                          .arg(100.0 * r.recognitionAccuracy, 0, 'f', 0)
-                          .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0)
-                          .arg(r.spec.recognition.smoothingSigmaBins));
+    startFigure(plot, QString("Figure 9 - recognition from %1 × %1 path histograms").arg(bins),
+                QString("Named rightly: %1 % (paper's rule),\n%2 % (smoothed histograms, "
+                        "σ = %3 bins).")
+                    .arg(100.0 * r.recognitionAccuracy, 0, 'f', 0)
+                    .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0)
+                    .arg(r.spec.recognition.smoothingSigmaBins));
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
     // One row per shape traced, in the order of the confusion tables beside the figure (the
     // templates' order: the paper's rectangle, cross, C, L).
@@ -262,32 +262,34 @@ const std::vector<RunFigure>& runFigures() {
              buildTapFigure(plot, r);
              return true;
          },
-         {1600, 1100, 150}},
+         FigureSize::physical(kDoubleColumn_mm, 122, kFigureDpi)},
         {"figure6_errors",
          [](QCustomPlot& plot, const RunResult& r) {
              if (!validated(r)) return false;
              buildErrorFigure(plot, r);
              return true;
          },
-         {1800, 1100, 150}},
+         FigureSize::physical(kDoubleColumn_mm, 115, kFigureDpi)},
         {"figure7_passive_paths",
          [](QCustomPlot& plot, const RunResult& r) {
              return validated(r) && buildPathFigure(plot, r, FollowingMode::Passive,
                                                     "Figure 7 - passive contour following (PCF)");
          },
-         {1100, 1000, 150}},
+         FigureSize::physical(kDoubleColumn_mm, 160, kFigureDpi)},
         {"figure8_active_paths",
          [](QCustomPlot& plot, const RunResult& r) {
              return validated(r) && buildPathFigure(plot, r, FollowingMode::Active,
                                                     "Figure 8 - active contour following (ACF)");
          },
-         {1600, 1500, 150}},
-        {"figure9_recognition", afterValidation<buildRecognitionFigure>, {1900, 1700, 150}},
-        {"sweep_a_sequential_perception",
-         afterValidation<buildPerceptionSweepFigure>,
-         {1600, 800, 150}},
-        {"sweep_b_following", afterValidation<buildFollowingSweepFigure>, {2100, 800, 150}},
-        {"sweep_c_compute", afterValidation<buildComputeSweepFigure>, {1600, 800, 150}},
+         FigureSize::physical(kDoubleColumn_mm, 167, kFigureDpi)},
+        {"figure9_recognition", afterValidation<buildRecognitionFigure>,
+         FigureSize::physical(kDoubleColumn_mm, 210, kFigureDpi)},
+        {"sweep_a_sequential_perception", afterValidation<buildPerceptionSweepFigure>,
+         FigureSize::physical(kDoubleColumn_mm, 89, kFigureDpi)},
+        {"sweep_b_following", afterValidation<buildFollowingSweepFigure>,
+         FigureSize::physical(kDoubleColumn_mm, 100, kFigureDpi)},
+        {"sweep_c_compute", afterValidation<buildComputeSweepFigure>,
+         FigureSize::physical(kDoubleColumn_mm, 89, kFigureDpi)},
     };
     return figures;
 }

@@ -20,7 +20,8 @@ bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QStri
                           bool stacked = false);
 
 /// The size seed_rates is written at: wide, the two panels side by side.
-inline constexpr FigureSize kSeedFigureSize{2000, 900, 150};
+inline constexpr FigureSize kSeedFigureSize =
+    FigureSize::physical(kDoubleColumn_mm, 85, kFigureDpi);
 
 /// Writes <outDir>/figures/seed_rates.{png,pdf,svg} at kSeedFigureSize; returns the files. Throws
 /// std::runtime_error naming what could not be written.

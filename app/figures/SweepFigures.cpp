@@ -65,7 +65,7 @@ bool buildPerceptionSweepFigure(QCustomPlot& plot, const RunResult& r) {
         angle << row.angleError_deg;
         position << row.positionError_mm;
     }
-    auto* a = addTitledPanel(grid, 0, "angle error", "mean taps per decision", "angle error (deg)");
+    auto* a = addTitledPanel(grid, 0, "angle error", "mean taps per decision", "angle error (°)");
     auto* p =
         addTitledPanel(grid, 1, "position error", "mean taps per decision", "position error (mm)");
     auto* la = addLegend(a);
@@ -90,16 +90,19 @@ bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& r) {
         "Accuracy costs time (b): contour following against step lengths and belief threshold");
     if (rows.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    auto* completion = addTitledPanel(grid, 0, "completion (single-tap decisions)",
-                                      "follow step (mm)", "trials completed (%)");
-    auto* time = addTitledPanel(grid, 1, "robot time per completed trial (single tap)",
-                                "follow step (mm)", "robot time per completion (s)");
-    auto* trade = addTitledPanel(grid, 2, "every active setting: time against path error",
-                                 "mean distance of taps to the contour (mm)",
-                                 "robot time per completion (s)");
-    auto* lc = addLegend(completion);
-    auto* lt = addLegend(time);
-    auto* lx = addLegend(trade);
+    // Completion may sit anywhere from 0 to 100 %: these legends go under their panels.
+    const auto [completion, lc] = addPanelWithLegendBelow(grid, 0, 0, /*perLine=*/1);
+    setPanelTitle(completion, "completion (single-tap decisions)");
+    completion->axis(QCPAxis::atBottom)->setLabel("follow step (mm)");
+    completion->axis(QCPAxis::atLeft)->setLabel("trials completed (%)");
+    const auto [time, lt] = addPanelWithLegendBelow(grid, 0, 1, /*perLine=*/1);
+    setPanelTitle(time, "robot time (single-tap decisions)");
+    time->axis(QCPAxis::atBottom)->setLabel("follow step (mm)");
+    time->axis(QCPAxis::atLeft)->setLabel("robot time per completion (s)");
+    const auto [trade, lx] = addPanelWithLegendBelow(grid, 0, 2, /*perLine=*/1);
+    setPanelTitle(trade, "time against path error");
+    trade->axis(QCPAxis::atBottom)->setLabel("mean distance of taps to the contour (mm)");
+    trade->axis(QCPAxis::atLeft)->setLabel("robot time per completion (s)");
     std::map<std::pair<int, double>,
              std::pair<QVector<double>, std::pair<QVector<double>, QVector<double>>>>
         lines;
@@ -164,7 +167,7 @@ bool buildComputeSweepFigure(QCustomPlot& plot, const RunResult& r) {
     if (rows.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
     auto* a =
-        addTitledPanel(grid, 0, "angle error", "microseconds per decision", "angle error (deg)");
+        addTitledPanel(grid, 0, "angle error", "microseconds per decision", "angle error (°)");
     auto* p = addTitledPanel(grid, 1, "position error", "microseconds per decision",
                              "position error (mm)");
     auto* la = addLegend(a);

@@ -10,15 +10,6 @@
 namespace activetouch {
 namespace {
 
-// Twelve colours that stay distinct in print and for the common colour-vision deficiencies.
-QColor taxelColour(int k) {
-    static const QColor palette[] = {
-        QColor(0, 114, 178),   QColor(230, 159, 0),   QColor(0, 158, 115), QColor(204, 121, 167),
-        QColor(86, 180, 233),  QColor(213, 94, 0),    QColor(0, 0, 0),     QColor(240, 228, 66),
-        QColor(127, 127, 127), QColor(148, 103, 189), QColor(140, 86, 75), QColor(23, 190, 207)};
-    return palette[k % 12];
-}
-
 void integerTicks(QCPAxis* axis, double step) {
     QSharedPointer<QCPAxisTickerFixed> t(new QCPAxisTickerFixed);
     t->setTickStep(step);
@@ -144,16 +135,16 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         bool angle;
         const char* unit;
     };
-    const Heat heats[2] = {
-        {"A  angle error", maxAngle, true, "angle error (deg)"},
-        {"B  position error", maxPosition, false, "position error (mm, top colour = at or above)"}};
-    startFigure(plot, QString("Figure 6 - offline validation over %1 test taps: angle error %2 "
-                              "deg, position error %3 mm; noise floor %4 counts%5")
-                          .arg(r.validation.percepts.size())
-                          .arg(r.validation.angleError_deg, 0, 'f', 1)
-                          .arg(r.validation.positionError_mm, 0, 'f', 2)
-                          .arg(r.noiseFloor_counts, 0, 'f', 1)
-                          .arg(classifierTitleNote(r, false)));
+    const Heat heats[2] = {{"A  angle error", maxAngle, true, "angle error (°)"},
+                           {"B  position error", maxPosition, false, "position error (mm)"}};
+    startFigure(plot, "Figure 6 - offline validation" + classifierTitleNote(r, false),
+                QString("Over %1 test taps: angle error %2°, position error %3 mm;\nnoise "
+                        "floor %4 counts. In B, errors of %5 mm or more share the top colour.")
+                    .arg(r.validation.percepts.size())
+                    .arg(r.validation.angleError_deg, 0, 'f', 1)
+                    .arg(r.validation.positionError_mm, 0, 'f', 2)
+                    .arg(r.noiseFloor_counts, 0, 'f', 1)
+                    .arg(maxPosition));
     QCPLayoutGrid* upper = addFigureRow(plot, 1.0);
     for (int h = 0; h < 2; ++h) {
         auto* rect =
@@ -179,7 +170,8 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         rect->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
         scale->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
         rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
-        integerTicks(rect->axis(QCPAxis::atBottom), 1.0);
+        integerTicks(rect->axis(QCPAxis::atBottom),
+                     P > 12 ? 2.0 : 1.0);  // half a page: every other position
         rect->axis(QCPAxis::atLeft)->setRange(-0.5, O - 0.5);
     }
     // Heatmaps and their scales sit in row 0, columns 0..3; the line panels span below.
@@ -190,9 +182,9 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         const char* unit;
     };
     const Line lines[2] = {
-        {"C  angle error, mean over orientations +- 1 std", &r.validation.angleMean,
-         &r.validation.angleStd, "angle error (deg)"},
-        {"D  position error, mean over orientations +- 1 std", &r.validation.positionMean,
+        {"C  angle error, mean over orientations ± 1 s.d.", &r.validation.angleMean,
+         &r.validation.angleStd, "angle error (°)"},
+        {"D  position error, mean over orientations ± 1 s.d.", &r.validation.positionMean,
          &r.validation.positionStd, "position error (mm)"}};
     QCPLayoutGrid* lower = addFigureRow(plot, 1.0);
     for (int l = 0; l < 2; ++l) {

@@ -14,39 +14,38 @@ private slots:
         QStringList shards;
         for (int k = 1; k <= 3; ++k) {
             shards << dir_.filePath(QString("shard%1").arg(k));
-            const Outcome o = runCli({"seeds", paper, "--from", "1", "--to", "30", "--shard",
-                                      QString("%1/3").arg(k), "--out", shards.last(),
-                                      "--no-figures"});
+            const Outcome o =
+                runCli({"seeds", paper, "--from", "1", "--to", "30", "--shard",
+                        QString("%1/3").arg(k), "--out", shards.last(), "--no-figures"});
             QVERIFY2(o.exitCode == 0, qPrintable(o.err));
             QCOMPARE(linesIn(shards.last() + "/rates.csv"), 1 + 10);
         }
         const QString merged = dir_.filePath("merged"), whole = dir_.filePath("whole");
-        const Outcome m = runCli({"merge", shards[0], shards[1], shards[2], "--out", merged,
-                                  "--no-figures"});
+        const Outcome m =
+            runCli({"merge", shards[0], shards[1], shards[2], "--out", merged, "--no-figures"});
         QVERIFY2(m.exitCode == 0, qPrintable(m.err));
-        QVERIFY(runCli({"seeds", paper, "--from", "1", "--to", "30", "--out", whole,
-                        "--no-figures"})
-                    .exitCode == 0);
+        QVERIFY(
+            runCli({"seeds", paper, "--from", "1", "--to", "30", "--out", whole, "--no-figures"})
+                .exitCode == 0);
         for (const char* f : {"rates.json", "rates.csv", "seed_outcomes.json"}) {
             QFile a(merged + "/" + f), b(whole + "/" + f);
             QVERIFY(a.open(QIODevice::ReadOnly) && b.open(QIODevice::ReadOnly));
             QVERIFY2(a.readAll() == b.readAll(), f);
         }
         // Overlapping and missing shards are refused, naming the seeds and the folders.
-        const Outcome twice = runCli({"merge", shards[0], shards[1], shards[1], shards[2],
-                                      "--out", dir_.filePath("twice")});
+        const Outcome twice = runCli(
+            {"merge", shards[0], shards[1], shards[1], shards[2], "--out", dir_.filePath("twice")});
         QCOMPARE(twice.exitCode, 2);
         QVERIFY2(twice.err.contains("seeds 11-20 are in both " + shards[1]), qPrintable(twice.err));
-        const Outcome gap =
-            runCli({"merge", shards[0], shards[2], "--out", dir_.filePath("gap")});
+        const Outcome gap = runCli({"merge", shards[0], shards[2], "--out", dir_.filePath("gap")});
         QCOMPARE(gap.exitCode, 2);
         QVERIFY2(gap.err.contains("seeds 11-20 of 1-30 are in no shard given"),
                  qPrintable(gap.err));
         QVERIFY(!QFileInfo::exists(dir_.filePath("gap")));
         // Shards of other settings never merge.
         const QString other = dir_.filePath("other_shard");
-        QVERIFY(runCli({"seeds", sourceFile("experiments/paper_kernel.json"), "--from", "1",
-                        "--to", "30", "--shard", "2/3", "--out", other, "--no-figures"})
+        QVERIFY(runCli({"seeds", sourceFile("experiments/paper_kernel.json"), "--from", "1", "--to",
+                        "30", "--shard", "2/3", "--out", other, "--no-figures"})
                     .exitCode == 0);
         const Outcome mixed =
             runCli({"merge", shards[0], other, shards[2], "--out", dir_.filePath("mixed")});
@@ -64,18 +63,18 @@ private slots:
         QStringList shards;
         for (int k = 1; k <= 3; ++k) {
             shards << dir_.filePath(QString("cmp_shard%1").arg(k));
-            const Outcome o = runCli({"compare", a, b, "--from", "1", "--to", "6", "--shard",
-                                      QString("%1/3").arg(k), "--out", shards.back(),
-                                      "--no-figures"});
+            const Outcome o =
+                runCli({"compare", a, b, "--from", "1", "--to", "6", "--shard",
+                        QString("%1/3").arg(k), "--out", shards.back(), "--no-figures"});
             QVERIFY2(o.exitCode == 0, qPrintable(o.err));
         }
         const QString merged = dir_.filePath("cmp_merged"), whole = dir_.filePath("cmp_whole");
         const Outcome m = runCli({"merge", shards[2], shards[0], shards[1], "--out", merged});
         QVERIFY2(m.exitCode == 0, qPrintable(m.err));
         QVERIFY(QFile::exists(merged + "/figures/compare.png"));
-        QVERIFY(runCli({"compare", a, b, "--from", "1", "--to", "6", "--out", whole,
-                        "--no-figures"})
-                    .exitCode == 0);
+        QVERIFY(
+            runCli({"compare", a, b, "--from", "1", "--to", "6", "--out", whole, "--no-figures"})
+                .exitCode == 0);
         for (const char* file : {"compare.csv", "compare_so_far.csv", "compare.json"})
             QVERIFY2(linesOf(merged + "/" + file) == linesOf(whole + "/" + file), file);
         // A missing shard, one given twice, or a seeds shard among them is refused by name.
@@ -156,7 +155,8 @@ private slots:
         const QByteArray head = png.read(24);
         QVERIFY(head.startsWith("\x89PNG"));
         const auto byte = [&](int i) { return quint32(quint8(head[i])); };
-        QCOMPARE(byte(16) << 24 | byte(17) << 16 | byte(18) << 8 | byte(19), 2000u);  // width
+        // A double-column figure (178 mm) at 300 dpi.
+        QCOMPARE(byte(16) << 24 | byte(17) << 16 | byte(18) << 8 | byte(19), 2102u);  // width
 
         const QString single = dir_.filePath("seed3");
         QCOMPARE(runCli({"run", sourceFile("experiments/paper.json"), "--out", single, "--seed",
