@@ -12,9 +12,11 @@
 #include <QPlainTextEdit>
 #include <QPushButton>
 #include <QSerialPortInfo>
+#include <QSettings>
 #include <QSpinBox>
 #include <QVBoxLayout>
 
+#include "app/gui/ScrolledColumn.h"
 #include "app/gui/WholeFile.h"
 #include "devices/nxt/NxtUsbTransport.h"
 #include "devices/rigs/RigFile.h"
@@ -23,14 +25,81 @@ namespace activetouch {
 
 DevicesPanel::DevicesPanel(DeviceSession* session, QWidget* parent)
     : QWidget(parent), session_(session) {
-    auto* layout = new QVBoxLayout(this);
+    QVBoxLayout* layout = scrolledColumn(this);
     addConnectionButtons(layout);
     addStageBox(layout);
     addTapperBox(layout);
     addFingertipBox(layout);
     addRawLog(layout);
     refreshPorts();
+    restoreSettings();
     connectSession();
+    showConnected(false, {});
+}
+
+DevicesPanel::~DevicesPanel() {
+    saveSettings();
+}
+
+void DevicesPanel::restoreSettings() {
+    QSettings s;
+    s.beginGroup("devices");
+    auto index = [&s](QComboBox* box, const char* key) {
+        const int i = s.value(key, box->currentIndex()).toInt();
+        if (i >= 0 && i < box->count()) box->setCurrentIndex(i);
+    };
+    index(stageKind_, "stage");
+    index(dialect_, "dialect");
+    index(parity_, "parity");
+    index(tapperKind_, "tapper");
+    index(finger_, "finger");
+    index(carrier_, "carrier");
+    if (const QString port = s.value("serialPort").toString(); !port.isEmpty())
+        port_->setCurrentText(port);
+    baud_->setValue(s.value("baud", baud_->value()).toInt());
+    step_->setValue(s.value("jogStep", step_->value()).toDouble());
+    nameServerHost_->setText(s.value("nameServerHost", nameServerHost_->text()).toString());
+    nameServerPort_->setValue(s.value("nameServerPort", nameServerPort_->value()).toInt());
+    yarpPort_->setText(s.value("yarpPort", yarpPort_->text()).toString());
+    compensate_->setChecked(s.value("compensateRaw", compensate_->isChecked()).toBool());
+}
+
+void DevicesPanel::saveSettings() const {
+    QSettings s;
+    s.beginGroup("devices");
+    s.setValue("stage", stageKind_->currentIndex());
+    s.setValue("dialect", dialect_->currentIndex());
+    s.setValue("parity", parity_->currentIndex());
+    s.setValue("tapper", tapperKind_->currentIndex());
+    s.setValue("finger", finger_->currentIndex());
+    s.setValue("carrier", carrier_->currentIndex());
+    s.setValue("serialPort", port_->currentText());
+    s.setValue("baud", baud_->value());
+    s.setValue("jogStep", step_->value());
+    s.setValue("nameServerHost", nameServerHost_->text());
+    s.setValue("nameServerPort", nameServerPort_->value());
+    s.setValue("yarpPort", yarpPort_->text());
+    s.setValue("compensateRaw", compensate_->isChecked());
+}
+
+void DevicesPanel::showStatus(const QString& text, bool failure) {
+    status_->setText(text);
+    status_->setStyleSheet(failure ? "QLabel { color: #b00020; font-weight: bold; }"
+                                   : "QLabel { color: #1b5e20; }");
+    status_->setToolTip(text);
+    status_->setVisible(!text.isEmpty());
+}
+
+void DevicesPanel::showConnected(bool on, const QString& what) {
+    connected_ = on;
+    connect_->setText(on ? tr("Disconnect") : tr("Connect"));
+    stageState_->setText(on ? tr("connected: %1").arg(what) : tr("disconnected"));
+    stageState_->setToolTip(stageState_->text());
+    if (!on) tapperState_->setText(tr("disconnected"));
+    // What needs the devices works only while they are connected; what picks them, only while
+    // they are not (the connected devices are the ones the pickers show).
+    for (QWidget* w : needsDevices_) w->setEnabled(on);
+    for (QWidget* w : picksDevices_) w->setEnabled(!on);
 }
 
 void DevicesPanel::callSession(void (DeviceSession::*slot)()) {
@@ -41,7 +110,15 @@ void DevicesPanel::addConnectionButtons(QVBoxLayout* layout) {
     connect_ = new QPushButton(tr("Connect"));
     connect_->setObjectName("connectDevices");
     layout->addWidget(connect_);
+    status_ = new QLabel;
+    status_->setObjectName("deviceStatus");
+    status_->setWordWrap(true);
+    status_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    status_->hide();
+    layout->addWidget(status_);
     connect(connect_, &QPushButton::clicked, this, [this] {
+        saveSettings();
+        showStatus(connected_ ? tr("Disconnecting...") : tr("Connecting..."), false);
         if (connected_)
             QMetaObject::invokeMethod(session_, &DeviceSession::disconnectDevices,
                                       Qt::QueuedConnection);
@@ -63,6 +140,7 @@ void DevicesPanel::addConnectionButtons(QVBoxLayout* layout) {
            "<experiment> --rig <file>"));
     files->addWidget(openRig);
     files->addWidget(saveRig);
+    picksDevices_ << openRig;
     layout->addLayout(files);
     connect(openRig, &QPushButton::clicked, this, [this] {
         const QString path = QFileDialog::getOpenFileName(this, tr("Open rig file"), QString(),
@@ -99,9 +177,13 @@ void DevicesPanel::addStageBox(QVBoxLayout* layout) {
     portRow->addWidget(port_, 1);
     portRow->addWidget(refresh);
     stageState_ = new QLabel(tr("disconnected"));
+    stageState_->setObjectName("stageState");
     position_ = new QLabel("-");
     position_->setObjectName("stagePosition");
     limits_ = new QLabel("-");
+    // Long states wrap in the dock's width rather than widening it.
+    for (QLabel* l : {stageState_, position_, limits_}) l->setWordWrap(true);
+    picksDevices_ << stageKind_ << port_ << dialect_ << baud_ << parity_ << refresh;
     sf->addRow(tr("Device"), stageKind_);
     sf->addRow(tr("Port"), portRow);
     sf->addRow(tr("Dialect"), dialect_);
@@ -126,6 +208,7 @@ void DevicesPanel::addStageBox(QVBoxLayout* layout) {
         auto* b = new QPushButton(text);
         b->setObjectName("jog" + text);
         jog->addWidget(b, row, col);
+        needsDevices_ << b;
         connect(b, &QPushButton::clicked, this, [this, dx, dy] {
             const double s = step_->value();
             QMetaObject::invokeMethod(
@@ -138,7 +221,9 @@ void DevicesPanel::addStageBox(QVBoxLayout* layout) {
     jogButton("+x", 1, 2, 1, 0);
     jogButton("-y", 2, 1, 0, -1);
     auto* home = new QPushButton(tr("Home"));
+    home->setObjectName("home");
     jog->addWidget(home, 1, 1);
+    needsDevices_ << home;
     connect(home, &QPushButton::clicked, this, [this] { callSession(&DeviceSession::home); });
     sf->addRow(jog);
     gotoX_ = new QDoubleSpinBox;
@@ -151,6 +236,7 @@ void DevicesPanel::addStageBox(QVBoxLayout* layout) {
     gotoY_->setValue(121);
     auto* go = new QPushButton(tr("Go to"));
     go->setObjectName("goTo");
+    needsDevices_ << go;
     auto* goRow = new QHBoxLayout;
     goRow->addWidget(gotoX_);
     goRow->addWidget(gotoY_);
@@ -183,6 +269,10 @@ void DevicesPanel::addTapperBox(QVBoxLayout* layout) {
     threshold_->setSuffix(tr(" counts (total)"));
     auto* testTap = new QPushButton(tr("Test tap"));
     testTap->setObjectName("testTap");
+    tapperState_->setWordWrap(true);
+    battery_->setWordWrap(true);
+    needsDevices_ << testTap;
+    picksDevices_ << tapperKind_ << brick_;
     tf->addRow(tr("Devices"), tapperKind_);
     tf->addRow(tr("Brick"), brick_);
     tf->addRow(tr("Motor"), tapperState_);
@@ -212,6 +302,8 @@ void DevicesPanel::addFingertipBox(QVBoxLayout* layout) {
     carrier_ = new QComboBox;
     carrier_->addItems({tr("text (recommended)"), tr("binary (tested against the emulator only)")});
     compensate_ = new QCheckBox(tr("raw stream: compensate here (skinManager style)"));
+    picksDevices_ << nameServerHost_ << nameServerPort_ << yarpPort_ << finger_ << carrier_
+                  << compensate_;
     ff->addRow(tr("Name server"), [&] {
         auto* row = new QHBoxLayout;
         row->addWidget(nameServerHost_, 1);
@@ -224,7 +316,9 @@ void DevicesPanel::addFingertipBox(QVBoxLayout* layout) {
     ff->addRow(tr("Finger"), finger_);
     ff->addRow(tr("Carrier"), carrier_);
     ff->addRow(compensate_);
-    ff->addRow(new QLabel(tr("Used with the NXT tapper; its taxels show live in the Live tab.")));
+    auto* note = new QLabel(tr("Used with the NXT tapper; its taxels show live in the Live tab."));
+    note->setWordWrap(true);
+    ff->addRow(note);
     layout->addWidget(finger);
 }
 
@@ -242,10 +336,8 @@ void DevicesPanel::addRawLog(QVBoxLayout* layout) {
 
 void DevicesPanel::connectSession() {
     connect(session_, &DeviceSession::connectedChanged, this, [this](bool on, const QString& what) {
-        connected_ = on;
-        connect_->setText(on ? tr("Disconnect") : tr("Connect"));
-        stageState_->setText(on ? tr("connected: %1").arg(what) : tr("disconnected"));
-        if (!on) tapperState_->setText(tr("disconnected"));
+        showConnected(on, what);
+        showStatus(on ? tr("Connected: %1").arg(what) : tr("Disconnected."), false);
         const DeviceChoice c = choice();
         const bool yamaha = c.config.stage == RigConfig::StageKind::Yamaha;
         limits_->setText(!on      ? "-"
@@ -270,7 +362,12 @@ void DevicesPanel::connectSession() {
                 rawLog_->appendPlainText(device.leftJustified(9) + " " + dir + " " + text);
             });
     connect(session_, &DeviceSession::message, this, &DevicesPanel::log);
-    connect(session_, &DeviceSession::failed, this, &DevicesPanel::log);
+    // A failure shows on the panel, where the person who pressed the button is looking, and in
+    // the log.
+    connect(session_, &DeviceSession::failed, this, [this](const QString& m) {
+        showStatus(m, true);
+        emit log(tr("device error: %1").arg(m));
+    });
 }
 
 void DevicesPanel::refreshPorts() {

@@ -2,6 +2,7 @@
 // The device panels (docs/window.md): the XY stage (port, connect, home, jog, go-to, position, soft
 // limits), the NXT tapper (connect, battery, motor state, test tap, contact threshold) and the
 // fingertip source. Every button posts to the device thread; readouts update from its signals.
+#include <QList>
 #include <QWidget>
 
 #include "app/gui/DeviceSession.h"
@@ -22,6 +23,8 @@ class DevicesPanel : public QWidget {
     Q_OBJECT
 public:
     DevicesPanel(DeviceSession* session, QWidget* parent = nullptr);
+    /// Keeps the pickers' settings for the next start.
+    ~DevicesPanel() override;
     /// The scene the simulated devices connect to.
     void setScene(const SceneSpec& scene) { scene_ = scene; }
 
@@ -48,6 +51,12 @@ private:
     void addFingertipBox(QVBoxLayout* layout);
     void addRawLog(QVBoxLayout* layout);
     void connectSession();
+    /// The pickers as the last session left them (QSettings group "devices").
+    void restoreSettings();
+    void saveSettings() const;
+    /// A line on the panel under Connect: what the devices last said, a failure in red.
+    void showStatus(const QString& text, bool failure);
+    void showConnected(bool on, const QString& what);
     /// Queues `slot` to run in the session's thread.
     void callSession(void (DeviceSession::*slot)());
     void showRig(const RigConfig& rig);
@@ -63,6 +72,9 @@ private:
     QCheckBox* compensate_;
     QPlainTextEdit* rawLog_;
     QPushButton* connect_;
+    QLabel* status_;
+    QList<QWidget*> needsDevices_;  ///< enabled only while connected
+    QList<QWidget*> picksDevices_;  ///< enabled only while disconnected
     bool connected_ = false;
 };
 
