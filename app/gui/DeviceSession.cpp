@@ -210,10 +210,12 @@ void DeviceSession::testTap() {
         for (double v : r.tap.samples) peak = std::max(peak, v);
         const QString ending =
             r.ending == TapEnding::ContactReflex ? tr("reflex stop") : tr("stroke limit");
-        live_.publishTap(shown, tr("test tap: %1 at %2 mm indentation, peak %3 counts")
-                                    .arg(ending)
-                                    .arg(r.stopDepth_mm, 0, 'f', 2)
-                                    .arg(peak, 0, 'f', 0));
+        live_.publishTap(shown,
+                         tr("test tap: %1 at %2 mm indentation, peak %3 counts")
+                             .arg(ending)
+                             .arg(r.stopDepth_mm, 0, 'f', 2)
+                             .arg(peak, 0, 'f', 0),
+                         false);
         emit tapperState(tr("retracted (last tap: %1)").arg(ending));
     } catch (const RigError& e) {
         emit tapperState(tr("stopped after a fault"));
@@ -253,7 +255,7 @@ DeviceThread::DeviceThread(LiveFeed& live, QObject* parent)
 
 DeviceThread::~DeviceThread() {
     session_->interrupt();  // a tap or move in progress stops now
-    thread_.stop();  // bounded: every device call the session makes has a timeout
+    thread_.stop();         // bounded: every device call the session makes has a timeout
 }
 
 }  // namespace activetouch

@@ -15,16 +15,18 @@ public:
         Tap tap;                    ///< the most recent complete tap
         std::vector<double> frame;  ///< the most recent frame (may run ahead of `tap` when paced)
         Vec2 pose;
-        QString what;  ///< what the tap was, in a sentence
+        QString what;            ///< what the tap was, in a sentence
+        bool perceived = false;  ///< a following tap: `what` says its percept
         std::uint64_t tapSerial = 0;
         std::uint64_t frameSerial = 0;
     };
 
-    void publishTap(const TapRecord& record, const QString& what) {
+    void publishTap(const TapRecord& record, const QString& what, bool perceived) {
         std::lock_guard lock(mutex_);
         state_.tap = record.tap;
         state_.pose = record.pose;
         state_.what = what;
+        state_.perceived = perceived;
         ++state_.tapSerial;
     }
     void publishFrame(const double* frame, int taxels) {

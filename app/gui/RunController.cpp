@@ -7,8 +7,8 @@
 #include <thread>
 
 #include "app/figures/FollowingFigures.h"
-#include "core/run/RunFolder.h"
 #include "core/run/RunArtefacts.h"
+#include "core/run/RunFolder.h"
 #include "devices/simulated/SimulatedWorld.h"
 
 namespace activetouch {
@@ -28,8 +28,8 @@ public:
         emit c_.progress(p.tapsDone, p.tapsPlanned, QString::fromStdString(p.step), left);
     }
 
-    void tapTaken(const TapRecord& r, const std::string& what) override {
-        c_.live_.publishTap(r, QString::fromStdString(what));
+    void tapTaken(const TapRecord& r, const std::string& what, Stage stage) override {
+        c_.live_.publishTap(r, QString::fromStdString(what), stage == Stage::Following);
         if (pace_ == Pace::Fastest) return;  // the live view replays the newest tap
         // Pace the frames as the fingertip streams them; stop within a frame on cancel.
         for (int s = 0; s < r.tap.sampleCount() && !c_.cancel_; ++s) {
@@ -159,10 +159,9 @@ bool RunController::start(const ExperimentSpec& specIn, const QString& outDir, W
         options.observer = &observer;
         try {
             // The window asked before replacing a run in the folder (MainWindow::mayWriteRun).
-            const RunFolderClaim claim(options.outDir, recorded ? (recorded->replay() ? "replay" : "analyse") : "run",
-                                       spec.name,
-                                       runFactsOf(spec, recorded ? &recorded->taps : nullptr),
-                                       true);
+            const RunFolderClaim claim(
+                options.outDir, recorded ? (recorded->replay() ? "replay" : "analyse") : "run",
+                spec.name, runFactsOf(spec, recorded ? &recorded->taps : nullptr), true);
             auto result = std::make_shared<RunResult>(what == What::FollowingOnly
                                                           ? runFollowing(*trained, spec, options)
                                                           : runExperiment(spec, options));
@@ -200,8 +199,9 @@ bool RunController::startSeeds(const ExperimentSpec& spec, std::uint64_t first, 
         try {
             const RunFolderClaim claim(outDir.toStdString(), "seeds", spec.name, runFactsOf(spec),
                                        true);
-            auto rates = std::make_shared<SeedRates>(
-                runSeeds(simulatedRigs(), spec, first, last, outDir.toStdString(), [&](const SeedOutcome& o) {
+            auto rates = std::make_shared<SeedRates>(runSeeds(
+                simulatedRigs(), spec, first, last, outDir.toStdString(),
+                [&](const SeedOutcome& o) {
                     emit seedFinished(o);
                     const double left = clock.tick();
                     emit progress(clock.done, clock.planned,
@@ -229,8 +229,8 @@ bool RunController::startComparison(const ExperimentSpec& a, const ExperimentSpe
         try {
             const RunFolderClaim claim(outDir.toStdString(), "compare", a.name, runFactsOf(a),
                                        true);
-            auto comparison = std::make_shared<PairedComparison>(comparePaired(simulatedRigs(),
-                a, b, first, last, outDir.toStdString(),
+            auto comparison = std::make_shared<PairedComparison>(comparePaired(
+                simulatedRigs(), a, b, first, last, outDir.toStdString(),
                 [&](std::uint64_t seed, const std::vector<PairedTrial>& pairs,
                     const PairedComparison& soFar) {
                     emit comparisonSeedFinished(quint64(seed), pairs,
@@ -265,8 +265,8 @@ bool RunController::startTrialPair(const ExperimentSpec& a, const ExperimentSpec
                           .arg(QString::fromStdString(label)),
                       0.0);
         try {
-            auto pair =
-                std::make_shared<const TrialPairRun>(runTrialPair(simulatedRigs(), a, b, seed, mode, label, trial));
+            auto pair = std::make_shared<const TrialPairRun>(
+                runTrialPair(simulatedRigs(), a, b, seed, mode, label, trial));
             emit progress(1, 1, tr("seed %1 run in both experiments").arg(seed), 0.0);
             emit trialPairFinished(pair, outDir);
         } catch (const std::exception& e) {
