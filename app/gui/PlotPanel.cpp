@@ -2,17 +2,15 @@
 
 #include <QApplication>
 #include <QClipboard>
-#include <QComboBox>
-#include <QDialog>
-#include <QDialogButtonBox>
 #include <QFileDialog>
-#include <QFormLayout>
 #include <QMenu>
-#include <QSpinBox>
+#include <QMouseEvent>
+#include <QRegularExpression>
 #include <QTextStream>
 #include <QVBoxLayout>
 #include <stdexcept>
 
+#include "app/gui/ExportDialog.h"
 #include "app/gui/WholeFile.h"
 #include "qcustomplot.h"
 
@@ -26,6 +24,15 @@ PlotPanel::PlotPanel(const QString& name, QWidget* parent)
     plot_->setContextMenuPolicy(Qt::CustomContextMenu);
     plot_->setNoAntialiasingOnDrag(true);
     connect(plot_, &QWidget::customContextMenuRequested, this, &PlotPanel::showMenu);
+    // Exploring: the wheel zooms and a drag pans the panel under the cursor (both axes), a
+    // double-click goes back to the plot's own ranges, the value under the cursor is traced.
+    plot_->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
+    plot_->setMouseTracking(true);
+    plot_->installEventFilter(this);
+    plot_->setToolTip(
+        tr("Wheel: zoom; drag: pan; double-click: back to the whole plot; right "
+           "click: export"));
+    connect(plot_, &QCustomPlot::mouseDoubleClick, this, [this] { resetView(); });
     hint_->setObjectName("emptyHint");
     hint_->setAlignment(Qt::AlignCenter);
     hint_->setWordWrap(true);
@@ -35,6 +42,13 @@ PlotPanel::PlotPanel(const QString& name, QWidget* parent)
     connect(plot_, &QCustomPlot::afterReplot, this, &PlotPanel::updateEmptyHint);
     // An empty figure shows its hint alone: no bare 0..5 axis frame behind the words.
     connect(plot_, &QCustomPlot::beforeReplot, this, [this] {
+        // A figure drawn anew has ranges of its own: the last one's zoom no longer applies.
+        const void* first = plot_->plottableCount() > 0 ? plot_->plottable(0) : nullptr;
+        if (first != shownFigure_) {
+            shownFigure_ = first;
+            zoomed_ = false;
+            home_.clear();
+        }
         const bool shown = !waitsForData();
         QCPLayoutGrid* layout = plot_->plotLayout();
         for (int i = 0; i < layout->elementCount(); ++i)
@@ -52,12 +66,164 @@ PlotPanel::PlotPanel(const QString& name, QWidget* parent)
     // New tick labels can move the margins and so the shape again; a few rounds settle it, and
     // more are never asked for.
     connect(plot_, &QCustomPlot::afterLayout, this, [this] {
-        if (!fitToLayout(*plot_)) {
+        if (zoomed_ || !fitToLayout(*plot_)) {
             refits_ = 0;
             return;
         }
         if (++refits_ <= 3) plot_->replot(QCustomPlot::rpQueuedReplot);
     });
+}
+
+bool PlotPanel::eventFilter(QObject* watched, QEvent* event) {
+    if (watched == plot_) {
+        switch (event->type()) {
+            case QEvent::MouseButtonPress:
+            case QEvent::Wheel:
+                rememberHome();
+                break;
+            case QEvent::MouseMove:
+                traceAt(static_cast<QMouseEvent*>(event)->position());
+                break;
+            case QEvent::Leave:
+                hideTracer();
+                break;
+            default:
+                break;
+        }
+    }
+    return QWidget::eventFilter(watched, event);
+}
+
+void PlotPanel::rememberHome() {
+    if (zoomed_ || waitsForData()) return;
+    home_.clear();
+    for (QCPAxisRect* rect : plot_->axisRects())
+        for (QCPAxis* axis : rect->axes())
+            home_.append({axis, {axis->range().lower, axis->range().upper}});
+    zoomed_ = true;
+}
+
+void PlotPanel::resetView() {
+    for (const auto& [axis, range] : home_)
+        if (plot_->axisRects().contains(axis->axisRect()))
+            axis->setRange(range.first, range.second);
+    home_.clear();
+    zoomed_ = false;
+    plot_->replot(QCustomPlot::rpQueuedReplot);
+}
+
+namespace {
+/// "pressure (counts)" -> {"pressure", "counts"}; a label without a unit keeps it empty.
+QPair<QString, QString> quantityOf(const QString& label) {
+    static const QRegularExpression unit(R"(^(.*?)\s*\(([^()]*)\)\s*$)");
+    const QRegularExpressionMatch m = unit.match(label);
+    if (m.hasMatch()) return {m.captured(1), m.captured(2)};
+    return {label, QString()};
+}
+
+QString numberText(double v) {
+    return QString::number(v, 'g', 6);
+}
+}  // namespace
+
+QString PlotPanel::traceAt(const QPointF& pos) {
+    QCPAxisRect* rect = plot_->axisRectAt(pos);
+    if (!rect || waitsForData()) {
+        hideTracer();
+        return {};
+    }
+    if (!tracer_) {
+        tracer_ = new QCPItemTracer(plot_);
+        tracer_->setObjectName("valueTracer");
+        tracer_->setLayer("overlay");
+        tracer_->setStyle(QCPItemTracer::tsCircle);
+        tracer_->setSize(9);
+        tracer_->setPen(QPen(QColor(20, 20, 20), 1.5));
+        tracer_->setBrush(Qt::NoBrush);
+        tracer_->setInterpolating(false);
+        tracer_->setSelectable(false);
+        cursorLabel_ = new QCPItemText(plot_);
+        cursorLabel_->setObjectName("valueLabel");
+        cursorLabel_->setLayer("overlay");
+        cursorLabel_->setPadding(QMargins(4, 2, 4, 2));
+        cursorLabel_->setBrush(QColor(255, 255, 255, 230));
+        cursorLabel_->setPen(QPen(QColor(120, 120, 120)));
+        cursorLabel_->setPositionAlignment(Qt::AlignLeft | Qt::AlignBottom);
+        cursorLabel_->position->setType(QCPItemPosition::ptAbsolute);
+        cursorLabel_->setSelectable(false);
+    }
+    QCPAxis* xAxis = rect->axis(QCPAxis::atBottom);
+    QCPAxis* yAxis = rect->axis(QCPAxis::atLeft);
+    tracer_->setClipAxisRect(rect);
+    tracer_->position->setAxes(xAxis, yAxis);
+    tracer_->setGraph(nullptr);
+    auto named = [](QCPAxis* axis, double v) {
+        const auto [name, unit] = quantityOf(axis->label());
+        return QString("%1 %2%3").arg(name.isEmpty() ? QString("x") : name, numberText(v),
+                                      unit.isEmpty() ? QString() : " " + unit);
+    };
+    QString text;
+    int index = -1;
+    QCPAbstractPlottable* p = plot_->plottableAt(pos, false, &index);
+    if (p && p->keyAxis() && p->keyAxis()->axisRect() == rect && index >= 0) {
+        double key = 0, value = 0;
+        QString extra;
+        if (auto* g = qobject_cast<QCPGraph*>(p); g && index < g->dataCount()) {
+            key = g->dataMainKey(index);
+            value = g->dataMainValue(index);
+            tracer_->setGraph(g);
+            tracer_->setGraphKey(key);
+        } else if (auto* m = qobject_cast<QCPColorMap*>(p)) {
+            key = p->keyAxis()->pixelToCoord(pos.x());
+            value = p->valueAxis()->pixelToCoord(pos.y());
+            int kx = 0, vy = 0;
+            m->data()->coordToCell(key, value, &kx, &vy);
+            m->data()->cellToCoord(kx, vy, &key, &value);
+            const double cell = m->data()->cell(kx, vy);
+            const QString scale = m->colorScale() ? m->colorScale()->axis()->label() : QString();
+            const auto [name, unit] = quantityOf(scale);
+            extra = QString("\n%1 %2%3")
+                        .arg(name.isEmpty() ? tr("value") : name, numberText(cell),
+                             unit.isEmpty() ? QString() : " " + unit);
+        } else if (auto* d = dynamic_cast<QCPPlottableInterface1D*>(p);
+                   d && index < d->dataCount()) {
+            key = d->dataMainKey(index);
+            value = d->dataMainValue(index);
+        } else {
+            key = p->keyAxis()->pixelToCoord(pos.x());
+            value = p->valueAxis()->pixelToCoord(pos.y());
+        }
+        if (!tracer_->graph()) tracer_->position->setCoords(key, value);
+        const QString series = p->name().isEmpty() ? QString() : p->name() + "\n";
+        text = series + named(p->keyAxis(), key) + "\n" + named(p->valueAxis(), value) + extra;
+        tracer_->setVisible(true);
+    } else {
+        // Nothing within reach: the axes' values under the cursor.
+        text = named(xAxis, xAxis->pixelToCoord(pos.x())) + "\n" +
+               named(yAxis, yAxis->pixelToCoord(pos.y()));
+        tracer_->setVisible(false);
+    }
+    cursorLabel_->setText(text);
+    cursorLabel_->setClipToAxisRect(false);
+    // Beside the cursor, kept inside the plot.
+    const QPointF at(std::min(pos.x() + 12, double(plot_->width()) - 160),
+                     std::max(pos.y() - 8, 60.0));
+    cursorLabel_->position->setCoords(at);
+    cursorLabel_->setVisible(true);
+    plot_->layer("overlay")->replot();
+    return text;
+}
+
+QString PlotPanel::cursorText() const {
+    return cursorLabel_ && cursorLabel_->visible() ? cursorLabel_->text() : QString();
+}
+
+void PlotPanel::hideTracer() {
+    if (!tracer_ || !cursorLabel_) return;
+    if (!tracer_->visible() && !cursorLabel_->visible()) return;
+    tracer_->setVisible(false);
+    cursorLabel_->setVisible(false);
+    plot_->layer("overlay")->replot();
 }
 
 void PlotPanel::setEmptyHint(const QString& text) {
@@ -82,7 +248,9 @@ void PlotPanel::requestReplot() {
 
 QStringList PlotPanel::exportTo(const QString& basePath, const QStringList& formats,
                                 const FigureSize& size) {
-    // Export at the requested size, then restore the on-screen layout.
+    // Export at the requested size, then restore the on-screen layout; the cursor's label is
+    // not part of a figure.
+    hideTracer();
     const QSize shown = plot_->size();
     QStringList files;
     try {
@@ -100,32 +268,58 @@ QStringList PlotPanel::exportTo(const QString& basePath, const QStringList& form
 void PlotPanel::exportCsv(const QString& path) const {
     QByteArray bytes;
     QTextStream out(&bytes);
-    out << "plottable,name,x,y,value\n";
+    auto field = [](QString text) {
+        text.replace('"', "\"\"");
+        return text.contains(',') || text.contains('"') || text.contains('\n') ? '"' + text + '"'
+                                                                               : text;
+    };
+    out << "panel,series,x_quantity,x_unit,x,y_quantity,y_unit,y,value_quantity,value_unit,value\n";
     for (int i = 0; i < plot_->plottableCount(); ++i) {
         QCPAbstractPlottable* p = plot_->plottable(i);
-        const QString name = QString(p->name()).replace(',', ';');
+        if (!p->keyAxis() || !p->valueAxis()) continue;
+        QCPAxisRect* rect = p->keyAxis()->axisRect();
+        const QString panel = rect->axis(QCPAxis::atTop)->label();
+        const QString series = p->name().isEmpty() ? QString("series %1").arg(i) : p->name();
+        const auto [xName, xUnit] = quantityOf(p->keyAxis()->label());
+        const auto [yName, yUnit] = quantityOf(p->valueAxis()->label());
+        const QString head = field(panel) + ',' + field(series) + ',';
+        const QString xHead = field(xName) + ',' + field(xUnit) + ',';
+        const QString yHead = field(yName) + ',' + field(yUnit) + ',';
+        auto row = [&](double x, double y) {
+            out << head << xHead << numberText(x) << ',' << yHead << numberText(y) << ",,,\n";
+        };
         if (auto* g = qobject_cast<QCPGraph*>(p)) {
             for (auto it = g->data()->constBegin(); it != g->data()->constEnd(); ++it)
-                if (!qIsNaN(it->value))
-                    out << i << ',' << name << ',' << it->key << ',' << it->value << ",\n";
+                if (!qIsNaN(it->value)) row(it->key, it->value);
         } else if (auto* c = qobject_cast<QCPCurve*>(p)) {
             for (auto it = c->data()->constBegin(); it != c->data()->constEnd(); ++it)
-                out << i << ',' << name << ',' << it->key << ',' << it->value << ",\n";
+                if (!qIsNaN(it->value)) row(it->key, it->value);
         } else if (auto* b = qobject_cast<QCPBars*>(p)) {
             for (auto it = b->data()->constBegin(); it != b->data()->constEnd(); ++it)
-                out << i << ',' << name << ',' << it->key << ",," << it->value << '\n';
+                row(it->key, it->value);
         } else if (auto* m = qobject_cast<QCPColorMap*>(p)) {
+            const QString scale = m->colorScale() ? m->colorScale()->axis()->label() : QString();
+            const auto [vName, vUnit] = quantityOf(scale);
             QCPColorMapData* d = m->data();
             for (int x = 0; x < d->keySize(); ++x)
                 for (int y = 0; y < d->valueSize(); ++y) {
                     double kx, vy;
                     d->cellToCoord(x, y, &kx, &vy);
-                    out << i << ',' << name << ',' << kx << ',' << vy << ',' << d->cell(x, y)
-                        << '\n';
+                    out << head << xHead << numberText(kx) << ',' << yHead << numberText(vy) << ','
+                        << field(vName.isEmpty() ? QString("value") : vName) << ',' << field(vUnit)
+                        << ',' << numberText(d->cell(x, y)) << '\n';
                 }
         } else if (auto* e = qobject_cast<QCPErrorBars*>(p)) {
-            for (int k = 0; k < e->dataCount(); ++k)
-                out << i << ",error bars,," << ',' << e->data()->at(k).errorPlus << '\n';
+            // The half-width of each error bar, at its point of the series it belongs to.
+            QCPAbstractPlottable* of = e->dataPlottable();
+            auto* points = of ? dynamic_cast<QCPPlottableInterface1D*>(of) : nullptr;
+            for (int k = 0; k < e->dataCount(); ++k) {
+                const double x = points && k < points->dataCount() ? points->dataMainKey(k) : k;
+                const double y = points && k < points->dataCount() ? points->dataMainValue(k) : 0;
+                out << head << xHead << numberText(x) << ',' << yHead << numberText(y) << ','
+                    << "error (half-width)," << field(yUnit) << ','
+                    << numberText(e->data()->at(k).errorPlus) << '\n';
+            }
         }
     }
     out.flush();
@@ -162,39 +356,17 @@ void PlotPanel::showMenu(const QPoint& where) {
 }
 
 void PlotPanel::exportWithDialog() {
-    QDialog dialog(this);
-    dialog.setWindowTitle(tr("Export %1").arg(name_));
-    auto* form = new QFormLayout(&dialog);
-    auto* format = new QComboBox;
-    format->addItems({"png", "pdf", "svg"});
-    auto* width = new QSpinBox;
-    width->setRange(200, 10000);
-    width->setValue(1600);
-    width->setSuffix(" px");
-    auto* height = new QSpinBox;
-    height->setRange(200, 10000);
-    height->setValue(1100);
-    height->setSuffix(" px");
-    auto* dpi = new QSpinBox;
-    dpi->setRange(50, 1200);
-    dpi->setValue(150);
-    form->addRow(tr("Format"), format);
-    form->addRow(tr("Width"), width);
-    form->addRow(tr("Height"), height);
-    form->addRow(tr("Resolution (DPI)"), dpi);
-    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
-    form->addRow(buttons);
-    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
-    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    ExportDialog dialog(name_, plot_->width() > 0 ? double(plot_->height()) / plot_->width() : 0.7,
+                        this);
     if (dialog.exec() != QDialog::Accepted) return;
-    const QString path = QFileDialog::getSaveFileName(this, tr("Export %1").arg(name_),
-                                                      name_ + "." + format->currentText());
+    const QString format = dialog.format();
+    const QString path =
+        QFileDialog::getSaveFileName(this, tr("Export %1").arg(name_), name_ + "." + format);
     if (path.isEmpty()) return;
     QString base = path;
-    if (base.endsWith("." + format->currentText())) base.chop(format->currentText().size() + 1);
+    if (base.endsWith("." + format)) base.chop(format.size() + 1);
     try {
-        const QStringList files = exportTo(base, {format->currentText()},
-                                           {width->value(), height->value(), dpi->value()});
+        const QStringList files = exportTo(base, {format}, dialog.size());
         emit exported(tr("%1 written to %2").arg(name_, files.join(", ")));
     } catch (const std::exception& e) {
         emit failed(QString::fromStdString(e.what()));

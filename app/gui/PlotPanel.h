@@ -1,15 +1,22 @@
 #pragma once
-// A plot as the workbench shows it: a QCustomPlot with a context menu to export it (PNG, PDF, SVG
-// at a chosen size and DPI), copy it to the clipboard, or export the data behind it as CSV.
+// A plot as the workbench shows it: a QCustomPlot to explore (wheel zoom, drag pan, double-click
+// reset, the value under the cursor traced) with a context menu to export it (PNG, PDF, SVG at a
+// physical size and DPI, journal presets), copy it to the clipboard, or export the data behind it
+// as CSV with named columns and units.
 // Replots are coalesced: callers change data and call requestReplot(); a timer draws at most
 // once per frame. While a plot has nothing to draw it says, over the empty axes, what fills it.
 #include <QLabel>
+#include <QPointer>
 #include <QTimer>
 #include <QWidget>
 
 #include "app/figures/FigureExport.h"
 
 class QCustomPlot;
+class QCPItemTracer;
+class QCPItemText;
+class QCPRange;
+class QCPAxis;
 
 namespace activetouch {
 
@@ -32,15 +39,33 @@ public:
     /// Writes the plot in each format as <basePath>.<format>. Throws std::runtime_error.
     QStringList exportTo(const QString& basePath, const QStringList& formats,
                          const FigureSize& size);
-    /// Writes every plottable's data, long format: plottable,name,x,y,value.
+    /// Writes every plottable's data in long format, one row per point, each number beside its
+    /// quantity and unit (taken from the axis labels): panel, series, then x, y and value (a
+    /// colour map's cell) as name, unit and number.
     void exportCsv(const QString& path) const;
+
+    /// Whether the person has zoomed or panned away from the plot's own ranges.
+    bool isZoomed() const { return zoomed_; }
+    /// Back to the plot's own ranges (a double-click).
+    void resetView();
+    /// Traces the point under `pos` (plot coordinates): the nearest graph point or curve or map
+    /// cell within reach, else the axes' values there; returns what the label says.
+    QString traceAt(const QPointF& pos);
+    /// What the value label under the cursor says now (empty when hidden).
+    QString cursorText() const;
     void copyToClipboard();
 
 signals:
     void exported(const QString& what);
     void failed(const QString& message);
 
+protected:
+    bool eventFilter(QObject* watched, QEvent* event) override;
+
 private:
+    /// Before the first zoom or pan: keeps the plot's own ranges for resetView().
+    void rememberHome();
+    void hideTracer();
     void showMenu(const QPoint& where);
     void exportWithDialog();
     void updateEmptyHint();
@@ -52,6 +77,11 @@ private:
     QTimer replotTimer_;
     bool dirty_ = false;
     int refits_ = 0;  ///< equal-aspect refits in a row
+    bool zoomed_ = false;
+    QList<QPair<QCPAxis*, QPair<double, double>>> home_;  ///< each axis's own range
+    QPointer<QCPItemTracer> tracer_;  ///< the figure's code may clear the items: guarded
+    QPointer<QCPItemText> cursorLabel_;
+    const void* shownFigure_ = nullptr;  ///< the first plottable: a new one is a new figure
 };
 
 }  // namespace activetouch
