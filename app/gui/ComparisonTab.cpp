@@ -33,9 +33,11 @@ ComparisonTab::ComparisonTab(QWidget* parent) : QWidget(parent) {
            "(McNemar's test), more surely than two rates with overlapping intervals."));
     layout->addWidget(seeds_);
 
-    summary_ = seedsSummaryLabel("comparisonSummary",
-                                 tr("Compare the experiment as shown with another experiment "
-                                    "file over a range of seeds."));
+    summary_ = new SummaryTable("comparisonSummary",
+                                tr("Compare the experiment as shown with another experiment "
+                                   "file over a range of seeds."));
+    summary_->setColumns({tr("outcome"), tr("A"), tr("B"), tr("only A"), tr("only B"),
+                          tr("B − A (95 % interval)"), tr("McNemar p")});
     layout->addWidget(summary_);
     table_ = new QTableWidget(0, 6);
     table_->setObjectName("comparisonTrials");
@@ -122,7 +124,9 @@ void ComparisonTab::begin(const QString& a, const QString& b, std::uint64_t firs
     plot_->plot().clearItems();
     plot_->plot().clearPlottables();
     plot_->requestReplot();
-    summary_->setText(tr("A = %1, B = %2: running...").arg(a, b));
+    summaryText_ = tr("A = %1, B = %2: running...").arg(a, b);
+    summary_->setState(summaryText_);
+    summary_->clearRows();
 }
 
 void ComparisonTab::addSeed(std::uint64_t seed, const std::vector<PairedTrial>& pairs,
@@ -168,7 +172,48 @@ void ComparisonTab::show(const PairedComparison& comparison, const QString& stat
     for (const std::string& line : describeComparison(comparison))
         lines << QString::fromStdString(line);
     lines << state;
-    summary_->setText(lines.join('\n'));
+    summaryText_ = lines.join('\n');
+    summary_->setState(
+        tr("A = %1, B = %2, %3 seeds, trial by trial; %4")
+            .arg(QString::fromStdString(comparison.nameA), QString::fromStdString(comparison.nameB))
+            .arg(comparison.seeds)
+            .arg(state));
+    summary_->clearRows();
+    for (const std::string& f : comparison.failedRuns)
+        summary_->addNote(tr("run failed (device or rig error), its seed not compared: %1")
+                              .arg(QString::fromStdString(f)));
+    auto rate = [](const Rate& x) {
+        return QString("%1/%2 (%3 %)")
+            .arg(x.count)
+            .arg(x.total)
+            .arg(100.0 * x.fraction(), 0, 'f', 1);
+    };
+    auto points = [](double fraction) {
+        return QString("%1%2").arg(fraction >= 0 ? "+" : "").arg(100.0 * fraction, 0, 'f', 1);
+    };
+    for (const PairedPart& part : kPairedParts) {
+        const PairedRate& r = comparison.*part.rate;
+        if (r.pairs() == 0) continue;
+        summary_->addRow({QString::fromUtf8(part.name), rate(r.a()), rate(r.b()),
+                          QString::number(r.onlyA), QString::number(r.onlyB),
+                          QString("%1 (%2 to %3) points")
+                              .arg(points(r.difference()), points(r.differenceLow()),
+                                   points(r.differenceHigh())),
+                          QString::number(r.mcnemarP(), 'g', 3)});
+    }
+    summary_->addRow(
+        {tr("robot time per run"),
+         QString("%1 min").arg(comparison.meanRobotTimeA_s() / 60.0, 0, 'f', 0),
+         QString("%1 min").arg(comparison.meanRobotTimeB_s() / 60.0, 0, 'f', 0), "", "",
+         QString("%1%2 min")
+             .arg(comparison.meanRobotTimeB_s() >= comparison.meanRobotTimeA_s() ? "+" : "")
+             .arg((comparison.meanRobotTimeB_s() - comparison.meanRobotTimeA_s()) / 60.0, 0, 'f',
+                  1),
+         ""});
+    if (comparison.unpairedTrials > 0)
+        summary_->addNote(tr("%1 trials only one experiment has (label, mode or repeat) are not "
+                             "compared")
+                              .arg(comparison.unpairedTrials));
     buildComparisonFigure(plot_->plot(), comparison, /*stacked=*/true);
     plot_->requestReplot();
 }
@@ -178,11 +223,16 @@ void ComparisonTab::interrupted() {
     running_ = false;
     compare_->setEnabled(runnable_);
     updatePairButton();
-    summary_->setText(summary_->text() + tr("\nstopped: the seeds shown are all there are"));
+    summaryText_ += tr("\nstopped: the seeds shown are all there are");
+    summary_->setState(summary_->state() + tr("; stopped: the seeds shown are all there are"));
 }
 
 QString ComparisonTab::summaryText() const {
-    return summary_->text();
+    return summaryText_;
+}
+
+void ComparisonTab::requestComparison() {
+    emit compareRequested(seeds_->first(), seeds_->last());
 }
 
 }  // namespace activetouch

@@ -16,6 +16,8 @@ class QTableWidget;
 
 namespace activetouch {
 
+class SummaryTable;
+
 class PlotPanel;
 class SeedRangeBar;
 
@@ -26,6 +28,8 @@ public:
 
     /// Enables the compare button (an experiment is open and nothing is running).
     void setRunnable(bool runnable);
+    /// Asks for a comparison over the seeds the range shows (the Run menu).
+    void requestComparison();
 
     /// Empties the table for a comparison of `a` against `b` over the seeds `first` to `last`
     /// (which the seed boxes then show).
@@ -66,7 +70,8 @@ private:
     int seedsPlanned_ = 0;
     SeedRangeBar* seeds_;
     QPushButton *compare_, *showPair_;
-    QLabel* summary_;
+    SummaryTable* summary_;
+    QString summaryText_;
     QTableWidget* table_;
     PlotPanel *plot_, *pair_;
 };

@@ -1,11 +1,12 @@
 #pragma once
 // What the tabs that run over seeds share: the row that chooses the seeds, whose two boxes can
 // never be given backwards (raising the first raises the last with it, lowering the last lowers
-// the first), and the monospaced summary of their rates.
+// the first), and the table summarising their rates.
 #include <QWidget>
 #include <cstdint>
 
 class QLabel;
+class QTableWidget;
 class QPushButton;
 class QSpinBox;
 
@@ -30,8 +31,26 @@ private:
     QSpinBox *first_, *last_;
 };
 
-/// A summary of rates over seeds: monospaced so its columns line up, selectable, and cut at the
-/// right rather than widening the tab (the status bar and the log name the results folder too).
-QLabel* seedsSummaryLabel(const QString& objectName, const QString& text);
+/// A summary of rates over seeds as a table: a line saying what it summarises and how far the run
+/// has got, then one row per entry (a note spans the row). No cell's text is cut: the first
+/// column takes the room left and wraps, and every cell has its whole text as its tooltip.
+class SummaryTable : public QWidget {
+public:
+    SummaryTable(const QString& objectName, const QString& hint, QWidget* parent = nullptr);
+    void setColumns(const QStringList& headings);
+    void clearRows();
+    /// A row of `cells`, the first indented by `indent` levels under the row above.
+    void addRow(const QStringList& cells, int indent = 0);
+    /// A note across the whole row.
+    void addNote(const QString& text, int indent = 0);
+    void setState(const QString& text);
+    QString state() const;
+    QTableWidget* table() const { return table_; }
+
+private:
+    void fitHeight();
+    QLabel* state_;
+    QTableWidget* table_;
+};
 
 }  // namespace activetouch

@@ -40,13 +40,14 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     auto* left = new QWidget;
     auto* ll = new QVBoxLayout(left);
     ll->setContentsMargins(0, 0, 0, 0);
-    summary_ = seedsSummaryLabel("seedsSummary",
-                                 tr("Run the experiment over a range of seeds to see its rates."));
+    summary_ = new SummaryTable("seedsSummary",
+                                tr("Run the experiment over a range of seeds to see its rates."));
+    summary_->setColumns({tr("outcome"), tr("count"), tr("rate"), tr("95 % interval")});
     ll->addWidget(summary_);
     table_ = new QTableWidget(0, 9);
     table_->setHorizontalHeaderLabels(
         {tr("seed"), tr("passive\nlost"), tr("active\ncompleted"), tr("recognised\n(paper's rule)"),
-         tr("recognised\n(smoothed)"), tr("angle error\n(deg)"), tr("valid range\n(mm)"),
+         tr("recognised\n(smoothed)"), tr("angle error\n(°)"), tr("valid range\n(mm)"),
          tr("paper's result\nwhole"),
          tr("passive not lost at a corner,\nactive trials lost, paths misnamed")});
     for (int c = 0; c < 8; ++c)
@@ -185,13 +186,35 @@ void SeedsTab::interrupted() {
 }
 
 QString SeedsTab::summaryText() const {
-    return summary_->text();
+    return summaryText_;
 }
 
 void SeedsTab::showSummary(const QString& state) {
     QStringList lines{QString("%1 - %2").arg(experiment_, state)};
     for (const std::string& line : describeRates(rates_)) lines << QString::fromStdString(line);
-    summary_->setText(lines.join('\n'));
+    summaryText_ = lines.join('\n');
+    summary_->setState(lines.front());
+    summary_->clearRows();
+    for (const ReportRow& row : rateReport(rates_)) {
+        const QString what = QString::fromStdString(row.what);
+        if (!row.rate) {
+            summary_->addNote(what, row.indent);
+        } else if (row.rate->total == 0) {
+            summary_->addRow({what, tr("none in this experiment")}, row.indent);
+        } else {
+            const Rate& r = *row.rate;
+            summary_->addRow({what, QString("%1 / %2").arg(r.count).arg(r.total),
+                              QString("%1 %").arg(100.0 * r.fraction(), 0, 'f', 1),
+                              QString("%1–%2 %")
+                                  .arg(100.0 * r.low(), 0, 'f', 1)
+                                  .arg(100.0 * r.high(), 0, 'f', 1)},
+                             row.indent);
+        }
+    }
+}
+
+void SeedsTab::requestRun() {
+    emit runRequested(seeds_->first(), seeds_->last());
 }
 
 }  // namespace activetouch

@@ -17,6 +17,7 @@ namespace activetouch {
 
 class PlotPanel;
 class SeedRangeBar;
+class SummaryTable;
 
 class SeedsTab : public QWidget {
     Q_OBJECT
@@ -25,6 +26,8 @@ public:
 
     /// Enables the run buttons (an experiment is open and nothing is running).
     void setRunnable(bool runnable);
+    /// Asks for a run over the seeds the range shows (the Run menu).
+    void requestRun();
     /// The seed of the table's selected row, if a row is selected.
     std::optional<std::uint64_t> selectedSeed() const;
     /// The first seed shown that lost an active trial, if any.
@@ -61,7 +64,8 @@ private:
     SeedRangeBar* seeds_;
     QPushButton *run_, *runSeed_;
     QTableWidget* table_;
-    QLabel* summary_;
+    SummaryTable* summary_;
+    QString summaryText_;
     PlotPanel* plot_;
 };
 
