@@ -28,6 +28,7 @@ public:
     /// The scene the simulated devices connect to.
     void setScene(const SceneSpec& scene) { scene_ = scene; }
 
+    DeviceSession* session() const { return session_; }
     /// What the pickers say now.
     DeviceChoice choice() const;
 

@@ -76,6 +76,10 @@ QPointF FingertipView::centreOf(int k) const {
     return toWidget(t.x, t.z);
 }
 
+double FingertipView::discRadius() const {
+    return kTaxelRadius_mm * std::abs(toWidget(0, 1).x() - toWidget(0, 0).x());
+}
+
 void FingertipView::paintEvent(QPaintEvent*) {
     QPainter p(this);
     p.setRenderHint(QPainter::Antialiasing);
@@ -106,8 +110,7 @@ void FingertipView::paintEvent(QPaintEvent*) {
     p.setBrush(palette().alternateBase());
     p.drawPath(outline);
 
-    const double scale = std::abs(toWidget(0, 1).x() - toWidget(0, 0).x());
-    const double disc = kTaxelRadius_mm * scale;
+    const double disc = discRadius();
     for (int k = 0; k < int(fingertip_.taxels.size()); ++k) {
         const QPointF c = centreOf(k);
         p.setPen(QPen(taxelColour(k), std::max(2.0, disc * 0.3)));

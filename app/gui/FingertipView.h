@@ -26,6 +26,8 @@ public:
     QColor fillOf(int k) const;
     /// Where taxel `k`'s disc is drawn, in widget coordinates.
     QPointF centreOf(int k) const;
+    /// The radius taxel discs are drawn with, pixels.
+    double discRadius() const;
     /// The pressure colour for `counts` on the fixed 0-255 scale.
     static QColor pressureColour(double counts);
     double total() const { return history_.empty() ? 0.0 : history_.back(); }

@@ -11,6 +11,7 @@
 #include <QGroupBox>
 #include <QHBoxLayout>
 #include <QHeaderView>
+#include <QIcon>
 #include <QLabel>
 #include <QMessageBox>
 #include <QPlainTextEdit>
@@ -28,6 +29,7 @@
 
 #include "app/figures/ComparisonFigures.h"
 #include "app/figures/FollowingFigures.h"
+#include "app/figures/Installation.h"
 #include "app/figures/SeedFigures.h"
 #include "app/figures/SweepFigures.h"
 #include "app/figures/ValidationFigures.h"
@@ -41,33 +43,41 @@
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
 #include "app/gui/WholeFile.h"
-#include "core/run/ExperimentFiles.h"
-#include "core/run/RunFolder.h"
 #include "core/experiment/RunPlan.h"
-#include "core/run/SeedRates.h"
 #include "core/records/FollowingRecording.h"
 #include "core/records/TapCsv.h"
+#include "core/run/ExperimentFiles.h"
+#include "core/run/RunFolder.h"
+#include "core/run/SeedRates.h"
 #include "devices/simulated/SimulatedWorld.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), runs_(feed_), devices_(feed_) {
-    setWindowTitle(tr("ActiveTouch Workbench"));
+    setWindowTitle(tr("ActiveTouch Workbench[*]"));
     setObjectName("mainWindow");
+    setAcceptDrops(true);
+    setWindowIcon(QIcon(QDir(iconDirectory()).filePath("activetouch.svg")));
     QSettings settings;
-    outputBase_ = settings.value("outputBase", QDir::current().filePath("results")).toString();
+    resultsFolder_ = settings.value("resultsFolder", defaultResultsFolder()).toString();
+    outputBase_ = resultsFolder_;
     buildTabs();
     buildDocks();
     buildToolBar(settings);
     buildStatusBar();
+    buildMenus();
     connectRuns();
-    restoreGeometry(settings.value("geometry").toByteArray());
+    // The layout as built is the one Reset the layout goes back to; a saved one replaces it.
+    defaultState_ = saveState();
+    if (!restoreGeometry(settings.value("geometry").toByteArray())) fitToScreen();
     restoreState(settings.value("windowState").toByteArray());
     const QString last = settings.value("lastExperiment").toString();
-    const QString fallback = QDir(ACTIVETOUCH_SOURCE_DIR).filePath("experiments/paper.json");
+    const QString fallback = QDir(experimentsDirectory()).filePath("paper.json");
     if (!(QFileInfo::exists(last) && openExperiment(last)) && QFileInfo::exists(fallback))
         openExperiment(fallback);
+    connect(scene_, &ScenePanel::changed, this, &MainWindow::updateModified);
+    connect(protocol_, &ProtocolPanel::changed, this, &MainWindow::updateModified);
     updateActions();
 }
 
@@ -128,6 +138,9 @@ void MainWindow::buildDocks() {
     tabifyDockWidget(sceneDock, protocolDock);
     tabifyDockWidget(protocolDock, devicesDock);
     sceneDock->raise();
+    // The panels scroll: they start at a width that leaves the plots the room, and a person may
+    // widen them.
+    resizeDocks({sceneDock}, {380}, Qt::Horizontal);
     connect(protocol_, &ProtocolPanel::resetRequested, this, [this] {
         protocol_->showExperiment(spec_, experimentJson_);
         log(tr("protocol panel: the settings of %1 shown again").arg(experimentPath_));
@@ -145,26 +158,20 @@ void MainWindow::buildDocks() {
 
 void MainWindow::buildToolBar(const QSettings& settings) {
     auto* bar = addToolBar(tr("Run"));
+    runBar_ = bar;
     bar->setObjectName("runToolBar");
-    bar->addAction(tr("Open..."), this, [this] {
-        const QString path = QFileDialog::getOpenFileName(this, tr("Open an experiment"),
-                                                          QFileInfo(experimentPath_).path(),
-                                                          tr("Experiments (*.json)"));
-        if (!path.isEmpty()) openExperiment(path);
-    });
-    bar->addAction(tr("Save as..."), this, [this] {
-        const QString path = QFileDialog::getSaveFileName(
-            this, tr("Save the experiment"), experimentPath_, tr("Experiments (*.json)"));
-        if (!path.isEmpty()) saveExperiment(path);
-    });
+    bar->addAction(tr("Open..."), this, [this] { chooseExperiment(); });
+    bar->addAction(tr("Save as..."), this, [this] { chooseSaveAs(); });
     bar->addSeparator();
     runAll_ = bar->addAction(tr("Run whole protocol"), this,
                              [this] { startRun(RunController::What::Everything); });
     runAll_->setObjectName("runAll");
     runTraining_ = bar->addAction(tr("Run training && validation"), this,
                                   [this] { startRun(RunController::What::TrainingOnly); });
+    runTraining_->setObjectName("runTraining");
     runFollowing_ = bar->addAction(tr("Run following"), this,
                                    [this] { startRun(RunController::What::FollowingOnly); });
+    runFollowing_->setObjectName("runFollowing");
     analyse_ = bar->addAction(tr("Analyse recording..."), this, [this] {
         const QString path =
             QFileDialog::getOpenFileName(this, tr("Analyse recorded training and test taps"),
@@ -193,11 +200,10 @@ void MainWindow::buildToolBar(const QSettings& settings) {
     pace_->setCurrentIndex(settings.value("pace", 0).toInt());
     bar->addWidget(pace_);
     bar->addSeparator();
-    exportAll_ = bar->addAction(tr("Export all figures..."), this, [this] {
-        const QString dir =
-            QFileDialog::getExistingDirectory(this, tr("Export all figures into"), lastOutDir_);
-        if (!dir.isEmpty()) exportAllFigures(dir);
-    });
+    exportAll_ =
+        bar->addAction(tr("Export all figures..."), this, [this] { chooseExportFolder(); });
+    for (QAction* a : {runAll_, runTraining_, runFollowing_, analyse_, replay_, cancel_})
+        a->setToolTip(a->toolTip().isEmpty() ? a->text().remove('&') : a->toolTip());
 }
 
 void MainWindow::buildStatusBar() {
@@ -206,8 +212,18 @@ void MainWindow::buildStatusBar() {
     progress_->setValue(0);
     progress_->setFormat(tr("idle"));
     progress_->setMinimumWidth(320);
+    progress_->setMinimumWidth(200);
     status_ = new QLabel;
+    status_->setMinimumWidth(80);
+    resultsLabel_ = new QLabel;
+    resultsLabel_->setObjectName("resultsFolderLabel");
+    resultsLabel_->setTextFormat(Qt::RichText);
+    resultsLabel_->setMinimumWidth(80);
+    resultsLabel_->setMaximumWidth(420);
+    connect(resultsLabel_, &QLabel::linkActivated, this, [this] { openResultsFolder(); });
+    showResultsFolder();
     statusBar()->addPermanentWidget(status_, 1);
+    statusBar()->addPermanentWidget(resultsLabel_);
     statusBar()->addPermanentWidget(progress_);
 }
 
@@ -247,20 +263,11 @@ MainWindow::~MainWindow() {
 }
 
 QList<PlotPanel*> MainWindow::plotPanels() const {
-    return {live_->barsPanel(),
-            live_->tracesPanel(),
-            validation_->tapsPanel(),
-            validation_->errorsPanel(),
-            following_->activePanel(),
-            following_->passivePanel(),
-            following_->replayPanel(),
-            recognition_->panel(),
-            sweeps_->perceptionPanel(),
-            sweeps_->followingPanel(),
-            sweeps_->computePanel(),
-            seeds_->ratesPanel(),
-            comparison_->plotPanel(),
-            comparison_->pairPanel()};
+    return {live_->barsPanel(),         live_->tracesPanel(),      validation_->tapsPanel(),
+            validation_->errorsPanel(), following_->activePanel(), following_->passivePanel(),
+            following_->replayPanel(),  recognition_->panel(),     sweeps_->perceptionPanel(),
+            sweeps_->followingPanel(),  sweeps_->computePanel(),   seeds_->ratesPanel(),
+            comparison_->plotPanel(),   comparison_->pairPanel()};
 }
 
 void MainWindow::setPace(Pace pace) {
@@ -283,6 +290,10 @@ void MainWindow::showError(const QString& message) {
 
 bool MainWindow::openExperiment(const QString& path) {
     try {
+        if (!QFileInfo::exists(path))
+            throw InputError(path.toStdString(), "",
+                             "no such file; it may have been moved or deleted (File > Open "
+                             "experiment chooses another)");
         Json j;
         ExperimentSpec spec = loadCheckedExperiment(path.toStdString(), true, simulatedRigs(), &j);
         // Only a fully valid file replaces the session.
@@ -292,8 +303,12 @@ bool MainWindow::openExperiment(const QString& path) {
         scene_->showScene(spec_.scene);
         protocol_->showExperiment(spec_, experimentJson_);
         devicesPanel_->setScene(spec_.scene);
-        setWindowTitle(tr("ActiveTouch Workbench - %1").arg(QFileInfo(path).fileName()));
+        live_->setFingertip(spec_.scene.fingertip, spec_.scene.tap.contactThreshold);
+        setWindowTitle(tr("ActiveTouch Workbench - %1[*]").arg(QFileInfo(path).fileName()));
         QSettings().setValue("lastExperiment", path);
+        rememberRecent(path);
+        savedDocument_ = documentAsShown();
+        setWindowModified(false);
         log(tr("opened %1 (%2)").arg(path, QString::fromStdString(spec_.name)));
         for (const std::string& c : untrainedEdgeCautions(spec_))
             log(tr("caution: %1").arg(QString::fromStdString(c)));
@@ -348,6 +363,10 @@ bool MainWindow::saveExperiment(const QString& path) {
                                  "); free space on its disk or choose a writable place; the "
                                  "file is as it was");
         log(tr("saved %1").arg(path));
+        if (QFileInfo(path) == QFileInfo(experimentPath_)) {
+            savedDocument_ = documentAsShown();
+            setWindowModified(false);
+        }
         return true;
     } catch (const std::exception& e) {
         showError(tr("Could not save: %1").arg(e.what()));
@@ -395,6 +414,10 @@ void MainWindow::updateActions() {
     seeds_->setRunnable(!busy && ready);
     comparison_->setRunnable(!busy && ready);
     exportAll_->setEnabled(!busy && last_ != nullptr);
+    exportAllMenu_->setEnabled(!busy && last_ != nullptr);
+    save_->setEnabled(ready);
+    runSeeds_->setEnabled(!busy && ready);
+    runCompare_->setEnabled(!busy && ready);
 }
 
 void MainWindow::stopRunNow() {
@@ -406,12 +429,15 @@ void MainWindow::stopRunNow() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
+    if (!maySwitchExperiment()) {
+        event->ignore();
+        return;
+    }
     stopRunNow();
     QSettings settings;
     settings.setValue("geometry", saveGeometry());
     settings.setValue("windowState", saveState());
     settings.setValue("pace", pace_->currentIndex());
-    settings.setValue("outputBase", outputBase_);
     event->accept();
 }
 

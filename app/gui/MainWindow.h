@@ -13,6 +13,8 @@
 
 class QAction;
 class QComboBox;
+class QMenu;
+class QToolBar;
 class QLabel;
 class QPlainTextEdit;
 class QProgressBar;
@@ -78,7 +80,25 @@ public:
     void cancelRun();
     /// Writes every figure of the last run into `dir`/figures; returns the files.
     QStringList exportAllFigures(const QString& dir);
-    void setOutputBase(const QString& dir) { outputBase_ = dir; }
+    /// Where this session writes its runs (not kept as the preference).
+    void setOutputBase(const QString& dir);
+    const QString& outputBase() const { return outputBase_; }
+    /// The results folder preference: kept across sessions, and where runs go from now on.
+    void setResultsFolder(const QString& dir);
+    const QString& resultsFolder() const { return resultsFolder_; }
+    /// <documents>/ActiveTouch/results: the preference's default.
+    static QString defaultResultsFolder();
+    /// Opens the folder runs go to with the desktop's file manager (made if need be).
+    bool openResultsFolder();
+    /// Opens a file dropped on the window by what it is: an experiment, a rig file, a tap
+    /// recording (analysed) or a run's folder (replayed).
+    bool openDropped(const QString& path);
+    /// Whether the scene or protocol panel shows what the experiment file does not say.
+    bool hasUnsavedEdits() const;
+    /// The experiments opened last, newest first.
+    QStringList recentExperiments() const;
+    /// Shows every dock and the tool bar where they were at first start, fitted to the screen.
+    void resetLayout();
     void setPace(Pace pace);
 
     const QString& experimentPath() const { return experimentPath_; }
@@ -104,6 +124,8 @@ signals:
 
 protected:
     void closeEvent(QCloseEvent* event) override;
+    void dragEnterEvent(QDragEnterEvent* event) override;
+    void dropEvent(QDropEvent* event) override;
 
 private:
     /// Cancels a run in flight and interrupts the devices under it, waiting briefly for it.
@@ -132,7 +154,28 @@ private:
     void buildDocks();
     void buildToolBar(const QSettings& settings);
     void buildStatusBar();
+    void buildMenus();
     void connectRuns();
+    // The menus' parts (MainWindowMenus.cpp).
+    void fillRecentMenu();
+    void rememberRecent(const QString& path);
+    void chooseExperiment();
+    void chooseSaveAs();
+    void saveExperimentInPlace();
+    void chooseExportFolder();
+    void showPreferences();
+    void showResultsFolder();
+    void openDocumentation();
+    void showAbout();
+    /// Sizes the window to the screen it is on (first start and Reset the layout).
+    void fitToScreen();
+    /// The experiment file's document as the panels show it (throws on a value no file holds).
+    Json documentAsShown() const;
+    void updateModified();
+    /// Before another experiment replaces this one: asks to save unsaved edits; false to stay.
+    bool maySwitchExperiment();
+    enum class DroppedKind { Experiment, Rig, Recording, RunFolder, Unknown };
+    static DroppedKind kindOfDropped(const QString& path);
     void log(const QString& text);
     void showRun(std::shared_ptr<const RunResult> result, const QString& dir);
     void showSeeds(std::shared_ptr<const SeedRates> rates, const QString& dir, bool cancelled);
@@ -151,6 +194,9 @@ private:
     Json experimentJson_;
     QString experimentPath_;
     QString outputBase_;
+    QString resultsFolder_;
+    Json savedDocument_;       ///< documentAsShown() as last opened or saved
+    QByteArray defaultState_;  ///< the docks and tool bar at first start
     std::shared_ptr<const RunResult> last_;
     QString lastOutDir_;
     QString lastSeedsDir_;
@@ -175,7 +221,11 @@ private:
     QProgressBar* progress_;
     QLabel* status_;
     QComboBox* pace_;
+    QLabel* resultsLabel_ = nullptr;
+    QToolBar* runBar_;
+    QMenu* recentMenu_;
     QAction *runAll_, *runTraining_, *runFollowing_, *analyse_, *replay_, *cancel_, *exportAll_;
+    QAction *save_, *exportAllMenu_, *runSeeds_, *runCompare_, *pauseLive_;
 };
 
 }  // namespace activetouch

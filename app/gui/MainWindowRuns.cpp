@@ -1,7 +1,5 @@
 // MainWindow, its runs: starting each kind of run from what the window shows, asking before a
 // long plan or a folder that holds a run, and showing what comes back.
-#include "app/gui/MainWindow.h"
-
 #include <QAction>
 #include <QCloseEvent>
 #include <QComboBox>
@@ -37,18 +35,19 @@
 #include "app/gui/DevicesPanel.h"
 #include "app/gui/FollowingTab.h"
 #include "app/gui/LiveView.h"
+#include "app/gui/MainWindow.h"
 #include "app/gui/PlotPanel.h"
 #include "app/gui/ProtocolPanel.h"
 #include "app/gui/ResultTabs.h"
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
 #include "app/gui/WholeFile.h"
-#include "core/run/ExperimentFiles.h"
-#include "core/run/RunFolder.h"
 #include "core/experiment/RunPlan.h"
-#include "core/run/SeedRates.h"
 #include "core/records/FollowingRecording.h"
 #include "core/records/TapCsv.h"
+#include "core/run/ExperimentFiles.h"
+#include "core/run/RunFolder.h"
+#include "core/run/SeedRates.h"
 #include "devices/simulated/SimulatedWorld.h"
 #include "qcustomplot.h"
 
@@ -135,11 +134,11 @@ bool MainWindow::mayWriteRun(const ExperimentSpec& spec, double runs, const QStr
     if (const PlanProblem problem =
             planProblem(plan, "the experiment", devices_.session()->connected());
         !problem.empty()) {
-        QMessageBox ask(QMessageBox::Question, tr("ActiveTouch Workbench"),
-                        tr("%1 asks for more than a run should:\n%2\n\nRun it anyway?")
-                            .arg(QString::fromStdString(spec.name),
-                                 QString::fromStdString(problem.problem)),
-                        QMessageBox::Yes | QMessageBox::No, this);
+        QMessageBox ask(
+            QMessageBox::Question, tr("ActiveTouch Workbench"),
+            tr("%1 asks for more than a run should:\n%2\n\nRun it anyway?")
+                .arg(QString::fromStdString(spec.name), QString::fromStdString(problem.problem)),
+            QMessageBox::Yes | QMessageBox::No, this);
         ask.setObjectName("longPlanQuestion");
         ask.setDefaultButton(QMessageBox::No);
         if (ask.exec() != QMessageBox::Yes) {
@@ -149,10 +148,10 @@ bool MainWindow::mayWriteRun(const ExperimentSpec& spec, double runs, const QStr
     }
     // A folder never holds two runs' files: one that holds a run is replaced only when asked.
     if (holdsRun(dir.toStdString())) {
-        QMessageBox ask(QMessageBox::Question, tr("ActiveTouch Workbench"),
-                        tr("%1 already holds a run. Replace it? Its files are removed first.")
-                            .arg(dir),
-                        QMessageBox::Yes | QMessageBox::No, this);
+        QMessageBox ask(
+            QMessageBox::Question, tr("ActiveTouch Workbench"),
+            tr("%1 already holds a run. Replace it? Its files are removed first.").arg(dir),
+            QMessageBox::Yes | QMessageBox::No, this);
         ask.setObjectName("replaceRunQuestion");
         ask.setDefaultButton(QMessageBox::No);
         if (ask.exec() != QMessageBox::Yes) return false;
@@ -389,7 +388,7 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
     progress_->setFormat(tr("%1: %2 taps").arg(state).arg(taps));
     status_->setText(tr("%1, results in %2").arg(state, dir));
     if (!r.validation.byClass.empty())
-        log(tr("validation: angle error %1 deg, position error %2 mm, %3")
+        log(tr("validation: angle error %1°, position error %2 mm, %3")
                 .arg(r.validation.angleError_deg, 0, 'f', 2)
                 .arg(r.validation.positionError_mm, 0, 'f', 3)
                 .arg(QString::fromStdString(r.validation.validRange.text())));

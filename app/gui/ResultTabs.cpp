@@ -102,7 +102,7 @@ void RecognitionTab::showRun(const RunResult& r) {
     fillConfusion(smoothed_, confusion, true);
     rawTitle_->setText(
         tr("paper's rule: %1 % named rightly").arg(100.0 * r.recognitionAccuracy, 0, 'f', 0));
-    smoothedTitle_->setText(tr("smoothed histograms (sigma %1 bins): %2 % named rightly")
+    smoothedTitle_->setText(tr("smoothed histograms (σ = %1 bins): %2 % named rightly")
                                 .arg(r.spec.recognition.smoothingSigmaBins)
                                 .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0));
 }

@@ -15,6 +15,40 @@
 #include "devices/simulated/effects/Effect.h"
 
 namespace activetouch {
+
+namespace {
+/// A scene file's key as a person reads it: "sigma_mm" -> "σ (mm)", "rate_counts_per_sqrt_s" ->
+/// "Rate (counts/√s)", "taxel_noise" -> "Taxel noise".
+QString humanLabel(const std::string& key) {
+    QStringList words = QString::fromStdString(key).split('_', Qt::SkipEmptyParts);
+    static const QStringList units{"mm", "deg", "counts", "s", "ms", "hz", "bins"};
+    auto unitText = [](const QString& u) {
+        return u == "deg" ? QString("°") : u == "hz" ? QString("Hz") : u;
+    };
+    QString unit;
+    // "<unit> per [sqrt] <unit>", then a lone trailing unit.
+    for (int i = 0; i + 2 < words.size(); ++i)
+        if (units.contains(words[i]) && words[i + 1] == "per") {
+            QString below = words.mid(i + 2).join(' ');
+            below.replace("sqrt ", "√");
+            unit = unitText(words[i]) + "/" + unitText(below);
+            words = words.mid(0, i);
+            break;
+        }
+    if (unit.isEmpty() && words.size() > 1 && units.contains(words.back()))
+        unit = unitText(words.takeLast());
+    if (words.size() > 1 && words.front() == "probability" && words[1] == "per") {
+        unit = "per " + words.mid(2).join(' ');
+        words = {"probability"};
+    }
+    for (QString& w : words)
+        if (w == "sigma") w = "σ";
+    QString name = words.join(' ');
+    if (!name.isEmpty() && name.front() != QChar(0x3c3)) name[0] = name[0].toUpper();
+    return unit.isEmpty() ? name : QString("%1 (%2)").arg(name, unit);
+}
+}  // namespace
+
 namespace {
 QDoubleSpinBox* spin(double lo, double hi, double value, const QString& suffix, int decimals = 2) {
     auto* s = new QDoubleSpinBox;
@@ -43,7 +77,7 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
     y_ = spin(0, 5000, 150, " mm");
     x_->setObjectName("objectCentreX");
     y_->setObjectName("objectCentreY");
-    rotation_ = spin(-360, 360, 0, " deg");
+    rotation_ = spin(-360, 360, 0, " °");
     top_ = spin(0.1, 500, 10, " mm");
     polygonLabel_ = new QLabel(tr("no polygon loaded"));
     auto* loadButton = new QPushButton(tr("Load polygon..."));
@@ -64,23 +98,25 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
     auto* effectsLayout = new QVBoxLayout(effectsBox);
     for (const EffectDescription& d : effectCatalogue()) {
         EffectWidgets w;
-        w.box = new QGroupBox(QString::fromStdString(d.name));
+        w.box = new QGroupBox(humanLabel(d.name));
         w.box->setObjectName(QString::fromStdString("effect_" + d.name));
         w.box->setCheckable(true);
         w.box->setChecked(false);
-        w.box->setToolTip(QString::fromStdString(d.models));
+        w.box->setToolTip(
+            QString::fromStdString(d.models + " (in a scene file: \"" + d.name + "\")"));
         auto* f = new QFormLayout(w.box);
         for (const EffectParameter& p : d.parameters) {
             auto* s = spin(p.lo, p.hi, p.typical, "", 3);
-            s->setToolTip(QString::fromStdString(p.meaning));
-            f->addRow(QString::fromStdString(p.key), s);
+            s->setToolTip(
+                QString::fromStdString(p.meaning + " (in a scene file: \"" + p.key + "\")"));
+            f->addRow(humanLabel(p.key), s);
             w.parameters[p.key] = s;
             connect(s, &QDoubleSpinBox::valueChanged, this, &ScenePanel::changed);
         }
         if (d.takesTaxelList) {
             w.taxels = new QLineEdit("3");
             w.taxels->setToolTip(tr("taxel indices, separated by commas"));
-            f->addRow("taxels", w.taxels);
+            f->addRow(tr("Taxels"), w.taxels);
         }
         connect(w.box, &QGroupBox::toggled, this, &ScenePanel::changed);
         effectsLayout->addWidget(w.box);
