@@ -11,6 +11,7 @@
 
 #include "app/cli/CliSupport.h"
 #include "app/cli/Commands.h"
+#include "app/figures/Installation.h"
 
 using namespace activetouch;
 using namespace activetouch::cli;
@@ -29,7 +30,8 @@ void printHelp() {
         "      --seed overrides the experiment's seed (one seed = one whole run).\n"
         "      --rig takes the taps on the devices a rig file names instead (the Yamaha stage,\n"
         "      the NXT tapper with the fingertip over YARP, or a mix with simulated ones; see\n"
-        "      docs/real-rig.md): the scene's object must be the one mounted. Ctrl-C stops after the\n"
+        "      docs/real-rig.md): the scene's object must be the one mounted. Ctrl-C stops after "
+        "the\n"
         "      tap in flight, keeping every tap taken (while connecting, it stops the stage's\n"
         "      origin search).\n"
         "  activetouch-cli seeds <experiment.json> --from A --to B [--jobs N] [--out <dir>]\n"
@@ -109,6 +111,7 @@ void printHelp() {
 }  // namespace
 
 int main(int argc, char** argv) {
+    useInstalledResources();  // an installed binary reads the resources installed beside it
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty()) {
         printHelp();

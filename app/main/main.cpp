@@ -1,30 +1,40 @@
 // activetouch: the workbench window.
 //   activetouch [experiment.json]
-//   activetouch --screenshots <dir> [experiment.json]   run the experiment, then over seeds 1-10,
-//   then compare it with paper_kernel.json beside it (if there) over seeds 1-10 and show the
-//   first active trial the two ended differently in both, save a PNG of each tab and of the
-//   device panels, then of the replay of the first seed's lost active trial, if any; quit
+//   activetouch --screenshots <dir> [experiment.json]   the screenshot tour (ScreenshotTour.h)
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QDir>
-#include <QDockWidget>
-#include <QFileInfo>
-#include <QTabWidget>
-#include <QTableWidget>
-#include <QTimer>
+#include <QSettings>
+#include <cstdio>
+#include <cstring>
+#include <memory>
 
-#include "app/gui/ComparisonTab.h"
-#include "app/gui/FollowingTab.h"
+#include "app/figures/Installation.h"
 #include "app/gui/MainWindow.h"
-#include "app/gui/SeedsTab.h"
+#include "app/gui/ScreenshotTour.h"
 
 using namespace activetouch;
 
 int main(int argc, char** argv) {
-    QApplication app(argc, argv);
-    QApplication::setOrganizationName("ActiveTouch");
-    QApplication::setApplicationName("Workbench");
-    QApplication::setApplicationVersion(ACTIVETOUCH_VERSION);
+    // --help and --version print and quit: they need no display.
+    bool textOnly = false;
+    for (int i = 1; i < argc; ++i)
+        for (const char* option : {"--help", "-h", "--help-all", "--version", "-v"})
+            textOnly = textOnly || std::strcmp(argv[i], option) == 0;
+    for (int i = 1; i < argc; ++i)
+        if (std::strcmp(argv[i], "--version") == 0 || std::strcmp(argv[i], "-v") == 0) {
+            std::printf("activetouch %s\n", ACTIVETOUCH_VERSION);  // as activetouch-cli says it
+            return 0;
+        }
+    std::unique_ptr<QCoreApplication> application =
+        textOnly ? std::make_unique<QCoreApplication>(argc, argv)
+                 : std::make_unique<QApplication>(argc, argv);
+    QCoreApplication& app = *application;
+    QCoreApplication::setOrganizationName("ActiveTouch");
+    QCoreApplication::setApplicationName("Workbench");
+    QCoreApplication::setApplicationVersion(ACTIVETOUCH_VERSION);
+    if (!textOnly) QGuiApplication::setDesktopFileName("activetouch");
+    useInstalledResources();
     QCommandLineParser parser;
     parser.setApplicationDescription(
         "ActiveTouch Workbench: active tactile perception experiments on a simulated or real rig.");
@@ -33,127 +43,30 @@ int main(int argc, char** argv) {
     QCommandLineOption shots("screenshots",
                              "Run the experiment, then over seeds 1-10, then compare it with "
                              "paper_kernel.json beside it (if there) over seeds 1-10, save a "
-                             "screenshot of each tab into <dir>, and of the replay of the first "
-                             "lost active trial over those seeds, and quit.",
+                             "screenshot of the screen and of each tab into <dir>, and of the "
+                             "replay of the first lost active trial over those seeds, and quit. "
+                             "Reads and keeps no settings of its own.",
                              "dir");
     parser.addOption(shots);
     parser.addPositionalArgument(
         "experiment",
-        "Experiment file to open (default: the last one, or experiments/paper.json).");
+        "Experiment file to open (default: the last one, or the shipped paper.json).");
     parser.process(app);
 
+    if (parser.isSet(shots)) {
+        // The tour starts from the defaults and leaves the user's settings as they were.
+        const QString dir = parser.value(shots);
+        QSettings::setDefaultFormat(QSettings::IniFormat);
+        QSettings::setPath(QSettings::IniFormat, QSettings::UserScope,
+                           QDir(dir).filePath("settings"));
+        QDir(QDir(dir).filePath("settings")).removeRecursively();
+    }
     MainWindow window;
     if (!parser.positionalArguments().isEmpty() &&
         !window.openExperiment(parser.positionalArguments().front())) {
         if (parser.isSet(shots)) return 2;
     }
-    window.resize(1700, 1050);
     window.show();
     if (!parser.isSet(shots)) return app.exec();
-
-    // Screenshot mode: a whole run and a run over seeds 1-10, then each tab as a person sees it;
-    // then, if a seed lost an active trial, that seed's run with the replay on the lost trial.
-    const QString dir = parser.value(shots);
-    QDir().mkpath(dir);
-    window.setOutputBase(QDir(dir).filePath("runs"));
-    window.setPace(Pace::Fastest);
-    // The scene first, whichever panel the saved layout last showed in the left dock.
-    if (auto* scene = window.findChild<QDockWidget*>("sceneDock")) scene->raise();
-    auto settle = [] {
-        QApplication::processEvents();
-        QEventLoop wait;
-        QTimer::singleShot(300, &wait, &QEventLoop::quit);
-        wait.exec();
-    };
-    auto save = [&](int number, const QString& name) {
-        window.grab().save(QDir(dir).filePath(QString("%1_%2.png").arg(number).arg(name)));
-    };
-    int status = 0, runsEnded = 0;
-    bool compared = false, paired = false, replaying = false;
-    // Beside the paper, its kernel variant for the comparison tab, if it is there.
-    const QString kernel = QFileInfo(window.experimentPath()).dir().filePath("paper_kernel.json");
-    QObject::connect(&window, &MainWindow::runEnded, &window, [&](bool completed) {
-        const int step = ++runsEnded;
-        if (!completed) status = 1;
-        if (step == 1 && completed) {
-            QTimer::singleShot(200, &window, [&] {
-                if (!window.startSeeds(1, 10)) app.exit(1);
-            });
-            return;
-        }
-        if (step == 2 && completed && !compared && QFileInfo::exists(kernel)) {
-            compared = true;
-            QTimer::singleShot(200, &window, [&] {
-                if (!window.startComparison(kernel, 1, 10)) app.exit(1);
-            });
-            return;
-        }
-        if (step == 3 && completed && compared && !paired) {
-            // The first active trial one of the two lost, in both (or else the first active
-            // trial they ended differently).
-            paired = true;
-            QTableWidget* rows = window.comparisonTab()->table();
-            int shown = -1, firstActive = -1;
-            for (int r = 0; r < rows->rowCount() && shown < 0; ++r) {
-                if (rows->item(r, 1)->text() != "active") continue;
-                if (firstActive < 0) firstActive = r;
-                if (rows->item(r, 4)->text().startsWith("lost") ||
-                    rows->item(r, 5)->text().startsWith("lost"))
-                    shown = r;
-            }
-            if (shown < 0) shown = firstActive;
-            if (shown >= 0) {
-                rows->selectRow(shown);
-                QTimer::singleShot(200, &window, [&, shown] {
-                    QTableWidget* t = window.comparisonTab()->table();
-                    if (!window.startTrialPair(t->item(shown, 0)->text().toULongLong(),
-                                               FollowingMode::Active, t->item(shown, 2)->text(),
-                                               t->item(shown, 3)->text().toInt()))
-                        app.exit(1);
-                });
-                return;
-            }
-        }
-        QTimer::singleShot(500, &window, [&, completed] {
-            const int tabs = window.tabs()->count();
-            if (replaying) {
-                // The seed's run: its trials and the replay of the first lost active trial.
-                if (auto* scene = window.findChild<QDockWidget*>("sceneDock")) scene->raise();
-                window.tabs()->setCurrentWidget(window.followingTab());
-                if (auto* views = window.followingTab()->findChild<QTabWidget*>())
-                    views->setCurrentIndex(views->count() - 1);
-                settle();
-                save(tabs + 3, "lost_trial_replay");
-                app.quit();
-                return;
-            }
-            for (int i = 0; i < tabs; ++i) {
-                window.tabs()->setCurrentIndex(i);
-                settle();
-                save(i + 1,
-                     window.tabs()->tabText(i).replace("&&", "and").replace(' ', '_').toLower());
-            }
-            // The device panels share the left dock with the scene: raise them for one more.
-            if (auto* devices = window.findChild<QDockWidget*>("devicesDock")) {
-                devices->raise();
-                settle();
-                save(tabs + 1, "devices");
-            }
-            // And the protocol panel, the experiment's settings beside the scene.
-            if (auto* protocol = window.findChild<QDockWidget*>("protocolDock")) {
-                protocol->raise();
-                settle();
-                save(tabs + 2, "protocol");
-            }
-            const std::optional<std::uint64_t> lost =
-                completed ? window.seedsTab()->firstSeedWithLostActiveTrial() : std::nullopt;
-            replaying = true;
-            if (!lost || !window.startSeedRun(*lost)) app.quit();
-        });
-    });
-    QTimer::singleShot(200, &window, [&] {
-        if (!window.startRun(RunController::What::Everything)) app.exit(1);
-    });
-    app.exec();
-    return status;
+    return runScreenshotTour(window, parser.value(shots));
 }
