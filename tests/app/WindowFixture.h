@@ -153,7 +153,7 @@ inline void endsSuccessfully(MainWindow& w, QSignalSpy& ended, int timeout_ms = 
     QCOMPARE(ended.takeLast().at(0).toBool(), true);
     QTRY_VERIFY(!w.running());
 }
-}  // namespace
+}  // namespace window_test
 
 using namespace window_test;
 
@@ -216,6 +216,15 @@ protected:
 
     void closeWindow() {
         if (!window_) return;
+        // Edits the tests left in the panels are discarded when the window asks.
+        QTimer discard;
+        discard.setInterval(20);
+        QObject::connect(&discard, &QTimer::timeout, [] {
+            if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget()))
+                if (box->objectName() == "unsavedDialog")
+                    box->button(QMessageBox::Discard)->click();
+        });
+        discard.start();
         window_->close();
         window_.reset();
     }

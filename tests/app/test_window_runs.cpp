@@ -104,8 +104,9 @@ private slots:
         }).join();
         clearUpperVectorState();
         if (!dirtyBefore)
-            QSKIP("on this machine a new thread starts with the upper halves clear, so there is "
-                  "nothing for the model to clear");
+            QSKIP(
+                "on this machine a new thread starts with the upper halves clear, so there is "
+                "nothing for the model to clear");
         QVERIFY(!dirtyAfter);
 #else
         QSKIP("the vector state in question is x86-64's");
@@ -121,12 +122,15 @@ private slots:
         tabs.resize(900, 600);
         tabs.show();
         QVERIFY(QTest::qWaitForWindowExposed(&tabs));
-        auto* bars = qobject_cast<QCPBars*>(live->barsPanel()->plot().plottable(0));
-        QVERIFY(bars);
+        // One bar per taxel, each in the taxel's colour.
+        QCOMPARE(live->barsPanel()->plot().plottableCount(), kFingertipTaxels);
         const auto shownValues = [&] {
             std::vector<double> v;
-            for (auto it = bars->data()->constBegin(); it != bars->data()->constEnd(); ++it)
-                v.push_back(it->value);
+            for (int k = 0; k < kFingertipTaxels; ++k) {
+                auto* bars = qobject_cast<QCPBars*>(live->barsPanel()->plot().plottable(k));
+                for (auto it = bars->data()->constBegin(); it != bars->data()->constEnd(); ++it)
+                    v.push_back(it->value);
+            }
             return v;
         };
         std::vector<double> frame(kFingertipTaxels);
@@ -215,7 +219,7 @@ private slots:
             test::checkEqualAspect(panel->plot(), panel->name(), first);
             if (QTest::currentTestFailed()) return;
             QVERIFY2(first.size() >= 4, qPrintable(name));
-            for (QSize size : {QSize(1900, 700), QSize(900, 1100), QSize(1300, 900)}) {
+            for (QSize size : {QSize(1900, 700), QSize(1280, 1100), QSize(1300, 900)}) {
                 showAt(panel, size);
                 QMap<int, QPair<QCPRange, QCPRange>> views;
                 test::checkEqualAspect(panel->plot(), panel->name(), views);
@@ -351,7 +355,7 @@ private slots:
         QVERIFY(seeds);
         showTab(seeds);
         const QSize start = window_->size();
-        for (QSize size : {QSize(1900, 700), QSize(1300, 900), QSize(1100, 800)}) {
+        for (QSize size : {QSize(1900, 700), QSize(1300, 900), QSize(1280, 720)}) {
             showAt(seeds, size);
             test::checkLabelsFitTheirPanels(
                 seeds->plot(),
@@ -361,7 +365,9 @@ private slots:
         showAt(seeds, start);
     }
 
-    void cleanupTestCase() { closeWindow(); }
+    void cleanupTestCase() {
+        closeWindow();
+    }
 };
 
 QTEST_MAIN(TestWindowRuns)
