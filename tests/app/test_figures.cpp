@@ -1,7 +1,12 @@
 // The figures a run exports, as a reader of the paper sees them: each laid out at the size it is
 // written at, paths and histograms at equal scales on both axes, no legend over data, every title
 // and axis label inside its panel and no tick labels running into each other.
+#include <QProcess>
+#include <QRegularExpression>
+#include <QTemporaryDir>
+#include <QXmlStreamReader>
 #include <QtTest>
+#include <cmath>
 
 #include "app/figures/ComparisonFigures.h"
 #include "app/figures/FigureExport.h"
@@ -48,6 +53,115 @@ private slots:
         }
         // Between them the two runs draw every figure there is.
         QCOMPARE(drawn.size(), static_cast<int>(runFigures().size()));
+    }
+
+    void figure6FitsASingleJournalColumn() {
+        // Figure 6 at 89 mm wide and 300 dpi, as a journal's single column takes it: laid out
+        // there it reads cleanly (labels inside their panels, no tick labels run together); every
+        // text measured in the written files is at least 6 pt (and at most 9.5) at that size;
+        // the PDF's fonts are embedded.
+        const RunFigure& errors =
+            *std::find_if(runFigures().begin(), runFigures().end(),
+                          [](const RunFigure& f) { return QString(f.file) == "figure6_errors"; });
+        const FigureSize size = FigureSize::physical(kSingleColumn_mm, 80, 300);
+        {
+            QCustomPlot plot;
+            QVERIFY(errors.build(plot, runs_.front()));
+            layOutAt(plot, size);
+            test::checkLabelsFitTheirPanels(plot, "figure6_errors at 89 mm");
+            if (QTest::currentTestFailed()) return;
+        }
+        QCustomPlot plot;
+        QVERIFY(errors.build(plot, runs_.front()));
+        QTemporaryDir dir;
+        const QStringList files =
+            exportFigure(plot, dir.filePath("figure6"), {"png", "pdf", "svg"}, size);
+        QCOMPARE(files.size(), 3);
+        const QImage png(dir.filePath("figure6.png"));
+        QCOMPARE(png.width(), 1051);  // 89 mm at 300 dpi
+        QCOMPARE(qRound(png.dotsPerMeterX() * 0.0254), 300);
+
+        // The SVG: each text's size in user units, through its groups' transforms, at the
+        // document's mm per unit.
+        QFile svg(dir.filePath("figure6.svg"));
+        QVERIFY(svg.open(QIODevice::ReadOnly));
+        QXmlStreamReader xml(&svg);
+        double mmPerUnit = 0.0, smallest = 1e9, largest = 0.0;
+        int texts = 0;
+        std::vector<double> scales{1.0};
+        static const QRegularExpression matrix(R"(matrix\(([-0-9.e]+),([-0-9.e]+),)");
+        while (!xml.atEnd()) {
+            xml.readNext();
+            if (xml.isStartElement()) {
+                const auto a = xml.attributes();
+                if (xml.name() == QLatin1String("svg")) {
+                    const double widthMm = a.value("width").toString().remove("mm").toDouble();
+                    const double units = a.value("viewBox").toString().split(' ').at(2).toDouble();
+                    mmPerUnit = widthMm / units;
+                    QVERIFY2(std::abs(widthMm - kSingleColumn_mm) < 0.5,
+                             qPrintable(QString::number(widthMm)));
+                }
+                double scale = scales.back();
+                const QRegularExpressionMatch m = matrix.match(a.value("transform").toString());
+                if (m.hasMatch())
+                    scale *= std::hypot(m.captured(1).toDouble(), m.captured(2).toDouble());
+                scales.push_back(scale);
+                if (xml.name() == QLatin1String("text")) {
+                    const double pt =
+                        a.value("font-size").toDouble() * scale * mmPerUnit / 25.4 * 72.0;
+                    const QString what = xml.readElementText();
+                    scales.pop_back();
+                    if (what.trimmed().isEmpty()) continue;
+                    ++texts;
+                    smallest = std::min(smallest, pt);
+                    largest = std::max(largest, pt);
+                    QVERIFY2(pt >= 6.0, qPrintable(QString("'%1' at %2 pt").arg(what).arg(pt)));
+                }
+            } else if (xml.isEndElement()) {
+                scales.pop_back();
+            }
+        }
+        QVERIFY(!xml.hasError());
+        QVERIFY(texts > 30);
+        qInfo("Figure 6 at %.0f mm: %d texts from %.1f to %.1f pt", kSingleColumn_mm, texts,
+              smallest, largest);
+        QVERIFY(largest <= 9.5);
+
+        // The PDF: a page 89 mm wide; every font embedded (pdffonts); every word at least 6 pt
+        // tall as a reader's PDF tool places it (pdftotext).
+        QProcess fonts;
+        fonts.start("pdffonts", {dir.filePath("figure6.pdf")});
+        QVERIFY2(fonts.waitForFinished(30000) && fonts.exitCode() == 0,
+                 "pdffonts (poppler-utils) could not read the PDF");
+        const QStringList lines =
+            QString(fonts.readAllStandardOutput()).split('\n', Qt::SkipEmptyParts);
+        QVERIFY(lines.size() >= 2);
+        for (const QString& line : lines.mid(2)) {
+            // name type [more type] encoding emb sub uni object ID: "emb" is fifth from last.
+            const QStringList f = line.simplified().split(' ');
+            QVERIFY2(f.size() >= 7 && f[f.size() - 5] == "yes", qPrintable(line));
+        }
+        QProcess words;
+        words.start("pdftotext", {"-bbox", dir.filePath("figure6.pdf"), "-"});
+        QVERIFY(words.waitForFinished(30000) && words.exitCode() == 0);
+        const QString html = words.readAllStandardOutput();
+        static const QRegularExpression page(R"re(<page width="([0-9.]+)")re");
+        QVERIFY(std::abs(page.match(html).captured(1).toDouble() - kSingleColumn_mm / 25.4 * 72) <
+                1.5);
+        static const QRegularExpression word(
+            R"re(<word xMin="([0-9.]+)" yMin="([0-9.]+)" xMax="([0-9.]+)" yMax="([0-9.]+)">([^<]*)<)re");
+        int counted = 0;
+        for (auto it = word.globalMatch(html); it.hasNext();) {
+            const QRegularExpressionMatch w = it.next();
+            const double height = w.captured(4).toDouble() - w.captured(2).toDouble();
+            const double width = w.captured(3).toDouble() - w.captured(1).toDouble();
+            // A word set sideways (the y axis labels) has its height along x.
+            const double tall = w.captured(5).size() > 2 && width < height ? width : height;
+            QVERIFY2(tall >= 6.0,
+                     qPrintable(QString("'%1' %2 pt tall").arg(w.captured(5)).arg(tall)));
+            ++counted;
+        }
+        QVERIFY(counted > 30);
     }
 
     void pathFiguresMarkWhereLostTrialsEnded() {
