@@ -146,14 +146,110 @@ std::function<void()> setJournalText(QCustomPlot& plot) {
     };
 }
 
-void layOutAt(QCustomPlot& plot, const FigureSize& asked) {
-    FigureSize size = asked;
-    if (asked.isPhysical()) {
-        setJournalText(plot);
-        const QSize logical = logicalSize(plot, asked);
-        size.width_px = logical.width();
-        size.height_px = logical.height();
+namespace {
+/// `text` broken into lines at spaces so that none is wider than `room` pixels in `font` (a word
+/// wider than the room keeps its own line).
+QString wrapped(const QString& text, const QFont& font, double room) {
+    const QFontMetricsF metrics(font);
+    QStringList lines;
+    for (const QString& given : text.split('\n')) {
+        QString line;
+        for (const QString& word : given.split(' ', Qt::SkipEmptyParts)) {
+            const QString longer = line.isEmpty() ? word : line + ' ' + word;
+            if (!line.isEmpty() && metrics.horizontalAdvance(longer) > room) {
+                lines << line;
+                line = word;
+            } else {
+                line = longer;
+            }
+        }
+        lines << line;
     }
+    return lines.join('\n');
+}
+
+/// The widest of `labels` in `font`, and the tallest line.
+QSizeF widestLabel(const QVector<QString>& labels, const QFont& font) {
+    const QFontMetricsF metrics(font);
+    QSizeF most;
+    for (const QString& l : labels) {
+        const QRectF r = metrics.boundingRect(QRectF(), Qt::TextDontClip, l);
+        most = most.expandedTo(r.size());
+    }
+    return most;
+}
+
+/// After a layout at a narrow size: every axis label and panel title wrapped to its panel, a
+/// caption to the figure, and fixed tick steps widened until their labels stand apart. Returns
+/// what puts them back.
+std::function<void()> fitTextToPanels(QCustomPlot& plot) {
+    std::vector<std::function<void()>> undo;
+    for (QCPAxisRect* rect : plot.axisRects()) {
+        for (QCPAxis* axis : rect->axes()) {
+            const bool across = axis->orientation() == Qt::Horizontal;
+            const double room = across ? rect->width() : rect->height();
+            if (room <= 0) continue;
+            if (const QString label = axis->label(); !label.isEmpty()) {
+                const QString fitted = wrapped(label, axis->labelFont(), room);
+                if (fitted != label) {
+                    axis->setLabel(fitted);
+                    undo.push_back([axis, label] { axis->setLabel(label); });
+                }
+            }
+            if (!axis->tickLabels() || axis->tickVector().size() < 2) continue;
+            if (axis->ticker().dynamicCast<QCPAxisTickerText>()) continue;  // named ticks stay
+            const QVector<double> ticks = axis->tickVector();
+            const double spacing =
+                std::abs(axis->coordToPixel(ticks[1]) - axis->coordToPixel(ticks[0]));
+            const QSizeF label = widestLabel(axis->tickVectorLabels(), axis->tickLabelFont());
+            const double needed = (across ? label.width() : label.height()) + 4.0;
+            if (spacing <= 0 || spacing >= needed) continue;
+            QSharedPointer<QCPAxisTicker> ticker = axis->ticker();
+            auto fixed = ticker.dynamicCast<QCPAxisTickerFixed>();
+            if (!fixed) {
+                // An automatic ticker: fewer ticks, as few as the room asks for.
+                const int count = ticker->tickCount();
+                ticker->setTickCount(
+                    std::max(2, static_cast<int>(std::floor(count * spacing / needed))));
+                undo.push_back([ticker, count] { ticker->setTickCount(count); });
+                continue;
+            }
+            const double step = fixed->tickStep();
+            const auto strategy = fixed->scaleStrategy();
+            double factor = 1.0;
+            while (spacing * factor < needed && factor < 1e6) factor *= 2.0;
+            fixed->setTickStep(step * factor);
+            fixed->setScaleStrategy(QCPAxisTickerFixed::ssNone);
+            undo.push_back([fixed, step, strategy] {
+                fixed->setTickStep(step);
+                fixed->setScaleStrategy(strategy);
+            });
+        }
+    }
+    for (QCPLayoutElement* e : plot.plotLayout()->elements(false))
+        if (auto* text = qobject_cast<QCPTextElement*>(e)) {
+            const QString before = text->text();
+            const QString fitted = wrapped(before, text->font(), plot.viewport().width() - 8.0);
+            if (fitted == before) continue;
+            text->setText(fitted);
+            undo.push_back([text, before] { text->setText(before); });
+        }
+    return [undo] {
+        for (auto it = undo.rbegin(); it != undo.rend(); ++it) (*it)();
+    };
+}
+
+/// Lays `plot` out at the physical `size` with journal text, its labels fitted to the panels;
+/// returns what puts the fonts and texts back.
+std::function<void()> layOutPhysical(QCustomPlot& plot, const FigureSize& size);
+}  // namespace
+
+void layOutAt(QCustomPlot& plot, const FigureSize& asked) {
+    if (asked.isPhysical()) {
+        layOutPhysical(plot, asked);
+        return;
+    }
+    const FigureSize& size = asked;
     plot.resize(size.width_px, size.height_px);
     plot.setViewport(QRect(0, 0, size.width_px, size.height_px));
     plot.replot(QCustomPlot::rpImmediateRefresh);
@@ -161,6 +257,32 @@ void layOutAt(QCustomPlot& plot, const FigureSize& asked) {
     for (int round = 0; round < 3 && fitToLayout(plot); ++round)
         plot.replot(QCustomPlot::rpImmediateRefresh);
 }
+
+namespace {
+void layOutPixels(QCustomPlot& plot, const QSize& size) {
+    plot.resize(size);
+    plot.setViewport(QRect(QPoint(0, 0), size));
+    plot.replot(QCustomPlot::rpImmediateRefresh);
+    for (int round = 0; round < 3 && fitToLayout(plot); ++round)
+        plot.replot(QCustomPlot::rpImmediateRefresh);
+}
+
+std::function<void()> layOutPhysical(QCustomPlot& plot, const FigureSize& size) {
+    const std::function<void()> fonts = setJournalText(plot);
+    const QSize logical = logicalSize(plot, size);
+    layOutPixels(plot, logical);
+    // Wrapping a label changes the margins and so the panels: fit, lay out, and fit again.
+    std::vector<std::function<void()>> texts;
+    for (int round = 0; round < 3; ++round) {
+        texts.push_back(fitTextToPanels(plot));
+        layOutPixels(plot, logical);
+    }
+    return [fonts, texts] {
+        for (auto it = texts.rbegin(); it != texts.rend(); ++it) (*it)();
+        fonts();
+    };
+}
+}  // namespace
 
 QString figuresDirectory(const QString& outDir) {
     const QString dir = outDir + "/figures";
@@ -234,10 +356,8 @@ QStringList exportPhysical(QCustomPlot& plot, const QString& basePath, const QSt
 QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats,
                          const FigureSize& size) {
     if (size.isPhysical()) {
-        const std::function<void()> restore = setJournalText(plot);
+        const std::function<void()> restore = layOutPhysical(plot, size);
         try {
-            FigureSize laidOut = size;
-            layOutAt(plot, laidOut);  // journal text again: already so, unchanged
             QStringList written = exportPhysical(plot, basePath, formats, size);
             restore();
             return written;

@@ -269,7 +269,7 @@ const std::vector<RunFigure>& runFigures() {
              buildErrorFigure(plot, r);
              return true;
          },
-         FigureSize::physical(kDoubleColumn_mm, 115, kFigureDpi)},
+         FigureSize::physical(kDoubleColumn_mm, 170, kFigureDpi)},
         {"figure7_passive_paths",
          [](QCustomPlot& plot, const RunResult& r) {
              return validated(r) && buildPathFigure(plot, r, FollowingMode::Passive,

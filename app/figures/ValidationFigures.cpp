@@ -145,10 +145,14 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
                     .arg(r.validation.positionError_mm, 0, 'f', 2)
                     .arg(r.noiseFloor_counts, 0, 'f', 1)
                     .arg(maxPosition));
-    QCPLayoutGrid* upper = addFigureRow(plot, 1.0);
+    // One panel a row, the whole width, their left edges aligned: a heatmap of 18 positions by
+    // the orientations is wide, and the figure reads the same in one column or across a page.
+    auto* left = new QCPMarginGroup(&plot);
     for (int h = 0; h < 2; ++h) {
+        QCPLayoutGrid* upper = addFigureRow(plot, 0.6);
         auto* rect =
-            addPanel(upper, 0, 2 * h, "position (mm; 1 = plane, 18 = air)", "edge orientation");
+            addPanel(upper, 0, 0, "position (mm; 1 = plane, 18 = air)", "edge orientation");
+        rect->setMarginGroup(QCP::msLeft, left);
         rect->axis(QCPAxis::atLeft)->setTicker(orientationTicker(cs));
         setPanelTitle(rect, heats[h].title);
         auto* map = new QCPColorMap(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
@@ -160,7 +164,8 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         map->setInterpolate(false);
         map->setTightBoundary(false);
         auto* scale = new QCPColorScale(&plot);
-        upper->addElement(0, 2 * h + 1, scale);
+        upper->addElement(0, 1, scale);
+        upper->setColumnStretchFactors({1.0, 0.05});
         scale->setType(QCPAxis::atRight);
         scale->axis()->setLabel(heats[h].unit);
         map->setColorScale(scale);
@@ -170,11 +175,11 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         rect->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
         scale->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
         rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
-        integerTicks(rect->axis(QCPAxis::atBottom),
-                     P > 12 ? 2.0 : 1.0);  // half a page: every other position
+        integerTicks(rect->axis(QCPAxis::atBottom), 1.0);
         rect->axis(QCPAxis::atLeft)->setRange(-0.5, O - 0.5);
     }
-    // Heatmaps and their scales sit in row 0, columns 0..3; the line panels span below.
+    // Heatmaps and their scales sit in row 0, columns 0..3; each line panel has a row of its own
+    // below, the whole width (18 positions with their error bars read well in a single column).
     struct Line {
         const char* title;
         const std::vector<double>* mean;
@@ -186,10 +191,10 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
          &r.validation.angleStd, "angle error (°)"},
         {"D  position error, mean over orientations ± 1 s.d.", &r.validation.positionMean,
          &r.validation.positionStd, "position error (mm)"}};
-    QCPLayoutGrid* lower = addFigureRow(plot, 1.0);
     for (int l = 0; l < 2; ++l) {
         auto* rect = new QCPAxisRect(&plot);
-        lower->addElement(0, l, rect);
+        addFigureRow(plot, 0.75)->addElement(0, 0, rect);
+        rect->setMarginGroup(QCP::msLeft, left);
         rect->axis(QCPAxis::atBottom)->setLabel("position (mm; 1 = plane, 18 = air)");
         rect->axis(QCPAxis::atLeft)->setLabel(lines[l].unit);
         setPanelTitle(rect, lines[l].title);
@@ -215,7 +220,6 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         rect->axis(QCPAxis::atLeft)->setRange(0.0, yMax);
         shadeValidRange(rect, r, yMax);
     }
-    upper->setColumnStretchFactors({1.0, 0.06, 1.0, 0.06});
 }
 
 }  // namespace activetouch

@@ -29,7 +29,8 @@ class TestFigures : public QObject {
 private slots:
     void initTestCase() {
         for (const char* file : {"experiments/paper.json", "experiments/accuracy_vs_time.json"})
-            runs_.push_back(runExperiment(loadExperiment(test::sourcePath(file)), test::onSimulatedRig()));
+            runs_.push_back(
+                runExperiment(loadExperiment(test::sourcePath(file)), test::onSimulatedRig()));
     }
 
     void everyExportedFigureReadsCleanly() {
@@ -63,7 +64,7 @@ private slots:
         const RunFigure& errors =
             *std::find_if(runFigures().begin(), runFigures().end(),
                           [](const RunFigure& f) { return QString(f.file) == "figure6_errors"; });
-        const FigureSize size = FigureSize::physical(kSingleColumn_mm, 80, 300);
+        const FigureSize size = FigureSize::physical(kSingleColumn_mm, 140, 300);
         {
             QCustomPlot plot;
             QVERIFY(errors.build(plot, runs_.front()));
@@ -280,7 +281,8 @@ private slots:
         layOutAt(plot, figure9.size);
         QMap<int, QString> byHeight;  // each template panel's top edge, as laid out
         for (QCPAxisRect* rect : plot.axisRects()) {
-            const QString title = rect->axis(QCPAxis::atTop)->label();
+            // A title wrapped to its panel reads as one line.
+            const QString title = rect->axis(QCPAxis::atTop)->label().simplified();
             if (title.startsWith("template: ")) byHeight.insert(rect->top(), title.mid(10));
         }
         const QStringList rows = byHeight.values();
@@ -299,8 +301,8 @@ private slots:
     }
 
     void theSeedRatesFigureReadsCleanly() {
-        const SeedRates rates =
-            runSeeds(simulatedRigs(), loadExperiment(test::sourcePath("experiments/paper.json")), 1, 3, "");
+        const SeedRates rates = runSeeds(
+            simulatedRigs(), loadExperiment(test::sourcePath("experiments/paper.json")), 1, 3, "");
         QCOMPARE(rates.seeds.size(), std::size_t(3));
         // Side by side at the exported size and narrower; stacked in a panel taller than wide,
         // as the window shows it, down to a narrow one: the legends take fewer entries to a line
@@ -452,7 +454,8 @@ private slots:
         // kernel's completes it (compare over seeds 1-10 lists it).
         const ExperimentSpec a = loadExperiment(test::sourcePath("experiments/paper.json"));
         const ExperimentSpec b = loadExperiment(test::sourcePath("experiments/paper_kernel.json"));
-        const TrialPairRun pair = runTrialPair(simulatedRigs(), a, b, 3, FollowingMode::Active, "cross", 2);
+        const TrialPairRun pair =
+            runTrialPair(simulatedRigs(), a, b, 3, FollowingMode::Active, "cross", 2);
         QCOMPARE(pair.seed, std::uint64_t(3));
         QVERIFY2(trialOutcome(pair.a).rfind("lost at a corner", 0) == 0,
                  trialOutcome(pair.a).c_str());
