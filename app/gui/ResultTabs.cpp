@@ -3,6 +3,7 @@
 #include <QColor>
 #include <QGroupBox>
 #include <QHBoxLayout>
+#include <QHeaderView>
 #include <QLabel>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -34,9 +35,15 @@ void fillConfusion(QTableWidget* table, const RecognitionConfusion& confusion, b
         for (int b = 0; b < n; ++b) {
             const int count = counts[std::size_t(a)][std::size_t(b)];
             auto* cell = new QTableWidgetItem(QString::number(count));
+            cell->setToolTip(
+                QObject::tr("%1 path(s) of the %2 named %3").arg(count).arg(names[a], names[b]));
             if (a != b && count > 0) cell->setBackground(QColor(255, 220, 200));
             table->setItem(a, b, cell);
         }
+    // The shapes' names whole: columns as wide as their names, never elided.
+    table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    table->verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    table->setTextElideMode(Qt::ElideNone);
 }
 
 QString recognitionHint() {
