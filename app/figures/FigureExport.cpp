@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include "app/figures/FigureLayout.h"
 #include "qcustomplot.h"
@@ -21,6 +23,27 @@ void setEqualAspectRanges(QCPAxisRect* rect, const QCPRange& x, const QCPRange& 
     rect->axis(QCPAxis::atLeft)->setRange(y);
 }
 
+void keepLegendClear(QCPAxisRect* rect, QCPLegend* legend, double dataRight, double dataTop) {
+    rect->setProperty("legendClearOf", QPointF(dataRight, dataTop));
+    rect->setProperty("legendToKeepClear", QVariant::fromValue<QObject*>(legend));
+}
+
+namespace {
+/// `wantX` and `wantY` shown at one unit per pixel in `rect`: the one that would be stretched
+/// widened about its centre.
+std::pair<QCPRange, QCPRange> equalAspect(const QCPAxisRect* rect, QCPRange x, QCPRange y) {
+    const double xPerPixel = x.size() / rect->width(), yPerPixel = y.size() / rect->height();
+    if (xPerPixel >= yPerPixel) {
+        const double half = 0.5 * xPerPixel * rect->height();
+        y = QCPRange(y.center() - half, y.center() + half);
+    } else {
+        const double half = 0.5 * yPerPixel * rect->width();
+        x = QCPRange(x.center() - half, x.center() + half);
+    }
+    return {x, y};
+}
+}  // namespace
+
 bool fitEqualAspect(QCustomPlot& plot) {
     bool changed = false;
     for (QCPAxisRect* rect : plot.axisRects()) {
@@ -29,16 +52,25 @@ bool fitEqualAspect(QCustomPlot& plot) {
         if (!wantX.isValid() || !wantY.isValid()) continue;
         if (rect->width() <= 0 || rect->height() <= 0) continue;
         // Keep both ranges asked for visible: widen the one that would otherwise be stretched.
-        QCPRange x(wantX.toPointF().x(), wantX.toPointF().y());
-        QCPRange y(wantY.toPointF().x(), wantY.toPointF().y());
-        const double xPerPixel = x.size() / rect->width(), yPerPixel = y.size() / rect->height();
-        if (xPerPixel >= yPerPixel) {
-            const double half = 0.5 * xPerPixel * rect->height();
-            y = QCPRange(y.center() - half, y.center() + half);
-        } else {
-            const double half = 0.5 * yPerPixel * rect->width();
-            x = QCPRange(x.center() - half, x.center() + half);
+        const QCPRange askedX(wantX.toPointF().x(), wantX.toPointF().y());
+        QCPRange askedY(wantY.toPointF().x(), wantY.toPointF().y());
+        auto [x, y] = equalAspect(rect, askedX, askedY);
+        // A legend in the top right corner: beside the data if the shape leaves room there,
+        // else above it, the view's top raised until it fits.
+        auto* legend =
+            qobject_cast<QCPLegend*>(rect->property("legendToKeepClear").value<QObject*>());
+        const QVariant clear = rect->property("legendClearOf");
+        for (int round = 0; legend && clear.isValid() && round < 4; ++round) {
+            const QSize needs = legend->minimumOuterSizeHint() + QSize(12, 12);
+            const double perPixel = x.size() / rect->width();
+            const double besideData = (x.upper - clear.toPointF().x()) / perPixel;
+            const double aboveData = (y.upper - clear.toPointF().y()) / perPixel;
+            if (besideData >= needs.width() || aboveData >= needs.height()) break;
+            askedY.upper = clear.toPointF().y() + needs.height() * perPixel * 1.05;
+            std::tie(x, y) = equalAspect(rect, askedX, askedY);
         }
+        // What was asked for after the legend's room: the range shown in full on one axis.
+        rect->setProperty("equalAspectShownY", QPointF(askedY.lower, askedY.upper));
         QCPAxis* xAxis = rect->axis(QCPAxis::atBottom);
         QCPAxis* yAxis = rect->axis(QCPAxis::atLeft);
         auto same = [](const QCPRange& a, const QCPRange& b) {
@@ -54,9 +86,120 @@ bool fitEqualAspect(QCustomPlot& plot) {
     return changed;
 }
 
+namespace {
+/// `text` broken into lines at spaces so that none is wider than `room` pixels in `font` (a word
+/// wider than the room keeps its own line).
+QString wrapped(const QString& text, const QFont& font, double room) {
+    const QFontMetricsF metrics(font);
+    QStringList lines;
+    for (const QString& given : text.split('\n')) {
+        QString line;
+        for (const QString& word : given.split(' ', Qt::SkipEmptyParts)) {
+            const QString longer = line.isEmpty() ? word : line + ' ' + word;
+            if (!line.isEmpty() && metrics.horizontalAdvance(longer) > room) {
+                lines << line;
+                line = word;
+            } else {
+                line = longer;
+            }
+        }
+        lines << line;
+    }
+    return lines.join('\n');
+}
+
+/// The figure's title and caption wrapped to the plot's width, from the text the figure's code
+/// gave them (kept as a property, so that a wider plot unwraps them again). Whether any changed.
+bool wrapFigureText(QCustomPlot& plot) {
+    bool changed = false;
+    const double room = plot.viewport().width() - 8.0;
+    if (room <= 20) return false;
+    for (QCPLayoutElement* e : plot.plotLayout()->elements(false)) {
+        auto* text = qobject_cast<QCPTextElement*>(e);
+        if (!text) continue;
+        // Text the figure's code set since it was last wrapped is the new original.
+        if (text->text() != text->property("wrappedText").toString())
+            text->setProperty("unwrappedText", text->text());
+        const QString fitted =
+            wrapped(text->property("unwrappedText").toString(), text->font(), room);
+        text->setProperty("wrappedText", fitted);
+        if (fitted == text->text()) continue;
+        text->setText(fitted);
+        changed = true;
+    }
+    return changed;
+}
+}  // namespace
+
+namespace {
+/// The widest of `labels` in `font`, and the tallest line.
+QSizeF widestLabel(const QVector<QString>& labels, const QFont& font) {
+    const QFontMetricsF metrics(font);
+    QSizeF most;
+    for (const QString& l : labels) {
+        const QRectF r = metrics.boundingRect(QRectF(), Qt::TextDontClip, l);
+        most = most.expandedTo(r.size());
+    }
+    return most;
+}
+
+/// Tick labels that would run together thinned: a fixed tick step doubled, or an automatic
+/// ticker's count lowered, as often as the axis's room asks; always from the ticks the figure's
+/// code asked for (kept as properties), so a roomier plot gets them back. Whether any changed.
+bool fitTicks(QCustomPlot& plot) {
+    bool changed = false;
+    for (QCPAxisRect* rect : plot.axisRects())
+        for (QCPAxis* axis : rect->axes()) {
+            QSharedPointer<QCPAxisTicker> ticker = axis->ticker();
+            if (!axis->visible() || !axis->tickLabels() || !ticker ||
+                ticker.dynamicCast<QCPAxisTickerText>())
+                continue;  // named ticks stay as they are
+            const bool across = axis->orientation() == Qt::Horizontal;
+            const double length = across ? rect->width() : rect->height();
+            const QVector<QString> labels = axis->tickVectorLabels();
+            if (length <= 0 || labels.isEmpty()) continue;
+            const QSizeF label = widestLabel(labels, axis->tickLabelFont());
+            const double needed = (across ? label.width() : label.height()) + 4.0;
+            auto fixed = ticker.dynamicCast<QCPAxisTickerFixed>();
+            if (fixed) {
+                if (!axis->property("askedTickStep").isValid()) {
+                    axis->setProperty("askedTickStep", fixed->tickStep());
+                    axis->setProperty("askedScaleStrategy", int(fixed->scaleStrategy()));
+                }
+                const double asked = axis->property("askedTickStep").toDouble();
+                const double perUnit = std::abs(axis->coordToPixel(1.0) - axis->coordToPixel(0.0));
+                double factor = 1.0;
+                while (asked * factor * perUnit < needed && factor < 1e6) factor *= 2.0;
+                const auto strategy = factor > 1.0
+                                          ? QCPAxisTickerFixed::ssNone
+                                          : QCPAxisTickerFixed::ScaleStrategy(
+                                                axis->property("askedScaleStrategy").toInt());
+                if (fixed->tickStep() == asked * factor && fixed->scaleStrategy() == strategy)
+                    continue;
+                fixed->setTickStep(asked * factor);
+                fixed->setScaleStrategy(strategy);
+                changed = true;
+            } else {
+                if (!axis->property("askedTickCount").isValid())
+                    axis->setProperty("askedTickCount", ticker->tickCount());
+                const int asked = axis->property("askedTickCount").toInt();
+                // An automatic ticker puts about count + 1 labels along the axis.
+                const int count =
+                    std::clamp(static_cast<int>(std::floor(length / needed)) - 1, 2, asked);
+                if (ticker->tickCount() == count) continue;
+                ticker->setTickCount(count);
+                changed = true;
+            }
+        }
+    return changed;
+}
+}  // namespace
+
 bool fitToLayout(QCustomPlot& plot) {
     const bool legends = fitLegendLines(plot);
-    return fitEqualAspect(plot) || legends;
+    const bool text = wrapFigureText(plot);
+    const bool ticks = fitTicks(plot);
+    return fitEqualAspect(plot) || legends || text || ticks;
 }
 
 namespace {
@@ -147,41 +290,8 @@ std::function<void()> setJournalText(QCustomPlot& plot) {
 }
 
 namespace {
-/// `text` broken into lines at spaces so that none is wider than `room` pixels in `font` (a word
-/// wider than the room keeps its own line).
-QString wrapped(const QString& text, const QFont& font, double room) {
-    const QFontMetricsF metrics(font);
-    QStringList lines;
-    for (const QString& given : text.split('\n')) {
-        QString line;
-        for (const QString& word : given.split(' ', Qt::SkipEmptyParts)) {
-            const QString longer = line.isEmpty() ? word : line + ' ' + word;
-            if (!line.isEmpty() && metrics.horizontalAdvance(longer) > room) {
-                lines << line;
-                line = word;
-            } else {
-                line = longer;
-            }
-        }
-        lines << line;
-    }
-    return lines.join('\n');
-}
-
-/// The widest of `labels` in `font`, and the tallest line.
-QSizeF widestLabel(const QVector<QString>& labels, const QFont& font) {
-    const QFontMetricsF metrics(font);
-    QSizeF most;
-    for (const QString& l : labels) {
-        const QRectF r = metrics.boundingRect(QRectF(), Qt::TextDontClip, l);
-        most = most.expandedTo(r.size());
-    }
-    return most;
-}
-
-/// After a layout at a narrow size: every axis label and panel title wrapped to its panel, a
-/// caption to the figure, and fixed tick steps widened until their labels stand apart. Returns
-/// what puts them back.
+/// After a layout at a narrow size: every axis label and panel title wrapped to its panel.
+/// Returns what puts them back.
 std::function<void()> fitTextToPanels(QCustomPlot& plot) {
     std::vector<std::function<void()>> undo;
     for (QCPAxisRect* rect : plot.axisRects()) {
@@ -196,44 +306,9 @@ std::function<void()> fitTextToPanels(QCustomPlot& plot) {
                     undo.push_back([axis, label] { axis->setLabel(label); });
                 }
             }
-            if (!axis->tickLabels() || axis->tickVector().size() < 2) continue;
-            if (axis->ticker().dynamicCast<QCPAxisTickerText>()) continue;  // named ticks stay
-            const QVector<double> ticks = axis->tickVector();
-            const double spacing =
-                std::abs(axis->coordToPixel(ticks[1]) - axis->coordToPixel(ticks[0]));
-            const QSizeF label = widestLabel(axis->tickVectorLabels(), axis->tickLabelFont());
-            const double needed = (across ? label.width() : label.height()) + 4.0;
-            if (spacing <= 0 || spacing >= needed) continue;
-            QSharedPointer<QCPAxisTicker> ticker = axis->ticker();
-            auto fixed = ticker.dynamicCast<QCPAxisTickerFixed>();
-            if (!fixed) {
-                // An automatic ticker: fewer ticks, as few as the room asks for.
-                const int count = ticker->tickCount();
-                ticker->setTickCount(
-                    std::max(2, static_cast<int>(std::floor(count * spacing / needed))));
-                undo.push_back([ticker, count] { ticker->setTickCount(count); });
-                continue;
-            }
-            const double step = fixed->tickStep();
-            const auto strategy = fixed->scaleStrategy();
-            double factor = 1.0;
-            while (spacing * factor < needed && factor < 1e6) factor *= 2.0;
-            fixed->setTickStep(step * factor);
-            fixed->setScaleStrategy(QCPAxisTickerFixed::ssNone);
-            undo.push_back([fixed, step, strategy] {
-                fixed->setTickStep(step);
-                fixed->setScaleStrategy(strategy);
-            });
         }
     }
-    for (QCPLayoutElement* e : plot.plotLayout()->elements(false))
-        if (auto* text = qobject_cast<QCPTextElement*>(e)) {
-            const QString before = text->text();
-            const QString fitted = wrapped(before, text->font(), plot.viewport().width() - 8.0);
-            if (fitted == before) continue;
-            text->setText(fitted);
-            undo.push_back([text, before] { text->setText(before); });
-        }
+    // The title and caption are wrapped by every layout (fitToLayout).
     return [undo] {
         for (auto it = undo.rbegin(); it != undo.rend(); ++it) (*it)();
     };

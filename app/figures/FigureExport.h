@@ -7,6 +7,7 @@
 
 class QCustomPlot;
 class QCPAxisRect;
+class QCPLegend;
 class QCPRange;
 
 namespace activetouch {
@@ -46,6 +47,11 @@ std::function<void()> setJournalText(QCustomPlot& plot);
 /// Shows `x` and `y` in `rect` at one unit per pixel on both axes from then on: fitEqualAspect
 /// widens one of these ranges to fit the rect's shape, always starting again from them.
 void setEqualAspectRanges(QCPAxisRect* rect, const QCPRange& x, const QCPRange& y);
+
+/// The legend in `rect`'s top right corner stays clear of the data, which reaches up to `dataTop`
+/// and right to `dataRight`: where the panel's shape leaves it no room beside the data,
+/// fitEqualAspect raises the top of the view until the legend fits above it.
+void keepLegendClear(QCPAxisRect* rect, QCPLegend* legend, double dataRight, double dataTop);
 
 /// Gives every axis rect set up by setEqualAspectRanges equal scales on both axes for its current
 /// size, widening the axis with room to spare from the ranges asked for (so repeated resizes never

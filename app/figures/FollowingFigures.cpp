@@ -82,6 +82,7 @@ void finishPathPanel(QCPAxisRect* rect, QCPLegend* legend, QCPCurve* firstEnd,
     const Vec2 lo = box.lo, hi = box.hi;
     setEqualAspectRanges(rect, QCPRange(lo.x - margin, hi.x + margin),
                          QCPRange(lo.y - margin, hi.y + margin + legendRoom * (hi.y - lo.y)));
+    if (legendRoom > 0.0) keepLegendClear(rect, legend, hi.x + margin, hi.y + margin);
 }
 
 QCPLegend* addPathPanel(QCPAxisRect* rect, const QString& title) {
@@ -224,6 +225,9 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
         distanceAxis->setLabel("Euclidean distance");
         distanceAxis->ticker()->setTickCount(3);  // the panel is narrow; labels like 0.025 are wide
         QSharedPointer<QCPAxisTickerText> ticker(new QCPAxisTickerText);
+        // One named row per template: the panel is never shorter than their names stacked.
+        dr->setMinimumSize(0, static_cast<int>(r.templates.size()) *
+                                  (QFontMetrics(templateAxis->tickLabelFont()).height() + 6));
         auto* group = new QCPBarsGroup(&plot);
         double longest = 0.0;
         for (std::size_t k = 0; k < trials.size(); ++k) {
@@ -269,7 +273,7 @@ const std::vector<RunFigure>& runFigures() {
              buildErrorFigure(plot, r);
              return true;
          },
-         FigureSize::physical(kDoubleColumn_mm, 170, kFigureDpi)},
+         FigureSize::physical(kDoubleColumn_mm, 115, kFigureDpi)},
         {"figure7_passive_paths",
          [](QCustomPlot& plot, const RunResult& r) {
              return validated(r) && buildPathFigure(plot, r, FollowingMode::Passive,
@@ -298,10 +302,13 @@ QStringList writeRunFigures(const RunResult& result, const QString& outDir) {
     const QString dir = figuresDirectory(outDir);
     QStringList written;
     QCustomPlot plot;
-    for (const RunFigure& figure : runFigures())
+    for (const RunFigure& figure : runFigures()) {
+        // Built on a plot of the figure's shape: a figure may lay itself out for it.
+        layOutAt(plot, figure.size);
         if (figure.build(plot, result))
             written << exportFigure(plot, dir + "/" + figure.file, {"png", "pdf", "svg"},
                                     figure.size);
+    }
     return written;
 }
 

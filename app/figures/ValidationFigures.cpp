@@ -145,13 +145,18 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
                     .arg(r.validation.positionError_mm, 0, 'f', 2)
                     .arg(r.noiseFloor_counts, 0, 'f', 1)
                     .arg(maxPosition));
-    // One panel a row, the whole width, their left edges aligned: a heatmap of 18 positions by
-    // the orientations is wide, and the figure reads the same in one column or across a page.
+    // Laid out for the plot's shape: on a wide plot (a screen, a page across) the heatmaps side
+    // by side above the two line panels; on a tall one (a single journal column) one panel a
+    // row, the whole width. Left edges aligned either way.
+    const bool oneColumn = plot.height() > plot.width();
     auto* left = new QCPMarginGroup(&plot);
+    QCPLayoutGrid* heatRow = oneColumn ? nullptr : addFigureRow(plot, 1.0);
+    QCPLayoutGrid* lineRow = nullptr;
     for (int h = 0; h < 2; ++h) {
-        QCPLayoutGrid* upper = addFigureRow(plot, 0.6);
+        QCPLayoutGrid* upper = oneColumn ? addFigureRow(plot, 0.6) : heatRow;
+        const int column = oneColumn ? 0 : 2 * h;
         auto* rect =
-            addPanel(upper, 0, 0, "position (mm; 1 = plane, 18 = air)", "edge orientation");
+            addPanel(upper, 0, column, "position (mm; 1 = plane, 18 = air)", "edge orientation");
         rect->setMarginGroup(QCP::msLeft, left);
         rect->axis(QCPAxis::atLeft)->setTicker(orientationTicker(cs));
         setPanelTitle(rect, heats[h].title);
@@ -164,8 +169,8 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         map->setInterpolate(false);
         map->setTightBoundary(false);
         auto* scale = new QCPColorScale(&plot);
-        upper->addElement(0, 1, scale);
-        upper->setColumnStretchFactors({1.0, 0.05});
+        upper->addElement(0, column + 1, scale);
+        if (oneColumn) upper->setColumnStretchFactors({1.0, 0.05});
         scale->setType(QCPAxis::atRight);
         scale->axis()->setLabel(heats[h].unit);
         map->setColorScale(scale);
@@ -193,8 +198,13 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
          &r.validation.positionStd, "position error (mm)"}};
     for (int l = 0; l < 2; ++l) {
         auto* rect = new QCPAxisRect(&plot);
-        addFigureRow(plot, 0.75)->addElement(0, 0, rect);
-        rect->setMarginGroup(QCP::msLeft, left);
+        if (oneColumn) {
+            addFigureRow(plot, 0.75)->addElement(0, 0, rect);
+        } else {
+            if (!lineRow) lineRow = addFigureRow(plot, 1.0);
+            lineRow->addElement(0, l, rect);
+        }
+        if (l == 0 || oneColumn) rect->setMarginGroup(QCP::msLeft, left);
         rect->axis(QCPAxis::atBottom)->setLabel("position (mm; 1 = plane, 18 = air)");
         rect->axis(QCPAxis::atLeft)->setLabel(lines[l].unit);
         setPanelTitle(rect, lines[l].title);
@@ -220,6 +230,7 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         rect->axis(QCPAxis::atLeft)->setRange(0.0, yMax);
         shadeValidRange(rect, r, yMax);
     }
+    if (heatRow) heatRow->setColumnStretchFactors({1.0, 0.06, 1.0, 0.06});
 }
 
 }  // namespace activetouch

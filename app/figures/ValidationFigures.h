@@ -21,8 +21,9 @@ QString classifierTitleNote(const RunResult& result, bool following);
 /// to a maximum of one, one colour per taxel.
 void buildTapFigure(QCustomPlot& plot, const RunResult& result);
 
-/// Figure 6: panels A, B heatmaps (fixed colour scales, no interpolation), C, D mean +- std over
-/// orientations, the valid range shaded.
+/// Figure 6: panels A, B heatmaps (fixed colour scales, no interpolation), C, D mean ± s.d. over
+/// orientations, the valid range shaded; the statistics in a caption. Laid out for the plot's
+/// shape when built: A and B side by side above C and D on a wide plot, one a row on a tall one.
 void buildErrorFigure(QCustomPlot& plot, const RunResult& result);
 
 }  // namespace activetouch

@@ -6,6 +6,7 @@
 #include <QMenu>
 #include <QMouseEvent>
 #include <QRegularExpression>
+#include <QScrollArea>
 #include <QTextStream>
 #include <QVBoxLayout>
 #include <stdexcept>
@@ -20,7 +21,19 @@ PlotPanel::PlotPanel(const QString& name, QWidget* parent)
     : QWidget(parent), name_(name), plot_(new QCustomPlot(this)), hint_(new QLabel(plot_)) {
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
-    layout->addWidget(plot_);
+    // A figure of many panels may ask for more room than a laptop has: it keeps the room its
+    // layout needs and scrolls within the panel, rather than making the window larger.
+    auto* scroll = new QScrollArea;
+    scroll->setObjectName("plotScroll");
+    scroll->setWidgetResizable(true);
+    scroll->setFrameShape(QFrame::NoFrame);
+    scroll->setWidget(plot_);
+    layout->addWidget(scroll);
+    plot_->setMinimumSize(160, 120);
+    connect(plot_, &QCustomPlot::afterReplot, this, [this] {
+        const QSize least = plot_->plotLayout()->minimumOuterSizeHint().expandedTo(QSize(160, 120));
+        if (plot_->minimumSize() != least) plot_->setMinimumSize(least);
+    });
     plot_->setContextMenuPolicy(Qt::CustomContextMenu);
     plot_->setNoAntialiasingOnDrag(true);
     connect(plot_, &QWidget::customContextMenuRequested, this, &PlotPanel::showMenu);

@@ -100,6 +100,9 @@ int runScreenshotTour(MainWindow& window, const QString& dir) {
                 QApplication::quit();
                 return;
             }
+            // The whole screen on the paths the run traced: the window as it opens on a laptop.
+            window.tabs()->setCurrentWidget(window.followingTab());
+            settle();
             saveScreen(QString("0_screen_%1x%2")
                            .arg(window.screen()->size().width())
                            .arg(window.screen()->size().height()));

@@ -100,10 +100,12 @@ void SummaryTable::addRow(const QStringList& cells, int indent) {
 }
 
 void SummaryTable::fitHeight() {
-    // As tall as its rows, up to a third of a laptop screen; it scrolls beyond.
+    // As tall as its rows, up to a third of a laptop screen, and it scrolls beyond; a short
+    // window shrinks it to a few rows rather than growing.
     int height = table_->horizontalHeader()->height() + 2 * table_->frameWidth();
     for (int r = 0; r < table_->rowCount(); ++r) height += table_->rowHeight(r);
-    table_->setFixedHeight(std::min(height, 240));
+    table_->setMaximumHeight(std::min(height, 240));
+    table_->setMinimumHeight(std::min(height, 90));
     table_->show();
 }
 

@@ -65,14 +65,21 @@ private slots:
             *std::find_if(runFigures().begin(), runFigures().end(),
                           [](const RunFigure& f) { return QString(f.file) == "figure6_errors"; });
         const FigureSize size = FigureSize::physical(kSingleColumn_mm, 140, 300);
+        // Built on a plot of the column's shape, as the figure is laid out for it.
+        auto shaped = [&](QCustomPlot& plot) {
+            const double dpi = plot.logicalDpiX();
+            plot.resize(qRound(size.width_mm / 25.4 * dpi), qRound(size.height_mm / 25.4 * dpi));
+        };
         {
             QCustomPlot plot;
+            shaped(plot);
             QVERIFY(errors.build(plot, runs_.front()));
             layOutAt(plot, size);
             test::checkLabelsFitTheirPanels(plot, "figure6_errors at 89 mm");
             if (QTest::currentTestFailed()) return;
         }
         QCustomPlot plot;
+        shaped(plot);
         QVERIFY(errors.build(plot, runs_.front()));
         QTemporaryDir dir;
         const QStringList files =

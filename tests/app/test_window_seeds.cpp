@@ -1,5 +1,7 @@
 // The window over seeds: rates over a range of seeds, a seed's row opening its run,
 // cancelling and keeping every finished seed, and two experiments compared trial by trial.
+#include <QDockWidget>
+
 #include "WindowFixture.h"
 
 class TestWindowSeeds : public WindowFixture {
@@ -71,10 +73,10 @@ private slots:
         endsSuccessfully(*window_, ended);
         if (QTest::currentTestFailed()) return;
         QVERIFY(showPair->isEnabled());
-        const TrialPairRun direct =
-            runTrialPair(simulatedRigs(), loadExperiment(sourceFile("experiments/paper.json").toStdString()),
-                         loadExperiment(sourceFile("experiments/paper_kernel.json").toStdString()),
-                         seed, mode, label.toStdString(), trial);
+        const TrialPairRun direct = runTrialPair(
+            simulatedRigs(), loadExperiment(sourceFile("experiments/paper.json").toStdString()),
+            loadExperiment(sourceFile("experiments/paper_kernel.json").toStdString()), seed, mode,
+            label.toStdString(), trial);
         // The row said they ended differently; so does the rerun.
         QVERIFY(trialOutcome(direct.a) != trialOutcome(direct.b) ||
                 namedPath(direct.a) != namedPath(direct.b));
@@ -320,6 +322,21 @@ private slots:
         QCOMPARE(readJson(dir + "/rates.json")["runs"].toInt(), rows);
         QVERIFY(tab->summaryText().contains(QString("cancelled after %1 seeds").arg(rows)));
         QVERIFY(window_->progressBar()->format().startsWith("seeds cancelled"));
+    }
+
+    void theFilledWindowStillFitsALaptop() {
+        // After runs over seeds and comparisons have filled their tabs (tables, summaries and
+        // plots), the window still fits a 1280x720 screen with every dock shown.
+        for (QDockWidget* dock : window_->findChildren<QDockWidget*>()) dock->show();
+        QCoreApplication::processEvents();
+        const QSize least = window_->layout()->minimumSize().expandedTo(window_->minimumSize());
+        for (int i = 0; i < window_->tabs()->count(); ++i) {
+            const QSize page = window_->tabs()->widget(i)->minimumSizeHint();
+            qInfo("%s: %dx%d", qPrintable(window_->tabs()->tabText(i)), page.width(),
+                  page.height());
+        }
+        QVERIFY2(least.width() <= 1280 && least.height() <= 720,
+                 qPrintable(QString("%1x%2").arg(least.width()).arg(least.height())));
     }
 
     void cleanupTestCase() { closeWindow(); }

@@ -24,7 +24,10 @@ inline void checkEqualAspect(QCustomPlot& plot, const QString& name,
         if (!wantX.isValid()) continue;
         const QString what = QString("%1 panel %2").arg(name).arg(i);
         QVERIFY2(rect->width() > 20 && rect->height() > 20, qPrintable(what));
-        const QPointF wx = wantX.toPointF(), wy = rect->property("equalAspectY").toPointF();
+        // The y range asked for, with the room a legend over the data took (if it took any).
+        const QVariant shownY = rect->property("equalAspectShownY");
+        const QPointF wx = wantX.toPointF(),
+                      wy = (shownY.isValid() ? shownY : rect->property("equalAspectY")).toPointF();
         const QCPRange x = rect->axis(QCPAxis::atBottom)->range();
         const QCPRange y = rect->axis(QCPAxis::atLeft)->range();
         const double ratio = (x.size() / rect->width()) / (y.size() / rect->height());
