@@ -154,6 +154,7 @@ void MainWindow::buildDocks() {
     logDock->setObjectName("logDock");
     logDock->setWidget(log_);
     addDockWidget(Qt::BottomDockWidgetArea, logDock);
+    resizeDocks({logDock}, {110}, Qt::Vertical);  // a few lines; the plots take the height
 }
 
 void MainWindow::buildToolBar(const QSettings& settings) {
