@@ -370,7 +370,7 @@ void MainWindow::showRun(std::shared_ptr<const RunResult> result, const QString&
     const bool analysis = replay || r.rig.rfind("recording ", 0) == 0;
     last_ = result;
     lastOutDir_ = dir;
-    validation_->showRun(r);
+    validation_->showRun(result);
     following_->showRun(result);
     recognition_->showRun(r);
     sweeps_->showRun(r, analysis);

@@ -265,16 +265,27 @@ QStringList PlotPanel::exportTo(const QString& basePath, const QStringList& form
     // not part of a figure.
     hideTracer();
     const QSize shown = plot_->size();
-    QStringList files;
-    try {
-        files = exportFigure(*plot_, basePath, formats, size);
-    } catch (...) {
+    auto drawnFor = [this](QSize shape) {
+        if (!rebuild_) return;
+        plot_->resize(shape);
+        rebuild_(*plot_);
+    };
+    auto back = [&] {
+        drawnFor(shown);
         plot_->resize(shown);
         plot_->replot(QCustomPlot::rpImmediateRefresh);
+    };
+    QStringList files;
+    try {
+        drawnFor(size.isPhysical() ? QSize(qRound(size.width_mm / 25.4 * plot_->logicalDpiX()),
+                                           qRound(size.height_mm / 25.4 * plot_->logicalDpiY()))
+                                   : QSize(size.width_px, size.height_px));
+        files = exportFigure(*plot_, basePath, formats, size);
+    } catch (...) {
+        back();
         throw;
     }
-    plot_->resize(shown);
-    plot_->replot(QCustomPlot::rpImmediateRefresh);
+    back();
     return files;
 }
 

@@ -9,6 +9,7 @@
 #include <QPointer>
 #include <QTimer>
 #include <QWidget>
+#include <functional>
 
 #include "app/figures/FigureExport.h"
 
@@ -35,6 +36,10 @@ public:
 
     /// Marks the plot for redrawing at the next frame.
     void requestReplot();
+
+    /// How to draw the figure again, for a figure that lays itself out for the plot's shape: an
+    /// export at another shape draws it for that shape, then again for the screen.
+    void setRebuild(std::function<void(QCustomPlot&)> rebuild) { rebuild_ = std::move(rebuild); }
 
     /// Writes the plot in each format as <basePath>.<format>. Throws std::runtime_error.
     QStringList exportTo(const QString& basePath, const QStringList& formats,
@@ -78,6 +83,7 @@ private:
     bool dirty_ = false;
     int refits_ = 0;  ///< equal-aspect refits in a row
     bool zoomed_ = false;
+    std::function<void(QCustomPlot&)> rebuild_;
     QList<QPair<QCPAxis*, QPair<double, double>>> home_;  ///< each axis's own range
     QPointer<QCPItemTracer> tracer_;  ///< the figure's code may clear the items: guarded
     QPointer<QCPItemText> cursorLabel_;

@@ -66,9 +66,15 @@ ValidationTab::ValidationTab(QWidget* parent) : QTabWidget(parent) {
     errors_->setEmptyHint(training);
 }
 
-void ValidationTab::showRun(const RunResult& r) {
+void ValidationTab::showRun(const std::shared_ptr<const RunResult>& result) {
+    const RunResult& r = *result;
     if (!r.taps.empty()) buildTapFigure(taps_->plot(), r);
-    if (!r.validation.byClass.empty()) buildErrorFigure(errors_->plot(), r);
+    if (!r.validation.byClass.empty()) {
+        buildErrorFigure(errors_->plot(), r);
+        // Figure 6 lays itself out for the plot's shape: an export in a single column draws it
+        // again for that shape.
+        errors_->setRebuild([result](QCustomPlot& plot) { buildErrorFigure(plot, *result); });
+    }
     for (auto* p : {taps_, errors_}) p->plot().replot();
 }
 

@@ -5,6 +5,7 @@
 #include <QSplitter>
 #include <QString>
 #include <QTabWidget>
+#include <memory>
 
 class QLabel;
 class QTableWidget;
@@ -19,8 +20,9 @@ class ValidationTab : public QTabWidget {
     Q_OBJECT
 public:
     explicit ValidationTab(QWidget* parent = nullptr);
-    /// Redraws from `r`; a following-only run (no taps) keeps the figures shown.
-    void showRun(const RunResult& r);
+    /// Redraws from `r`; a following-only run (no taps) keeps the figures shown. Figure 6 is
+    /// drawn again for the shape it is exported at.
+    void showRun(const std::shared_ptr<const RunResult>& r);
     PlotPanel* tapsPanel() const { return taps_; }
     PlotPanel* errorsPanel() const { return errors_; }
 

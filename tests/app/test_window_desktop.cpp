@@ -445,6 +445,26 @@ private slots:
         endsSuccessfully(*window_, ended);
         QVERIFY2(window_->lastRunDirectory().startsWith(QDir(folder).absolutePath()),
                  qPrintable(window_->lastRunDirectory()));
+        // Figure 6 exported for a single journal column from the window: drawn for that shape,
+        // written at 89 mm and 300 dpi, and drawn for the screen again after.
+        PlotPanel* errors = nullptr;
+        for (PlotPanel* p : window_->plotPanels())
+            if (p->name() == "figure6_errors") errors = p;
+        QVERIFY(errors && errors->plot().plottableCount() > 0);
+        auto sideBySide = [&] {
+            QCustomPlot& plot = errors->plot();
+            plot.replot(QCustomPlot::rpImmediateRefresh);
+            const QList<QCPAxisRect*> rects = plot.axisRects();
+            return rects.size() >= 2 && rects[0]->top() == rects[1]->top();
+        };
+        window_->tabs()->setCurrentIndex(1);
+        QVERIFY(sideBySide());  // on a wide screen, A and B side by side
+        const QStringList files =
+            errors->exportTo(dir_.filePath("figure6_column"), {"png", "pdf"},
+                             FigureSize::physical(kSingleColumn_mm, 140, 300));
+        QCOMPARE(files.size(), 2);
+        QCOMPARE(QImage(files.front()).width(), 1051);
+        QVERIFY(sideBySide());
         // A session's own output folder (the screenshot tour's) is not kept as the preference.
         window_->setOutputBase(dir_.filePath("runs"));
         QCOMPARE(QSettings().value("resultsFolder").toString(), QDir(folder).absolutePath());
