@@ -42,6 +42,8 @@ void addDifferences(QCPAxisRect* rect, const PairedComparison& c, const std::vec
     QCPAxis* y = rect->axis(QCPAxis::atLeft);
     const int n = static_cast<int>(rows.size());
     QSharedPointer<QCPAxisTickerText> names(new QCPAxisTickerText);
+    // Each outcome's name and counts take two lines: the panel is never shorter than them.
+    rect->setMinimumSize(0, n * (2 * QFontMetrics(y->tickLabelFont()).height() + 8));
     double lo = 0.0, hi = 0.0;
     for (int i = 0; i < n; ++i) {
         const Part& part = rows[static_cast<std::size_t>(i)];

@@ -140,7 +140,7 @@ void MainWindow::buildDocks() {
     sceneDock->raise();
     // The panels scroll: they start at a width that leaves the plots the room, and a person may
     // widen them.
-    resizeDocks({sceneDock}, {380}, Qt::Horizontal);
+    resizeDocks({sceneDock}, {420}, Qt::Horizontal);
     connect(protocol_, &ProtocolPanel::resetRequested, this, [this] {
         protocol_->showExperiment(spec_, experimentJson_);
         log(tr("protocol panel: the settings of %1 shown again").arg(experimentPath_));
