@@ -1,0 +1,321 @@
+#include "core/geometry/SvgPath.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+#include "core/common/InputError.h"
+
+namespace activetouch {
+
+namespace {
+
+/// Reads path data: commands, numbers and arc flags, with the place of each.
+class PathReader {
+public:
+    PathReader(const std::string& d, const std::string& source, const std::string& place)
+        : d_(d), source_(source), place_(place) {}
+
+    void skipSeparators() {
+        while (at_ < d_.size() &&
+               (std::isspace(static_cast<unsigned char>(d_[at_])) || d_[at_] == ','))
+            ++at_;
+    }
+    bool atEnd() {
+        skipSeparators();
+        return at_ >= d_.size();
+    }
+    /// Whether a number (or flag) comes next rather than a command.
+    bool numberNext() {
+        skipSeparators();
+        if (at_ >= d_.size()) return false;
+        const char c = d_[at_];
+        return std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.';
+    }
+    char command() {
+        skipSeparators();
+        const char c = d_[at_];
+        if (!std::strchr("MmLlHhVvCcSsQqTtAaZz", c) || c == '\0')
+            fail(std::string("unknown command '") + printable(c) +
+                 "'; path data knows M L H V C S Q T A Z (and their lower-case relative forms)");
+        command_ = c;
+        ++at_;
+        return c;
+    }
+    double number() {
+        skipSeparators();
+        if (at_ >= d_.size()) fail("a number is missing at the end of the path data");
+        // The SVG number grammar: sign, digits, a point, digits, an exponent; "-.5.5" is two.
+        std::size_t end = at_;
+        if (d_[end] == '+' || d_[end] == '-') ++end;
+        bool digits = false, point = false;
+        while (end < d_.size()) {
+            const char c = d_[end];
+            if (std::isdigit(static_cast<unsigned char>(c))) {
+                digits = true;
+            } else if (c == '.' && !point) {
+                point = true;
+            } else {
+                break;
+            }
+            ++end;
+        }
+        if (digits && end < d_.size() && (d_[end] == 'e' || d_[end] == 'E')) {
+            std::size_t e = end + 1;
+            if (e < d_.size() && (d_[e] == '+' || d_[e] == '-')) ++e;
+            if (e < d_.size() && std::isdigit(static_cast<unsigned char>(d_[e]))) {
+                while (e < d_.size() && std::isdigit(static_cast<unsigned char>(d_[e]))) ++e;
+                end = e;
+            }
+        }
+        if (!digits) fail(std::string("expected a number, found '") + printable(d_[at_]) + "'");
+        const double v = std::strtod(d_.substr(at_, end - at_).c_str(), nullptr);
+        if (!std::isfinite(v) || std::abs(v) > kMaxSvgCoordinate_mm)
+            fail("the number " + d_.substr(at_, std::min<std::size_t>(end - at_, 24)) +
+                 " is beyond what an outline on the stage can use (|value| <= " +
+                 std::to_string(static_cast<int>(kMaxSvgCoordinate_mm)) + " mm)");
+        at_ = end;
+        return v;
+    }
+    bool flag() {
+        skipSeparators();
+        if (at_ >= d_.size() || (d_[at_] != '0' && d_[at_] != '1'))
+            fail("an arc flag must be 0 or 1");
+        return d_[at_++] == '1';
+    }
+    [[noreturn]] void fail(const std::string& problem) const {
+        throw InputError(source_,
+                         place_ + ", character " + std::to_string(at_ + 1) +
+                             (command_ ? std::string(" (command ") + command_ + ")" : ""),
+                         problem);
+    }
+    [[noreturn]] void failWhole(const std::string& problem) const {
+        throw InputError(source_, place_, problem);
+    }
+
+private:
+    static std::string printable(char c) {
+        return std::isprint(static_cast<unsigned char>(c)) ? std::string(1, c)
+                                                           : "\\x" + std::to_string(int(c));
+    }
+    const std::string& d_;
+    const std::string& source_;
+    const std::string& place_;
+    std::size_t at_ = 0;
+    char command_ = 0;
+};
+
+/// Points along a curve, appended without its start (the current point).
+class Flattener {
+public:
+    explicit Flattener(double tolerance) : tolerance_(tolerance) {}
+
+    void cubic(std::vector<Vec2>& out, Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3, int depth = 0) const {
+        // Flat enough when both control points lie within the tolerance of the chord.
+        const double d1 = distanceToLine(p1, p0, p3), d2 = distanceToLine(p2, p0, p3);
+        if (depth >= 18 || std::max(d1, d2) <= tolerance_) {
+            out.push_back(p3);
+            return;
+        }
+        const Vec2 a = mid(p0, p1), b = mid(p1, p2), c = mid(p2, p3);
+        const Vec2 ab = mid(a, b), bc = mid(b, c), m = mid(ab, bc);
+        cubic(out, p0, a, ab, m, depth + 1);
+        cubic(out, m, bc, c, p3, depth + 1);
+    }
+    void quadratic(std::vector<Vec2>& out, Vec2 p0, Vec2 c, Vec2 p2) const {
+        cubic(out, p0, p0 + (2.0 / 3.0) * (c - p0), p2 + (2.0 / 3.0) * (c - p2), p2);
+    }
+    /// The SVG elliptical arc from `p0` to `p1` (endpoint parameterisation, SVG 1.1 F.6.5).
+    void arc(std::vector<Vec2>& out, Vec2 p0, double rx, double ry, double rotationDeg, bool large,
+             bool sweep, Vec2 p1) const {
+        if (p0 == p1) return;  // an arc to where it is: nothing
+        rx = std::abs(rx);
+        ry = std::abs(ry);
+        if (rx == 0.0 || ry == 0.0) {
+            out.push_back(p1);  // a straight line, as SVG says
+            return;
+        }
+        const double phi = rotationDeg * M_PI / 180.0, cp = std::cos(phi), sp = std::sin(phi);
+        const double dx = 0.5 * (p0.x - p1.x), dy = 0.5 * (p0.y - p1.y);
+        const double x1 = cp * dx + sp * dy, y1 = -sp * dx + cp * dy;
+        // Radii too small for the endpoints grow until they reach.
+        const double lambda = (x1 * x1) / (rx * rx) + (y1 * y1) / (ry * ry);
+        if (lambda > 1.0) {
+            rx *= std::sqrt(lambda);
+            ry *= std::sqrt(lambda);
+        }
+        const double num = rx * rx * ry * ry - rx * rx * y1 * y1 - ry * ry * x1 * x1;
+        const double den = rx * rx * y1 * y1 + ry * ry * x1 * x1;
+        double k = den > 0.0 ? std::sqrt(std::max(0.0, num / den)) : 0.0;
+        if (large == sweep) k = -k;
+        const double cx1 = k * rx * y1 / ry, cy1 = -k * ry * x1 / rx;
+        const Vec2 centre{cp * cx1 - sp * cy1 + 0.5 * (p0.x + p1.x),
+                          sp * cx1 + cp * cy1 + 0.5 * (p0.y + p1.y)};
+        auto angle = [](double ux, double uy, double vx, double vy) {
+            return std::atan2(ux * vy - uy * vx, ux * vx + uy * vy);
+        };
+        const double theta = angle(1, 0, (x1 - cx1) / rx, (y1 - cy1) / ry);
+        double delta = angle((x1 - cx1) / rx, (y1 - cy1) / ry, (-x1 - cx1) / rx, (-y1 - cy1) / ry);
+        if (!sweep && delta > 0) delta -= 2 * M_PI;
+        if (sweep && delta < 0) delta += 2 * M_PI;
+        // Steps whose sagitta on the larger radius stays within the tolerance.
+        const double r = std::max(rx, ry);
+        const double step = r > tolerance_ ? 2.0 * std::acos(1.0 - tolerance_ / r) : M_PI / 2;
+        const int n = std::max(1, static_cast<int>(std::ceil(std::abs(delta) / step)));
+        for (int i = 1; i <= n; ++i) {
+            const double t = theta + delta * i / n;
+            const double ex = rx * std::cos(t), ey = ry * std::sin(t);
+            out.push_back(
+                i == n ? p1 : Vec2{cp * ex - sp * ey + centre.x, sp * ex + cp * ey + centre.y});
+        }
+    }
+
+private:
+    static Vec2 mid(Vec2 a, Vec2 b) { return 0.5 * (a + b); }
+    static double distanceToLine(Vec2 p, Vec2 a, Vec2 b) {
+        const Vec2 ab = b - a;
+        const double length = std::hypot(ab.x, ab.y);
+        if (length == 0.0) return std::hypot(p.x - a.x, p.y - a.y);
+        return std::abs(ab.x * (p.y - a.y) - ab.y * (p.x - a.x)) / length;
+    }
+    double tolerance_;
+};
+
+}  // namespace
+
+Polygon polygonFromSvgPath(const std::string& d, double tolerance_mm, const std::string& source,
+                           const std::string& place) {
+    PathReader in(d, source, place);
+    if (!(tolerance_mm > 0.0) || !std::isfinite(tolerance_mm))
+        in.failWhole("the flattening tolerance must be a positive number of mm");
+    const Flattener flat(tolerance_mm);
+    std::vector<Vec2> points;
+    Vec2 current, start, lastControl;
+    char previous = 0;
+    bool closed = false, begun = false;
+    if (in.atEnd()) in.failWhole("the path data is empty; give one closed outline (M ... Z)");
+    while (!in.atEnd()) {
+        const char c = in.command();
+        const bool relative = std::islower(static_cast<unsigned char>(c));
+        const char C = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+        if (!begun && C != 'M') in.fail("path data must begin with a move (M)");
+        if (closed && C != 'Z') in.fail("a second outline after Z; give one closed outline");
+        auto point = [&] {
+            const double x = in.number(), y = in.number();
+            return relative ? current + Vec2{x, y} : Vec2{x, y};
+        };
+        bool first = true;
+        do {
+            switch (C) {
+                case 'M':
+                    if (!first) {  // further pairs after a move are lines
+                        current = point();
+                        points.push_back(current);
+                        break;
+                    }
+                    if (begun) in.fail("a second move (M): give one closed outline per object");
+                    current = start = point();
+                    begun = true;
+                    points.push_back(current);
+                    break;
+                case 'L':
+                    current = point();
+                    points.push_back(current);
+                    break;
+                case 'H': {
+                    const double x = in.number();
+                    current.x = relative ? current.x + x : x;
+                    points.push_back(current);
+                    break;
+                }
+                case 'V': {
+                    const double y = in.number();
+                    current.y = relative ? current.y + y : y;
+                    points.push_back(current);
+                    break;
+                }
+                case 'C': {
+                    const Vec2 c1 = point(), c2 = point(), end = point();
+                    flat.cubic(points, current, c1, c2, end);
+                    lastControl = c2;
+                    current = end;
+                    break;
+                }
+                case 'S': {
+                    const char p =
+                        static_cast<char>(std::toupper(static_cast<unsigned char>(previous)));
+                    const Vec2 c1 = (p == 'C' || p == 'S') ? 2.0 * current - lastControl : current;
+                    const Vec2 c2 = point(), end = point();
+                    flat.cubic(points, current, c1, c2, end);
+                    lastControl = c2;
+                    current = end;
+                    break;
+                }
+                case 'Q': {
+                    const Vec2 control = point(), end = point();
+                    flat.quadratic(points, current, control, end);
+                    lastControl = control;
+                    current = end;
+                    break;
+                }
+                case 'T': {
+                    const char p =
+                        static_cast<char>(std::toupper(static_cast<unsigned char>(previous)));
+                    const Vec2 control =
+                        (p == 'Q' || p == 'T') ? 2.0 * current - lastControl : current;
+                    const Vec2 end = point();
+                    flat.quadratic(points, current, control, end);
+                    lastControl = control;
+                    current = end;
+                    break;
+                }
+                case 'A': {
+                    const double rx = in.number(), ry = in.number(), rotation = in.number();
+                    const bool large = in.flag(), sweep = in.flag();
+                    const Vec2 end = point();
+                    flat.arc(points, current, rx, ry, rotation, large, sweep, end);
+                    current = end;
+                    break;
+                }
+                case 'Z':
+                    closed = true;
+                    current = start;
+                    break;
+            }
+            previous = C == 'M' && !first ? 'L' : C;
+            first = false;
+            if (points.size() > kMaxOutlineVertices)
+                in.fail("the outline needs more than " + std::to_string(kMaxOutlineVertices) +
+                        " vertices at this tolerance; give a coarser tolerance or a simpler path");
+        } while (C != 'Z' && in.numberNext());
+        if (C == 'Z' && in.numberNext()) in.fail("Z takes no numbers");
+    }
+    // Closed by Z, or by ending where it began (within the tolerance).
+    if (!closed) {
+        const Vec2 gap = points.back() - start;
+        if (std::hypot(gap.x, gap.y) > tolerance_mm)
+            in.failWhole("the path does not close: end it with Z, or where it began");
+    }
+    // The closing vertex repeats the first; repeated points (a zero-length segment) go.
+    std::vector<Vec2> outline;
+    for (const Vec2& p : points) {
+        if (!outline.empty()) {
+            const Vec2 step = p - outline.back();
+            if (std::hypot(step.x, step.y) <= 1e-9) continue;
+        }
+        outline.push_back(p);
+    }
+    while (outline.size() > 1) {
+        const Vec2 gap = outline.back() - outline.front();
+        if (std::hypot(gap.x, gap.y) > std::max(1e-9, 0.5 * tolerance_mm)) break;
+        outline.pop_back();
+    }
+    if (auto problem = Polygon::problemWith(outline))
+        in.failWhole("the outline it draws cannot be an object: " + *problem);
+    return Polygon(std::move(outline));
+}
+
+}  // namespace activetouch

@@ -1,0 +1,191 @@
+// Outlines from SVG path data (core/geometry/SvgPath.h): every command, absolute and relative,
+// flattened within the tolerance asked for; degenerate and hostile path data refused by place.
+#include <QtTest>
+#include <cmath>
+#include <functional>
+
+#include "core/common/InputError.h"
+#include "core/geometry/SvgPath.h"
+
+using namespace activetouch;
+
+namespace {
+Polygon parse(const std::string& d, double tolerance = 0.05) {
+    return polygonFromSvgPath(d, tolerance, "shape.svg", "/path");
+}
+
+/// The distance from `p` to the polygon's outline.
+double distanceToOutline(const Polygon& poly, Vec2 p) {
+    double best = 1e300;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+        const Vec2 a = poly.vertex(i), b = poly.vertex(i + 1), ab = b - a;
+        const double len2 = ab.x * ab.x + ab.y * ab.y;
+        const double t =
+            len2 > 0 ? std::clamp(((p.x - a.x) * ab.x + (p.y - a.y) * ab.y) / len2, 0.0, 1.0) : 0.0;
+        const Vec2 q = a + t * ab;
+        best = std::min(best, std::hypot(p.x - q.x, p.y - q.y));
+    }
+    return best;
+}
+
+/// The largest distance from the true curve `at(t)`, t in [0, 1], to the outline.
+double deviation(const Polygon& poly, const std::function<Vec2(double)>& at) {
+    double worst = 0.0;
+    for (int i = 0; i <= 2000; ++i)
+        worst = std::max(worst, distanceToOutline(poly, at(i / 2000.0)));
+    return worst;
+}
+
+Vec2 cubicAt(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3, double t) {
+    const double u = 1 - t;
+    return u * u * u * p0 + 3 * u * u * t * p1 + 3 * u * t * t * p2 + t * t * t * p3;
+}
+
+/// The refusal `d` gets: its place and problem.
+QString refusal(const std::string& d, double tolerance = 0.05) {
+    try {
+        parse(d, tolerance);
+    } catch (const InputError& e) {
+        return QString::fromStdString(e.place() + " | " + e.problem());
+    }
+    return {};
+}
+}  // namespace
+
+class TestSvgPath : public QObject {
+    Q_OBJECT
+private slots:
+    void linesAbsoluteAndRelativeDrawTheSameSquare() {
+        const std::vector<Vec2> square{{0, 0}, {20, 0}, {20, 10}, {0, 10}};
+        for (const std::string d :
+             {"M0 0 L20 0 L20 10 L0 10 Z", "M 0,0 H 20 V 10 H 0 Z", "m0 0 l20 0 0 10 -20 0 z",
+              "M0 0 h20 v10 h-20 z", "M0,0 20,0 20,10 0,10Z", "M0 0L20 0L20 10L0 10L0 0"}) {
+            const Polygon p = parse(d);
+            QCOMPARE(p.size(), std::size_t(4));
+            QVERIFY2(std::abs(p.area() - 200.0) < 1e-9, d.c_str());
+            for (const Vec2& v : square) QVERIFY2(distanceToOutline(p, v) < 1e-12, d.c_str());
+        }
+    }
+
+    void numbersReadAsSvgWritesThem() {
+        // No separators between a number and a sign, ".5.5" as two numbers, exponents.
+        const Polygon p = parse("M0,0L1e1-0 10,5.5.5,10-5e-1-.5z");
+        QCOMPARE(p.size(), std::size_t(5));
+        QVERIFY(distanceToOutline(p, {10, 0}) < 1e-12);
+        QVERIFY(distanceToOutline(p, {10, 5.5}) < 1e-12);
+        QVERIFY(distanceToOutline(p, {0.5, 10}) < 1e-12);
+        QVERIFY(distanceToOutline(p, {-0.5, -0.5}) < 1e-12);
+    }
+
+    void cubicsStayWithinTheTolerance() {
+        // A lens of two cubics, then the same drawn with S (the reflected control point).
+        for (const double tol : {0.5, 0.05, 0.01}) {
+            const Polygon lens = parse("M0 0 C10 -10 20 -10 30 0 C20 10 10 10 0 0 Z", tol);
+            const double worst =
+                std::max(deviation(lens,
+                                   [](double t) {
+                                       return cubicAt({0, 0}, {10, -10}, {20, -10}, {30, 0}, t);
+                                   }),
+                         deviation(lens, [](double t) {
+                             return cubicAt({30, 0}, {20, 10}, {10, 10}, {0, 0}, t);
+                         }));
+            QVERIFY2(worst <= tol + 1e-9, qPrintable(QString("%1 > %2").arg(worst).arg(tol)));
+            // Finer tolerance, more vertices.
+            if (tol == 0.01)
+                QVERIFY(lens.size() >
+                        parse("M0 0 C10 -10 20 -10 30 0 C20 10 10 10 0 0 Z", 0.5).size());
+        }
+        const Polygon smooth = parse("M0 0 C0 -10 30 -10 30 0 S0 10 0 0 Z");
+        QVERIFY(deviation(smooth, [](double t) {
+                    return cubicAt({30, 0}, {30, 10}, {0, 10}, {0, 0}, t);
+                }) <= 0.05 + 1e-9);
+        const Polygon relative = parse("m0 0 c10 -10 20 -10 30 0 s-20 10 -30 0 z");
+        QVERIFY(std::abs(relative.area() - parse("M0 0 C10 -10 20 -10 30 0 S10 10 0 0 Z").area()) <
+                1e-9);
+    }
+
+    void quadraticsStayWithinTheTolerance() {
+        // Q then T: T's control point is Q's reflected through the point between them.
+        const Polygon q = parse("M0 0 Q15 -15 30 0 T0 0 Z");
+        auto quadAt = [](Vec2 a, Vec2 c, Vec2 b, double t) {
+            const double u = 1 - t;
+            return u * u * a + 2 * u * t * c + t * t * b;
+        };
+        QVERIFY(deviation(q, [&](double t) {
+                    return quadAt({0, 0}, {15, -15}, {30, 0}, t);
+                }) <= 0.05 + 1e-9);
+        QVERIFY(deviation(q, [&](double t) {
+                    return quadAt({30, 0}, {45, 15}, {0, 0}, t);
+                }) <= 0.05 + 1e-9);
+        QVERIFY(std::abs(q.area() - parse("m0 0 q15 -15 30 0 t-30 0 z").area()) < 1e-9);
+    }
+
+    void arcsDrawCirclesAndEllipses() {
+        // A circle of radius 15 as two half arcs: every vertex on it, the area within the
+        // tolerance's share of pi r^2.
+        for (const double tol : {0.1, 0.01}) {
+            const Polygon c = parse("M-15 0 A15 15 0 0 1 15 0 A15 15 0 0 1 -15 0 Z", tol);
+            for (const Vec2& v : c.vertices())
+                QVERIFY(std::abs(std::hypot(v.x, v.y) - 15.0) < 1e-9);
+            QVERIFY(deviation(c, [](double t) {
+                        return Vec2{15 * std::cos(2 * M_PI * t), 15 * std::sin(2 * M_PI * t)};
+                    }) <= tol + 1e-9);
+            QVERIFY(std::abs(c.area() - M_PI * 225) < 2 * M_PI * 15 * tol);
+        }
+        // A rotated ellipse (30 degrees), relative: each vertex satisfies its equation.
+        const Polygon e = parse("M-20 0 a20 10 0 0 1 40 0 a20 10 0 0 1 -40 0 z");
+        for (const Vec2& v : e.vertices())
+            QVERIFY(std::abs(v.x * v.x / 400 + v.y * v.y / 100 - 1) < 1e-9);
+        const Polygon turned = parse("M0 0 A20 10 30 1 1 1 0 Z");
+        QVERIFY(turned.area() > 0);
+        // Radii too small to reach are scaled up: a half circle through both ends.
+        const Polygon grown = parse("M0 0 A1 1 0 0 1 20 0 Z");
+        // (The flattened arc lies inside the curve, short of it by at most the tolerance.)
+        QVERIFY2(std::abs(grown.area() - 0.5 * M_PI * 100) < M_PI * 10 * 0.05,
+                 qPrintable(QString::number(grown.area())));
+        // Flags written without separators.
+        QVERIFY(parse("M0 0A10 10 0 0120 0Z").area() > 100);
+    }
+
+    void badPathDataIsRefusedByPlace() {
+        struct Case {
+            std::string d;
+            QString place, problem;
+        };
+        const QList<Case> cases{
+            {"M0 0 L10 0 X5 5 Z", "character 12", "unknown command 'X'"},
+            {"M0 0 L10", "(command L)", "a number is missing"},
+            {"M0 0 L10 0 L10 abc Z", "character 16", "expected a number"},
+            {"M0 0 Lnan 0 L0 5 Z", "(command L)", "expected a number"},
+            {"M0 0 L1e9 0 L0 5 Z", "(command L)", "beyond what an outline on the stage can use"},
+            {"M0 0 L10 0 L10 10", "/path", "does not close"},
+            {"M0 0 L10 0 L10 10 Z M20 20 L30 20 L30 30 Z", "(command M)",
+             "a second outline after Z"},
+            {"M0 0 L10 0 M20 20 L30 30 Z", "(command M)", "a second move"},
+            {"L10 0 L10 10 Z", "(command L)", "must begin with a move"},
+            {"M0 0 L10 10 L10 0 L0 10 Z", "/path", "cannot be an object"},  // a bow tie
+            {"M0 0 L10 0 L0 0 Z", "/path", "cannot be an object"},          // no area
+            {"M5 5 Z", "/path", "cannot be an object"},                     // no length
+            {"", "/path", "empty"},
+            {"M0 0 A5 5 0 2 1 10 0 Z", "(command A)", "arc flag must be 0 or 1"},
+            {"M0 0 L10 0 L10 10 Z 5", "(command Z)", "Z takes no numbers"},
+        };
+        for (const Case& c : cases) {
+            const QString message = refusal(c.d);
+            QVERIFY2(message.contains(c.place) && message.contains(c.problem),
+                     qPrintable(QString::fromStdString(c.d) + " -> " + message));
+            QVERIFY(message.startsWith("/path"));
+        }
+        QVERIFY(refusal("M0 0 L10 0 L10 10 Z", 0.0).contains("tolerance"));
+        QVERIFY(refusal("M0 0 L10 0 L10 10 Z", std::nan("")).contains("tolerance"));
+        // Hostile bytes: a NUL, control characters, a huge run of digits.
+        QVERIFY(!refusal(std::string("M0 0 L10 0\0L5 5 Z", 17)).isEmpty());
+        QVERIFY(refusal("M0 0 L10 0 L5 " + std::string(5000, '9') + " Z").contains("beyond"));
+        // A tolerance too fine for the path: refused, not ten thousand vertices and more.
+        QVERIFY(refusal("M-9000 0 A9000 9000 0 0 1 9000 0 A9000 9000 0 0 1 -9000 0 Z", 1e-6)
+                    .contains("more than 10000 vertices"));
+    }
+};
+
+QTEST_APPLESS_MAIN(TestSvgPath)
+#include "test_svg_path.moc"
