@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/common/NumberText.h"
+#include "core/geometry/SvgPath.h"
 
 #ifndef ACTIVETOUCH_RESOURCE_DIR
 #define ACTIVETOUCH_RESOURCE_DIR "resources"
@@ -92,9 +93,27 @@ FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& re
 ObjectSpec parseObject(const JsonFields& f) {
     ObjectSpec o;
     f.rejectUnknownKeys({"shape", "width_mm", "height_mm", "arm_mm", "opening_mm", "polygon_mm",
-                         "rotation_deg", "offset_mm", "top_height_mm"});
+                         "svg_path", "svg_tolerance_mm", "rotation_deg", "offset_mm",
+                         "top_height_mm"});
     o.shape = f.text("shape");
-    if (o.shape == "polygon") {
+    if (o.shape == "svg") {
+        // An outline drawn as SVG path data: flattened within the tolerance, centred on its
+        // bounding box and turned the right way up (SVG's y axis points down).
+        if (!f.has("svg_path") || !f.raw("svg_path").is_string())
+            f.fail("svg_path", "an svg object needs 'svg_path': the d of one closed SVG path, mm");
+        const double tolerance = f.number("svg_tolerance_mm", 0.001, 5.0, kDefaultSvgTolerance_mm);
+        const Polygon drawn = polygonFromSvgPath(f.raw("svg_path").get<std::string>(), tolerance,
+                                                 f.source(), f.placeOf("svg_path"));
+        Vec2 lo = drawn.vertex(0), hi = lo;
+        for (const Vec2& v : drawn.vertices()) {
+            lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
+            hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
+        }
+        const Vec2 centre = 0.5 * (lo + hi);
+        for (const Vec2& v : drawn.vertices())
+            o.polygon.push_back({v.x - centre.x, centre.y - v.y});
+        o.shape = "polygon";
+    } else if (o.shape == "polygon") {
         if (!f.has("polygon_mm") || !f.raw("polygon_mm").is_array())
             f.fail("polygon_mm",
                    "a polygon object needs 'polygon_mm': a list of [x, y] vertices in mm");
@@ -103,7 +122,8 @@ ObjectSpec parseObject(const JsonFields& f) {
         const auto name = libraryShapeName(o.shape);
         if (!name)
             f.fail("shape", "unknown shape '" + o.shape +
-                                "'; use rectangle, cross, C, L, or polygon with polygon_mm");
+                                "'; use rectangle, cross, C, L, polygon with polygon_mm, or svg "
+                                "with svg_path");
         o.shape = *name;
         o.size = defaultShapeSize(o.shape);
         o.size.width = f.number("width_mm", 1.0, 1000.0, o.size.width);

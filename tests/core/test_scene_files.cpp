@@ -139,6 +139,49 @@ private slots:
         QCOMPARE(sceneToJson(s)["object"]["shape"].get<std::string>(), std::string("L"));
     }
 
+    void anObjectDrawnAsSvgPathData() {
+        // A triangle drawn in SVG's frame (y down, apex at the top): centred on its bounding box,
+        // the right way up, placed at the offset; its curves flattened within the tolerance.
+        write("good.json", kGoodScene);
+        std::string scene = kGoodScene;
+        const std::string from = R"("shape": "rectangle")";
+        scene.replace(scene.find(from), from.size(),
+                      R"("shape": "svg", "svg_path": "M20 0 L40 30 L0 30 Z")");
+        const SceneSpec s = loadScene(write("svg.json", scene));
+        QCOMPARE(s.object.shape, std::string("polygon"));
+        const Polygon outline = s.object.outline();
+        QVERIFY(std::abs(outline.area() - 600.0) < 1e-9);
+        // The apex is up (larger y), at the middle of the base.
+        double apexY = -1e9, baseY = 1e9;
+        for (const Vec2& v : outline.vertices()) {
+            apexY = std::max(apexY, v.y);
+            baseY = std::min(baseY, v.y);
+        }
+        QVERIFY(std::abs(apexY - (s.object.offset.y + 15.0)) < 1e-9);
+        QVERIFY(std::abs(baseY - (s.object.offset.y - 15.0)) < 1e-9);
+        // A disk of radius 15 from two arcs, at a coarse tolerance: within it of the circle.
+        std::string disk = kGoodScene;
+        disk.replace(disk.find(from), from.size(),
+                     R"("shape": "svg", "svg_tolerance_mm": 0.2,
+                        "svg_path": "M0 15 a15 15 0 0 1 30 0 a15 15 0 0 1 -30 0 z")");
+        const SceneSpec d = loadScene(write("disk.json", disk));
+        const Polygon diskOutline = d.object.outline();
+        for (const Vec2& v : diskOutline.vertices())
+            QVERIFY(std::abs(std::hypot(v.x - d.object.offset.x, v.y - d.object.offset.y) - 15.0) <=
+                    0.2);
+        // Bad path data is refused at its character.
+        std::string bad = kGoodScene;
+        bad.replace(bad.find(from), from.size(), R"("shape": "svg", "svg_path": "M0 0 L10 0 K")");
+        const std::string path = write("bad_svg.json", bad);
+        expectRefusal([&] { loadScene(path); }, QString::fromStdString(path),
+                      "/object/svg_path, character 12", "unknown command 'K'");
+        std::string none = kGoodScene;
+        none.replace(none.find(from), from.size(), R"("shape": "svg")");
+        const std::string nonePath = write("no_svg.json", none);
+        expectRefusal([&] { loadScene(nonePath); }, QString::fromStdString(nonePath),
+                      "/object/svg_path", "needs 'svg_path'");
+    }
+
     void badSceneNamesFilePlaceAndProblem_data() {
         QTest::addColumn<QString>("text");
         QTest::addColumn<QString>("place");
