@@ -368,30 +368,29 @@ QString figuresDirectory(const QString& outDir) {
 }
 
 namespace {
-/// Writes `plot`, laid out at `size` (physical), in each format: the PNG at size.dpi, the PDF
-/// and SVG at the size itself, their text as the fonts' point sizes.
-QStringList exportPhysical(QCustomPlot& plot, const QString& basePath, const QStringList& formats,
-                           const FigureSize& size) {
+/// Writes `plot`, laid out at `layout` (its logical pixels), in each format as
+/// <basePath>.<format>: the PNG `pngScale` times larger with `dpi` recorded; the PDF at `pageMm`
+/// (a physical size) or one point per pixel (QCustomPlot's own); the SVG at `svgDpi`.
+QStringList writeFormats(QCustomPlot& plot, const QString& basePath, const QStringList& formats,
+                         QSize layout, double pngScale, int dpi, QSizeF pageMm, int svgDpi) {
     QStringList written;
-    const double dpi = logicalDpi(plot);
-    const QSize logical = logicalSize(plot, size);
-    const int w = logical.width(), h = logical.height();
+    const int w = layout.width(), h = layout.height();
+    const QString title = QFileInfo(basePath).baseName();
     for (const QString& format : formats) {
         const QString file = basePath + "." + format.toLower();
         bool ok = false;
         if (format.compare("png", Qt::CaseInsensitive) == 0) {
-            // Scaled so that the image is the size's own pixels wide.
-            ok = plot.savePng(file, w, h, double(size.width_px) / w, -1, size.dpi,
-                              QCP::ruDotsPerInch);
+            ok = plot.savePng(file, w, h, pngScale, -1, dpi, QCP::ruDotsPerInch);
+        } else if (format.compare("pdf", Qt::CaseInsensitive) == 0 && pageMm.isEmpty()) {
+            ok = plot.savePdf(file, w, h, QCP::epNoCosmetic, "ActiveTouch Workbench", title);
         } else if (format.compare("pdf", Qt::CaseInsensitive) == 0) {
             QPdfWriter pdf(file);
             pdf.setCreator("ActiveTouch Workbench");
-            pdf.setTitle(QFileInfo(basePath).baseName());
-            pdf.setResolution(static_cast<int>(dpi));
-            ok = pdf.setPageLayout(
-                QPageLayout(QPageSize(QSizeF(size.width_mm, size.height_mm), QPageSize::Millimeter,
-                                      QString(), QPageSize::ExactMatch),
-                            QPageLayout::Portrait, QMarginsF(0, 0, 0, 0)));
+            pdf.setTitle(title);
+            pdf.setResolution(svgDpi);
+            ok = pdf.setPageLayout(QPageLayout(
+                QPageSize(pageMm, QPageSize::Millimeter, QString(), QPageSize::ExactMatch),
+                QPageLayout::Portrait, QMarginsF(0, 0, 0, 0)));
             QCPPainter painter;
             ok = ok && painter.begin(&pdf);
             if (ok) {
@@ -404,10 +403,10 @@ QStringList exportPhysical(QCustomPlot& plot, const QString& basePath, const QSt
         } else if (format.compare("svg", Qt::CaseInsensitive) == 0) {
             QSvgGenerator svg;
             svg.setFileName(file);
-            svg.setResolution(static_cast<int>(dpi));
+            svg.setResolution(svgDpi);
             svg.setSize(QSize(w, h));
             svg.setViewBox(QRect(0, 0, w, h));
-            svg.setTitle(QFileInfo(basePath).baseName());
+            svg.setTitle(title);
             QCPPainter painter;
             ok = painter.begin(&svg);
             if (ok) {
@@ -428,54 +427,32 @@ QStringList exportPhysical(QCustomPlot& plot, const QString& basePath, const QSt
 }
 }  // namespace
 
+QSize layoutSize(const QCustomPlot& plot, const FigureSize& size) {
+    return size.isPhysical() ? logicalSize(plot, size) : QSize(size.width_px, size.height_px);
+}
+
 QStringList exportFigure(QCustomPlot& plot, const QString& basePath, const QStringList& formats,
                          const FigureSize& size) {
-    if (size.isPhysical()) {
-        const std::function<void()> restore = layOutPhysical(plot, size);
-        try {
-            QStringList written = exportPhysical(plot, basePath, formats, size);
-            restore();
-            return written;
-        } catch (...) {
-            restore();
-            throw;
-        }
+    if (!size.isPhysical()) {
+        // Lay out once at the target size so that every format sees the same geometry.
+        layOutAt(plot, size);
+        return writeFormats(plot, basePath, formats, layoutSize(plot, size), 1.0, size.dpi, {},
+                            size.dpi);
     }
-    QStringList written;
-    // Lay out once at the target size so that every format sees the same geometry.
-    layOutAt(plot, size);
-    for (const QString& format : formats) {
-        const QString file = basePath + "." + format.toLower();
-        bool ok = false;
-        if (format.compare("png", Qt::CaseInsensitive) == 0) {
-            ok = plot.savePng(file, size.width_px, size.height_px, 1.0, -1, size.dpi,
-                              QCP::ruDotsPerInch);
-        } else if (format.compare("pdf", Qt::CaseInsensitive) == 0) {
-            ok = plot.savePdf(file, size.width_px, size.height_px, QCP::epNoCosmetic,
-                              "ActiveTouch Workbench", QFileInfo(basePath).baseName());
-        } else if (format.compare("svg", Qt::CaseInsensitive) == 0) {
-            QSvgGenerator svg;
-            svg.setFileName(file);
-            svg.setSize(QSize(size.width_px, size.height_px));
-            svg.setViewBox(QRect(0, 0, size.width_px, size.height_px));
-            svg.setTitle(QFileInfo(basePath).baseName());
-            svg.setResolution(size.dpi);
-            QCPPainter painter;
-            ok = painter.begin(&svg);
-            if (ok) {
-                plot.toPainter(&painter, size.width_px, size.height_px);
-                ok = painter.end();
-            }
-        } else {
-            throw std::runtime_error("unknown figure format '" + format.toStdString() +
-                                     "'; use png, pdf or svg");
-        }
-        if (!ok || !QFileInfo(file).exists() || QFileInfo(file).size() == 0)
-            throw std::runtime_error("could not write " + file.toStdString() +
-                                     "; check the folder is writable");
-        written << file;
+    // A physical size: the PNG scaled to be the size's own pixels wide, the PDF and SVG at the
+    // size itself, their text as the fonts' point sizes.
+    const std::function<void()> restore = layOutPhysical(plot, size);
+    try {
+        const QSize layout = layoutSize(plot, size);
+        QStringList written = writeFormats(
+            plot, basePath, formats, layout, double(size.width_px) / layout.width(), size.dpi,
+            QSizeF(size.width_mm, size.height_mm), static_cast<int>(logicalDpi(plot)));
+        restore();
+        return written;
+    } catch (...) {
+        restore();
+        throw;
     }
-    return written;
 }
 
 }  // namespace activetouch

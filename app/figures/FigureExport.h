@@ -1,6 +1,7 @@
 #pragma once
 // Writing a plot to PNG, PDF and SVG at a given size and resolution. The same code serves the
 // GUI's export actions and the headless runner.
+#include <QSize>
 #include <QString>
 #include <QStringList>
 #include <functional>
@@ -68,6 +69,10 @@ bool fitToLayout(QCustomPlot& plot);
 /// equal-aspect panels fitted to their shapes there. A physical size is laid out at its size in
 /// the plot's logical pixels, with journal text (setJournalText; left so).
 void layOutAt(QCustomPlot& plot, const FigureSize& size);
+
+/// The size `plot` is laid out at for `size`: its pixels, or a physical size in the plot's
+/// logical pixels. A figure that lays itself out for the plot's shape is built at this size.
+QSize layoutSize(const QCustomPlot& plot, const FigureSize& size);
 
 /// <outDir>/figures, made if need be; throws std::runtime_error naming it if it cannot be.
 QString figuresDirectory(const QString& outDir);

@@ -304,7 +304,7 @@ QStringList writeRunFigures(const RunResult& result, const QString& outDir) {
     QCustomPlot plot;
     for (const RunFigure& figure : runFigures()) {
         // Built on a plot of the figure's shape: a figure may lay itself out for it.
-        layOutAt(plot, figure.size);
+        plot.resize(layoutSize(plot, figure.size));
         if (figure.build(plot, result))
             written << exportFigure(plot, dir + "/" + figure.file, {"png", "pdf", "svg"},
                                     figure.size);

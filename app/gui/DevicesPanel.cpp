@@ -41,45 +41,41 @@ DevicesPanel::~DevicesPanel() {
     saveSettings();
 }
 
+std::vector<DevicesPanel::KeptSetting> DevicesPanel::keptSettings() const {
+    return {{"stage", stageKind_, "currentIndex"},
+            {"dialect", dialect_, "currentIndex"},
+            {"parity", parity_, "currentIndex"},
+            {"tapper", tapperKind_, "currentIndex"},
+            {"finger", finger_, "currentIndex"},
+            {"carrier", carrier_, "currentIndex"},
+            {"serialPort", port_, "currentText"},
+            {"baud", baud_, "value"},
+            {"jogStep", step_, "value"},
+            {"nameServerHost", nameServerHost_, "text"},
+            {"nameServerPort", nameServerPort_, "value"},
+            {"yarpPort", yarpPort_, "text"},
+            {"compensateRaw", compensate_, "checked"}};
+}
+
 void DevicesPanel::restoreSettings() {
     QSettings s;
     s.beginGroup("devices");
-    auto index = [&s](QComboBox* box, const char* key) {
-        const int i = s.value(key, box->currentIndex()).toInt();
-        if (i >= 0 && i < box->count()) box->setCurrentIndex(i);
-    };
-    index(stageKind_, "stage");
-    index(dialect_, "dialect");
-    index(parity_, "parity");
-    index(tapperKind_, "tapper");
-    index(finger_, "finger");
-    index(carrier_, "carrier");
-    if (const QString port = s.value("serialPort").toString(); !port.isEmpty())
-        port_->setCurrentText(port);
-    baud_->setValue(s.value("baud", baud_->value()).toInt());
-    step_->setValue(s.value("jogStep", step_->value()).toDouble());
-    nameServerHost_->setText(s.value("nameServerHost", nameServerHost_->text()).toString());
-    nameServerPort_->setValue(s.value("nameServerPort", nameServerPort_->value()).toInt());
-    yarpPort_->setText(s.value("yarpPort", yarpPort_->text()).toString());
-    compensate_->setChecked(s.value("compensateRaw", compensate_->isChecked()).toBool());
+    for (const KeptSetting& k : keptSettings()) {
+        const QVariant value = s.value(k.key);
+        if (!value.isValid()) continue;
+        // A picker's index from another version of its list is left as it is.
+        if (auto* box = qobject_cast<QComboBox*>(k.widget);
+            box && QByteArray(k.property) == "currentIndex" &&
+            (value.toInt() < 0 || value.toInt() >= box->count()))
+            continue;
+        k.widget->setProperty(k.property, value);
+    }
 }
 
 void DevicesPanel::saveSettings() const {
     QSettings s;
     s.beginGroup("devices");
-    s.setValue("stage", stageKind_->currentIndex());
-    s.setValue("dialect", dialect_->currentIndex());
-    s.setValue("parity", parity_->currentIndex());
-    s.setValue("tapper", tapperKind_->currentIndex());
-    s.setValue("finger", finger_->currentIndex());
-    s.setValue("carrier", carrier_->currentIndex());
-    s.setValue("serialPort", port_->currentText());
-    s.setValue("baud", baud_->value());
-    s.setValue("jogStep", step_->value());
-    s.setValue("nameServerHost", nameServerHost_->text());
-    s.setValue("nameServerPort", nameServerPort_->value());
-    s.setValue("yarpPort", yarpPort_->text());
-    s.setValue("compensateRaw", compensate_->isChecked());
+    for (const KeptSetting& k : keptSettings()) s.setValue(k.key, k.widget->property(k.property));
 }
 
 void DevicesPanel::showStatus(const QString& text, bool failure) {

@@ -4,6 +4,7 @@
 // fingertip source. Every button posts to the device thread; readouts update from its signals.
 #include <QList>
 #include <QWidget>
+#include <vector>
 
 #include "app/gui/DeviceSession.h"
 
@@ -52,7 +53,15 @@ private:
     void addFingertipBox(QVBoxLayout* layout);
     void addRawLog(QVBoxLayout* layout);
     void connectSession();
-    /// The pickers as the last session left them (QSettings group "devices").
+    /// A picker kept across sessions: its key in the QSettings group "devices", and the widget
+    /// property holding its value.
+    struct KeptSetting {
+        const char* key;
+        QWidget* widget;
+        const char* property;
+    };
+    std::vector<KeptSetting> keptSettings() const;
+    /// The pickers as the last session left them.
     void restoreSettings();
     void saveSettings() const;
     /// A line on the panel under Connect: what the devices last said, a failure in red.

@@ -277,9 +277,7 @@ QStringList PlotPanel::exportTo(const QString& basePath, const QStringList& form
     };
     QStringList files;
     try {
-        drawnFor(size.isPhysical() ? QSize(qRound(size.width_mm / 25.4 * plot_->logicalDpiX()),
-                                           qRound(size.height_mm / 25.4 * plot_->logicalDpiY()))
-                                   : QSize(size.width_px, size.height_px));
+        drawnFor(layoutSize(*plot_, size));
         files = exportFigure(*plot_, basePath, formats, size);
     } catch (...) {
         back();

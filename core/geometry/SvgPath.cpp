@@ -203,6 +203,11 @@ Polygon polygonFromSvgPath(const std::string& d, double tolerance_mm, const std:
         const char C = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
         if (!begun && C != 'M') in.fail("path data must begin with a move (M)");
         if (closed && C != 'Z') in.fail("a second outline after Z; give one closed outline");
+        // S and T: the last control point reflected through the current point if the previous
+        // command was one of `kinds` (a curve of the same order), else the current point.
+        auto smoothControl = [&](const char* kinds) {
+            return previous && std::strchr(kinds, previous) ? 2.0 * current - lastControl : current;
+        };
         auto point = [&] {
             const double x = in.number(), y = in.number();
             return relative ? current + Vec2{x, y} : Vec2{x, y};
@@ -245,9 +250,7 @@ Polygon polygonFromSvgPath(const std::string& d, double tolerance_mm, const std:
                     break;
                 }
                 case 'S': {
-                    const char p =
-                        static_cast<char>(std::toupper(static_cast<unsigned char>(previous)));
-                    const Vec2 c1 = (p == 'C' || p == 'S') ? 2.0 * current - lastControl : current;
+                    const Vec2 c1 = smoothControl("CS");
                     const Vec2 c2 = point(), end = point();
                     flat.cubic(points, current, c1, c2, end);
                     lastControl = c2;
@@ -262,10 +265,7 @@ Polygon polygonFromSvgPath(const std::string& d, double tolerance_mm, const std:
                     break;
                 }
                 case 'T': {
-                    const char p =
-                        static_cast<char>(std::toupper(static_cast<unsigned char>(previous)));
-                    const Vec2 control =
-                        (p == 'Q' || p == 'T') ? 2.0 * current - lastControl : current;
+                    const Vec2 control = smoothControl("QT");
                     const Vec2 end = point();
                     flat.quadratic(points, current, control, end);
                     lastControl = control;

@@ -66,10 +66,7 @@ private slots:
                           [](const RunFigure& f) { return QString(f.file) == "figure6_errors"; });
         const FigureSize size = FigureSize::physical(kSingleColumn_mm, 140, 300);
         // Built on a plot of the column's shape, as the figure is laid out for it.
-        auto shaped = [&](QCustomPlot& plot) {
-            const double dpi = plot.logicalDpiX();
-            plot.resize(qRound(size.width_mm / 25.4 * dpi), qRound(size.height_mm / 25.4 * dpi));
-        };
+        auto shaped = [&](QCustomPlot& plot) { plot.resize(layoutSize(plot, size)); };
         {
             QCustomPlot plot;
             shaped(plot);
