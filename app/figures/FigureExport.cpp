@@ -183,9 +183,10 @@ bool fitTicks(QCustomPlot& plot) {
                 if (!axis->property("askedTickCount").isValid())
                     axis->setProperty("askedTickCount", ticker->tickCount());
                 const int asked = axis->property("askedTickCount").toInt();
-                // An automatic ticker puts about count + 1 labels along the axis.
+                // An automatic ticker rounds its step to a nice one (1, 2, 2.5, 5 times a power of
+                // ten), which can put up to twice the count asked for along the axis.
                 const int count =
-                    std::clamp(static_cast<int>(std::floor(length / needed)) - 1, 2, asked);
+                    std::clamp(static_cast<int>(std::floor(length / (2.0 * needed))), 2, asked);
                 if (ticker->tickCount() == count) continue;
                 ticker->setTickCount(count);
                 changed = true;
