@@ -211,6 +211,16 @@ void ProtocolPanel::addFollowingFields(QVBoxLayout* layout) {
         {"coverage_radius_mm",
          {tr("Coverage radius (mm)"), tr("A point of the contour is covered by a tap this close"),
           0.5}},
+        {"percept_temperature",
+         {tr("Percept temperature"),
+          tr("Continuous percept: log-likelihoods are divided by this before the posterior is "
+             "formed; 0 takes the tap's samples per taxel"),
+          1.0}},
+        {"same_edge_tolerance_deg",
+         {tr("Same edge within (deg)"),
+          tr("Continuous percept: edge angles this close count as the same edge when confirming "
+             "it"),
+          1.0}},
     };
     for (const FollowingNumber& n : followingNumbers()) {
         const auto it = steps.find(n.key);
@@ -225,6 +235,11 @@ void ProtocolPanel::addFollowingFields(QVBoxLayout* layout) {
          tr("Active: same-orientation edge percepts in a row before memory takes the edge "
             "as the last edge"),
          Kind::Integer, 1, 100, 1, [](E e) { return double(e.following.edgeConfirmationTaps); }});
+    addField(followingBox,
+             {"following", "curvature_taps", following, tr("Curvature from (taps)"),
+              tr("Continuous percept: the contour's turn per mm is estimated from this many recent "
+                 "edge angles and anticipated over half a step (0: none)"),
+              Kind::Integer, 0, 50, 1, [](E e) { return double(e.following.curvatureTaps); }});
     addField(followingBox,
              {"following", "max_taps_per_decision", following, tr("Taps per decision at most"),
               tr("Sequential perception: taps gathered before deciding anyway"), Kind::Integer, 1,

@@ -138,10 +138,10 @@ std::vector<Vec2> TrialResult::path() const {
 }
 
 Vec2 lowerEdgeStart(const Polygon& outline, const ValidOffsets& valid) {
-    // The edge facing most nearly down (within 45 degrees); among equally facing edges the
-    // lowest, then the longest.
+    // The edge facing most nearly down (the paper's lower edge; on an outline turned any way,
+    // whichever edge faces down most); among equally facing edges the lowest.
     const Vec2 down{0.0, -1.0};
-    double bestFacing = std::cos(M_PI / 4), bestY = std::numeric_limits<double>::infinity();
+    double bestFacing = -2.0, bestY = std::numeric_limits<double>::infinity();
     std::optional<Vec2> start;
     for (std::size_t e = 0; e < outline.size(); ++e) {
         const Vec2 n = outline.outwardNormal(e);
@@ -154,9 +154,7 @@ Vec2 lowerEdgeStart(const Polygon& outline, const ValidOffsets& valid) {
             start = mid + 0.5 * (valid.low + valid.high) * n;
         }
     }
-    if (!start)
-        throw std::invalid_argument(
-            "the object has no edge facing down (within 45 degrees) to start on");
+    if (!start) throw std::invalid_argument("the object has no edge to start on");
     return *start;
 }
 
@@ -251,6 +249,9 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
 
     ShortTermMemory memory;
     memory.confirmationsNeeded = setup.mode == FollowingMode::Active ? s.edgeConfirmationTaps : 1;
+    const bool continuous = s.percept == PerceptKind::Continuous;
+    if (continuous) memory.sameEdgeToleranceDeg = s.sameEdgeTolerance_deg;
+    std::vector<double> logLikelihoods(continuous ? std::size_t(classes.classCount()) : 0);
     memory.lastEdgeDeg = setup.startEdgeDeg;
     memory.heading = followDirection(setup.startEdgeDeg);
     Vec2 pose = setup.start;
@@ -269,7 +270,12 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
             bool decisionMade = true;
             if (sequential) {
                 belief.update(classifier, t.record.tap);
-                t.percept = perceptOf(belief.best(), belief.bestPosterior(), classes);
+                t.percept = continuous
+                                ? perceiveContinuous(
+                                      classes, belief.logPosterior().data(),
+                                      belief.taps() *
+                                          perceptTemperatureFor(s.perceptTemperature, t.record.tap))
+                                : perceptOf(belief.best(), belief.bestPosterior(), classes);
                 if (!belief.decided(s.beliefThreshold) && belief.taps() < s.maxTapsPerDecision) {
                     // Gather more evidence here; optionally reposition toward the valid range.
                     decisionMade = false;
@@ -279,9 +285,19 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
                         t.decision.reposition =
                             decide(t.percept, memory, setup.mode, s, setup.valid).reposition;
                 }
+            } else if (continuous) {
+                classifier.logLikelihoods(t.record.tap, logLikelihoods.data());
+                t.percept =
+                    perceiveContinuous(classes, logLikelihoods.data(),
+                                       perceptTemperatureFor(s.perceptTemperature, t.record.tap));
             } else {
                 t.percept = perceive(classifier, classes, t.record.tap);
             }
+            const bool passive = setup.mode == FollowingMode::Passive;
+            const bool usableEdge = passive ? t.percept.region == Region::Edge
+                                            : orientationTrusted(t.percept, setup.valid);
+            if (continuous && decisionMade && usableEdge && s.curvatureTaps >= 2)
+                memory.noteEdgeAt(pose, t.percept.orientationDeg, s.curvatureTaps);
             if (decisionMade) t.decision = decide(t.percept, memory, setup.mode, s, setup.valid);
 
             // Judge the trial at this tap (evaluation only: the loop never sees the outline).
@@ -294,10 +310,7 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
             t.progress_mm = progress;
             t.contourDistance_mm = outline.contains(pose) ? nearest.distance : -nearest.distance;
 
-            const bool passive = setup.mode == FollowingMode::Passive;
-            if (decisionMade)
-                memory.update(t.percept, passive ? t.percept.region == Region::Edge
-                                                 : orientationTrusted(t.percept, setup.valid));
+            if (decisionMade) memory.update(t.percept, usableEdge);
             result.taps.push_back(t);
             const bool keepGoing = !onTap || onTap(result.taps.back());
 

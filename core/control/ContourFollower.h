@@ -108,8 +108,8 @@ struct TrialSetup {
 };
 
 /// The start pose the paper uses: on the lower edge (the one facing most nearly down, the lowest
-/// of equals), at its middle, centred in the valid range. Throws std::invalid_argument if no
-/// edge faces within 45 degrees of down.
+/// of equals), at its middle, centred in the valid range. Throws std::invalid_argument for an
+/// outline without edges.
 Vec2 lowerEdgeStart(const Polygon& outline, const ValidOffsets& valid);
 
 /// How far past the outline a trial's tip can reach: it counts as lost once more than

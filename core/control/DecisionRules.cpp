@@ -1,5 +1,6 @@
 #include "core/control/DecisionRules.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace activetouch {
@@ -33,6 +34,11 @@ const std::vector<Rule>& decisionRules() {
         {RuleId::Sensing, "sensing", FollowingMode::Active,
          "belief below the threshold and taps left for this decision",
          "tap again; reposition_step toward the valid range first if repositioning while sensing"},
+        {RuleId::ContinuousFollow, "follow:tangent", FollowingMode::Active,
+         "edge (continuous percept), orientation trusted",
+         "follow_step along the estimated tangent turned by the expected turn over half a step "
+         "+ the offset from the valid range's centre back along the normal (at most "
+         "reposition_step)"},
     };
     return rules;
 }
@@ -49,6 +55,16 @@ Decision decide(const Percept& p, const ShortTermMemory& memory, FollowingMode m
         if (p.region == Region::Edge)
             return {RuleId::PassiveFollow, s.followStep_mm * followDirection(p.orientationDeg), {}};
         return {RuleId::PassiveKeepHeading, s.followStep_mm * memory.heading, {}};
+    }
+    if (p.continuous && p.region == Region::Edge && orientationTrusted(p, valid)) {
+        // The chord to a point one step further along a contour that turns at a steady rate
+        // leaves the tangent at half the turn over the step.
+        const double turn = std::clamp(0.5 * s.followStep_mm * memory.turnDegPerMm(),
+                                       -kMaxAnticipatedTurnDeg, kMaxAnticipatedTurnDeg);
+        const Vec2 follow = s.followStep_mm * followDirection(p.orientationDeg + turn);
+        const double error = p.offset_mm - 0.5 * (valid.low + valid.high);
+        const double back = std::clamp(error, -s.repositionStep_mm, s.repositionStep_mm);
+        return {RuleId::ContinuousFollow, follow, -back * outwardNormal(p.orientationDeg)};
     }
     if (p.region == Region::Edge && orientationTrusted(p, valid)) {
         const Vec2 follow = s.followStep_mm * followDirection(p.orientationDeg);

@@ -18,6 +18,12 @@
 //   edge at a position where the validation found its orientation unreliable (mean angle error
 //   above the trust limit), plane side   -> as plane (the orientation is not used)
 //   the same, air side                   -> as air
+// Continuous percept (percept: continuous), active mode
+//   edge, orientation trusted          -> follow the estimated tangent, turned by the turn the
+//                                         recent edge angles predict over half a step, and move
+//                                         along the normal by the perceived offset from the valid
+//                                         range's centre (at most reposition_step)
+//   plane, air, untrusted              -> as above, from the last edge's angle
 // Sequential perception (belief threshold set): below the threshold -> tap again, moving only to
 //   reposition (if enabled) toward the valid range
 // Passive mode (repositioning disabled; the perceived position is never used)
@@ -26,9 +32,9 @@
 #include <string>
 #include <vector>
 
+#include "core/classify/Percept.h"
 #include "core/control/FollowingSettings.h"
 #include "core/control/ShortTermMemory.h"
-#include "core/classify/Percept.h"
 
 namespace activetouch {
 
@@ -42,7 +48,8 @@ enum class RuleId {
     UntrustedAirSide,
     PassiveFollow,
     PassiveKeepHeading,
-    Sensing
+    Sensing,
+    ContinuousFollow
 };
 
 struct Rule {
@@ -73,6 +80,10 @@ struct ValidOffsets {
 
 /// Whether the loop may use a percept's orientation (active mode): an edge inside the trusted span.
 bool orientationTrusted(const Percept& percept, const ValidOffsets& valid);
+
+/// The largest turn the continuous rule anticipates over one step, degrees: beyond it the recent
+/// angles straddle a corner rather than a curve.
+inline constexpr double kMaxAnticipatedTurnDeg = 30.0;
 
 /// Decides the next move from the percept and memory.
 Decision decide(const Percept& percept, const ShortTermMemory& memory, FollowingMode mode,

@@ -14,6 +14,16 @@ std::optional<FollowingMode> modeNamed(std::string_view name) {
     return std::nullopt;
 }
 
+const char* perceptKindName(PerceptKind k) {
+    return k == PerceptKind::Discrete ? "discrete" : "continuous";
+}
+
+std::optional<PerceptKind> perceptKindNamed(std::string_view name) {
+    for (const PerceptKind k : {PerceptKind::Discrete, PerceptKind::Continuous})
+        if (name == perceptKindName(k)) return k;
+    return std::nullopt;
+}
+
 const std::vector<FollowingNumber>& followingNumbers() {
     using S = FollowingSettings;
     static const std::vector<FollowingNumber> numbers{
@@ -30,6 +40,8 @@ const std::vector<FollowingNumber>& followingNumbers() {
         {"lost_inside_mm", 0.1, 1000.0, &S::lostInside_mm},
         {"tap_cap_perimeters", 0.1, 100.0, &S::tapCapPerimeters},
         {"coverage_radius_mm", 0.1, 100.0, &S::coverageRadius_mm},
+        {"percept_temperature", 0.0, 1e6, &S::perceptTemperature},
+        {"same_edge_tolerance_deg", 0.0, 180.0, &S::sameEdgeTolerance_deg},
     };
     return numbers;
 }
@@ -49,6 +61,10 @@ std::string FollowingSettings::problem() const {
         return "belief_threshold must be 0 (single-tap decisions) or between 0 and 1";
     if (maxTapsPerDecision < 1) return "max_taps_per_decision must be at least 1";
     if (!positive(tapCapPerimeters)) return "tap_cap_perimeters must be positive";
+    if (!(perceptTemperature >= 0.0) || !std::isfinite(perceptTemperature))
+        return "percept_temperature must be 0 (the tap's samples per taxel) or positive";
+    if (curvatureTaps < 0 || curvatureTaps == 1)
+        return "curvature_taps must be 0 (no anticipation) or at least 2";
     return {};
 }
 

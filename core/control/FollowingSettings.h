@@ -1,6 +1,6 @@
 #pragma once
-// The settings of the perception-action loop and of a trial's termination (docs/design.md §3). Every
-// step length of the rules table is one of these numbers.
+// The settings of the perception-action loop and of a trial's termination (docs/design.md §3).
+// Every step length of the rules table is one of these numbers.
 #include <optional>
 #include <string>
 #include <string_view>
@@ -13,7 +13,24 @@ const char* modeName(FollowingMode m);
 /// The mode `name` names ("active" or "passive", as modeName gives them), if it names one.
 std::optional<FollowingMode> modeNamed(std::string_view name);
 
+/// What the loop reads from a tap: the winning class (the paper), or an edge angle and position
+/// on a continuum from the whole posterior (core/classify/ContinuousEdge.h).
+enum class PerceptKind { Discrete, Continuous };
+const char* perceptKindName(PerceptKind k);  ///< "discrete", "continuous"
+std::optional<PerceptKind> perceptKindNamed(std::string_view name);
+
 struct FollowingSettings {
+    PerceptKind percept = PerceptKind::Discrete;
+    /// Continuous percept: each class's log-likelihood is divided by this before the posterior is
+    /// formed; 0 takes the tap's samples per taxel (a mean log-likelihood per sample instant).
+    double perceptTemperature = 0.0;
+    /// Continuous percept: the turn of the contour per mm is estimated from the angles of the
+    /// last this many edge percepts, and the follow direction is turned by the turn expected over
+    /// half a step (0 = no anticipation).
+    int curvatureTaps = 4;
+    /// Continuous percept: edge angles within this many degrees count as the same edge for
+    /// edge_confirmation_taps.
+    double sameEdgeTolerance_deg = 20.0;
     double followStep_mm = 2.0;      ///< along the perceived edge, every tap (paper: 2 mm)
     double repositionStep_mm = 1.0;  ///< along the edge normal toward the valid range (paper: 1 mm)
     double planeStep_mm = 2.0;  ///< active, plane percept: outward along the last edge's normal

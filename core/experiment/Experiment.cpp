@@ -28,12 +28,28 @@ FollowingMode parseMode(const JsonFields& f, const std::string& key, const std::
 }
 
 void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
-    f.rejectUnknownKeys(
-        {"follow_step_mm", "reposition_step_mm", "plane_step_mm", "plane_retreat_step_mm",
-         "air_inward_step_mm", "air_retreat_step_mm", "orientation_trust_max_error_deg",
-         "edge_confirmation_taps", "belief_threshold", "max_taps_per_decision",
-         "reposition_while_sensing", "completion_radius_mm", "lost_outside_mm", "lost_inside_mm",
-         "lost_plane_or_air_taps", "tap_cap_perimeters", "coverage_radius_mm", "trials"});
+    f.rejectUnknownKeys({"follow_step_mm",
+                         "reposition_step_mm",
+                         "plane_step_mm",
+                         "plane_retreat_step_mm",
+                         "air_inward_step_mm",
+                         "air_retreat_step_mm",
+                         "orientation_trust_max_error_deg",
+                         "edge_confirmation_taps",
+                         "belief_threshold",
+                         "max_taps_per_decision",
+                         "reposition_while_sensing",
+                         "completion_radius_mm",
+                         "lost_outside_mm",
+                         "lost_inside_mm",
+                         "lost_plane_or_air_taps",
+                         "tap_cap_perimeters",
+                         "coverage_radius_mm",
+                         "percept",
+                         "percept_temperature",
+                         "curvature_taps",
+                         "same_edge_tolerance_deg",
+                         "trials"});
     FollowingSettings& s = e.following;
     for (const FollowingNumber& n : followingNumbers())
         s.*n.member = f.number(n.key, n.lo, n.hi, s.*n.member);
@@ -41,6 +57,18 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
     s.maxTapsPerDecision = f.integer("max_taps_per_decision", 1, 1000, s.maxTapsPerDecision);
     s.repositionWhileSensing = f.flag("reposition_while_sensing", s.repositionWhileSensing);
     s.lostPlaneOrAirTaps = f.integer("lost_plane_or_air_taps", 1, 100000, s.lostPlaneOrAirTaps);
+    if (f.has("percept")) {
+        const std::string k = f.text("percept");
+        const auto kind = perceptKindNamed(k);
+        if (!kind)
+            f.fail("percept", "percept '" + k +
+                                  "' is neither discrete (the winning class, as the paper) nor "
+                                  "continuous (angle and position from the whole posterior)");
+        s.percept = *kind;
+    }
+    s.curvatureTaps = f.integer("curvature_taps", 0, 50, s.curvatureTaps);
+    if (s.curvatureTaps == 1)
+        f.fail("curvature_taps", "a turn needs two angles: give 0 (no anticipation) or 2 or more");
     if (!f.has("trials")) return;
     const Json& list = f.raw("trials");
     if (!list.is_array())
@@ -215,15 +243,33 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
 
     if (f.has("classes")) {
         const JsonFields c = f.object("classes");
-        c.rejectUnknownKeys({"orientations_deg", "positions", "position_step_mm"});
-        if (c.has("orientations_deg")) {
+        c.rejectUnknownKeys(
+            {"orientations_deg", "orientation_step_deg", "positions", "position_step_mm"});
+        if (c.has("orientations_deg") && c.has("orientation_step_deg"))
+            c.fail("orientation_step_deg",
+                   "give either orientations_deg (a list) or orientation_step_deg (every so many "
+                   "degrees round the circle from 270), not both; a file that extends one with a "
+                   "list removes the list with \"orientations_deg\": null");
+        if (c.has("orientation_step_deg")) {
+            // Every `step` degrees round the circle, from the lower edge's 270.
+            const double step = c.number("orientation_step_deg", 1.0, 180.0);
+            const double count = 360.0 / step;
+            if (std::abs(count - std::round(count)) > 1e-9)
+                c.fail("orientation_step_deg",
+                       numberText(step) +
+                           " deg does not divide the circle into whole steps; use "
+                           "a divisor of 360 such as 5, 10, 15 or 45");
+            e.classes.orientationsDeg.clear();
+            for (int i = 0; i < static_cast<int>(std::round(count)); ++i)
+                e.classes.orientationsDeg.push_back(std::fmod(270.0 + i * step, 360.0));
+        } else if (c.has("orientations_deg")) {
             e.classes.orientationsDeg = c.numbers("orientations_deg", -360.0, 360.0);
             const auto& o = e.classes.orientationsDeg;
             if (o.empty()) c.fail("orientations_deg", "list at least one orientation");
             if (o.size() > static_cast<std::size_t>(kMaxOrientations))
-                c.fail("orientations_deg",
-                       std::to_string(o.size()) + " orientations; at most " +
-                           std::to_string(kMaxOrientations) + ", one per degree");
+                c.fail("orientations_deg", std::to_string(o.size()) + " orientations; at most " +
+                                               std::to_string(kMaxOrientations) +
+                                               ", one per degree");
             // Two entries facing the same way would make classes no tap can tell apart.
             for (std::size_t i = 0; i < o.size(); ++i)
                 for (std::size_t j = 0; j < i; ++j)

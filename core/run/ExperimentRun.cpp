@@ -72,6 +72,13 @@ TrialSetup trialSetupFor(const RunResult& trained, FollowingMode mode,
     setup.valid = trained.validOffsets;
     setup.noiseFloor = trained.noiseFloor_counts;
     setup.start = start ? *start : lowerEdgeStart(outline, trained.validOffsets);
+    if (settings.percept == PerceptKind::Continuous) {
+        // Placed on an edge, the tip starts knowing which way that edge faces, as a paper trial
+        // knows it starts on the lower edge; a continuous percept takes the edge's own angle
+        // rather than the nearest trained orientation.
+        const Vec2 n = outline.outwardNormal(outline.nearestOutlinePoint(setup.start).edge);
+        setup.startEdgeDeg = std::fmod(std::atan2(n.y, n.x) * 180.0 / M_PI + 360.0, 360.0);
+    }
     return setup;
 }
 

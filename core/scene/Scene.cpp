@@ -93,10 +93,21 @@ FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& re
 ObjectSpec parseObject(const JsonFields& f) {
     ObjectSpec o;
     f.rejectUnknownKeys({"shape", "width_mm", "height_mm", "arm_mm", "opening_mm", "polygon_mm",
-                         "svg_path", "svg_tolerance_mm", "rotation_deg", "offset_mm",
-                         "top_height_mm"});
+                         "svg_path", "svg_tolerance_mm", "sides", "across_corners_mm",
+                         "rotation_deg", "offset_mm", "top_height_mm"});
     o.shape = f.text("shape");
-    if (o.shape == "svg") {
+    if (o.shape == "regular_polygon") {
+        // A many-sided training object: one edge facing straight down (outward normal 270 deg),
+        // the others every 360 / sides degrees from it.
+        const int sides = f.integer("sides", 3, 360);
+        const double across = f.number("across_corners_mm", 1.0, 1000.0);
+        const double pi = 3.14159265358979323846;
+        for (int i = 0; i < sides; ++i) {
+            const double a = -pi / 2 - pi / sides + 2.0 * pi * i / sides;
+            o.polygon.push_back({0.5 * across * std::cos(a), 0.5 * across * std::sin(a)});
+        }
+        o.shape = "polygon";
+    } else if (o.shape == "svg") {
         // An outline drawn as SVG path data: flattened within the tolerance, centred on its
         // bounding box and turned the right way up (SVG's y axis points down).
         if (!f.has("svg_path") || !f.raw("svg_path").is_string())
@@ -121,14 +132,15 @@ ObjectSpec parseObject(const JsonFields& f) {
     } else {
         const auto name = libraryShapeName(o.shape);
         if (!name)
-            f.fail("shape", "unknown shape '" + o.shape +
-                                "'; use rectangle, cross, C, L, polygon with polygon_mm, or svg "
-                                "with svg_path");
+            f.fail("shape", "unknown shape '" + o.shape + "'; use a library shape (" +
+                                libraryShapeList() +
+                                "), polygon with polygon_mm, regular_polygon with sides and "
+                                "across_corners_mm, or svg with svg_path");
         o.shape = *name;
         o.size = defaultShapeSize(o.shape);
         o.size.width = f.number("width_mm", 1.0, 1000.0, o.size.width);
         o.size.height = f.number("height_mm", 1.0, 1000.0, o.size.height);
-        o.size.arm = f.number("arm_mm", 1.0, 1000.0, o.shape == "rectangle" ? 1.0 : o.size.arm);
+        o.size.arm = f.number("arm_mm", 1.0, 1000.0, shapeHasArms(o.shape) ? o.size.arm : 1.0);
         o.size.opening = f.number("opening_mm", 1.0, 1000.0, o.shape == "C" ? o.size.opening : 1.0);
         try {
             libraryShape(o.shape, o.size);
@@ -307,7 +319,7 @@ Json objectToJson(const ObjectSpec& object) {
     } else {
         o["width_mm"] = object.size.width;
         o["height_mm"] = object.size.height;
-        if (object.shape != "rectangle") o["arm_mm"] = object.size.arm;
+        if (shapeHasArms(object.shape)) o["arm_mm"] = object.size.arm;
         if (object.shape == "C") o["opening_mm"] = object.size.opening;
     }
     o["rotation_deg"] = object.rotationDeg;
