@@ -1,5 +1,4 @@
 #include "app/cli/CliSupport.h"
-#include "app/cli/CommandLine.h"
 
 #include <QApplication>
 #include <algorithm>
@@ -18,24 +17,25 @@
 #include <variant>
 #include <vector>
 
+#include "app/cli/CommandLine.h"
 #include "app/figures/ComparisonFigures.h"
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
-#include "core/run/ExperimentFiles.h"
-#include "core/run/RunArtefacts.h"
-#include "core/run/ExperimentRun.h"
-#include "core/run/RecordedRuns.h"
-#include "core/run/PairedComparison.h"
-#include "core/run/RunFolder.h"
-#include "core/run/SeedRates.h"
-#include "core/run/SeedShards.h"
 #include "core/experiment/Experiment.h"
 #include "core/experiment/RunPlan.h"
 #include "core/io/Csv.h"
 #include "core/records/FollowingRecording.h"
 #include "core/records/TapCsv.h"
 #include "core/rig/Rig.h"
+#include "core/run/ExperimentFiles.h"
+#include "core/run/ExperimentRun.h"
+#include "core/run/PairedComparison.h"
+#include "core/run/RecordedRuns.h"
+#include "core/run/RunArtefacts.h"
+#include "core/run/RunFolder.h"
+#include "core/run/SeedRates.h"
+#include "core/run/SeedShards.h"
 #include "devices/rigs/RigAssembly.h"
 #include "devices/rigs/RigFile.h"
 #include "devices/simulated/SimulatedWorld.h"
@@ -217,13 +217,13 @@ SeedRange seedRangeOf(const RunArguments& parsed, const std::string& example) {
 
 void printShardBlock(const SeedRange& range) {
     if (range.shard.count <= 1) return;
-    std::printf("\nshard %d/%d of seeds %llu-%llu: %s\n", range.shard.index, range.shard.count,
-                static_cast<unsigned long long>(range.first),
-                static_cast<unsigned long long>(range.last),
-                range.seeds ? (std::to_string(range.seeds->first) + "-" +
-                               std::to_string(range.seeds->second))
-                                  .c_str()
-                            : "no seeds");
+    std::printf(
+        "\nshard %d/%d of seeds %llu-%llu: %s\n", range.shard.index, range.shard.count,
+        static_cast<unsigned long long>(range.first), static_cast<unsigned long long>(range.last),
+        range.seeds
+            ? (std::to_string(range.seeds->first) + "-" + std::to_string(range.seeds->second))
+                  .c_str()
+            : "no seeds");
 }
 
 /// Writes a finished run's tables, its figures if asked, and last its summary.json.
@@ -236,14 +236,28 @@ ArtefactTiming writeArtefacts(const RunResult& result, const std::string& outDir
     });
 }
 
+/// ", at any pose star turned 37.2 deg (truth 36.9)" for a recognised trial.
+std::string anyPoseText(const TrialRun& t) {
+    const PoseRecognition& p = t.poseRecognition;
+    if (!t.recognised || !p.valid) return {};
+    std::string text = ", at any pose " + p.predicted;
+    if (p.best.symmetry == 0) return text + " (no turn to tell)";
+    const double period = 360.0 / p.best.symmetry;
+    char buf[120];
+    std::snprintf(buf, sizeof buf, " turned %.1f deg (truth %.1f)", p.best.rotationDeg,
+                  std::fmod(std::fmod(t.rotationDeg, period) + period, period));
+    return text + buf;
+}
+
 /// How a trial ended and what it measured, as a run's report gives it after "trial N: ".
 void printTrialMeasures(const TrialRun& t) {
     std::printf(
         "%-38s %4zu taps, %6.0f s robot time, coverage %3.0f %%, contour distance mean %.2f max "
-        "%.2f mm%s%s%s\n",
+        "%.2f mm%s%s%s%s\n",
         trialEndName(t.result.end), t.result.taps.size(), t.result.robotTime_s,
         100.0 * t.result.coverage, t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
         t.recognised ? ", recognised as " : "", t.recognised ? t.recognition.predicted.c_str() : "",
+        anyPoseText(t).c_str(),
         t.result.completed() ? "" : (", furthest " + describePlace(t.result.furthest)).c_str());
 }
 
@@ -280,6 +294,12 @@ void printReport(const RunResult& result, double wall, double figures_s,
         std::printf("recognition: %.0f %% of %s paths (smoothed histograms: %.0f %%)\n",
                     100.0 * result.recognitionAccuracy, modeName(spec.recognition.ofMode),
                     100.0 * result.recognitionAccuracySmoothed);
+    if (!result.poseTemplates.empty())
+        std::printf(
+            "recognition at any pose: %.0f %% of %s paths; recovered turn off by %.2f deg, place "
+            "by %.2f mm (medians over the paths named right)\n",
+            100.0 * result.recognitionAccuracyAnyPose, modeName(spec.recognition.ofMode),
+            result.medianRotationError_deg, result.medianPositionError_mm);
     std::printf("wall time %.3f s (figures %.3f s); results in %s\n", wall, figures_s,
                 outDir.c_str());
 }
@@ -305,7 +325,8 @@ bool printSeedOutcome(const SeedOutcome& o) {
                     o.recognisedSmoothed(), o.recognitionTrials());
     std::printf("\n");
     if (o.failed())
-        std::printf("    run failed, %d trials not run: %s\n", o.trialsNotRun, o.runFailure.c_str());
+        std::printf("    run failed, %d trials not run: %s\n", o.trialsNotRun,
+                    o.runFailure.c_str());
     for (const auto& f : o.passiveShortfalls) std::printf("    %s\n", f.c_str());
     for (const auto& f : o.failures) std::printf("    %s\n", f.c_str());
     for (const auto& m : o.misnamed()) std::printf("    %s\n", m.c_str());

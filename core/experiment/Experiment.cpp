@@ -98,11 +98,14 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
         if (const std::string problem = objectPlacementProblem(spec.object, e.scene);
             !problem.empty())
             throw InputError(f.source(), place + "/object", problem);
-        if (const std::string problem =
-                followingTravelProblem(spec.object.outline(), s, e.scene.stage.travel_mm);
-            !problem.empty())
-            throw InputError(f.source(), place + "/object",
-                             "trial '" + spec.label + "': " + problem);
+        for (const Polygon& outline : spec.object.possibleOutlines())
+            if (const std::string problem =
+                    followingTravelProblem(outline, s, e.scene.stage.travel_mm);
+                !problem.empty())
+                throw InputError(f.source(), place + "/object",
+                                 "trial '" + spec.label + "'" +
+                                     (spec.object.rotationDrawn ? " (turned any way)" : "") + ": " +
+                                     problem);
         if (t.has("start_mm")) {
             spec.start = t.point("start_mm");
             if (const std::string problem = startProblem(spec.object.outline(), *spec.start, s);

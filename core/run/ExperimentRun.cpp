@@ -28,6 +28,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    const std::size_t mid = v.size() / 2;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
+    const double upper = v[mid];
+    if (v.size() % 2 == 1) return upper;
+    return 0.5 *
+           (upper + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)));
+}
+
 bool sameOutline(const Polygon& a, const Polygon& b) {
     if (a.size() != b.size()) return false;
     for (std::size_t i = 0; i < a.size(); ++i)
@@ -137,9 +147,16 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
             if (!replayed.empty()) {
                 replay.emplace(*replayed[static_cast<std::size_t>(trialIndex)],
                                options.recordingName);
-            } else if (!options.connected) {
+            }
+            ObjectSpec object = ts.object;
+            if (object.rotationDrawn)
+                object.rotationDeg =
+                    RandomStream::derived(spec.scene.seed,
+                                          "trial rotation:" + std::to_string(trialIndex))
+                        .uniform(0.0, 360.0);
+            if (!replay && !options.connected) {
                 SceneSpec scene = spec.scene;
-                scene.object = ts.object;
+                scene.object = object;
                 scene.seed =
                     RandomStream::derived(spec.scene.seed, "trial:" + std::to_string(trialIndex))
                         .next() >>
@@ -155,7 +172,9 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
                     static_cast<int>(replayed[static_cast<std::size_t>(trialIndex)]->taps.size());
             run.label = ts.label;
             run.trial = ++counters[ts.label + "/" + modeName(ts.mode)];
-            run.outline = simulated ? simulated->object() : ts.object.outline();
+            run.outline = simulated ? simulated->object() : object.outline();
+            run.rotationDeg = object.rotationDeg;
+            run.objectOffset = object.offset;
             const TrialSetup setup =
                 trialSetupFor(result, ts.mode, spec.following, run.outline, ts.start);
             run.start = setup.start;
@@ -201,20 +220,45 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
     result.templates = shapeTemplates(
         shapes, 0.5 * (result.validOffsets.low + result.validOffsets.high),
         spec.following.followStep_mm, spec.recognition.bins, spec.recognition.smoothingSigmaBins);
-    int recognised = 0, correct = 0, correctSmoothed = 0;
+    // At any pose: one template per distinct shape, in the shape's own frame.
+    result.poseTemplates.clear();
+    const double centreOffset = 0.5 * (result.validOffsets.low + result.validOffsets.high);
+    for (const TrialSpec& ts : spec.trials) {
+        const bool known = std::any_of(result.poseTemplates.begin(), result.poseTemplates.end(),
+                                       [&](const PoseTemplate& t) { return t.shape == ts.label; });
+        if (known) continue;
+        ObjectSpec own = ts.object;
+        own.rotationDeg = 0.0;
+        own.offset = {};
+        result.poseTemplates.push_back(poseTemplate(ts.label, own.outline(), centreOffset));
+    }
+    int recognised = 0, correct = 0, correctSmoothed = 0, correctAnyPose = 0;
+    std::vector<double> turnErrors, placeErrors;
     for (TrialRun& run : result.trials) {
         if (run.result.mode != spec.recognition.ofMode) continue;
         run.recognised = true;
-        run.recognition =
-            recognise(run.result.path(), result.templates, spec.recognition.smoothingSigmaBins);
+        const std::vector<Vec2> path = run.result.path();
+        run.recognition = recognise(path, result.templates, spec.recognition.smoothingSigmaBins);
+        run.poseRecognition = recognisePose(path, result.poseTemplates);
         ++recognised;
         correct += run.recognition.predicted == run.label;
         correctSmoothed += run.recognition.predictedSmoothed == run.label;
+        const PoseRecognition& pose = run.poseRecognition;
+        if (pose.valid && pose.predicted == run.label) {
+            ++correctAnyPose;
+            if (pose.best.symmetry != 0)
+                turnErrors.push_back(
+                    rotationErrorDeg(pose.best.rotationDeg, run.rotationDeg, pose.best.symmetry));
+            placeErrors.push_back(distance(pose.best.position, run.objectOffset));
+        }
     }
     if (recognised > 0) {
         result.recognitionAccuracy = double(correct) / recognised;
         result.recognitionAccuracySmoothed = double(correctSmoothed) / recognised;
+        result.recognitionAccuracyAnyPose = double(correctAnyPose) / recognised;
     }
+    result.medianRotationError_deg = median(turnErrors);
+    result.medianPositionError_mm = median(placeErrors);
 }
 
 /// Trains the classifier on the training sets of `result.taps` and validates it on the others:

@@ -13,6 +13,7 @@
 #include "core/control/ContourFollower.h"
 #include "core/experiment/Experiment.h"
 #include "core/recognition/PathHistogram.h"
+#include "core/recognition/PoseRecognition.h"
 #include "core/records/FollowingRecording.h"
 #include "core/rig/Rig.h"
 #include "core/run/SimulatedRigs.h"
@@ -64,10 +65,15 @@ struct TrialRun {
     std::string label;
     int trial = 1;  ///< 1-based within its label and mode
     Polygon outline;
+    double rotationDeg = 0.0;  ///< the object's turn (drawn from the seed for "random")
     Vec2 start;
     TrialResult result;
     bool recognised = false;
     Recognition recognition;
+    PoseRecognition poseRecognition;  ///< at any pose, beside the paper's rule
+    /// The object's frame origin on the stage: with rotationDeg, the truth poseRecognition's
+    /// turn and place are judged against.
+    Vec2 objectOffset;
     int recordedTaps = -1;  ///< replayed: the taps the recording holds for this trial
 };
 
@@ -100,7 +106,12 @@ struct RunResult {
                                          1};  ///< positions whose orientation the controller uses
     std::vector<TrialRun> trials;
     std::vector<ShapeTemplate> templates;
+    std::vector<PoseTemplate> poseTemplates;
     double recognitionAccuracy = 0.0, recognitionAccuracySmoothed = 0.0;
+    double recognitionAccuracyAnyPose = 0.0;
+    /// Over trials named right at any pose whose shape has a turn: the median error of the
+    /// recovered turn (modulo the shape's symmetry), degrees, and of the recovered place, mm.
+    double medianRotationError_deg = 0.0, medianPositionError_mm = 0.0;
     SweepResults sweeps;
     std::string failure;  ///< a device error that stopped the run, if any
     bool cancelled = false;

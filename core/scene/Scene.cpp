@@ -20,6 +20,17 @@ Polygon ObjectSpec::outline() const {
     return local.transformed(rotationDeg, offset);
 }
 
+std::vector<Polygon> ObjectSpec::possibleOutlines() const {
+    if (!rotationDrawn) return {outline()};
+    std::vector<Polygon> outlines;
+    ObjectSpec turned = *this;
+    for (int deg = 0; deg < 360; deg += 10) {
+        turned.rotationDeg = deg;
+        outlines.push_back(turned.outline());
+    }
+    return outlines;
+}
+
 bool SceneSpec::lists(const std::string& effect) const {
     for (const auto& e : effects)
         if (e.name == effect) return true;
@@ -149,7 +160,15 @@ ObjectSpec parseObject(const JsonFields& f) {
                              std::string("the ") + o.shape + " sizes make no outline: " + e.what());
         }
     }
-    o.rotationDeg = f.number("rotation_deg", -360.0, 360.0, 0.0);
+    if (f.has("rotation_deg") && f.raw("rotation_deg").is_string()) {
+        if (f.raw("rotation_deg").get<std::string>() != "random")
+            f.fail("rotation_deg",
+                   "rotation_deg is a number of degrees, or \"random\" for an angle drawn from "
+                   "the seed for each trial");
+        o.rotationDrawn = true;
+    } else {
+        o.rotationDeg = f.number("rotation_deg", -360.0, 360.0, 0.0);
+    }
     o.offset = f.point("offset_mm", o.offset);
     o.height_mm = f.number("top_height_mm", 0.1, 500.0, o.height_mm);
     try {
@@ -204,14 +223,20 @@ std::string objectPlacementProblem(const ObjectSpec& object, const SceneSpec& sc
     if (scene.tap.stroke_mm - (scene.tap.retractHeight_mm - object.height_mm) <= 0.0)
         return "the stroke ends above the object's top face, so no tap can touch it; lengthen the "
                "stroke or lower the retract height";
-    const Polygon outline = object.outline();
-    const Vec2 lo = outline.boundingBoxMin(), hi = outline.boundingBoxMax();
+    Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
+    for (const Polygon& outline : object.possibleOutlines()) {
+        lo = {std::min(lo.x, outline.boundingBoxMin().x),
+              std::min(lo.y, outline.boundingBoxMin().y)};
+        hi = {std::max(hi.x, outline.boundingBoxMax().x),
+              std::max(hi.y, outline.boundingBoxMax().y)};
+    }
     if (lo.x < 0 || lo.y < 0 || hi.x > scene.stage.travel_mm.x || hi.y > scene.stage.travel_mm.y)
         return "the object (x " + numberText(lo.x) + ".." + numberText(hi.x) + ", y " +
                numberText(lo.y) + ".." + numberText(hi.y) +
                " mm) does not fit inside the stage travel (0.." +
                numberText(scene.stage.travel_mm.x) + ", 0.." + numberText(scene.stage.travel_mm.y) +
-               " mm); move it with offset_mm or make it smaller";
+               " mm" + (object.rotationDrawn ? ", turned any way" : "") +
+               "); move it with offset_mm or make it smaller";
     return {};
 }
 
@@ -322,7 +347,10 @@ Json objectToJson(const ObjectSpec& object) {
         if (shapeHasArms(object.shape)) o["arm_mm"] = object.size.arm;
         if (object.shape == "C") o["opening_mm"] = object.size.opening;
     }
-    o["rotation_deg"] = object.rotationDeg;
+    if (object.rotationDrawn)
+        o["rotation_deg"] = "random";
+    else
+        o["rotation_deg"] = object.rotationDeg;
     o["offset_mm"] = {object.offset.x, object.offset.y};
     o["top_height_mm"] = object.height_mm;
     return o;

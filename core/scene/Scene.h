@@ -1,6 +1,6 @@
 #pragma once
-// A scene (docs/simulated-rig.md): the object on the stage, the fingertip, how the tapper taps, the stage,
-// a seed, and the list of physical effects to simulate. Only listed effects run.
+// A scene (docs/simulated-rig.md): the object on the stage, the fingertip, how the tapper taps, the
+// stage, a seed, and the list of physical effects to simulate. Only listed effects run.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,15 +18,22 @@ struct ObjectSpec {
     ShapeSize size = defaultShapeSize("rectangle");
     std::vector<Vec2> polygon;  ///< for shape == "polygon", object frame, mm
     double rotationDeg = 0.0;   ///< about the object frame origin
+    /// "rotation_deg": "random": each trial on the object turns it by an angle drawn from the
+    /// run's seed, uniform over the circle (rotationDeg is then the drawn angle).
+    bool rotationDrawn = false;
     Vec2 offset{150.0, 150.0};  ///< where the object frame origin sits on the stage, mm
     double height_mm = 10.0;    ///< top face above the table
 
     /// The outline on the stage (world frame).
     Polygon outline() const;
+    /// The outlines a drawn rotation may give, every 10 degrees (the outline alone otherwise):
+    /// what checks before a run must hold for.
+    std::vector<Polygon> possibleOutlines() const;
 };
 
-/// The tapper's stroke (docs/design.md §3): lower from the retract height at constant speed, stop when
-/// the fingertip's total pressure crosses the threshold (or at the stroke limit), hold, return.
+/// The tapper's stroke (docs/design.md §3): lower from the retract height at constant speed, stop
+/// when the fingertip's total pressure crosses the threshold (or at the stroke limit), hold,
+/// return.
 struct TapSpec {
     double retractHeight_mm = 12.0;  ///< fingertip first-contact point above the table
     double descentSpeed_mm_s = 25.0;
@@ -95,7 +102,7 @@ std::vector<Vec2> parseVertexList(const Json& list, const std::string& source,
 std::vector<Vec2> loadPolygonFile(const std::string& path);
 
 /// Why `object` cannot be placed in `scene`'s rig (off the stage, taller than the retract
-/// height), or empty.
+/// height), or empty. A drawn rotation must fit at every angle.
 std::string objectPlacementProblem(const ObjectSpec& object, const SceneSpec& scene);
 
 /// Parses a scene from JSON; `baseDirectory` resolves relative paths. Throws InputError.
