@@ -242,10 +242,14 @@ std::string anyPoseText(const TrialRun& t) {
     if (!t.recognised || !p.valid) return {};
     std::string text = ", at any pose " + p.predicted;
     if (p.best.symmetry == 0) return text + " (no turn to tell)";
+    // The recovered turn shown beside the truth as the equivalent turn nearest it.
     const double period = 360.0 / p.best.symmetry;
+    const double truth = std::fmod(std::fmod(t.rotationDeg, period) + period, period);
+    double off = std::fmod(p.best.rotationDeg - truth, period);
+    if (off > period / 2) off -= period;
+    if (off < -period / 2) off += period;
     char buf[120];
-    std::snprintf(buf, sizeof buf, " turned %.1f deg (truth %.1f)", p.best.rotationDeg,
-                  std::fmod(std::fmod(t.rotationDeg, period) + period, period));
+    std::snprintf(buf, sizeof buf, " turned %.1f deg (truth %.1f)", truth + off, truth);
     return text + buf;
 }
 
@@ -271,6 +275,11 @@ void printReport(const RunResult& result, double wall, double figures_s,
         "%s\n",
         v.angleError_deg, v.positionError_mm, 100.0 * v.correctFraction,
         v.validRange.text().c_str());
+    if (v.continuousValidated)
+        std::printf(
+            "continuous percept: median angle error %.2f deg inside the valid range (%.2f deg "
+            "over every edge position) on the test taps\n",
+            v.continuousMedianAngleErrorInRange_deg, v.continuousMedianAngleError_deg);
     if (const std::string note = followingClassifierNote(result); !note.empty())
         std::printf("%s\n", note.c_str());
     if (const auto& m = result.measuredNoiseFloor)
@@ -290,6 +299,11 @@ void printReport(const RunResult& result, double wall, double figures_s,
                     t.trial);
         printTrialMeasures(t);
     }
+    if (result.pathAngleTaps > 0)
+        std::printf(
+            "continuous percept along the paths: median angle error %.2f deg against the true "
+            "local edge (%d taps inside the valid range, away from corners)\n",
+            result.pathMedianAngleError_deg, result.pathAngleTaps);
     if (!result.templates.empty())
         std::printf("recognition: %.0f %% of %s paths (smoothed histograms: %.0f %%)\n",
                     100.0 * result.recognitionAccuracy, modeName(spec.recognition.ofMode),

@@ -139,23 +139,58 @@ std::vector<Vec2> TrialResult::path() const {
 
 Vec2 lowerEdgeStart(const Polygon& outline, const ValidOffsets& valid) {
     // The edge facing most nearly down (the paper's lower edge; on an outline turned any way,
-    // whichever edge faces down most); among equally facing edges the lowest.
+    // whichever edge faces down most). A tip placed at a cusp or a sharp point would begin on a
+    // corner, so among edges facing within 30 degrees of the best, the one on the straightest
+    // stretch wins (the least turning within 8 mm along the outline either side of its middle),
+    // then the one facing down most, then the lowest.
+    const std::size_t n = outline.size();
+    if (n < 3) throw std::invalid_argument("the object has no edge to start on");
     const Vec2 down{0.0, -1.0};
-    double bestFacing = -2.0, bestY = std::numeric_limits<double>::infinity();
-    std::optional<Vec2> start;
-    for (std::size_t e = 0; e < outline.size(); ++e) {
-        const Vec2 n = outline.outwardNormal(e);
-        const double facing = dot(n, down);
-        if (facing < bestFacing - 1e-9) continue;
-        const Vec2 mid = 0.5 * (outline.vertex(e) + outline.vertex(e + 1));
-        if (facing > bestFacing + 1e-9 || mid.y < bestY) {
-            bestFacing = facing;
-            bestY = mid.y;
-            start = mid + 0.5 * (valid.low + valid.high) * n;
+    double bestFacing = -2.0;
+    for (std::size_t e = 0; e < n; ++e)
+        bestFacing = std::max(bestFacing, dot(outline.outwardNormal(e), down));
+    const double bestAngle = std::acos(std::clamp(bestFacing, -1.0, 1.0));
+    constexpr double kStretch_mm = 8.0, kNear = 30.0 * M_PI / 180.0;
+    auto turningAround = [&](std::size_t e) {
+        // Vertices e+1, e+2, ... ahead and e, e-1, ... behind, within the stretch of the middle.
+        const double half = 0.5 * distance(outline.vertex(e), outline.vertex(e + 1));
+        double turn = 0.0, along = half;
+        for (std::size_t k = 1; k <= n && along <= kStretch_mm; ++k) {
+            turn += std::abs(outline.turnDeg((e + k) % n));
+            along += distance(outline.vertex(e + k), outline.vertex(e + k + 1));
+        }
+        along = half;
+        for (std::size_t k = 0; k < n && along <= kStretch_mm; ++k) {
+            const std::size_t v = (e + n - k) % n;
+            turn += std::abs(outline.turnDeg(v));
+            along += distance(outline.vertex(v + n - 1), outline.vertex(v));
+        }
+        return turn;
+    };
+    std::optional<std::size_t> best;
+    double bestTurn = 0.0, bestY = 0.0, chosenFacing = 0.0;
+    for (std::size_t e = 0; e < n; ++e) {
+        const double facing = dot(outline.outwardNormal(e), down);
+        if (std::acos(std::clamp(facing, -1.0, 1.0)) > bestAngle + kNear) continue;
+        const double turn = turningAround(e);
+        const double y = 0.5 * (outline.vertex(e).y + outline.vertex(e + 1).y);
+        bool better = !best;
+        if (!better && turn < bestTurn - 1.0) better = true;
+        if (!better && std::abs(turn - bestTurn) <= 1.0) {
+            if (facing > chosenFacing + 1e-9)
+                better = true;
+            else if (facing > chosenFacing - 1e-9 && y < bestY)
+                better = true;
+        }
+        if (better) {
+            best = e;
+            bestTurn = turn;
+            bestY = y;
+            chosenFacing = facing;
         }
     }
-    if (!start) throw std::invalid_argument("the object has no edge to start on");
-    return *start;
+    const Vec2 mid = 0.5 * (outline.vertex(*best) + outline.vertex(*best + 1));
+    return mid + 0.5 * (valid.low + valid.high) * outline.outwardNormal(*best);
 }
 
 double followingReach_mm(const FollowingSettings& s) {
@@ -258,6 +293,7 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
     double progress = 0.0;
     const double startArc = outline.nearestOutlinePoint(pose).arcLength;
     double lastArc = startArc;
+    const CornerCriteria corners = cornerCriteria(classes);
     result.end = TrialEnd::TapCap;
 
     try {
@@ -309,6 +345,16 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
             lastArc = nearest.arcLength;
             t.progress_mm = progress;
             t.contourDistance_mm = outline.contains(pose) ? nearest.distance : -nearest.distance;
+            {
+                const Vec2 n = outline.outwardNormal(nearest.edge);
+                t.trueEdgeDeg = std::fmod(std::atan2(n.y, n.x) * 180.0 / M_PI + 360.0, 360.0);
+                const double offset = -t.contourDistance_mm;
+                if (t.percept.continuous && t.percept.region == Region::Edge &&
+                    offset >= setup.valid.low && offset <= setup.valid.high &&
+                    contourPlace(outline, nearest.point, nearest.arcLength, corners).kind ==
+                        PlaceKind::AwayFromCorners)
+                    t.angleError_deg = angleDifferenceDeg(t.percept.orientationDeg, t.trueEdgeDeg);
+            }
 
             if (decisionMade) memory.update(t.percept, usableEdge);
             result.taps.push_back(t);

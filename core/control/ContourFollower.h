@@ -24,6 +24,11 @@ struct FollowedTap {
     double progress_mm = 0.0;  ///< unwrapped progress along the contour so far
     double contourDistance_mm =
         0.0;  ///< signed distance of the pose to the true outline (+ inside)
+    /// For judging a continuous percept: the outward normal of the outline nearest the pose,
+    /// degrees, and the percept's angle error against it where the percept is an edge, the tip is
+    /// inside the valid range and away from corners (-1 elsewhere).
+    double trueEdgeDeg = 0.0;
+    double angleError_deg = -1.0;
 };
 
 enum class TrialEnd {

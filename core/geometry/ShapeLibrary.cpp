@@ -102,12 +102,26 @@ std::optional<std::vector<Vec2>> unitShape(const std::string& name) {
         }
         return v;
     }
-    if (name == "heart")
-        return sampled(144, [](double t) {
-            const double s = std::sin(t);
-            return Vec2{16 * s * s * s, 13 * std::cos(t) - 5 * std::cos(2 * t) -
-                                            2 * std::cos(3 * t) - std::cos(4 * t)};
-        });
+    if (name == "heart") {
+        // Two round lobes (unit circles 1.2 apart) meeting in a notch at the top, their outer
+        // sides joined by tangent lines to the point at the bottom: every part of it is one a
+        // fingertip can follow (the notch turns by 74 degrees, less than the cross's corners).
+        const Vec2 tip{0.0, -2.2}, right{0.6, 0.0}, left{-0.6, 0.0};
+        const double toTip = std::atan2(tip.y - right.y, tip.x - right.x);
+        const double touch = toTip + std::acos(1.0 / distance(tip, right));  // right tangent point
+        const double notch = std::atan2(0.8, -0.6);                           // from right's centre
+        std::vector<Vec2> v{tip};
+        const int steps = 72;
+        for (int i = 0; i <= steps; ++i) {  // the right lobe, counter-clockwise to the notch
+            const double a = touch + (notch - touch) * i / steps;
+            v.push_back(right + Vec2{std::cos(a), std::sin(a)});
+        }
+        for (int i = 1; i <= steps; ++i) {  // the left lobe, from the notch round to its tangent
+            const double a = (kPi - notch) + (notch - touch) * i / steps;
+            v.push_back(left + Vec2{std::cos(a), std::sin(a)});
+        }
+        return v;
+    }
     if (name == "teardrop")  // the point up
         return sampled(144, [](double t) {
             return Vec2{-std::sin(t) * std::sin(t / 2), std::cos(t)};

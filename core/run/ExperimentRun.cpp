@@ -213,6 +213,12 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
             }
         }
     }
+    std::vector<double> angleErrors;
+    for (const TrialRun& run : result.trials)
+        for (const FollowedTap& t : run.result.taps)
+            if (t.angleError_deg >= 0.0) angleErrors.push_back(t.angleError_deg);
+    result.pathAngleTaps = static_cast<int>(angleErrors.size());
+    result.pathMedianAngleError_deg = angleErrors.empty() ? -1.0 : median(angleErrors);
     if (!spec.recognition.enabled) return;
     // Templates at the centre of the valid range, one per distinct object followed.
     std::vector<NamedOutline> shapes;
@@ -287,8 +293,10 @@ void trainAndValidate(RunResult& result, const std::vector<IdealClassContact>& i
     }
     result.classifier =
         HistogramClassifier::train(training, result.classes.classCount(), spec.classifier);
-    result.validation =
-        validateOffline(result.classifier, result.classes, tests, spec.validRangeWidth);
+    result.validation = validateOffline(
+        result.classifier, result.classes, tests, spec.validRangeWidth,
+        spec.following.percept == PerceptKind::Continuous ? spec.following.perceptTemperature
+                                                          : -1.0);
     const ControllerRange range = controllerRange(result.classes, result.validation,
                                                   spec.following.orientationTrustMaxError_deg);
     result.validOffsets = range.offsets;

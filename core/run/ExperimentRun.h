@@ -112,6 +112,11 @@ struct RunResult {
     /// Over trials named right at any pose whose shape has a turn: the median error of the
     /// recovered turn (modulo the shape's symmetry), degrees, and of the recovered place, mm.
     double medianRotationError_deg = 0.0, medianPositionError_mm = 0.0;
+    /// The continuous percept along the trials' paths: the median angle error against the true
+    /// local edge of the taps inside the valid range and away from corners (FollowedTap), and
+    /// how many; -1 without such taps.
+    double pathMedianAngleError_deg = -1.0;
+    int pathAngleTaps = 0;
     SweepResults sweeps;
     std::string failure;  ///< a device error that stopped the run, if any
     bool cancelled = false;

@@ -40,6 +40,9 @@ Json validationJson(const RunResult& r) {
                            {"angle_error_deg", e.angleError_deg},
                            {"position_error_mm", e.positionError_mm},
                            {"correct_fraction", e.correctFraction}});
+        if (v.continuousValidated)
+            byClass.back()["continuous_angle_error_deg"] =
+                e.continuousTaps > 0 ? Json(e.continuousAngleError_deg) : Json(nullptr);
     }
     Json byPosition = Json::array();
     for (int p = 1; p <= cs.positions; ++p) {
@@ -50,7 +53,24 @@ Json validationJson(const RunResult& r) {
                               {"position_error_mm_mean", v.positionMean[i]},
                               {"position_error_mm_std", v.positionStd[i]}});
     }
+    auto orNull = [](double x) { return x >= 0.0 ? Json(x) : Json(nullptr); };
+    Json continuous = nullptr;
+    if (v.continuousValidated)
+        continuous = {
+            {"median_angle_error_deg_in_valid_range",
+             orNull(v.continuousMedianAngleErrorInRange_deg)},
+            {"median_angle_error_deg", orNull(v.continuousMedianAngleError_deg)},
+            {"along_paths",
+             {{"median_angle_error_deg", orNull(r.pathMedianAngleError_deg)},
+              {"taps", r.pathAngleTaps},
+              {"which_taps",
+               "following taps perceived as an edge with the tip inside the valid range and away "
+               "from corners, against the outward normal of the outline nearest the tip"}}},
+            {"temperature", r.spec.following.perceptTemperature > 0.0
+                                ? Json(r.spec.following.perceptTemperature)
+                                : Json("samples per taxel")}};
     return {
+        {"continuous_percept", continuous},
         {"angle_error_deg_mean", v.angleError_deg},
         {"position_error_mm_mean", v.positionError_mm},
         {"class_accuracy", v.correctFraction},
@@ -85,6 +105,7 @@ Json followingJson(const RunResult& r) {
                              {"max_contour_distance_mm", t.result.maxContourDistance_mm},
                              {"progress_mm", t.result.progress_mm},
                              {"start_mm", {t.start.x, t.start.y}},
+                             {"object_rotation_deg", t.rotationDeg},
                              {"furthest", placeJson(t.result)},
                              {"corners_rounded",
                               {{"convex", t.result.cornersRounded.convex},
@@ -96,7 +117,8 @@ Json followingJson(const RunResult& r) {
 
 Json recognitionJson(const RunResult& r) {
     Json trials = Json::array();
-    std::map<std::string, std::map<std::string, int>> confusion, confusionSmoothed;
+    std::map<std::string, std::map<std::string, int>> confusion, confusionSmoothed,
+        confusionAnyPose;
     for (const auto& t : r.trials) {
         if (!t.recognised) continue;
         trials.push_back({{"shape", t.label},
@@ -105,6 +127,20 @@ Json recognitionJson(const RunResult& r) {
                           {"predicted_smoothed", t.recognition.predictedSmoothed},
                           {"distances", t.recognition.distances},
                           {"smoothed_distances", t.recognition.smoothedDistances}});
+        if (t.poseRecognition.valid) {
+            Json fits = Json::object();
+            for (const PoseFit& f : t.poseRecognition.fits) fits[f.shape] = f.score_mm;
+            const PoseFit& b = t.poseRecognition.best;
+            trials.back()["any_pose"] = {
+                {"predicted", t.poseRecognition.predicted},
+                {"rotation_deg", b.symmetry == 0 ? Json(nullptr) : Json(b.rotationDeg)},
+                {"symmetry", b.symmetry},
+                {"position_mm", {b.position.x, b.position.y}},
+                {"true_rotation_deg", t.rotationDeg},
+                {"true_position_mm", {t.objectOffset.x, t.objectOffset.y}},
+                {"scores_mm", fits}};
+            ++confusionAnyPose[t.label][t.poseRecognition.predicted];
+        }
         ++confusion[t.label][t.recognition.predicted];
         ++confusionSmoothed[t.label][t.recognition.predictedSmoothed];
     }
@@ -115,7 +151,16 @@ Json recognitionJson(const RunResult& r) {
                         {"smoothing_sigma_bins", r.spec.recognition.smoothingSigmaBins},
                         {"trials", trials},
                         {"confusion", confusion},
-                        {"confusion_smoothed", confusionSmoothed}};
+                        {"confusion_smoothed", confusionSmoothed},
+                        {"any_pose",
+                         {{"accuracy", r.recognitionAccuracyAnyPose},
+                          {"median_rotation_error_deg", r.medianRotationError_deg},
+                          {"median_position_error_mm", r.medianPositionError_mm},
+                          {"confusion", confusionAnyPose},
+                          {"rule",
+                           "each shape's outline turned and moved onto the path, scored by the "
+                           "root mean square of distances both ways capped at 5 mm; the lowest "
+                           "score names the path"}}}};
 }
 
 Json sweepsJson(const SweepResults& sweeps) {

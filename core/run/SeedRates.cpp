@@ -51,12 +51,27 @@ int SeedOutcome::recognisedSmoothed() const {
         namings.begin(), namings.end(), [](const PathNaming& n) { return n.smoothed == n.label; }));
 }
 
+int SeedOutcome::recognisedAnyPose() const {
+    return static_cast<int>(std::count_if(
+        namings.begin(), namings.end(), [](const PathNaming& n) { return n.anyPose == n.label; }));
+}
+
 std::vector<std::string> SeedOutcome::misnamed() const {
     std::vector<std::string> out;
     for (const PathNaming& n : namings)
         if (n.raw != n.label || n.smoothed != n.label)
             out.push_back(n.label + " trial " + std::to_string(n.trial) + ": " + n.raw +
                           " by the paper's rule, " + n.smoothed + " smoothed");
+    return out;
+}
+
+std::string RecognitionConfusion::misnamedAnyPose() const {
+    std::string out;
+    for (std::size_t i = 0; i < anyPose.size(); ++i)
+        for (std::size_t j = 0; j < anyPose[i].size(); ++j)
+            if (i != j && anyPose[i][j] > 0)
+                out += (out.empty() ? "" : ", ") + labels[i] + " as " + labels[j] + " " +
+                       std::to_string(anyPose[i][j]);
     return out;
 }
 
@@ -79,24 +94,48 @@ RecognitionConfusion recognitionConfusion(const std::vector<PathNaming>& namings
     for (const PathNaming& n : namings) {
         indexOf(c.labels, n.raw);
         indexOf(c.labels, n.smoothed);
+        if (!n.anyPose.empty()) indexOf(c.labels, n.anyPose);
     }
     const std::size_t size = c.labels.size();
     c.raw.assign(size, std::vector<int>(size, 0));
     c.smoothed = c.raw;
+    c.anyPose = c.raw;
     for (const PathNaming& n : namings) {
         const std::size_t traced = indexOf(c.labels, n.label);
         ++c.raw[traced][indexOf(c.labels, n.raw)];
         ++c.smoothed[traced][indexOf(c.labels, n.smoothed)];
+        if (!n.anyPose.empty()) ++c.anyPose[traced][indexOf(c.labels, n.anyPose)];
     }
     return c;
 }
 
+namespace {
+
+PathNaming pathNaming(const TrialRun& t) {
+    PathNaming n{t.label, t.trial, t.recognition.predicted, t.recognition.predictedSmoothed};
+    const PoseRecognition& p = t.poseRecognition;
+    if (!p.valid) return n;
+    n.anyPose = p.predicted;
+    if (p.predicted != t.label) return n;
+    if (p.best.symmetry != 0)
+        n.turnError_deg = rotationErrorDeg(p.best.rotationDeg, t.rotationDeg, p.best.symmetry);
+    n.placeError_mm = distance(p.best.position, t.objectOffset);
+    return n;
+}
+
+double medianOf(std::vector<double> v) {
+    if (v.empty()) return -1.0;
+    std::sort(v.begin(), v.end());
+    const std::size_t m = v.size() / 2;
+    return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+}  // namespace
+
 std::vector<PathNaming> pathNamings(const RunResult& run) {
     std::vector<PathNaming> namings;
     for (const TrialRun& t : run.trials)
-        if (t.recognised)
-            namings.push_back(
-                {t.label, t.trial, t.recognition.predicted, t.recognition.predictedSmoothed});
+        if (t.recognised) namings.push_back(pathNaming(t));
     return namings;
 }
 
@@ -146,9 +185,7 @@ SeedOutcome seedOutcome(const RunResult& run) {
             continue;
         }
         ++o.activeCompleted;
-        if (t.recognised)
-            o.namings.push_back(
-                {t.label, t.trial, t.recognition.predicted, t.recognition.predictedSmoothed});
+        if (t.recognised) o.namings.push_back(pathNaming(t));
         o.completedTaps += static_cast<int>(t.result.taps.size());
         o.completedRobotTime_s += t.result.robotTime_s;
         o.activeTracing.add(traced);
@@ -236,6 +273,10 @@ Rate passiveLostAtCornerIn(const SeedOutcome& s) {
 Rate activeCompletedIn(const SeedOutcome& s) {
     return {s.activeCompleted, s.activeTrials};
 }
+Rate recognisedAnyPoseIn(const SeedOutcome& s) {
+    return {s.recognisedAnyPose(), s.recognitionTrials()};
+}
+
 Rate recognisedRawIn(const SeedOutcome& s) {
     return {s.recognisedRaw(), s.recognitionTrials()};
 }
@@ -260,6 +301,26 @@ Rate SeedRates::passiveLostAtCorner() const {
 Rate SeedRates::activeCompleted() const {
     return sumOver(seeds, activeCompletedIn);
 }
+Rate SeedRates::recognisedAnyPose() const {
+    return sumOver(seeds, recognisedAnyPoseIn);
+}
+
+double SeedRates::medianTurnError_deg() const {
+    std::vector<double> v;
+    for (const auto& o : seeds)
+        for (const PathNaming& n : o.namings)
+            if (n.turnError_deg >= 0.0) v.push_back(n.turnError_deg);
+    return medianOf(v);
+}
+
+double SeedRates::medianPlaceError_mm() const {
+    std::vector<double> v;
+    for (const auto& o : seeds)
+        for (const PathNaming& n : o.namings)
+            if (n.placeError_mm >= 0.0) v.push_back(n.placeError_mm);
+    return medianOf(v);
+}
+
 Rate SeedRates::recognisedRaw() const {
     return sumOver(seeds, recognisedRawIn);
 }

@@ -38,6 +38,10 @@ struct PathNaming {
     std::string label;  ///< the trial's label, the shape it traced
     int trial = 0;
     std::string raw, smoothed;  ///< named by the paper's rule and by the smoothed histograms
+    std::string anyPose;        ///< named at any pose (core/recognition/PoseRecognition.h)
+    /// Named right at any pose: how far the recovered turn (modulo the shape's symmetry; -1 for
+    /// a shape without one) and place were from the truth.
+    double turnError_deg = -1.0, placeError_mm = -1.0;
 };
 
 /// How closely completed trials traced the contour: how many, and the sums of their coverage
@@ -99,6 +103,7 @@ struct SeedOutcome {
     int recognitionTrials() const { return static_cast<int>(namings.size()); }
     int recognisedRaw() const;
     int recognisedSmoothed() const;
+    int recognisedAnyPose() const;
     /// "rectangle trial 1: c by the paper's rule, rectangle smoothed" for each path either rule
     /// misnamed.
     std::vector<std::string> misnamed() const;
@@ -136,9 +141,10 @@ SeedOutcome seedOutcome(const RunResult& run);
 /// Rows are the traced shapes, columns the names, over one list of labels.
 struct RecognitionConfusion {
     std::vector<std::string> labels;
-    std::vector<std::vector<int>> raw, smoothed;  ///< [traced][named]
+    std::vector<std::vector<int>> raw, smoothed, anyPose;  ///< [traced][named]
     /// "rectangle as c 3, c as rectangle 1" for the paths one rule misnamed; empty if none.
     std::string misnamed(bool smoothedRule) const;
+    std::string misnamedAnyPose() const;
 };
 
 /// The confusion of `namings` over `labels` (kept in their order), then the traced shapes in the
@@ -159,6 +165,7 @@ Rate passiveLostAtCornerIn(const SeedOutcome& run);  ///< of its passive trials
 Rate activeCompletedIn(const SeedOutcome& run);
 Rate recognisedRawIn(const SeedOutcome& run);       ///< of its recognised completed active paths
 Rate recognisedSmoothedIn(const SeedOutcome& run);  ///< of its recognised completed active paths
+Rate recognisedAnyPoseIn(const SeedOutcome& run);   ///< of its recognised completed active paths
 Rate paperResultIn(const SeedOutcome& run);  ///< 1 of 1 or 0 of 1; 0 of 0 where it does not apply
 Rate paperResultSmoothedIn(const SeedOutcome& run);  ///< as paperResultIn, smoothed recognition
 
@@ -177,6 +184,11 @@ struct SeedRates {
     Rate activeCompleted() const;
     Rate recognisedRaw() const;        ///< of completed active paths
     Rate recognisedSmoothed() const;   ///< of completed active paths
+    Rate recognisedAnyPose() const;    ///< of completed active paths
+    /// Over the paths named right at any pose: the median error of the recovered turn (shapes
+    /// with one) and place; -1 where there is none.
+    double medianTurnError_deg() const;
+    double medianPlaceError_mm() const;
     Rate paperResult() const;          ///< of runs: SeedOutcome::paperResult
     Rate paperResultSmoothed() const;  ///< of runs: SeedOutcome::paperResultSmoothed
     ShortOfPaper shortOfPaper() const;

@@ -59,6 +59,7 @@ Json seedRatesJson(const SeedRates& r) {
              {"recognition_trials", s.recognitionTrials()},
              {"recognised_raw", s.recognisedRaw()},
              {"recognised_smoothed", s.recognisedSmoothed()},
+             {"recognised_any_pose", s.recognisedAnyPose()},
              {"validation_angle_error_deg", s.angleError_deg},
              {"validation_position_error_mm", s.positionError_mm},
              {"valid_range_positions", {s.validRange.first, s.validRange.last}},
@@ -92,12 +93,18 @@ Json seedRatesJson(const SeedRates& r) {
             {"active_completed_by_valid_range", byValidRange(r)},
             {"recognised_raw", rateJson(r.recognisedRaw())},
             {"recognised_smoothed", rateJson(r.recognisedSmoothed())},
+            {"recognised_any_pose", rateJson(r.recognisedAnyPose())},
+            {"any_pose_median_turn_error_deg",
+             r.medianTurnError_deg() >= 0 ? Json(r.medianTurnError_deg()) : Json(nullptr)},
+            {"any_pose_median_place_error_mm",
+             r.medianPlaceError_mm() >= 0 ? Json(r.medianPlaceError_mm()) : Json(nullptr)},
             {"recognition_confusion",
              {{"labels", confusion.labels},
               {"rows", "traced shape"},
               {"columns", "named as"},
               {"paper_rule", confusion.raw},
-              {"smoothed", confusion.smoothed}}},
+              {"smoothed", confusion.smoothed},
+              {"any_pose", confusion.anyPose}}},
             {"paper_result", rateJson(r.paperResult())},
             {"paper_result_smoothed", rateJson(r.paperResultSmoothed())},
             {"paper_result_short_by", shortJson(r.shortOfPaper())},
@@ -188,6 +195,17 @@ std::vector<ReportRow> rateReport(const SeedRates& r) {
     line("recognised, smoothed histograms", r.recognisedSmoothed());
     if (const std::string m = confusion.misnamed(true); !m.empty())
         lines.push_back("  misnamed: " + m);
+    if (r.recognisedAnyPose().total > 0) {
+        line("recognised at any pose", r.recognisedAnyPose());
+        if (const std::string m = confusion.misnamedAnyPose(); !m.empty())
+            lines.push_back("  misnamed: " + m);
+        if (r.medianTurnError_deg() >= 0) {
+            std::snprintf(buf, sizeof buf,
+                          "  recovered turn off by %.2f deg, place by %.2f mm (medians)",
+                          r.medianTurnError_deg(), r.medianPlaceError_mm());
+            lines.push_back(buf);
+        }
+    }
     line("runs with the paper's result whole", r.paperResult());
     line("runs whole, smoothed histograms", r.paperResultSmoothed());
     if (const ShortOfPaper s = r.shortOfPaper(); s.runs > 0) {

@@ -134,7 +134,9 @@ std::string experimentFingerprint(const std::string& path, const ExperimentSpec&
 
 Json seedOutcomeJson(const SeedOutcome& o) {
     Json namings = Json::array();
-    for (const PathNaming& n : o.namings) namings.push_back({n.label, n.trial, n.raw, n.smoothed});
+    for (const PathNaming& n : o.namings)
+        namings.push_back(
+            {n.label, n.trial, n.raw, n.smoothed, n.anyPose, n.turnError_deg, n.placeError_mm});
     return {{"seed", o.seed},
             {"passive_trials", o.passiveTrials},
             {"passive_lost", o.passiveLost},
@@ -183,7 +185,9 @@ SeedOutcome seedOutcomeFromJson(const Json& j, const std::string& source,
         o.passiveShortfalls = j.at("passive_shortfalls").get<std::vector<std::string>>();
         for (const Json& n : j.at("namings"))
             o.namings.push_back({n.at(0).get<std::string>(), n.at(1).get<int>(),
-                                 n.at(2).get<std::string>(), n.at(3).get<std::string>()});
+                                 n.at(2).get<std::string>(), n.at(3).get<std::string>(),
+                                 n.at(4).get<std::string>(), n.at(5).get<double>(),
+                                 n.at(6).get<double>()});
         o.activeByLabel = byLabelOf(j.at("active_by_label"));
         o.passiveByLabel = byLabelOf(j.at("passive_by_label"));
         o.activeTracing = tracingOf(j.at("active_tracing"));

@@ -36,7 +36,7 @@ ValidRange deriveValidRange(const std::vector<double>& angle, const std::vector<
 
 ValidationResult validateOffline(const HistogramClassifier& classifier, const ClassSet& classes,
                                  const std::vector<const CollectedTap*>& testTaps,
-                                 int validRangeWidth) {
+                                 int validRangeWidth, double continuousTemperature) {
     const int C = classes.classCount();
     const int O = static_cast<int>(classes.orientationsDeg.size());
     const int P = classes.positions;
@@ -51,7 +51,23 @@ ValidationResult validateOffline(const HistogramClassifier& classifier, const Cl
     }
     double angleSum = 0.0, positionSum = 0.0;
     int correct = 0;
+    const bool continuous = continuousTemperature >= 0.0;
+    std::vector<double> ll(continuous ? static_cast<std::size_t>(C) : 0);
+    std::vector<std::pair<int, double>> continuousErrors;  // position, angle error
     for (const CollectedTap* t : testTaps) {
+        if (continuous && classes.regionOf(t->cls) == Region::Edge) {
+            classifier.logLikelihoods(t->record.tap, ll.data());
+            const Percept c = perceiveContinuous(
+                classes, ll.data(), perceptTemperatureFor(continuousTemperature, t->record.tap));
+            if (c.region == Region::Edge) {
+                const double err =
+                    angleDifferenceDeg(c.orientationDeg, classes.orientationDegOf(t->cls));
+                auto& e = r.byClass[static_cast<std::size_t>(t->cls)];
+                e.continuousAngleError_deg += err;
+                ++e.continuousTaps;
+                continuousErrors.push_back({classes.positionOf(t->cls), err});
+            }
+        }
         const Percept p = perceive(classifier, classes, t->record.tap);
         r.percepts.push_back(p);
         auto& e = r.byClass[static_cast<std::size_t>(t->cls)];
@@ -72,6 +88,7 @@ ValidationResult validateOffline(const HistogramClassifier& classifier, const Cl
         e.angleError_deg /= e.taps;
         e.positionError_mm /= e.taps;
         e.correctFraction /= e.taps;
+        if (e.continuousTaps > 0) e.continuousAngleError_deg /= e.continuousTaps;
     }
     const double n = std::max<std::size_t>(1, testTaps.size());
     r.angleError_deg = angleSum / n;
@@ -97,6 +114,23 @@ ValidationResult validateOffline(const HistogramClassifier& classifier, const Cl
         r.positionStd[i] = std::sqrt(std::max(0.0, qp / O - r.positionMean[i] * r.positionMean[i]));
     }
     r.validRange = deriveValidRange(r.angleMean, r.positionMean, validRangeWidth);
+    if (continuous) {
+        r.continuousValidated = true;
+        std::vector<double> all, inRange;
+        for (const auto& [position, err] : continuousErrors) {
+            all.push_back(err);
+            if (position >= r.validRange.first && position <= r.validRange.last)
+                inRange.push_back(err);
+        }
+        auto median = [](std::vector<double> v) {
+            if (v.empty()) return -1.0;
+            std::sort(v.begin(), v.end());
+            const std::size_t m = v.size() / 2;
+            return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+        };
+        r.continuousMedianAngleError_deg = median(all);
+        r.continuousMedianAngleErrorInRange_deg = median(inRange);
+    }
     return r;
 }
 

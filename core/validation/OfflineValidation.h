@@ -20,6 +20,9 @@ struct ClassError {
     double angleError_deg = 0.0;    ///< mean over test taps
     double positionError_mm = 0.0;  ///< mean |perceived - true| over test taps
     double correctFraction = 0.0;   ///< exact class hits
+    /// Continuous percept (when validated): mean angle error of the taps it gave an angle, deg.
+    double continuousAngleError_deg = 0.0;
+    int continuousTaps = 0;
 };
 
 /// The valid range rule: over every window of `width` consecutive positions, the sum of the
@@ -47,10 +50,18 @@ struct ValidationResult {
     ValidRange validRange;
     std::vector<int> confusion;     ///< classCount x classCount, true-major
     std::vector<Percept> percepts;  ///< per test tap, in the order given
+    /// The continuous percept (core/classify/Percept.h), validated when asked: the median angle
+    /// error of the edge classes' test taps at positions inside the valid range, and over every
+    /// edge class's test taps; -1 when not validated or no tap gave an angle.
+    bool continuousValidated = false;
+    double continuousMedianAngleErrorInRange_deg = -1.0;
+    double continuousMedianAngleError_deg = -1.0;
 };
 
+/// `continuousTemperature`: also validate the continuous percept at this temperature (0: the
+/// tap's samples per taxel); below 0, do not.
 ValidationResult validateOffline(const HistogramClassifier& classifier, const ClassSet& classes,
                                  const std::vector<const CollectedTap*>& testTaps,
-                                 int validRangeWidth);
+                                 int validRangeWidth, double continuousTemperature = -1.0);
 
 }  // namespace activetouch

@@ -82,6 +82,11 @@ private slots:
         const auto leaning = logsOf(cs, {{cs.classOf(35, 9), 0.6}, {cs.classOf(1, 9), 0.4}});
         const ContinuousEdge l = continuousEdge(cs, leaning.data());
         QVERIFY(l.angleDeg > 355.0 && l.angleDeg < 360.0);
+        // Across +-180 degrees: equal weight at 170 and 190 (-170) gives 180, not 0.
+        const auto back = logsOf(cs, {{cs.classOf(17, 9), 0.5}, {cs.classOf(19, 9), 0.5}});
+        const ContinuousEdge b = continuousEdge(cs, back.data());
+        QVERIFY(b.angleValid);
+        QVERIFY2(std::abs(b.angleDeg - 180.0) < 1e-9, qPrintable(QString::number(b.angleDeg)));
         // The paper's four orientations (270, 0, 90, 180) wrap the same way.
         ClassSet paper;
         const auto between =

@@ -25,9 +25,10 @@ class TestContourFollower : public QObject {
     Q_OBJECT
 private slots:
     void idealPerceptionCompletesEveryLibraryShape_data() {
+        // The paper's four shapes with its four orientations and discrete rules; the general
+        // shapes need the continuous percept (below).
         QTest::addColumn<QString>("shape");
-        for (const auto& n : libraryShapeNames())
-            QTest::newRow(n.c_str()) << QString::fromStdString(n);
+        for (const auto& n : {"rectangle", "cross", "C", "L"}) QTest::newRow(n) << QString(n);
     }
     void idealPerceptionCompletesEveryLibraryShape() {
         QFETCH(QString, shape);
@@ -47,6 +48,39 @@ private slots:
                  qPrintable(QString::number(t.maxContourDistance_mm)));
         QCOMPARE(t.robotTime_s, rig.world.clock);  // taps and moves, all on the robot clock
         QCOMPARE(t.path().size(), t.taps.size());
+    }
+
+    void continuousPerceptFollowsEveryLibraryShapeAtAnyTurn_data() {
+        QTest::addColumn<QString>("shape");
+        QTest::addColumn<double>("turn");
+        for (const auto& n : libraryShapeNames())
+            for (double turn : {0.0, 17.0, 133.0, 251.0})
+                QTest::newRow((n + " " + std::to_string(int(turn))).c_str())
+                    << QString::fromStdString(n) << turn;
+    }
+    void continuousPerceptFollowsEveryLibraryShapeAtAnyTurn() {
+        // 36 orientations every 10 degrees, perceived ideally (the nearest trained one), the
+        // continuous rule steering: every library shape at any turn gets round, close to its
+        // contour, and the tangent rule does the following.
+        QFETCH(QString, shape);
+        QFETCH(double, turn);
+        const std::string name = shape.toStdString();
+        const Polygon outline = libraryShape(name, defaultShapeSize(name)).transformed(turn, {150, 150});
+        std::vector<double> every10;
+        for (int i = 0; i < 36; ++i) every10.push_back(std::fmod(270.0 + 10.0 * i, 360.0));
+        OracleRig rig(paperClassesWithRegions(every10));
+        rig.world.perceiveIdeally(outline);
+        Rig r = rig.rig();
+        TrialSetup s = setupFor(outline, FollowingMode::Active);
+        s.settings.percept = PerceptKind::Continuous;
+        const TrialResult t = runTrial(r, rig.world.classifier, rig.world.classes, outline, s);
+        QVERIFY2(t.completed(), t.detail.c_str());
+        QVERIFY2(t.meanContourDistance_mm < 1.5,
+                 qPrintable(QString::number(t.meanContourDistance_mm)));
+        const auto tangent = std::count_if(t.taps.begin(), t.taps.end(), [](const FollowedTap& f) {
+            return f.decision.rule == RuleId::ContinuousFollow;
+        });
+        QVERIFY(tangent > static_cast<long>(t.taps.size()) / 2);
     }
 
     void passiveWithIdealPerceptionStillLosesConvexCorners() {

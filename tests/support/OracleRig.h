@@ -120,11 +120,13 @@ struct OracleRig {
     Rig rig() { return Rig{stage, tapper, sensor, clock}; }
 };
 
-/// The paper's classes with a simple region map: positions 1-4 plane, 15-18 air.
-inline ClassSet paperClassesWithRegions() {
+/// The paper's classes (or `orientations`) with a simple region map: positions 1-4 plane, 15-18
+/// air.
+inline ClassSet paperClassesWithRegions(std::vector<double> orientations = {270, 0, 90, 180}) {
     ClassSet cs;
+    cs.orientationsDeg = std::move(orientations);
     cs.regions.assign(static_cast<std::size_t>(cs.classCount()), Region::Edge);
-    for (int o = 0; o < 4; ++o)
+    for (int o = 0; o < static_cast<int>(cs.orientationsDeg.size()); ++o)
         for (int p = 1; p <= 18; ++p)
             cs.regions[static_cast<std::size_t>(cs.classOf(o, p))] =
                 p <= 4 ? Region::Plane : (p >= 15 ? Region::Air : Region::Edge);
