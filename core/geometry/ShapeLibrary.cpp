@@ -36,16 +36,28 @@ bool shapeHasArms(const std::string& name) {
     return name == "cross" || name == "C" || name == "L";
 }
 
+std::optional<std::vector<Vec2>> unitShape(const std::string& name);
+
 ShapeSize defaultShapeSize(const std::string& name) {
     if (name == "rectangle") return {48.0, 58.0, 0.0, 0.0};
     if (name == "ellipse") return {72.0, 44.0, 0.0, 0.0};
-    if (name == "triangle") return {70.0, 60.6, 0.0, 0.0};
-    if (name == "star") return {84.0, 80.0, 0.0, 0.0};
-    if (name == "heart") return {72.0, 66.0, 0.0, 0.0};
     if (name == "teardrop") return {50.0, 76.0, 0.0, 0.0};
-    if (name == "clover") return {80.0, 80.0, 0.0, 0.0};
-    if (name == "gear") return {84.0, 84.0, 0.0, 0.0};
     if (shapeHasArms(name)) return {60.0, 60.0, 20.0, 20.0};
+    // The others keep their own proportions (a gear or a star stretched to a square box would
+    // lose its symmetry): a width, and the height that goes with it.
+    double width = 60.0;
+    if (name == "triangle") width = 70.0;
+    if (name == "star" || name == "gear") width = 84.0;
+    if (name == "heart") width = 72.0;
+    if (name == "clover") width = 80.0;
+    if (const auto unit = unitShape(name)) {
+        Vec2 lo = unit->front(), hi = lo;
+        for (Vec2 p : *unit) {
+            lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+            hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+        }
+        return {width, width * (hi.y - lo.y) / (hi.x - lo.x), 0.0, 0.0};
+    }
     return {60.0, 60.0, 0.0, 0.0};
 }
 
@@ -88,6 +100,8 @@ double gearRadius(double t) {
     return 1.0 - (1.0 - root) * (u - top / 2) / flank;
 }
 
+}  // namespace
+
 /// The curves and polygons beyond the paper's four, before scaling to their box.
 std::optional<std::vector<Vec2>> unitShape(const std::string& name) {
     if (name == "circle" || name == "ellipse")
@@ -109,7 +123,7 @@ std::optional<std::vector<Vec2>> unitShape(const std::string& name) {
         const Vec2 tip{0.0, -2.2}, right{0.6, 0.0}, left{-0.6, 0.0};
         const double toTip = std::atan2(tip.y - right.y, tip.x - right.x);
         const double touch = toTip + std::acos(1.0 / distance(tip, right));  // right tangent point
-        const double notch = std::atan2(0.8, -0.6);                           // from right's centre
+        const double notch = std::atan2(0.8, -0.6);                          // from right's centre
         std::vector<Vec2> v{tip};
         const int steps = 72;
         for (int i = 0; i <= steps; ++i) {  // the right lobe, counter-clockwise to the notch
@@ -131,8 +145,6 @@ std::optional<std::vector<Vec2>> unitShape(const std::string& name) {
     if (name == "gear") return polar(180, gearRadius);
     return std::nullopt;
 }
-
-}  // namespace
 
 Polygon libraryShape(const std::string& name, const ShapeSize& s) {
     const double w = s.width, h = s.height, a = s.arm;

@@ -268,9 +268,9 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
         out.fits[i].shape = tpl.shape;
         out.fits[i].symmetry = tpl.symmetry;
         out.fits[i].score_mm = std::sqrt(candidates[i].coarse);
-        const double turn = candidates[i].pose[0].thetaDeg, a = turn * kPi / 180.0;
+        const double turn = candidates[i].pose[0].thetaDeg;
         out.fits[i].rotationDeg = tpl.symmetry == 0 ? 0.0 : wrapDeg(turn, 360.0 / tpl.symmetry);
-        out.fits[i].position = centre - rotated(tpl.centroid, std::cos(a), std::sin(a));
+        out.fits[i].position = centre;
     }
     // Refined: the most promising templates, both turns, turn and place together by a pattern
     // search on the two-way cost.
@@ -314,8 +314,7 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
         }
         PoseFit& fit = out.fits[i];
         fit.score_mm = std::sqrt(fitCost);
-        const double a = fitPose.thetaDeg * kPi / 180.0;
-        fit.position = fitPose.t - rotated(tpl.centroid, std::cos(a), std::sin(a));
+        fit.position = fitPose.t;
         fit.rotationDeg = tpl.symmetry == 0 ? 0.0 : wrapDeg(fitPose.thetaDeg, 360.0 / tpl.symmetry);
         if (fit.score_mm < bestScore) {
             bestScore = fit.score_mm;

@@ -246,6 +246,14 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
         const std::vector<Vec2> path = run.result.path();
         run.recognition = recognise(path, result.templates, spec.recognition.smoothingSigmaBins);
         run.poseRecognition = recognisePose(path, result.poseTemplates);
+        for (const PoseTemplate& tpl : result.poseTemplates)
+            if (tpl.shape == run.label) {
+                const double a = run.rotationDeg * M_PI / 180.0;
+                run.objectCentre =
+                    run.objectOffset +
+                    Vec2{std::cos(a) * tpl.centroid.x - std::sin(a) * tpl.centroid.y,
+                         std::sin(a) * tpl.centroid.x + std::cos(a) * tpl.centroid.y};
+            }
         ++recognised;
         correct += run.recognition.predicted == run.label;
         correctSmoothed += run.recognition.predictedSmoothed == run.label;
@@ -255,7 +263,7 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
             if (pose.best.symmetry != 0)
                 turnErrors.push_back(
                     rotationErrorDeg(pose.best.rotationDeg, run.rotationDeg, pose.best.symmetry));
-            placeErrors.push_back(distance(pose.best.position, run.objectOffset));
+            placeErrors.push_back(distance(pose.best.position, run.objectCentre));
         }
     }
     if (recognised > 0) {

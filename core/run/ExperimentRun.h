@@ -71,9 +71,9 @@ struct TrialRun {
     bool recognised = false;
     Recognition recognition;
     PoseRecognition poseRecognition;  ///< at any pose, beside the paper's rule
-    /// The object's frame origin on the stage: with rotationDeg, the truth poseRecognition's
-    /// turn and place are judged against.
-    Vec2 objectOffset;
+    /// The object's frame origin on the stage, and where its outline's centroid lies: with
+    /// rotationDeg, the truth poseRecognition's turn and place are judged against.
+    Vec2 objectOffset, objectCentre;
     int recordedTaps = -1;  ///< replayed: the taps the recording holds for this trial
 };
 

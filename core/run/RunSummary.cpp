@@ -137,7 +137,8 @@ Json recognitionJson(const RunResult& r) {
                 {"symmetry", b.symmetry},
                 {"position_mm", {b.position.x, b.position.y}},
                 {"true_rotation_deg", t.rotationDeg},
-                {"true_position_mm", {t.objectOffset.x, t.objectOffset.y}},
+                {"true_position_mm", {t.objectCentre.x, t.objectCentre.y}},
+                {"position_is", "the centroid of the outline's length"},
                 {"scores_mm", fits}};
             ++confusionAnyPose[t.label][t.poseRecognition.predicted];
         }

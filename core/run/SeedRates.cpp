@@ -119,7 +119,7 @@ PathNaming pathNaming(const TrialRun& t) {
     if (p.predicted != t.label) return n;
     if (p.best.symmetry != 0)
         n.turnError_deg = rotationErrorDeg(p.best.rotationDeg, t.rotationDeg, p.best.symmetry);
-    n.placeError_mm = distance(p.best.position, t.objectOffset);
+    n.placeError_mm = distance(p.best.position, t.objectCentre);
     return n;
 }
 

@@ -65,7 +65,8 @@ private slots:
         QFETCH(QString, shape);
         QFETCH(double, turn);
         const std::string name = shape.toStdString();
-        const Polygon outline = libraryShape(name, defaultShapeSize(name)).transformed(turn, {150, 150});
+        const Polygon outline =
+            libraryShape(name, defaultShapeSize(name)).transformed(turn, {150, 150});
         std::vector<double> every10;
         for (int i = 0; i < 36; ++i) every10.push_back(std::fmod(270.0 + 10.0 * i, 360.0));
         OracleRig rig(paperClassesWithRegions(every10));

@@ -35,7 +35,7 @@ class TestDecisionRules : public QObject {
 private slots:
     void everyRuleIsInTheTableOnce() {
         const auto& rules = decisionRules();
-        QCOMPARE(int(rules.size()), 10);
+        QCOMPARE(int(rules.size()), 11);
         for (std::size_t i = 0; i < rules.size(); ++i)
             for (std::size_t j = i + 1; j < rules.size(); ++j) QVERIFY(rules[i].id != rules[j].id);
         for (const auto& r : rules)

@@ -182,6 +182,60 @@ private slots:
                       "/object/svg_path", "needs 'svg_path'");
     }
 
+    void generalShapesOrientationStepsAndDrawnTurns() {
+        // Every library shape builds at its default size; a regular polygon has an edge facing
+        // each way every 360 / sides degrees, the first straight down; an orientation step lists
+        // the orientations round the circle from 270; a drawn turn differs from trial to trial.
+        for (const auto& n : libraryShapeNames()) {
+            const Polygon p = libraryShape(n, defaultShapeSize(n));
+            QVERIFY2(p.area() > 500.0, n.c_str());
+        }
+        const ObjectSpec poly = parseObject(JsonFields(
+            Json::parse(R"({"shape": "regular_polygon", "sides": 36, "across_corners_mm": 230})"),
+            "test", "/object"));
+        const Polygon outline = poly.outline();
+        QCOMPARE(int(outline.size()), 36);
+        std::vector<double> normals;
+        for (std::size_t e = 0; e < outline.size(); ++e) {
+            const Vec2 n = outline.outwardNormal(e);
+            normals.push_back(std::fmod(std::atan2(n.y, n.x) * 180 / M_PI + 360.0, 360.0));
+        }
+        for (int k = 0; k < 36; ++k) {
+            const double want = std::fmod(270.0 + 10.0 * k, 360.0);
+            QVERIFY(std::any_of(normals.begin(), normals.end(),
+                                [&](double a) { return angleDifferenceDeg(a, want) < 1e-6; }));
+        }
+        write("good.json", kGoodScene);
+        const std::string path =
+            write("stepped.json",
+                  R"({"name": "x", "scene": "good.json", "classes": {"orientation_step_deg": 45},
+                "following": {"percept": "continuous", "trials": [
+                  {"object": {"shape": "star", "rotation_deg": "random"}, "repeats": 2}]}})");
+        // The rectangle has no edge facing 45 degrees: training on it is refused by name.
+        try {
+            loadExperiment(path);
+            QFAIL("an experiment whose training object lacks an orientation was accepted");
+        } catch (const InputError& e) {
+            QVERIFY2(QString(e.what()).contains("no edge facing"), e.what());
+        }
+        write("octagon.json",
+              QString(kGoodScene)
+                  .replace(R"("shape": "rectangle")",
+                           R"("shape": "regular_polygon", "sides": 8, "across_corners_mm": 80)")
+                  .toStdString());
+        const std::string octagon =
+            write("stepped8.json",
+                  R"({"name": "x", "scene": "octagon.json", "classes": {"orientation_step_deg": 45},
+                "following": {"percept": "continuous", "trials": [
+                  {"object": {"shape": "star", "rotation_deg": "random"}, "repeats": 2}]}})");
+        const ExperimentSpec e = loadExperiment(octagon);
+        QCOMPARE(e.classes.orientationsDeg,
+                 (std::vector<double>{270, 315, 0, 45, 90, 135, 180, 225}));
+        QVERIFY(e.following.percept == PerceptKind::Continuous);
+        QVERIFY(e.trials.front().object.rotationDrawn);
+        QCOMPARE(objectToJson(e.trials.front().object)["rotation_deg"], Json("random"));
+    }
+
     void badSceneNamesFilePlaceAndProblem_data() {
         QTest::addColumn<QString>("text");
         QTest::addColumn<QString>("place");
@@ -350,6 +404,27 @@ private slots:
         QTest::newRow("every set trains")
             << head + R"("training": {"data_sets": 2, "training_sets": [1, 2]}})"
             << "leave at least one set to test";
+        QTest::newRow("orientation step not dividing the circle")
+            << head + R"("classes": {"orientation_step_deg": 7}})"
+            << "does not divide the circle";
+        QTest::newRow("orientation step beside a list")
+            << head + R"("classes": {"orientations_deg": [0, 90], "orientation_step_deg": 10}})"
+            << "not both";
+        QTest::newRow("unknown percept") << head + R"("following": {"percept": "fuzzy"}})"
+                                         << "percept 'fuzzy' is neither discrete";
+        QTest::newRow("curvature from one tap") << head + R"("following": {"curvature_taps": 1}})"
+                                                << "a turn needs two angles";
+        QTest::newRow("negative temperature")
+            << head + R"("following": {"percept_temperature": -1}})"
+            << "outside the allowed range";
+        QTest::newRow("rotation as other text")
+            << head +
+                   R"("following": {"trials": [{"object": {"shape": "star", "rotation_deg": "any"}}]}})"
+            << "or \"random\" for an angle drawn";
+        QTest::newRow("a drawn turn that can leave the travel")
+            << head +
+                   R"("following": {"trials": [{"object": {"shape": "rectangle", "width_mm": 280, "height_mm": 20, "rotation_deg": "random", "offset_mm": [150, 150]}}]}})"
+            << "turned any way";
         QTest::newRow("no smoothing") << head + R"("classifier": {"smoothing": 0}})"
                                       << "outside the allowed range";
         QTest::newRow("negative kernel") << head + R"("classifier": {"kernel_sigma_bins": -1}})"
