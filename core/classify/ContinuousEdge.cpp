@@ -25,7 +25,9 @@ ContinuousEdge continuousEdge(const ClassSet& classes, const double* logLikeliho
     std::vector<double> weight(static_cast<std::size_t>(n));
     double total = 0.0;
     for (int c = 0; c < n; ++c) {
-        weight[std::size_t(c)] = std::exp(logLikelihoods[c] / temperature - top);
+        // Terms e^-50 below the winner's change no sum a double holds beside it: skip the exp.
+        const double x = logLikelihoods[c] / temperature - top;
+        weight[std::size_t(c)] = x < -50.0 ? 0.0 : std::exp(x);
         total += weight[std::size_t(c)];
     }
     // The winner's term is exp(0) = 1, so total >= 1: no division by zero.

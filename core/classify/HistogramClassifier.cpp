@@ -289,7 +289,9 @@ double logSumExp(const double* v, int n) {
     for (int i = 0; i < n; ++i) m = std::max(m, v[i]);
     if (!std::isfinite(m)) return m;
     double sum = 0.0;
-    for (int i = 0; i < n; ++i) sum += std::exp(v[i] - m);
+    // exp of anything below -746 is exactly 0 in a double: skipping it changes no bit.
+    for (int i = 0; i < n; ++i)
+        if (const double x = v[i] - m; x > -746.0) sum += std::exp(x);
     return m + std::log(sum);
 }
 

@@ -11,10 +11,11 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 /// Distances are capped here, mm: beyond it a point counts as simply off the outline.
 constexpr double kCap_mm = 5.0;
-constexpr double kSpacing_mm = 1.0;  ///< resampling along outlines and paths
-constexpr double kCoarseStepDeg = 5.0;
-constexpr std::size_t kCoarsePoints = 64;
-constexpr std::size_t kRefinedTemplates = 4;
+constexpr double kSpacing_mm = 2.0;  ///< resampling along outlines and paths (a follow step)
+constexpr double kCoarseStepDeg = 6.0;
+constexpr std::size_t kCoarsePoints = 32;
+constexpr std::size_t kRefinedTemplates = 3;
+constexpr double kPathCell_mm = 1.0;  ///< the path's own grid, built for every path
 
 Vec2 rotated(Vec2 v, double c, double s) {
     return {c * v.x - s * v.y, s * v.x + c * v.y};
@@ -71,7 +72,7 @@ double segmentDistance(Vec2 p, Vec2 a, Vec2 b) {
 /// A capped distance grid of a polyline: each segment updates only the cells within the cap.
 struct Grid {
     Vec2 origin;
-    double cell = 0.5;
+    double cell = 0.5;  ///< a template's; a path's grid is coarser (kPathCell_mm)
     int nx = 0, ny = 0;
     std::vector<float> d;        ///< owned cells (a path's grid)
     const float* ptr = nullptr;  ///< the cells looked up: d's, or a template's
@@ -230,14 +231,15 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
     const std::size_t stride = std::max<std::size_t>(1, points.size() / kCoarsePoints);
     for (std::size_t i = 0; i < points.size(); i += stride) coarse.push_back(points[i]);
     Grid pathGrid;
+    pathGrid.cell = kPathCell_mm;
     pathGrid.build(finite, false);
 
-    // Coarse: every template at every 5 degrees, placed on the path's centroid; the two best
+    // Coarse: every template at every 6 degrees, placed on the path's centroid; the two best
     // turns at least 15 degrees apart go on to be refined.
     struct Candidate {
         std::size_t tpl;
         Pose pose[2];
-        double coarse = 0.0;
+        double coarse = 0.0, coarseSecond = 0.0;
     };
     std::vector<Candidate> candidates;
     std::vector<Grid> grids;
@@ -248,10 +250,14 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
         for (double th = 0.0; th < 360.0; th += kCoarseStepDeg)
             byTurn.push_back({forwardCost(templates[i], grids.back(), coarse, {th, centre}), th});
         std::sort(byTurn.begin(), byTurn.end());
-        Candidate c{i, {{byTurn[0].second, centre}, {byTurn[0].second, centre}}, byTurn[0].first};
+        Candidate c{i,
+                    {{byTurn[0].second, centre}, {byTurn[0].second, centre}},
+                    byTurn[0].first,
+                    std::numeric_limits<double>::infinity()};
         for (const auto& [cost, th] : byTurn)
             if (rotationErrorDeg(th, byTurn[0].second, 1) > 15.0) {
                 c.pose[1] = {th, centre};
+                c.coarseSecond = cost;
                 break;
             }
         candidates.push_back(c);
@@ -284,11 +290,13 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
         };
         double fitCost = std::numeric_limits<double>::infinity();
         Pose fitPose;
-        for (const Pose& start : candidates[i].pose) {
-            Pose p = start;
+        for (int k = 0; k < 2; ++k) {
+            // The second turn only where the coarse search found it nearly as good.
+            if (k == 1 && !(candidates[i].coarseSecond < 1.5 * candidates[i].coarse)) break;
+            Pose p = candidates[i].pose[k];
             double c = cost(p);
             double stepDeg = 2.5, stepMm = 1.0;
-            while (stepDeg > 0.05) {
+            while (stepDeg > 0.2) {
                 bool moved = false;
                 const Pose tries[6] = {
                     {p.thetaDeg + stepDeg, p.t},         {p.thetaDeg - stepDeg, p.t},

@@ -6,7 +6,7 @@
 // Each template is an outline in its own frame, sampled every millimetre, with a grid of the
 // distance to it. A path is resampled evenly along its length and centred on its centroid (the
 // centroid of its length, which for a path on the outline is the outline's own); for every
-// template the turn is searched every 5 degrees, the best turns are refined together with the
+// template the turn is searched every 6 degrees, the best turns are refined together with the
 // position by a pattern search, and the fit is scored both ways: the path's distance to the
 // outline and the outline's distance to the path (a path along part of an outline fits that
 // part, not the whole). Distances are capped, so that a few taps off the contour (overshooting a

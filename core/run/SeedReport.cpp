@@ -201,7 +201,8 @@ std::vector<ReportRow> rateReport(const SeedRates& r) {
             lines.push_back("  misnamed: " + m);
         if (r.medianTurnError_deg() >= 0) {
             std::snprintf(buf, sizeof buf,
-                          "  recovered turn off by %.2f deg, place by %.2f mm (medians)",
+                          "recovered at any pose: turn off by %.2f deg, place by %.2f mm "
+                          "(medians)",
                           r.medianTurnError_deg(), r.medianPlaceError_mm());
             lines.push_back(buf);
         }
