@@ -274,6 +274,11 @@ const std::vector<RunFigure>& runFigures() {
              return true;
          },
          FigureSize::physical(kDoubleColumn_mm, 115, kFigureDpi)},
+        {"figure6_continuous_angle",
+         [](QCustomPlot& plot, const RunResult& r) {
+             return validated(r) && buildContinuousAngleFigure(plot, r);
+         },
+         FigureSize::physical(kDoubleColumn_mm, 95, kFigureDpi)},
         {"figure7_passive_paths",
          [](QCustomPlot& plot, const RunResult& r) {
              return validated(r) && buildPathFigure(plot, r, FollowingMode::Passive,

@@ -27,8 +27,11 @@ QCPAxisRect* addPanel(QCPLayoutGrid* grid, int row, int column, const QString& x
 }
 
 QSharedPointer<QCPAxisTickerText> orientationTicker(const ClassSet& cs) {
+    // Every orientation by name up to twelve; beyond, a label every quarter of the list (36
+    // names in a column would overlap).
     QSharedPointer<QCPAxisTickerText> t(new QCPAxisTickerText);
-    for (std::size_t o = 0; o < cs.orientationsDeg.size(); ++o)
+    const std::size_t n = cs.orientationsDeg.size(), step = n > 12 ? n / 4 : 1;
+    for (std::size_t o = 0; o < n; o += step)
         t->addTick(double(o),
                    QString::fromStdString(ClassSet::orientationName(cs.orientationsDeg[o])));
     return t;
@@ -64,12 +67,23 @@ void buildTapFigure(QCustomPlot& plot, const RunResult& r) {
     const int K = r.classifier.trained() ? r.classifier.taxelCount() : kFingertipTaxels;
     const int firstSet =
         r.spec.training.trainingSets.empty() ? 1 : r.spec.training.trainingSets.front();
-    const int columns = O >= 4 ? 2 : 1;
-    startFigure(plot, QString("Figure 5 - taps across each edge (data set %1)").arg(firstSet));
+    // At most eight panels: with more orientations, eight spread evenly round the circle (the
+    // others look alike, turned), and the caption says so.
+    constexpr int kMaxPanels = 8;
+    std::vector<int> shown;
+    for (int i = 0; i < std::min(O, kMaxPanels); ++i)
+        shown.push_back(O <= kMaxPanels ? i : i * O / kMaxPanels);
+    const int columns = shown.size() >= 4 ? 2 : 1;
+    startFigure(plot, QString("Figure 5 - taps across each edge (data set %1)").arg(firstSet),
+                O <= kMaxPanels ? QString()
+                                : QString("%1 of the %2 trained orientations, evenly spread.")
+                                      .arg(shown.size())
+                                      .arg(O));
     QCPLayoutGrid* panels = addFigureRow(plot, 1.0);
-    for (int o = 0; o < O; ++o) {
+    for (std::size_t panel = 0; panel < shown.size(); ++panel) {
+        const int o = shown[panel];
         auto* rect =
-            addPanel(panels, o / columns, o % columns,
+            addPanel(panels, static_cast<int>(panel) / columns, static_cast<int>(panel) % columns,
                      "tap position across the edge (mm; plane to air)", "pressure (normalised)");
         setPanelTitle(rect, QString::fromStdString(ClassSet::orientationName(
                                 cs.orientationsDeg[static_cast<std::size_t>(o)])) +
@@ -231,6 +245,99 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
         shadeValidRange(rect, r, yMax);
     }
     if (heatRow) heatRow->setColumnStretchFactors({1.0, 0.06, 1.0, 0.06});
+}
+
+bool buildContinuousAngleFigure(QCustomPlot& plot, const RunResult& r) {
+    const ValidationResult& v = r.validation;
+    if (!v.continuousValidated) return false;
+    const ClassSet& cs = r.classes;
+    const int O = static_cast<int>(cs.orientationsDeg.size()), P = cs.positions;
+    constexpr double kTop = 20.0;  // degrees: the colour scale's top, fixed so runs compare
+    // B: following taps perceived as an edge, binned by the true edge angle and offset.
+    constexpr int kAngleBins = 36, kOffsetBins = 9;  // 10 degrees; -4.5..4.5 mm
+    std::vector<std::vector<double>> cells(static_cast<std::size_t>(kAngleBins * kOffsetBins));
+    int followingTaps = 0;
+    for (const TrialRun& t : r.trials)
+        for (const FollowedTap& f : t.result.taps) {
+            if (!f.percept.continuous || f.percept.region != Region::Edge) continue;
+            const double offset = -f.contourDistance_mm;
+            const int a = std::clamp(static_cast<int>(f.trueEdgeDeg / 10.0), 0, kAngleBins - 1);
+            const int o = static_cast<int>(std::floor(offset + 4.5));
+            if (o < 0 || o >= kOffsetBins) continue;
+            cells[static_cast<std::size_t>(a * kOffsetBins + o)].push_back(
+                angleDifferenceDeg(f.percept.orientationDeg, f.trueEdgeDeg));
+            ++followingTaps;
+        }
+    auto median = [](std::vector<double> x) {
+        std::sort(x.begin(), x.end());
+        const std::size_t m = x.size() / 2;
+        return x.size() % 2 ? x[m] : 0.5 * (x[m - 1] + x[m]);
+    };
+    auto text = [](double x) { return x >= 0.0 ? QString::number(x, 'f', 2) : QString("-"); };
+    startFigure(
+        plot, "Continuous edge percept - angle error" + classifierTitleNote(r, false),
+        QString("Median angle error inside the valid range: %1° on the test taps (A, at the "
+                "trained orientations), %2° along the paths (B's taps inside the valid range, away "
+                "from corners, %3 taps).\nB: %4 following taps at the edges the trials met; "
+                "cells without taps are blank; errors of %5° or more share the top colour.")
+            .arg(text(v.continuousMedianAngleErrorInRange_deg))
+            .arg(text(r.pathMedianAngleError_deg))
+            .arg(r.pathAngleTaps)
+            .arg(followingTaps)
+            .arg(kTop));
+    const bool oneColumn = plot.height() > plot.width();
+    QCPLayoutGrid* row = oneColumn ? nullptr : addFigureRow(plot, 1.0);
+    for (int panel = 0; panel < 2; ++panel) {
+        QCPLayoutGrid* grid = oneColumn ? addFigureRow(plot, 1.0) : row;
+        const int column = oneColumn ? 0 : 2 * panel;
+        auto* rect = panel == 0
+                         ? addPanel(grid, 0, column, "position (mm; 1 = plane, 18 = air)",
+                                    "trained edge orientation")
+                         : addPanel(grid, 0, column, "true offset from the edge (mm; + air side)",
+                                    "true edge normal (°)");
+        setPanelTitle(rect, panel == 0 ? "A  test taps, median per class"
+                                       : "B  following taps, median per cell");
+        auto* map = new QCPColorMap(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+        if (panel == 0) {
+            map->data()->setSize(P, O);
+            map->data()->setRange(QCPRange(1, P), QCPRange(0, O - 1));
+            for (const auto& e : v.byClass)
+                map->data()->setCell(
+                    e.position - 1, e.orientationIndex,
+                    e.continuousTaps > 0 ? e.continuousAngleError_deg : std::nan(""));
+            rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
+            rect->axis(QCPAxis::atLeft)->setRange(-0.5, O - 0.5);
+            rect->axis(QCPAxis::atLeft)->setTicker(orientationTicker(cs));
+        } else {
+            map->data()->setSize(kOffsetBins, kAngleBins);
+            map->data()->setRange(QCPRange(-4.0, 4.0), QCPRange(5.0, 355.0));
+            for (int a = 0; a < kAngleBins; ++a)
+                for (int o = 0; o < kOffsetBins; ++o) {
+                    const auto& c = cells[static_cast<std::size_t>(a * kOffsetBins + o)];
+                    map->data()->setCell(o, a, c.empty() ? std::nan("") : median(c));
+                }
+            rect->axis(QCPAxis::atBottom)->setRange(-4.5, 4.5);
+            rect->axis(QCPAxis::atLeft)->setRange(0.0, 360.0);
+            integerTicks(rect->axis(QCPAxis::atLeft), 90.0);
+        }
+        map->setInterpolate(false);
+        map->setTightBoundary(false);
+        auto* scale = new QCPColorScale(&plot);
+        grid->addElement(0, column + 1, scale);
+        if (oneColumn) grid->setColumnStretchFactors({1.0, 0.05});
+        scale->setType(QCPAxis::atRight);
+        scale->axis()->setLabel("angle error (°)");
+        map->setColorScale(scale);
+        QCPColorGradient gradient = heatGradient();
+        gradient.setNanHandling(QCPColorGradient::nhTransparent);  // cells without taps: blank
+        map->setGradient(gradient);
+        map->setDataRange(QCPRange(0, kTop));
+        auto* margins = new QCPMarginGroup(&plot);
+        rect->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
+        scale->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
+    }
+    if (row) row->setColumnStretchFactors({1.0, 0.06, 1.0, 0.06});
+    return true;
 }
 
 }  // namespace activetouch

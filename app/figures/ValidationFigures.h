@@ -26,4 +26,11 @@ void buildTapFigure(QCustomPlot& plot, const RunResult& result);
 /// shape when built: A and B side by side above C and D on a wide plot, one a row on a tall one.
 void buildErrorFigure(QCustomPlot& plot, const RunResult& result);
 
+/// The continuous percept's Figure 6 (runs that validate it): A, its median angle error per
+/// trained orientation x position on the test taps; B, its median angle error on the following
+/// taps against the true local edge, over the true edge angle (10 degree bins) x the tip's true
+/// offset from the edge (1 mm bins), at any angle the trials met. False when the run has no
+/// continuous validation.
+bool buildContinuousAngleFigure(QCustomPlot& plot, const RunResult& result);
+
 }  // namespace activetouch

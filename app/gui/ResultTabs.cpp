@@ -59,6 +59,12 @@ ValidationTab::ValidationTab(QWidget* parent) : QTabWidget(parent) {
     errors_ = new PlotPanel("figure6_errors");
     addTab(errors_, tr("Errors by orientation and position (Figure 6)"));
     addTab(taps_, tr("Taps across each edge (Figure 5)"));
+    continuous_ = new PlotPanel("figure6_continuous_angle");
+    addTab(continuous_, tr("Continuous percept angle error"));
+    continuous_->setEmptyHint(
+        tr("Experiments that follow with the continuous edge percept (following: percept "
+           "continuous, as general_shapes.json) show its angle error here: on the test taps and "
+           "along the followed paths, at any edge angle."));
     const QString training =
         tr("Click Run whole protocol, or Run training & validation, to tap the "
            "training and test sets on the rig and validate the classifier.");
@@ -75,7 +81,18 @@ void ValidationTab::showRun(const std::shared_ptr<const RunResult>& result) {
         // again for that shape.
         errors_->setRebuild([result](QCustomPlot& plot) { buildErrorFigure(plot, *result); });
     }
-    for (auto* p : {taps_, errors_}) p->plot().replot();
+    // A run of the discrete percept leaves no continuous figure behind from an earlier run.
+    QCustomPlot& c = continuous_->plot();
+    if (!buildContinuousAngleFigure(c, r)) {
+        c.clearPlottables();
+        c.clearItems();
+        c.plotLayout()->clear();
+        continuous_->setRebuild({});
+    } else {
+        continuous_->setRebuild(
+            [result](QCustomPlot& plot) { buildContinuousAngleFigure(plot, *result); });
+    }
+    for (auto* p : {taps_, errors_, continuous_}) p->plot().replot();
 }
 
 RecognitionTab::RecognitionTab(QWidget* parent) : QSplitter(Qt::Vertical, parent) {

@@ -25,9 +25,10 @@ public:
     void showRun(const std::shared_ptr<const RunResult>& r);
     PlotPanel* tapsPanel() const { return taps_; }
     PlotPanel* errorsPanel() const { return errors_; }
+    PlotPanel* continuousPanel() const { return continuous_; }
 
 private:
-    PlotPanel *taps_, *errors_;
+    PlotPanel *taps_, *errors_, *continuous_;
 };
 
 /// Figure 9 (the traced paths' histograms against the templates) over the confusion of each

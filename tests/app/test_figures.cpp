@@ -24,13 +24,19 @@ using namespace activetouch;
 
 class TestFigures : public QObject {
     Q_OBJECT
-    std::vector<RunResult> runs_;  // the paper, and the accuracy-versus-time sweeps
+    std::vector<RunResult> runs_;  // the paper, the accuracy-versus-time sweeps, general shapes
 
 private slots:
     void initTestCase() {
         for (const char* file : {"experiments/paper.json", "experiments/accuracy_vs_time.json"})
             runs_.push_back(
                 runExperiment(loadExperiment(test::sourcePath(file)), test::onSimulatedRig()));
+        // The continuous percept on 648 classes, following two of the general shapes once.
+        ExperimentSpec general =
+            loadExperiment(test::sourcePath("experiments/general_shapes.json"));
+        general.trials.resize(2);
+        for (TrialSpec& t : general.trials) t.repeats = 1;
+        runs_.push_back(runExperiment(general, test::onSimulatedRig()));
     }
 
     void everyExportedFigureReadsCleanly() {
@@ -52,7 +58,7 @@ private slots:
                 if (!drawn.contains(figure.file)) drawn << figure.file;
             }
         }
-        // Between them the two runs draw every figure there is.
+        // Between them the runs draw every figure there is.
         QCOMPARE(drawn.size(), static_cast<int>(runFigures().size()));
     }
 
