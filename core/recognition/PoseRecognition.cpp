@@ -143,14 +143,21 @@ double forwardCost(const PoseTemplate& tpl, const Grid& grid, const std::vector<
 }
 
 /// Mean squared capped distance of the template's points, placed by `pose`, to the path.
-double reverseCost(const PoseTemplate& tpl, const Grid& pathGrid, const Pose& pose) {
+double reverseCost(const std::vector<Vec2>& tplPoints, const Grid& pathGrid, const Pose& pose) {
     const double a = pose.thetaDeg * kPi / 180.0, c = std::cos(a), s = std::sin(a);
     double sum = 0.0;
-    for (Vec2 q : tpl.points) {
+    for (Vec2 q : tplPoints) {
         const double d = pathGrid.at(rotated(q, c, s) + pose.t);
         sum += d * d;
     }
-    return tpl.points.empty() ? 0.0 : sum / static_cast<double>(tpl.points.size());
+    return tplPoints.empty() ? 0.0 : sum / static_cast<double>(tplPoints.size());
+}
+
+/// Every other point: the search steers by half the points, the score counts them all.
+std::vector<Vec2> halved(const std::vector<Vec2>& points) {
+    std::vector<Vec2> out;
+    for (std::size_t i = 0; i < points.size(); i += 2) out.push_back(points[i]);
+    return out;
 }
 
 Grid gridOf(const PoseTemplate& tpl) {
@@ -230,6 +237,7 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
     std::vector<Vec2> coarse;
     const std::size_t stride = std::max<std::size_t>(1, points.size() / kCoarsePoints);
     for (std::size_t i = 0; i < points.size(); i += stride) coarse.push_back(points[i]);
+    const std::vector<Vec2> searchPoints = halved(points);
     Grid pathGrid;
     pathGrid.cell = kPathCell_mm;
     pathGrid.build(finite, false);
@@ -285,8 +293,13 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
         const std::size_t i = order[r];
         const PoseTemplate& tpl = templates[i];
         const Grid& grid = grids[i];
+        const std::vector<Vec2> tplSearch = halved(tpl.points);
         auto cost = [&](const Pose& p) {
-            return 0.5 * (forwardCost(tpl, grid, points, p) + reverseCost(tpl, pathGrid, p));
+            return 0.5 *
+                   (forwardCost(tpl, grid, searchPoints, p) + reverseCost(tplSearch, pathGrid, p));
+        };
+        auto fullCost = [&](const Pose& p) {
+            return 0.5 * (forwardCost(tpl, grid, points, p) + reverseCost(tpl.points, pathGrid, p));
         };
         double fitCost = std::numeric_limits<double>::infinity();
         Pose fitPose;
@@ -315,8 +328,8 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
                     stepMm *= 0.5;
                 }
             }
-            if (c < fitCost) {
-                fitCost = c;
+            if (const double full = fullCost(p); full < fitCost) {
+                fitCost = full;
                 fitPose = p;
             }
         }
