@@ -354,6 +354,9 @@ std::vector<std::string> untrainedEdgeCautions(const ExperimentSpec& e, double t
     for (double deg : e.classes.orientationsDeg)
         trained += (trained.empty() ? "" : ", ") + numberText(deg);
     std::vector<std::string> cautions;
+    // A continuous percept does not snap to the trained orientations: it reads angles between
+    // them from the posterior (docs/general-shapes.md), so there is nothing to caution about.
+    if (e.following.percept == PerceptKind::Continuous) return cautions;
     for (const TrialSpec& t : e.trials) {
         const Polygon outline = t.object.outline();
         int off = 0;

@@ -75,7 +75,7 @@ std::string trainingObjectProblem(const ExperimentSpec& e);
 /// `toleranceDeg` off the nearest), one line each naming the trial, how many edges and the worst.
 /// Such an experiment runs, but every percept snaps the follow direction to a trained
 /// orientation, so the follower degrades along those edges: `check`, `run` and the window say so
-/// before any tap.
+/// before any tap. None for the continuous percept, which reads angles between the trained ones.
 std::vector<std::string> untrainedEdgeCautions(const ExperimentSpec& e, double toleranceDeg = 5.0);
 
 /// Parses an experiment; the scene may be inline or a path relative to the experiment file.

@@ -234,6 +234,12 @@ private slots:
         QVERIFY(e.following.percept == PerceptKind::Continuous);
         QVERIFY(e.trials.front().object.rotationDrawn);
         QCOMPARE(objectToJson(e.trials.front().object)["rotation_deg"], Json("random"));
+        // The star's edges face between the eight orientations: the discrete percept would snap
+        // them, and check says so; the continuous one reads between them, and says nothing.
+        QVERIFY(untrainedEdgeCautions(e).empty());
+        ExperimentSpec discrete = e;
+        discrete.following.percept = PerceptKind::Discrete;
+        QVERIFY(!untrainedEdgeCautions(discrete).empty());
     }
 
     void badSceneNamesFilePlaceAndProblem_data() {
