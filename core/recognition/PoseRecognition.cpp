@@ -13,7 +13,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kCap_mm = 5.0;
 constexpr double kSpacing_mm = 2.0;  ///< resampling along outlines and paths (a follow step)
 constexpr double kCoarseStepDeg = 6.0;
-constexpr std::size_t kCoarsePoints = 32;
+constexpr std::size_t kCoarsePoints = 24;
 constexpr std::size_t kRefinedTemplates = 3;
 constexpr double kPathCell_mm = 1.0;  ///< the path's own grid, built for every path
 
@@ -72,7 +72,7 @@ double segmentDistance(Vec2 p, Vec2 a, Vec2 b) {
 /// A capped distance grid of a polyline: each segment updates only the cells within the cap.
 struct Grid {
     Vec2 origin;
-    double cell = 0.5;  ///< a template's; a path's grid is coarser (kPathCell_mm)
+    double cell = 1.0;  ///< mm; small enough to interpolate, and 12 grids stay in cache
     int nx = 0, ny = 0;
     std::vector<float> d;        ///< owned cells (a path's grid)
     const float* ptr = nullptr;  ///< the cells looked up: d's, or a template's
@@ -111,9 +111,18 @@ struct Grid {
         ptr = d.data();
     }
 
+    /// The distance of the cell nearest `p`, the cap outside the grid: the coarse search's.
+    double nearest(Vec2 p) const {
+        const double fx = (p.x - origin.x) * (1.0 / cell) + 0.5,
+                     fy = (p.y - origin.y) * (1.0 / cell) + 0.5;
+        if (!(fx >= 0.0) || !(fy >= 0.0) || fx >= nx || fy >= ny) return kCap_mm;
+        return ptr[static_cast<std::size_t>(fy) * static_cast<std::size_t>(nx) +
+                   static_cast<std::size_t>(fx)];
+    }
+
     /// Bilinear distance at `p`, the cap outside the grid.
     double at(Vec2 p) const {
-        const double fx = (p.x - origin.x) / cell, fy = (p.y - origin.y) / cell;
+        const double fx = (p.x - origin.x) * (1.0 / cell), fy = (p.y - origin.y) * (1.0 / cell);
         if (!(fx >= 0.0) || !(fy >= 0.0) || fx >= nx - 1 || fy >= ny - 1) return kCap_mm;
         const int x = static_cast<int>(fx), y = static_cast<int>(fy);
         const double u = fx - x, v = fy - y;
@@ -129,14 +138,15 @@ struct Pose {
     Vec2 t;
 };
 
-/// Mean squared capped distance of `points` (world) mapped into the template frame by `pose`.
-double forwardCost(const PoseTemplate& tpl, const Grid& grid, const std::vector<Vec2>& points,
-                   const Pose& pose) {
-    (void)tpl;
+/// Mean squared capped distance of `points` (world) mapped into the template frame by `pose`;
+/// `coarse` looks up the nearest cell instead of interpolating.
+double forwardCost(const Grid& grid, const std::vector<Vec2>& points, const Pose& pose,
+                   bool coarse = false) {
     const double a = -pose.thetaDeg * kPi / 180.0, c = std::cos(a), s = std::sin(a);
     double sum = 0.0;
     for (Vec2 p : points) {
-        const double d = grid.at(rotated(p - pose.t, c, s));
+        const Vec2 q = rotated(p - pose.t, c, s);
+        const double d = coarse ? grid.nearest(q) : grid.at(q);
         sum += d * d;
     }
     return points.empty() ? 0.0 : sum / static_cast<double>(points.size());
@@ -204,8 +214,11 @@ PoseTemplate poseTemplate(const std::string& shape, const Polygon& outline, doub
     for (int k = 12; k >= 2; --k) {
         const double a = 2 * kPi / k, c = std::cos(a), s = std::sin(a);
         double sum = 0.0;
-        for (Vec2 q : tpl.points) {
-            const double d = g.at(rotated(q, c, s));
+        for (Vec2 q : tpl.points) {  // exact distances: once per template, not per path
+            const Vec2 r = rotated(q, c, s);
+            double d = std::numeric_limits<double>::infinity();
+            for (std::size_t j = 0; j < line.size(); ++j)
+                d = std::min(d, segmentDistance(r, line[j], line[(j + 1) % line.size()]));
             sum += d * d;
         }
         if (std::sqrt(sum / static_cast<double>(tpl.points.size())) < 0.25) {
@@ -256,7 +269,7 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
         grids.push_back(gridOf(templates[i]));
         std::vector<std::pair<double, double>> byTurn;  // cost, turn
         for (double th = 0.0; th < 360.0; th += kCoarseStepDeg)
-            byTurn.push_back({forwardCost(templates[i], grids.back(), coarse, {th, centre}), th});
+            byTurn.push_back({forwardCost(grids.back(), coarse, {th, centre}, true), th});
         std::sort(byTurn.begin(), byTurn.end());
         Candidate c{i,
                     {{byTurn[0].second, centre}, {byTurn[0].second, centre}},
@@ -295,11 +308,10 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
         const Grid& grid = grids[i];
         const std::vector<Vec2> tplSearch = halved(tpl.points);
         auto cost = [&](const Pose& p) {
-            return 0.5 *
-                   (forwardCost(tpl, grid, searchPoints, p) + reverseCost(tplSearch, pathGrid, p));
+            return 0.5 * (forwardCost(grid, searchPoints, p) + reverseCost(tplSearch, pathGrid, p));
         };
         auto fullCost = [&](const Pose& p) {
-            return 0.5 * (forwardCost(tpl, grid, points, p) + reverseCost(tpl.points, pathGrid, p));
+            return 0.5 * (forwardCost(grid, points, p) + reverseCost(tpl.points, pathGrid, p));
         };
         double fitCost = std::numeric_limits<double>::infinity();
         Pose fitPose;
@@ -308,7 +320,7 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
             if (k == 1 && !(candidates[i].coarseSecond < 1.5 * candidates[i].coarse)) break;
             Pose p = candidates[i].pose[k];
             double c = cost(p);
-            double stepDeg = 2.5, stepMm = 1.0;
+            double stepDeg = 2.0, stepMm = 0.8;
             while (stepDeg > 0.2) {
                 bool moved = false;
                 const Pose tries[6] = {
