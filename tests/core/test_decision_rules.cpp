@@ -138,6 +138,46 @@ private slots:
         QCOMPARE(memory.planeOrAirRun, 0);
     }
 
+    void theTangentRuleFollowsTheAngleAndServoesTheOffset() {
+        // A continuous percept at 37 degrees, 0.6 mm on the air side of the valid range's centre:
+        // the step goes along the tangent, and back along the normal by the offset.
+        Percept p = edge(37.0, 0.6);
+        p.continuous = true;
+        ShortTermMemory memory;
+        const Decision d = decide(p, memory, FollowingMode::Active, settings_, valid_);
+        QCOMPARE(int(d.rule), int(RuleId::ContinuousFollow));
+        QVERIFY(distance(d.follow, settings_.followStep_mm * followDirection(37.0)) < 1e-12);
+        QVERIFY(distance(d.reposition, -0.6 * outwardNormal(37.0)) < 1e-12);
+        // Far off: the move back is held to the reposition step.
+        Percept far = edge(37.0, -3.5);
+        far.continuous = true;
+        QVERIFY(std::abs(
+                    norm(decide(far, memory, FollowingMode::Active, settings_, valid_).reposition) -
+                    settings_.repositionStep_mm) < 1e-12);
+        // Recent edges on an arc turning 5 degrees per 2 mm (2.5 per mm, counter-clockwise): the
+        // step is turned by half the turn over it, 2.5 degrees.
+        for (int i = 0; i < 4; ++i) memory.noteEdgeAt({2.0 * i, 0.0}, 30.0 + 5.0 * i, 4);
+        QVERIFY(std::abs(memory.turnDegPerMm() - 2.5) < 1e-12);
+        const Decision turned = decide(p, memory, FollowingMode::Active, settings_, valid_);
+        QVERIFY(distance(turned.follow, settings_.followStep_mm * followDirection(39.5)) < 1e-12);
+        // Across 0/360 the turn is the short way round; a corner's worth is capped.
+        ShortTermMemory wrap;
+        wrap.noteEdgeAt({0, 0}, 355.0, 4);
+        wrap.noteEdgeAt({2, 0}, 5.0, 4);
+        QVERIFY(std::abs(wrap.turnDegPerMm() - 5.0) < 1e-12);
+        ShortTermMemory corner;
+        corner.noteEdgeAt({0, 0}, 0.0, 4);
+        corner.noteEdgeAt({0.5, 0}, 90.0, 4);
+        const Decision capped = decide(p, corner, FollowingMode::Active, settings_, valid_);
+        QVERIFY(distance(capped.follow,
+                         settings_.followStep_mm * followDirection(37.0 + kMaxAnticipatedTurnDeg)) <
+                1e-12);
+        // A plane or air tap clears what the turn is estimated from.
+        memory.update(region(Region::Air), false);
+        QVERIFY(memory.recentEdges.empty());
+        QCOMPARE(memory.turnDegPerMm(), 0.0);
+    }
+
     void trustedOrientationSpan() {
         QVERIFY(orientationTrusted(edge(90, 4.0), valid_));
         QVERIFY(!orientationTrusted(edge(90, 4.5), valid_));
