@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "app/figures/FigureLayout.h"
+#include "core/common/Median.h"
 #include "core/run/ExperimentRun.h"
 #include "qcustomplot.h"
 
@@ -268,11 +269,6 @@ bool buildContinuousAngleFigure(QCustomPlot& plot, const RunResult& r) {
                 angleDifferenceDeg(f.percept.orientationDeg, f.trueEdgeDeg));
             ++followingTaps;
         }
-    auto median = [](std::vector<double> x) {
-        std::sort(x.begin(), x.end());
-        const std::size_t m = x.size() / 2;
-        return x.size() % 2 ? x[m] : 0.5 * (x[m - 1] + x[m]);
-    };
     auto text = [](double x) { return x >= 0.0 ? QString::number(x, 'f', 2) : QString("-"); };
     startFigure(
         plot, "Continuous edge percept - angle error" + classifierTitleNote(r, false),
@@ -314,7 +310,7 @@ bool buildContinuousAngleFigure(QCustomPlot& plot, const RunResult& r) {
             for (int a = 0; a < kAngleBins; ++a)
                 for (int o = 0; o < kOffsetBins; ++o) {
                     const auto& c = cells[static_cast<std::size_t>(a * kOffsetBins + o)];
-                    map->data()->setCell(o, a, c.empty() ? std::nan("") : median(c));
+                    map->data()->setCell(o, a, medianOr(c, std::nan("")));
                 }
             rect->axis(QCPAxis::atBottom)->setRange(-4.5, 4.5);
             rect->axis(QCPAxis::atLeft)->setRange(0.0, 360.0);

@@ -347,7 +347,7 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
             t.contourDistance_mm = outline.contains(pose) ? nearest.distance : -nearest.distance;
             {
                 const Vec2 n = outline.outwardNormal(nearest.edge);
-                t.trueEdgeDeg = std::fmod(std::atan2(n.y, n.x) * 180.0 / M_PI + 360.0, 360.0);
+                t.trueEdgeDeg = degreesOf(n);
                 const double offset = -t.contourDistance_mm;
                 if (t.percept.continuous && t.percept.region == Region::Edge &&
                     offset >= setup.valid.low && offset <= setup.valid.high &&

@@ -83,9 +83,7 @@ struct ShortTermMemory {
 private:
     bool sameEdge(double a, double b) const {
         if (sameEdgeToleranceDeg <= 0.0) return a == b;
-        double d = std::fmod(std::abs(a - b), 360.0);
-        if (d > 180.0) d = 360.0 - d;
-        return d <= sameEdgeToleranceDeg;
+        return angleDifferenceDeg(a, b) <= sameEdgeToleranceDeg;
     }
 };
 

@@ -47,6 +47,12 @@ inline Vec2 directionFromDegrees(double degrees) {
     return {std::cos(r), std::sin(r)};
 }
 
+/// The direction of `v` as an angle counter-clockwise from +x, degrees in [0, 360).
+inline double degreesOf(Vec2 v) {
+    const double d = std::atan2(v.y, v.x) * 180.0 / M_PI;
+    return d < 0.0 ? (d + 360.0 >= 360.0 ? 0.0 : d + 360.0) : d;
+}
+
 inline Vec2 rotated(Vec2 v, double degrees) {
     const double r = degrees * M_PI / 180.0;
     const double c = std::cos(r), s = std::sin(r);

@@ -187,10 +187,6 @@ double wrapDeg(double a, double period) {
 
 }  // namespace
 
-double PoseTemplate::distanceAt(Vec2 p) const {
-    return gridOf(*this).at(p);
-}
-
 PoseTemplate poseTemplate(const std::string& shape, const Polygon& outline, double offset_mm) {
     PoseTemplate tpl;
     tpl.shape = shape;

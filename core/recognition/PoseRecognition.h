@@ -33,7 +33,6 @@ struct PoseTemplate {
     double cell_mm = 0.5;
     int nx = 0, ny = 0;
     std::vector<float> distance;
-    double distanceAt(Vec2 p) const;
 };
 
 /// A template for `outline` given in the shape's own frame (not turned, placed at its origin),

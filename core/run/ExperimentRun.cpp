@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 
+#include "core/common/Median.h"
 #include "core/common/NumberText.h"
 #include "core/control/ControllerRange.h"
 #include "core/experiment/RunPlan.h"
@@ -27,16 +28,6 @@ namespace activetouch {
 namespace fs = std::filesystem;
 
 namespace {
-
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    const std::size_t mid = v.size() / 2;
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
-    const double upper = v[mid];
-    if (v.size() % 2 == 1) return upper;
-    return 0.5 *
-           (upper + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)));
-}
 
 bool sameOutline(const Polygon& a, const Polygon& b) {
     if (a.size() != b.size()) return false;
@@ -87,7 +78,7 @@ TrialSetup trialSetupFor(const RunResult& trained, FollowingMode mode,
         // knows it starts on the lower edge; a continuous percept takes the edge's own angle
         // rather than the nearest trained orientation.
         const Vec2 n = outline.outwardNormal(outline.nearestOutlinePoint(setup.start).edge);
-        setup.startEdgeDeg = std::fmod(std::atan2(n.y, n.x) * 180.0 / M_PI + 360.0, 360.0);
+        setup.startEdgeDeg = degreesOf(n);
     }
     return setup;
 }
@@ -218,7 +209,7 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
         for (const FollowedTap& t : run.result.taps)
             if (t.angleError_deg >= 0.0) angleErrors.push_back(t.angleError_deg);
     result.pathAngleTaps = static_cast<int>(angleErrors.size());
-    result.pathMedianAngleError_deg = angleErrors.empty() ? -1.0 : median(angleErrors);
+    result.pathMedianAngleError_deg = medianOr(angleErrors, -1.0);
     if (!spec.recognition.enabled) return;
     // Templates at the centre of the valid range, one per distinct object followed.
     std::vector<NamedOutline> shapes;
@@ -247,13 +238,8 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
         run.recognition = recognise(path, result.templates, spec.recognition.smoothingSigmaBins);
         run.poseRecognition = recognisePose(path, result.poseTemplates);
         for (const PoseTemplate& tpl : result.poseTemplates)
-            if (tpl.shape == run.label) {
-                const double a = run.rotationDeg * M_PI / 180.0;
-                run.objectCentre =
-                    run.objectOffset +
-                    Vec2{std::cos(a) * tpl.centroid.x - std::sin(a) * tpl.centroid.y,
-                         std::sin(a) * tpl.centroid.x + std::cos(a) * tpl.centroid.y};
-            }
+            if (tpl.shape == run.label)
+                run.objectCentre = run.objectOffset + rotated(tpl.centroid, run.rotationDeg);
         ++recognised;
         correct += run.recognition.predicted == run.label;
         correctSmoothed += run.recognition.predictedSmoothed == run.label;
@@ -271,8 +257,8 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
         result.recognitionAccuracySmoothed = double(correctSmoothed) / recognised;
         result.recognitionAccuracyAnyPose = double(correctAnyPose) / recognised;
     }
-    result.medianRotationError_deg = median(turnErrors);
-    result.medianPositionError_mm = median(placeErrors);
+    result.medianRotationError_deg = medianOr(turnErrors, 0.0);
+    result.medianPositionError_mm = medianOr(placeErrors, 0.0);
 }
 
 /// Trains the classifier on the training sets of `result.taps` and validates it on the others:

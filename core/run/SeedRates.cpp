@@ -9,6 +9,7 @@
 #include <optional>
 #include <utility>
 
+#include "core/common/Median.h"
 #include "core/run/OutputFiles.h"
 
 namespace activetouch {
@@ -121,13 +122,6 @@ PathNaming pathNaming(const TrialRun& t) {
         n.turnError_deg = rotationErrorDeg(p.best.rotationDeg, t.rotationDeg, p.best.symmetry);
     n.placeError_mm = distance(p.best.position, t.objectCentre);
     return n;
-}
-
-double medianOf(std::vector<double> v) {
-    if (v.empty()) return -1.0;
-    std::sort(v.begin(), v.end());
-    const std::size_t m = v.size() / 2;
-    return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
 }  // namespace
@@ -305,20 +299,25 @@ Rate SeedRates::recognisedAnyPose() const {
     return sumOver(seeds, recognisedAnyPoseIn);
 }
 
-double SeedRates::medianTurnError_deg() const {
+namespace {
+
+/// The median of one error of every path named right at any pose that has it (-1 for none).
+double medianOverNamings(const std::vector<SeedOutcome>& seeds, double PathNaming::*error) {
     std::vector<double> v;
     for (const auto& o : seeds)
         for (const PathNaming& n : o.namings)
-            if (n.turnError_deg >= 0.0) v.push_back(n.turnError_deg);
-    return medianOf(v);
+            if (n.*error >= 0.0) v.push_back(n.*error);
+    return medianOr(v, -1.0);
+}
+
+}  // namespace
+
+double SeedRates::medianTurnError_deg() const {
+    return medianOverNamings(seeds, &PathNaming::turnError_deg);
 }
 
 double SeedRates::medianPlaceError_mm() const {
-    std::vector<double> v;
-    for (const auto& o : seeds)
-        for (const PathNaming& n : o.namings)
-            if (n.placeError_mm >= 0.0) v.push_back(n.placeError_mm);
-    return medianOf(v);
+    return medianOverNamings(seeds, &PathNaming::placeError_mm);
 }
 
 Rate SeedRates::recognisedRaw() const {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/common/Median.h"
+
 namespace activetouch {
 
 ValidRange deriveValidRange(const std::vector<double>& angle, const std::vector<double>& position,
@@ -122,14 +124,8 @@ ValidationResult validateOffline(const HistogramClassifier& classifier, const Cl
             if (position >= r.validRange.first && position <= r.validRange.last)
                 inRange.push_back(err);
         }
-        auto median = [](std::vector<double> v) {
-            if (v.empty()) return -1.0;
-            std::sort(v.begin(), v.end());
-            const std::size_t m = v.size() / 2;
-            return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-        };
-        r.continuousMedianAngleError_deg = median(all);
-        r.continuousMedianAngleErrorInRange_deg = median(inRange);
+        r.continuousMedianAngleError_deg = medianOr(all, -1.0);
+        r.continuousMedianAngleErrorInRange_deg = medianOr(inRange, -1.0);
     }
     return r;
 }
