@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -129,14 +130,16 @@ public:
         cubic(out, p0, p0 + (2.0 / 3.0) * (c - p0), p2 + (2.0 / 3.0) * (c - p2), p2);
     }
     /// The SVG elliptical arc from `p0` to `p1` (endpoint parameterisation, SVG 1.1 F.6.5).
-    void arc(std::vector<Vec2>& out, Vec2 p0, double rx, double ry, double rotationDeg, bool large,
-             bool sweep, Vec2 p1) const {
-        if (p0 == p1) return;  // an arc to where it is: nothing
+    /// Returns a problem instead of points when the ellipse, grown as SVG prescribes to reach
+    /// `p1`, would lie beyond kMaxSvgCoordinate_mm or need more than kMaxOutlineVertices points.
+    std::optional<std::string> arc(std::vector<Vec2>& out, Vec2 p0, double rx, double ry,
+                                   double rotationDeg, bool large, bool sweep, Vec2 p1) const {
+        if (p0 == p1) return std::nullopt;  // an arc to where it is: nothing
         rx = std::abs(rx);
         ry = std::abs(ry);
         if (rx == 0.0 || ry == 0.0) {
             out.push_back(p1);  // a straight line, as SVG says
-            return;
+            return std::nullopt;
         }
         const double phi = rotationDeg * M_PI / 180.0, cp = std::cos(phi), sp = std::sin(phi);
         const double dx = 0.5 * (p0.x - p1.x), dy = 0.5 * (p0.y - p1.y);
@@ -147,6 +150,10 @@ public:
             rx *= std::sqrt(lambda);
             ry *= std::sqrt(lambda);
         }
+        if (!std::isfinite(rx) || !std::isfinite(ry) || std::max(rx, ry) > kMaxSvgCoordinate_mm)
+            return "the arc's radii, grown to reach its end point as SVG prescribes, exceed " +
+                   std::to_string(static_cast<int>(kMaxSvgCoordinate_mm)) +
+                   " mm; give radii closer in proportion to the distance between its ends";
         const double num = rx * rx * ry * ry - rx * rx * y1 * y1 - ry * ry * x1 * x1;
         const double den = rx * rx * y1 * y1 + ry * ry * x1 * x1;
         double k = den > 0.0 ? std::sqrt(std::max(0.0, num / den)) : 0.0;
@@ -162,15 +169,22 @@ public:
         if (!sweep && delta > 0) delta -= 2 * M_PI;
         if (sweep && delta < 0) delta += 2 * M_PI;
         // Steps whose sagitta on the larger radius stays within the tolerance.
+        // 1 - cos(step / 2) = tolerance / r, written so that it stays above zero for large r.
         const double r = std::max(rx, ry);
-        const double step = r > tolerance_ ? 2.0 * std::acos(1.0 - tolerance_ / r) : M_PI / 2;
-        const int n = std::max(1, static_cast<int>(std::ceil(std::abs(delta) / step)));
+        const double step =
+            r > 0.5 * tolerance_ ? 4.0 * std::asin(std::sqrt(0.5 * tolerance_ / r)) : M_PI / 2;
+        const double steps = std::ceil(std::abs(delta) / std::min(step, M_PI / 2));
+        if (!(steps <= static_cast<double>(kMaxOutlineVertices)))
+            return "the arc needs more than " + std::to_string(kMaxOutlineVertices) +
+                   " vertices at this tolerance; give a coarser tolerance or a simpler path";
+        const int n = std::max(1, static_cast<int>(steps));
         for (int i = 1; i <= n; ++i) {
             const double t = theta + delta * i / n;
             const double ex = rx * std::cos(t), ey = ry * std::sin(t);
             out.push_back(
                 i == n ? p1 : Vec2{cp * ex - sp * ey + centre.x, sp * ex + cp * ey + centre.y});
         }
+        return std::nullopt;
     }
 
 private:
@@ -276,7 +290,9 @@ Polygon polygonFromSvgPath(const std::string& d, double tolerance_mm, const std:
                     const double rx = in.number(), ry = in.number(), rotation = in.number();
                     const bool large = in.flag(), sweep = in.flag();
                     const Vec2 end = point();
-                    flat.arc(points, current, rx, ry, rotation, large, sweep, end);
+                    if (auto problem =
+                            flat.arc(points, current, rx, ry, rotation, large, sweep, end))
+                        in.fail(*problem);
                     current = end;
                     break;
                 }

@@ -113,7 +113,11 @@ RecognitionConfusion recognitionConfusion(const std::vector<PathNaming>& namings
 namespace {
 
 PathNaming pathNaming(const TrialRun& t) {
-    PathNaming n{t.label, t.trial, t.recognition.predicted, t.recognition.predictedSmoothed};
+    PathNaming n;
+    n.label = t.label;
+    n.trial = t.trial;
+    n.raw = t.recognition.predicted;
+    n.smoothed = t.recognition.predictedSmoothed;
     const PoseRecognition& p = t.poseRecognition;
     if (!p.valid) return n;
     n.anyPose = p.predicted;

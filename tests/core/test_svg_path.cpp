@@ -181,6 +181,11 @@ private slots:
         // Hostile bytes: a NUL, control characters, a huge run of digits.
         QVERIFY(!refusal(std::string("M0 0 L10 0\0L5 5 Z", 17)).isEmpty());
         QVERIFY(refusal("M0 0 L10 0 L5 " + std::string(5000, '9') + " Z").contains("beyond"));
+        // A needle of an ellipse: its radii, grown to reach the end point, would run to 1e20 mm.
+        QVERIFY(refusal("M0 0 A1 1e-17 0 1 1 0 5000 Z").contains("arc's radii, grown"));
+        QVERIFY(refusal("M0 0 A1 1e-17 0 1 1 0 5000 Z").contains("(command A)"));
+        // A wide, shallow arc at a fine tolerance is still drawn.
+        QVERIFY(std::abs(parse("M0 0 A9999 9999 0 0 1 10 0 L10 10 Z", 1e-9).area() - 50.0) < 0.01);
         // A tolerance too fine for the path: refused, not ten thousand vertices and more.
         QVERIFY(refusal("M-9000 0 A9000 9000 0 0 1 9000 0 A9000 9000 0 0 1 -9000 0 Z", 1e-6)
                     .contains("more than 10000 vertices"));
