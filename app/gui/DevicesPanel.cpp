@@ -20,6 +20,8 @@
 #include "app/gui/WholeFile.h"
 #include "devices/nxt/NxtUsbTransport.h"
 #include "devices/rigs/RigFile.h"
+#include "devices/yarp/YarpConf.h"
+#include "devices/yarp/YarpProtocol.h"
 
 namespace activetouch {
 
@@ -47,7 +49,7 @@ std::vector<DevicesPanel::KeptSetting> DevicesPanel::keptSettings() const {
             {"parity", parity_, "currentIndex"},
             {"tapper", tapperKind_, "currentIndex"},
             {"finger", finger_, "currentIndex"},
-            {"carrier", carrier_, "currentIndex"},
+            {"yarpCarrier", carrier_, "currentIndex"},  // 0 binary, 1 text
             {"serialPort", port_, "currentText"},
             {"baud", baud_, "value"},
             {"jogStep", step_, "value"},
@@ -287,16 +289,26 @@ void DevicesPanel::addTapperBox(QVBoxLayout* layout) {
 void DevicesPanel::addFingertipBox(QVBoxLayout* layout) {
     auto* finger = new QGroupBox(tr("Fingertip"));
     auto* ff = new QFormLayout(finger);
-    nameServerHost_ = new QLineEdit("127.0.0.1");
+    nameServerHost_ = new QLineEdit;
+    nameServerHost_->setObjectName("nameServerHost");
+    nameServerHost_->setPlaceholderText(tr("from the YARP conf file"));
     nameServerPort_ = new QSpinBox;
-    nameServerPort_->setRange(1, 65535);
-    nameServerPort_->setValue(10000);
+    nameServerPort_->setObjectName("nameServerPort");
+    nameServerPort_->setRange(0, 65535);
+    nameServerPort_->setSpecialValueText(tr("from conf"));
+    nameServerPort_->setValue(0);
+    nameServerShown_ = new QLabel;
+    nameServerShown_->setObjectName("nameServerShown");
+    nameServerShown_->setWordWrap(true);
+    nameServerShown_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     yarpPort_ = new QLineEdit("/icub/skin/right_hand_comp");
     yarpPort_->setObjectName("yarpPort");
     finger_ = new QComboBox;
     finger_->addItems({tr("index"), tr("middle"), tr("ring"), tr("little"), tr("thumb")});
     carrier_ = new QComboBox;
-    carrier_->addItems({tr("text (recommended)"), tr("binary (tested against the emulator only)")});
+    carrier_->setObjectName("yarpCarrier");
+    carrier_->addItems({tr("binary (YARP's own; reads Vector and Bottle ports)"),
+                        tr("text (Bottle ports only: Vector ports answer it with raw memory)")});
     compensate_ = new QCheckBox(tr("raw stream: compensate here (skinManager style)"));
     picksDevices_ << nameServerHost_ << nameServerPort_ << yarpPort_ << finger_ << carrier_
                   << compensate_;
@@ -308,6 +320,10 @@ void DevicesPanel::addFingertipBox(QVBoxLayout* layout) {
         w->setLayout(row);
         return w;
     }());
+    ff->addRow(tr("Asks"), nameServerShown_);
+    connect(nameServerHost_, &QLineEdit::textChanged, this, &DevicesPanel::showNameServer);
+    connect(nameServerPort_, &QSpinBox::valueChanged, this, &DevicesPanel::showNameServer);
+    showNameServer();
     ff->addRow(tr("Port"), yarpPort_);
     ff->addRow(tr("Finger"), finger_);
     ff->addRow(tr("Carrier"), carrier_);
@@ -316,6 +332,20 @@ void DevicesPanel::addFingertipBox(QVBoxLayout* layout) {
     note->setWordWrap(true);
     ff->addRow(note);
     layout->addWidget(finger);
+}
+
+void DevicesPanel::showNameServer() {
+    // Where the fingertip will ask, as connect() resolves it: the fields, else the conf file.
+    try {
+        const yarp::NameServerAddress a = yarp::resolveNameServer(
+            nameServerHost_->text().trimmed().toStdString(), nameServerPort_->value());
+        nameServerShown_->setText(tr("%1:%2 (%3)")
+                                      .arg(QString::fromStdString(a.host))
+                                      .arg(a.port)
+                                      .arg(QString::fromStdString(a.source)));
+    } catch (const yarp::YarpError& e) {
+        nameServerShown_->setText(QString::fromStdString(e.what()));
+    }
 }
 
 void DevicesPanel::addRawLog(QVBoxLayout* layout) {
@@ -441,7 +471,7 @@ void DevicesPanel::showRig(const RigConfig& r) {
     nameServerPort_->setValue(r.yarp.nameServerPort);
     yarpPort_->setText(QString::fromStdString(r.yarp.port));
     finger_->setCurrentIndex(static_cast<int>(r.yarp.finger) / 12);
-    carrier_->setCurrentIndex(r.yarp.binaryCarrier ? 1 : 0);
+    carrier_->setCurrentIndex(r.yarp.binaryCarrier ? 0 : 1);
     compensate_->setChecked(r.yarp.compensateRaw);
 }
 
@@ -464,11 +494,11 @@ DeviceChoice DevicesPanel::choice() const {
         r.usbBus = where[0].toInt();
         r.usbAddress = where[1].toInt();
     }
-    r.yarp.nameServerHost = nameServerHost_->text().toStdString();
+    r.yarp.nameServerHost = nameServerHost_->text().trimmed().toStdString();
     r.yarp.nameServerPort = nameServerPort_->value();
     r.yarp.port = yarpPort_->text().toStdString();
     r.yarp.finger = static_cast<yarp::Finger>(12 * finger_->currentIndex());
-    r.yarp.binaryCarrier = carrier_->currentIndex() == 1;
+    r.yarp.binaryCarrier = carrier_->currentIndex() == 0;
     r.yarp.compensateRaw = compensate_->isChecked();
     return c;
 }

@@ -52,6 +52,7 @@ private:
     void addTapperBox(QVBoxLayout* layout);
     void addFingertipBox(QVBoxLayout* layout);
     void addRawLog(QVBoxLayout* layout);
+    void showNameServer();
     void connectSession();
     /// A picker kept across sessions: its key in the QSettings group "devices", and the widget
     /// property holding its value.
@@ -83,6 +84,7 @@ private:
     QPlainTextEdit* rawLog_;
     QPushButton* connect_;
     QLabel* status_;
+    QLabel* nameServerShown_;       ///< the name server the fingertip will ask, and why
     QList<QWidget*> needsDevices_;  ///< enabled only while connected
     QList<QWidget*> picksDevices_;  ///< enabled only while disconnected
     bool connected_ = false;

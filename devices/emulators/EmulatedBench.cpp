@@ -103,10 +103,10 @@ rcx::YamahaStageSettings EmulatedBench::stageSettings() const {
 
 yarp::YarpFingertipSettings EmulatedBench::fingertipSettings() const {
     yarp::YarpFingertipSettings y;
+    y.nameServerHost = "127.0.0.1";
     y.nameServerPort = yarp_.nameServerPort();
     y.port = s_.yarp.portName;
     y.finger = static_cast<yarp::Finger>(s_.yarp.fingerOffset);
-    y.binaryCarrier = false;
     return y;
 }
 

@@ -59,6 +59,7 @@ struct FakeYarp::Client {
         Closed
     } state = State::Greeting;
     bool binary = false, reader = false;
+    bool closeAfterSending = false;  ///< closed once `out` is sent (after ~q)
     std::chrono::steady_clock::time_point nextFrame;
 };
 
@@ -116,6 +117,9 @@ void FakeYarp::injectRawBytes(std::string bytes) {
 void FakeYarp::dropReaders() {
     dropReaders_ = true;
 }
+void FakeYarp::closePort() {
+    closePort_ = true;
+}
 
 std::vector<double> FakeYarp::handVector() {
     std::vector<double> hand(192, 0.0);
@@ -145,33 +149,24 @@ std::string FakeYarp::textMessage() {
 
 std::string FakeYarp::binaryMessage() {
     const std::vector<double> hand = handVector();
-    std::string command;  // the port command: a one-element list holding "~d"... as YARP frames it
-    put32(command, 2);
-    command += "~d";
-    command.push_back('\0');
-    command.push_back('\1');
-    std::string data;
-    put32(data, s_.binaryTag);
-    put32(data, static_cast<std::uint32_t>(hand.size()));
-    if (malformed_.exchange(false))
-        data.resize(data.size() + 5, '\x7f');  // a torn payload
-    else
-        for (double v : hand) {
-            if (s_.binaryFloats) {
-                const float f = static_cast<float>(v);
-                data.append(reinterpret_cast<const char*>(&f), 4);
-            } else {
-                data.append(reinterpret_cast<const char*>(&v), 8);
-            }
-        }
-    std::string m = "YA";
-    put32(m, static_cast<std::uint32_t>(command.size() + data.size()));
-    m += "RP";
-    put32(m, 2);
-    put32(m, static_cast<std::uint32_t>(command.size()));
-    put32(m, static_cast<std::uint32_t>(data.size()));
-    put32(m, 0);  // no reply expected
-    return m + command + data;
+    yarp::BinaryFrame f;
+    f.layout = s_.binaryLayout;
+    f.tag = s_.binaryTag;
+    f.floats = s_.binaryFloats;
+    if (s_.envelope) {
+        std::ostringstream stamp;
+        stamp.precision(15);
+        stamp << count_ << ' ' << 1795648690.0 + static_cast<double>(count_) / s_.rate_hz;
+        f.envelope = stamp.str();
+    }
+    if (malformed_.exchange(false)) {  // a torn vector: 192 claimed, five bytes sent
+        std::string torn;
+        put32(torn, s_.binaryTag);
+        put32(torn, static_cast<std::uint32_t>(hand.size()));
+        torn.append(5, '\x7f');
+        return yarp::binaryMessage({yarp::portCommand('D'), torn});
+    }
+    return yarp::binaryDataMessage(hand, f);
 }
 
 void FakeYarp::serveNameServer(Client& c) {
@@ -182,7 +177,7 @@ void FakeYarp::serveNameServer(Client& c) {
         if (!line.empty() && line.back() == '\r') line.pop_back();
         if (c.state == Client::State::Greeting) {
             if (line == "CONNACK extern") {
-                c.out += "Welcome extern\n";
+                c.out += "Welcome extern\r\n";
                 c.state = Client::State::Query;
             } else {
                 c.state = Client::State::Closed;  // plain CONNECT gets nothing
@@ -193,8 +188,8 @@ void FakeYarp::serveNameServer(Client& c) {
             const std::string port = line.substr(line.rfind(' ') + 1);
             if (registered_ && port == s_.portName)
                 c.out += "registration name " + port + " ip 127.0.0.1 port " +
-                         std::to_string(dataPort_) + " type tcp\n";
-            c.out += "*** end of message\n";
+                         std::to_string(dataPort_) + " type tcp\r\n";
+            c.out += "*** end of message\r\n<ACK>\r\n";
         }
     }
 }
@@ -203,6 +198,13 @@ void FakeYarp::serveData(Client& c) {
     if (c.state == Client::State::Greeting && !c.in.empty()) {
         if (c.in[0] == 'Y') {
             if (c.in.size() < 8) return;
+            // "YA" int16 7777 + carrier "RP": only fast_tcp (3, no acknowledgements) is served.
+            const int spec =
+                static_cast<unsigned char>(c.in[2]) | (static_cast<unsigned char>(c.in[3]) << 8);
+            if (c.in[1] != 'A' || c.in[6] != 'R' || c.in[7] != 'P' || spec != 7777 + 3) {
+                c.state = Client::State::Closed;
+                return;
+            }
             c.binary = true;
             c.in.erase(0, 8);
             c.state = Client::State::BinaryName;
@@ -223,20 +225,52 @@ void FakeYarp::serveData(Client& c) {
         if (c.in.size() < 4) return;
         std::uint32_t n = 0;
         std::memcpy(&n, c.in.data(), 4);
+        if (n > 1000) {
+            c.state = Client::State::Closed;
+            return;
+        }
         if (c.in.size() < 4 + n) return;
         c.in.erase(0, 4 + n);
+        c.out += yarp::headerReply(dataPort_);
         c.state = Client::State::Handshake;
     }
-    if (c.state == Client::State::Handshake) {
-        const std::string reverse = c.binary ? "~r\n" : "r\n";
-        const auto at = c.in.find(reverse);
+    if (c.state != Client::State::Handshake) return;
+    if (!c.binary) {
+        const auto at = c.in.find("r\n");
         if (at == std::string::npos) return;
-        c.in.erase(0, at + reverse.size());
-        c.state = Client::State::Reader;
-        c.reader = true;
-        c.nextFrame = std::chrono::steady_clock::now();
-        ++readers_;
+        c.in.erase(0, at + 2);
+    } else {
+        // A whole message whose port command is ~r; anything else leaves the connection an
+        // input of the port, which never streams to it (a bare "~r\n" among them).
+        static const std::string kIndex = yarp::headerReply(10);
+        if (c.in.size() < 18) return;
+        if (c.in.compare(0, 8, kIndex) != 0) {
+            c.in.clear();
+            return;
+        }
+        const int blocks =
+            static_cast<unsigned char>(c.in[8]) + static_cast<unsigned char>(c.in[9]);
+        const std::size_t head = 18 + 4 * static_cast<std::size_t>(blocks);
+        if (c.in.size() < head) return;
+        std::size_t total = 0;
+        for (int b = 0; b < blocks; ++b) {
+            std::uint32_t n = 0;
+            std::memcpy(&n, c.in.data() + 18 + 4 * b, 4);
+            total += n;
+        }
+        if (total > (1u << 20)) {
+            c.state = Client::State::Closed;
+            return;
+        }
+        if (c.in.size() < head + total) return;
+        const bool reverse = total >= 8 && c.in[head + 4] == '~' && c.in[head + 5] == 'r';
+        c.in.erase(0, head + total);
+        if (!reverse) return;
     }
+    c.state = Client::State::Reader;
+    c.reader = true;
+    c.nextFrame = std::chrono::steady_clock::now();
+    ++readers_;
 }
 
 void FakeYarp::publish(Client& c) {
@@ -265,6 +299,12 @@ void FakeYarp::loop() {
         if (dropReaders_.exchange(false))
             for (Client& c : clients_)
                 if (c.reader) c.state = Client::State::Closed;
+        if (closePort_.exchange(false))
+            for (Client& c : clients_)
+                if (c.reader && c.binary) {
+                    c.out += yarp::binaryMessage({yarp::portCommandWithText("q")});
+                    c.closeAfterSending = true;
+                }
         if (!nameServerUp_ && nameServerFd_ >= 0) {
             ::close(nameServerFd_);
             nameServerFd_ = -1;
@@ -303,7 +343,7 @@ void FakeYarp::loop() {
                     serveNameServer(c);
                 else
                     serveData(c);
-                if (c.state == Client::State::Reader) publish(c);
+                if (c.state == Client::State::Reader && !c.closeAfterSending) publish(c);
             }
             if (!c.out.empty() && c.state != Client::State::Closed) {
                 const ssize_t n = ::send(c.fd, c.out.data(), c.out.size(), MSG_NOSIGNAL);
@@ -312,6 +352,7 @@ void FakeYarp::loop() {
                 else if (n < 0 && errno != EAGAIN)
                     c.state = Client::State::Closed;
             }
+            if (c.closeAfterSending && c.out.empty()) c.state = Client::State::Closed;
         }
         for (std::size_t k = clients_.size(); k-- > 0;) {
             if (clients_[k].state != Client::State::Closed) continue;

@@ -1,10 +1,13 @@
 #pragma once
-// An emulated YARP name server and skin publisher on loopback TCP (docs/protocols.md §3, §4): the
-// name server answers CONNACK / query; the publisher streams a 192-value hand vector at a set rate
-// over the text carrier ('d' or 'D' headers, with or without an envelope) or the binary carrier
-// (Vector tag 0x10A or 0x114). The fingertip's 12 values come from a callback. Faults: name server
-// down, port unknown, stream stalls, malformed lines, vectors of the wrong size, raw bytes of
-// any framing, the stream dropping.
+// An emulated YARP name server and skin publisher on loopback TCP (docs/protocols.md §3, §4),
+// speaking the bytes a real YARP 4 does: the name server answers CONNACK / query with lines ending
+// in \r\n and an <ACK>; the publisher streams a 192-value hand vector at a set rate over the text
+// carrier ('d' or 'D' headers, with or without an envelope) or the binary carrier (the header
+// reply, the reverse request as a message, the message index, Bottle or Vector layout, tag 0x114
+// or 0x10A, with or without a Stamp envelope). The fingertip's 12 values come from a callback.
+// Faults: name server down, port unknown, stream stalls (also from the start), malformed
+// messages, vectors of the wrong size, raw bytes of any framing, the stream dropping, the port
+// closing with ~q.
 #include <atomic>
 #include <functional>
 #include <mutex>
@@ -12,16 +15,23 @@
 #include <thread>
 #include <vector>
 
+#include "devices/yarp/YarpProtocol.h"
+
 namespace activetouch::emu {
 
 struct FakeYarpSettings {
     std::string portName = "/icub/skin/right_hand_comp";
     double rate_hz = 50.0;
-    int fingerOffset = 0;             ///< first index of the fingertip in the hand vector
-    std::string header = "d";         ///< text carrier: "d", "do" or "D"
-    bool envelope = false;            ///< text carrier: "d 17 1234.5" style envelope
-    std::uint32_t binaryTag = 0x10A;  ///< binary carrier: 0x10A (YARP <= 3.12) or 0x114 (YARP 4)
-    bool binaryFloats = false;        ///< binary carrier: float32 elements (tag 0x10A in YARP 4)
+    int fingerOffset = 0;      ///< first index of the fingertip in the hand vector
+    std::string header = "d";  ///< text carrier: "d", "do" or "D"
+    /// An envelope with every message: "d 17 1234.5" on the text carrier, a Stamp in the port
+    /// command on the binary one.
+    bool envelope = false;
+    /// Binary carrier: Vector (skinManager's) or Bottle layout, the tag (0x114 float64 in YARP 4,
+    /// 0x10A float64 before it) and float32 elements (tag 0x10A in YARP 4).
+    yarp::BinaryLayout binaryLayout = yarp::BinaryLayout::Vector;
+    std::uint32_t binaryTag = 0x114;
+    bool binaryFloats = false;
 };
 
 class FakeYarp {
@@ -48,6 +58,8 @@ public:
     void injectRawBytes(std::string bytes);
     /// Closes every reader's connection, as a stream that drops does.
     void dropReaders();
+    /// Sends every binary reader ~q and then closes, as a port that is closed does.
+    void closePort();
     std::uint64_t framesSent() const { return frames_; }
     int readers() const { return readers_; }
 
@@ -66,7 +78,7 @@ private:
     std::thread thread_;
     std::atomic<bool> running_{false};
     std::atomic<bool> nameServerUp_{true}, registered_{true}, stalled_{false};
-    std::atomic<bool> malformed_{false}, dropReaders_{false};
+    std::atomic<bool> malformed_{false}, dropReaders_{false}, closePort_{false};
     std::string raw_;  ///< injectRawBytes's, under rawMutex_
     std::mutex rawMutex_;
     std::atomic<int> wrongSize_{0}, alwaysWrongSize_{0};

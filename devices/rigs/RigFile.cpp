@@ -80,13 +80,19 @@ bool readFingertip(const JsonFields& f, RigConfig& r) {
     f.rejectUnknownKeys({"device", "name_server", "name_server_port", "port", "finger", "carrier",
                          "compensate_raw"});
     yarp::YarpFingertipSettings& y = r.yarp;
-    y.nameServerHost = f.text("name_server", y.nameServerHost);
-    y.nameServerPort = f.integer("name_server_port", 1, 65535, y.nameServerPort);
+    // Absent: from the YARP conf file, as YARP's own tools find the name server.
+    y.nameServerHost = f.text("name_server", "");
+    if (f.has("name_server") && y.nameServerHost.empty())
+        f.fail("name_server",
+               "give the name server's host, or leave the key out to take it "
+               "from the YARP conf file");
+    y.nameServerPort =
+        f.has("name_server_port") ? f.integer("name_server_port", 1, 65535, 10000) : 0;
     y.port = f.text("port", y.port);
     if (y.port.empty() || y.port[0] != '/')
         f.fail("port", "a YARP port name starts with '/', e.g. /icub/skin/right_hand_comp");
     y.finger = static_cast<yarp::Finger>(12 * indexOf(f, "finger", kFingers));
-    y.binaryCarrier = oneOf(f, "carrier", {"text", "binary"}) == "binary";
+    y.binaryCarrier = oneOf(f, "carrier", {"binary", "text"}) == "binary";
     y.compensateRaw = f.flag("compensate_raw", false);
     return true;
 }
@@ -150,12 +156,12 @@ Json rigFileJson(const RigConfig& r) {
                        {"full_power_degrees_per_s", r.nxt.fullPowerDegreesPerSecond}};
         const yarp::YarpFingertipSettings& y = r.yarp;
         j["fingertip"] = {{"device", "yarp"},
-                          {"name_server", y.nameServerHost},
-                          {"name_server_port", y.nameServerPort},
                           {"port", y.port},
                           {"finger", kFingers[static_cast<std::size_t>(y.finger) / 12]},
                           {"carrier", y.binaryCarrier ? "binary" : "text"},
                           {"compensate_raw", y.compensateRaw}};
+        if (!y.nameServerHost.empty()) j["fingertip"]["name_server"] = y.nameServerHost;
+        if (y.nameServerPort > 0) j["fingertip"]["name_server_port"] = y.nameServerPort;
     } else {
         j["tapper"] = {{"device", "simulated"}};
         j["fingertip"] = {{"device", "simulated"}};

@@ -32,8 +32,23 @@ std::optional<std::string> readLine(QTcpSocket& s, QByteArray& buffer, Clock::ti
     }
 }
 
-std::string where(const YarpFingertipSettings& s) {
-    return s.nameServerHost + ":" + std::to_string(s.nameServerPort);
+std::string where(const NameServerAddress& a) {
+    return a.host + ":" + std::to_string(a.port) + " (" + a.source + ")";
+}
+
+/// Reads exactly `n` bytes within `deadline`; fewer on timeout or a closed socket.
+QByteArray readExactly(QTcpSocket& s, QByteArray& buffer, int n, Clock::time_point deadline) {
+    while (buffer.size() < n) {
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+        if (left <= 0 || s.state() != QAbstractSocket::ConnectedState) break;
+        if (s.bytesAvailable() > 0 ||
+            s.waitForReadyRead(static_cast<int>(std::min<long long>(left, 100))))
+            buffer += s.read(n - buffer.size());
+    }
+    QByteArray head = buffer.left(n);
+    buffer.remove(0, head.size());
+    return head;
 }
 
 }  // namespace
@@ -56,14 +71,22 @@ void YarpFingertip::connect() {
         badInRow_ = 0;
         calibrated_ = 0;
         compensation_ = SkinCompensation(kFingertipTaxels);
+        lastEnvelope_.clear();
+        try {
+            nameServer_ = resolveNameServer(s_.nameServerHost, s_.nameServerPort);
+        } catch (const YarpError& e) {
+            throw RigError(std::string("YARP: ") + e.what());
+        }
     }
     badMessages_ = 0;
+    stalled_ = false;
     std::promise<std::string> ready;
     auto result = ready.get_future();
     thread_.start([this, &ready] { run(&ready); });
-    // The thread answers within its own bounded waits (name server, data port, welcome).
-    if (result.wait_for(std::chrono::milliseconds(3 * s_.connectTimeoutMs + 1000)) !=
-        std::future_status::ready) {
+    // The thread answers within its own bounded waits (name server, data port, welcome, the
+    // first frame).
+    if (result.wait_for(std::chrono::milliseconds(3 * s_.connectTimeoutMs + s_.firstFrameTimeoutMs +
+                                                  1000)) != std::future_status::ready) {
         thread_.stop();
         throw RigError("YARP: connecting to " + s_.port + " did not finish in time");
     }
@@ -97,14 +120,17 @@ void YarpFingertip::run(std::promise<std::string>* ready) {
 }
 
 void YarpFingertip::fault(const std::string& problem, std::promise<std::string>* ready,
-                          bool answered) {
-    if (!answered) {
+                          bool& answered) {
+    {
+        std::lock_guard lock(mutex_);
+        if (failure_.empty()) failure_ = problem;
+        cv_.notify_all();
+    }
+    if (!answered) {  // connect() is still waiting: it reports the problem
+        answered = true;
         ready->set_value(problem);
         return;
     }
-    std::lock_guard lock(mutex_);
-    if (failure_.empty()) failure_ = problem;
-    cv_.notify_all();
     if (log_) log_("!!", problem);
 }
 
@@ -112,17 +138,15 @@ void YarpFingertip::serve(std::promise<std::string>* ready, bool& answered) {
     QByteArray buffer;
     Registration reg;
     if (const std::string problem = lookUpPort(&reg, buffer); !problem.empty()) {
-        ready->set_value(problem);
+        fault(problem, ready, answered);
         return;
     }
     QTcpSocket data;
     if (const std::string problem = openDataPort(data, reg, buffer); !problem.empty()) {
-        ready->set_value(problem);
+        fault(problem, ready, answered);
         return;
     }
     data.flush();
-    ready->set_value(std::string());
-    answered = true;
     readFrames(data, buffer, ready, answered);
 }
 
@@ -135,30 +159,31 @@ std::chrono::steady_clock::time_point YarpFingertip::connectDeadline() const {
 }
 
 std::string YarpFingertip::lookUpPort(Registration* reg, QByteArray& buffer) {
-    QTcpSocket ns;
-    ns.connectToHost(QString::fromStdString(s_.nameServerHost),
-                     static_cast<quint16>(s_.nameServerPort));
-    if (!ns.waitForConnected(s_.connectTimeoutMs)) {
-        return "YARP: the name server at " + where(s_) + " does not answer (" +
-               ns.errorString().toStdString() +
-               "); start yarpserver there or set the name server's address";
+    const NameServerAddress ns = nameServer();
+    QTcpSocket server;
+    server.connectToHost(QString::fromStdString(ns.host), static_cast<quint16>(ns.port));
+    if (!server.waitForConnected(s_.connectTimeoutMs)) {
+        return "YARP: the name server at " + where(ns) + " does not answer (" +
+               server.errorString().toStdString() +
+               "); start yarpserver there, or give the name server's address ('yarp conf' "
+               "prints where YARP keeps it)";
     }
     say("->", "CONNACK extern");
-    ns.write(QByteArray::fromStdString(nameServerGreeting()));
-    const auto welcome = readLine(ns, buffer, connectDeadline());
+    server.write(QByteArray::fromStdString(nameServerGreeting()));
+    const auto welcome = readLine(server, buffer, connectDeadline());
     if (!welcome || welcome->rfind("Welcome", 0) != 0) {
-        return "YARP: the server at " + where(s_) +
+        return "YARP: the server at " + where(ns) +
                " did not greet like a YARP name server; check its address";
     }
     say("<-", *welcome);
     say("->", "query " + s_.port);
-    ns.write(QByteArray::fromStdString(nameServerQuery(s_.port)));
+    server.write(QByteArray::fromStdString(nameServerQuery(s_.port)));
     std::vector<std::string> lines;
     const auto until = connectDeadline();
     for (;;) {
-        const auto line = readLine(ns, buffer, until);
+        const auto line = readLine(server, buffer, until);
         if (!line) {
-            return "YARP: the name server at " + where(s_) + " did not finish its answer about " +
+            return "YARP: the name server at " + where(ns) + " did not finish its answer about " +
                    s_.port;
         }
         say("<-", *line);
@@ -169,7 +194,7 @@ std::string YarpFingertip::lookUpPort(Registration* reg, QByteArray& buffer) {
         const auto r = parseRegistration(lines);
         if (!r) {
             return "YARP: the port " + s_.port + " is not registered with the name server at " +
-                   where(s_) +
+                   where(ns) +
                    "; check the port name ('yarp name list') and that the skin "
                    "module is running";
         }
@@ -190,15 +215,22 @@ std::string YarpFingertip::openDataPort(QTcpSocket& data, const Registration& re
     }
     buffer.clear();
     if (s_.binaryCarrier) {
-        const char header[8] = {'Y', 'A', 0x64, 0x1E, 0, 0, 'R', 'P'};
-        QByteArray hello(header, 8);
-        const std::string name = "/activetouch/reader";
-        const std::int32_t n = static_cast<std::int32_t>(name.size() + 1);
-        hello.append(reinterpret_cast<const char*>(&n), 4);
-        hello.append(name.c_str(), n);
-        hello.append("~r\n");
-        say("->", "binary header, name " + name + ", ~r");
-        data.write(hello);
+        say("->", "binary header (fast_tcp), sender " + s_.readerName);
+        data.write(QByteArray::fromStdString(binaryConnectionHeader(s_.readerName)));
+        const QByteArray reply = readExactly(data, buffer, 8, connectDeadline());
+        try {
+            const int answered = parseHeaderReply(reply.toStdString());
+            say("<-", "header reply, port " + std::to_string(answered));
+        } catch (const YarpError& e) {
+            return "YARP: " + s_.port + " at " + reg.host + ":" + std::to_string(reg.tcpPort) +
+                   " did not answer the binary carrier's header (" +
+                   (reply.size() < 8
+                        ? "it sent " + std::to_string(reply.size()) + " of the 8 bytes in time"
+                        : std::string(e.what())) +
+                   "); is it a YARP port? The text carrier is the other choice";
+        }
+        say("->", "reverse request (~r): become a reader");
+        data.write(QByteArray::fromStdString(reverseRequest()));
     } else {
         say("->", "CONNECT extern");
         data.write(QByteArray::fromStdString(dataGreeting()));
@@ -218,6 +250,7 @@ std::string YarpFingertip::openDataPort(QTcpSocket& data, const Registration& re
 void YarpFingertip::readFrames(QTcpSocket& data, const QByteArray& buffer,
                                std::promise<std::string>* ready, bool& answered) {
     StreamDecoder decoder(s_.binaryCarrier);
+    auto lastMessage = Clock::now();
     auto decode = [&](const QByteArray& bytes) {
         for (StreamDecoder::Event& e :
              decoder.feed(bytes.constData(), static_cast<std::size_t>(bytes.size()))) {
@@ -231,30 +264,60 @@ void YarpFingertip::readFrames(QTcpSocket& data, const QByteArray& buffer,
                 continue;
             }
             try {
-                deliver(e.values);
+                deliver(e.values, e.envelope);
+                lastMessage = Clock::now();
+                if (!answered) {  // the first frame: connect() returns
+                    ready->set_value(std::string());
+                    answered = true;
+                }
+                if (stalled_.exchange(false)) say("<-", "frames again after a stall");
             } catch (const YarpError& err) {
                 bad(err.what());
             }
         }
     };
-    if (!buffer.isEmpty()) decode(buffer);  // what came with the welcome
+    const auto firstFrameBy = Clock::now() + std::chrono::milliseconds(s_.firstFrameTimeoutMs);
+    if (!buffer.isEmpty()) decode(buffer);  // what came with the welcome or the header reply
     while (!thread_.stopRequested()) {
         {
             std::lock_guard lock(mutex_);
             if (!failure_.empty()) break;
+        }
+        if (!answered && Clock::now() > firstFrameBy) {
+            const std::string last = lastProblem();
+            fault("YARP: connected to " + s_.port + " as a reader, but no frame came within " +
+                      std::to_string(s_.firstFrameTimeoutMs) + " ms" +
+                      (last.empty() ? "; is the skin module writing to the port?"
+                                    : " that could be read (last: " + last + ")"),
+                  ready, answered);
+            break;
         }
         if (data.state() != QAbstractSocket::ConnectedState) {
             fault("YARP: " + s_.port + " closed the connection; reconnect the fingertip", ready,
                   answered);
             break;
         }
+        if (answered && !stalled_ &&
+            Clock::now() - lastMessage > std::chrono::milliseconds(s_.stallReportMs)) {
+            stalled_ = true;
+            const std::string problem = "no frame from " + s_.port + " for " +
+                                        std::to_string(s_.stallReportMs) +
+                                        " ms: the stream has stalled";
+            say("!!", problem);
+            std::lock_guard lock(mutex_);
+            lastProblem_ = problem;
+        }
         if (data.bytesAvailable() > 0 || data.waitForReadyRead(50)) decode(data.read(kReadChunk));
     }
     data.abort();
 }
 
-void YarpFingertip::deliver(const std::vector<double>& hand) {
+void YarpFingertip::deliver(const std::vector<double>& hand, const std::string& envelope) {
     std::vector<double> tip = fingertipTaxels(hand, s_.finger);  // throws for the wrong size
+    {
+        std::lock_guard lock(mutex_);
+        lastEnvelope_ = envelope;
+    }
     if (s_.compensateRaw) {
         if (calibrated_ < s_.calibrationFrames) {
             compensation_.calibrate(tip);
@@ -313,6 +376,16 @@ std::uint64_t YarpFingertip::waitFrame(std::uint64_t after, int timeoutMs, doubl
 std::uint64_t YarpFingertip::framesReceived() const {
     std::lock_guard lock(mutex_);
     return seq_;
+}
+
+std::string YarpFingertip::lastEnvelope() const {
+    std::lock_guard lock(mutex_);
+    return lastEnvelope_;
+}
+
+NameServerAddress YarpFingertip::nameServer() const {
+    std::lock_guard lock(mutex_);
+    return nameServer_;
 }
 
 std::string YarpFingertip::lastProblem() const {

@@ -82,39 +82,246 @@ std::vector<double> parseDataLine(const std::string& line) {
     return v;
 }
 
-std::vector<double> parseBinaryVector(const std::vector<std::uint8_t>& p) {
-    auto int32 = [&](std::size_t at) {
-        std::int32_t v;
-        std::memcpy(&v, p.data() + at, 4);
-        return v;
-    };
-    if (p.size() < 8) throw YarpError("the binary message is too short to hold a vector");
-    const std::int32_t tag = int32(0), count = int32(4);
-    if (tag != 0x10A && tag != 0x114)
-        throw YarpError("the binary message's tag is not a vector of doubles (0x10A or 0x114)");
-    if (count < 0) throw YarpError("the binary message gives a negative element count");
-    const std::size_t body = p.size() - 8;
-    std::size_t width = 0;
-    if (body == static_cast<std::size_t>(count) * 8)
-        width = 8;
-    else if (body == static_cast<std::size_t>(count) * 4)
-        width = 4;
-    else
-        throw YarpError("the binary vector claims " + std::to_string(count) +
-                        " elements but carries " + std::to_string(body) + " bytes");
-    std::vector<double> v(static_cast<std::size_t>(count));
-    for (std::size_t i = 0; i < v.size(); ++i) {
-        if (width == 8)
-            std::memcpy(&v[i], p.data() + 8 + 8 * i, 8);
-        else {
-            float f;
-            std::memcpy(&f, p.data() + 8 + 4 * i, 4);
-            v[i] = f;
+namespace {
+
+void put32(std::string& s, std::int32_t v) {
+    const auto u = static_cast<std::uint32_t>(v);
+    for (int i = 0; i < 4; ++i) s.push_back(static_cast<char>((u >> (8 * i)) & 0xFF));
+}
+
+std::int32_t int32At(const char* p) {
+    std::uint32_t v = 0;
+    for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(p[i]);
+    return static_cast<std::int32_t>(v);
+}
+
+std::string hex(std::int32_t v) {
+    std::ostringstream o;
+    o << "0x" << std::hex << static_cast<std::uint32_t>(v);
+    return o.str();
+}
+
+/// "YA" int32 "RP": the 8-byte form YARP writes a number in (headers, indices, replies).
+std::string yarpNumber(std::int32_t n) {
+    std::string s = "YA";
+    put32(s, n);
+    return s + "RP";
+}
+
+/// Bytes as int32 counts and numbers of one width: the element of tag `type` at `p`.
+double element(std::int32_t type, const char* p) {
+    switch (type) {
+        case 0x01:
+            return static_cast<double>(int32At(p));
+        case 0x20:
+            return static_cast<double>(static_cast<std::int8_t>(p[0]));
+        case 0x40: {
+            std::int16_t v;
+            std::memcpy(&v, p, 2);
+            return v;
         }
+        case 0x11: {
+            std::int64_t v;
+            std::memcpy(&v, p, 8);
+            return static_cast<double>(v);
+        }
+        case 0x0A: {  // float32 (YARP 4)
+            float f;
+            std::memcpy(&f, p, 4);
+            return f;
+        }
+        default: {  // 0x14 float64, and 0x0A's float64 before YARP 4
+            double d;
+            std::memcpy(&d, p, 8);
+            return d;
+        }
+    }
+}
+
+std::size_t widthOf(std::int32_t type) {
+    switch (type) {
+        case 0x01:
+            return 4;
+        case 0x20:
+            return 1;
+        case 0x40:
+            return 2;
+        case 0x11:
+            return 8;
+        case 0x0A:
+            return 4;
+        case 0x14:
+            return 8;
+        default:
+            return 0;
+    }
+}
+
+}  // namespace
+
+std::string binaryConnectionHeader(const std::string& senderName) {
+    std::string s = yarpNumber(7777 + 3);  // fast_tcp: the tcp carrier (3) without acknowledgements
+    put32(s, static_cast<std::int32_t>(senderName.size() + 1));
+    s += senderName;
+    s.push_back('\0');
+    return s;
+}
+
+int parseHeaderReply(const std::string& b) {
+    if (b.size() != 8 || b[0] != 'Y' || b[1] != 'A' || b[6] != 'R' || b[7] != 'P')
+        throw YarpError(
+            "the port did not answer the binary carrier's header with its 8-byte "
+            "YA..RP reply");
+    return int32At(b.data() + 2);
+}
+
+std::string headerReply(int port) {
+    return yarpNumber(port);
+}
+
+std::string binaryMessage(const std::vector<std::string>& blocks) {
+    std::string m = yarpNumber(10);
+    m.push_back(static_cast<char>(blocks.size()));
+    m.push_back('\1');  // one reply block, empty
+    m.append(8, '\xFF');
+    for (const std::string& b : blocks) put32(m, static_cast<std::int32_t>(b.size()));
+    put32(m, 0);
+    for (const std::string& b : blocks) m += b;
+    return m;
+}
+
+std::string portCommand(char command) {
+    std::string s;
+    put32(s, 0);
+    s += '~';
+    s += command;
+    s += '\0';
+    s += '\1';
+    return s;
+}
+
+std::string portCommandWithText(const std::string& text) {
+    std::string s;
+    put32(s, static_cast<std::int32_t>(text.size() + 1));
+    s += "~";
+    s.push_back('\0');
+    s.push_back('\0');
+    s.push_back('\1');
+    s += text;
+    s.push_back('\0');
+    return s;
+}
+
+std::string reverseRequest() {
+    return binaryMessage({portCommand('r')});
+}
+
+std::string binaryDataMessage(const std::vector<double>& values, const BinaryFrame& f) {
+    // The port command and its envelope share one block; the content follows as YARP lays it.
+    const std::string command =
+        f.envelope.empty() ? portCommand('D') : portCommandWithText("D " + f.envelope);
+    std::string head;
+    put32(head, static_cast<std::int32_t>(f.tag));
+    put32(head, static_cast<std::int32_t>(values.size()));
+    std::string body;
+    for (double v : values) {
+        if (f.floats) {
+            const float x = static_cast<float>(v);
+            body.append(reinterpret_cast<const char*>(&x), 4);
+        } else {
+            body.append(reinterpret_cast<const char*>(&v), 8);
+        }
+    }
+    if (f.layout == BinaryLayout::Bottle) return binaryMessage({command, head + body});
+    return binaryMessage({command, head, body});
+}
+
+BinaryContent parseBinaryContent(const char* p, std::size_t size) {
+    if (size < 8) throw YarpError("the binary message is too short to hold a port command");
+    if (p[4] != '~') throw YarpError("the binary message does not begin with a port command ('~')");
+    BinaryContent c;
+    c.command = p[5];
+    std::size_t at = 8;
+    if (c.command == '\0') {
+        const std::int32_t n = int32At(p);
+        if (n < 1 || static_cast<std::size_t>(n) > size - 8)
+            throw YarpError("the binary message's port command claims " + std::to_string(n) +
+                            " bytes of text but " + std::to_string(size - 8) + " follow");
+        if (p[8 + n - 1] != '\0')
+            throw YarpError("the binary message's port command text does not end in NUL");
+        const std::string text(p + 8, static_cast<std::size_t>(n - 1));
+        at += static_cast<std::size_t>(n);
+        if (text.empty()) throw YarpError("the binary message's port command text is empty");
+        c.command = text[0];
+        if (text.size() > 2 && text[1] == ' ') c.envelope = text.substr(2);
+    }
+    if (c.command != 'd' && c.command != 'D') return c;
+    c.values = parseBinaryVector(p + at, size - at);
+    return c;
+}
+
+std::vector<double> parseBinaryVector(const std::vector<std::uint8_t>& p) {
+    return parseBinaryVector(reinterpret_cast<const char*>(p.data()), p.size());
+}
+
+std::vector<double> parseBinaryVector(const char* p, std::size_t size) {
+    if (size < 8) throw YarpError("the binary message is too short to hold a vector");
+    const std::int32_t tag = int32At(p), count = int32At(p + 4);
+    if ((tag & ~0xFF) != 0x100)
+        throw YarpError("the binary message carries tag " + hex(tag) +
+                        ", not a list of numbers (0x114 or 0x10A for a skin vector)");
+    if (count < 0) throw YarpError("the binary message gives a negative element count");
+    const std::int32_t type = tag & 0xFF;
+    const std::size_t body = size - 8, n = static_cast<std::size_t>(count);
+    std::vector<double> v;
+    if (type == 0) {  // a mixed list: every element carries its own tag
+        if (n > body / 5)
+            throw YarpError("the binary list claims " + std::to_string(count) +
+                            " elements but carries " + std::to_string(body) + " bytes");
+        v.reserve(n);
+        std::size_t at = 8;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (size - at < 4)
+                throw YarpError("the binary list ends inside element " + std::to_string(i));
+            const std::int32_t t = int32At(p + at);
+            const std::size_t w = widthOf(t);
+            if (w == 0)
+                throw YarpError("element " + std::to_string(i) + " of the binary list has tag " +
+                                hex(t) + ", which is not a number");
+            at += 4;
+            if (size - at < w)
+                throw YarpError("the binary list ends inside element " + std::to_string(i));
+            v.push_back(element(t, p + at));
+            at += w;
+        }
+        if (at != size)
+            throw YarpError("the binary list has " + std::to_string(size - at) +
+                            " bytes after its last element");
+    } else {
+        std::size_t w = widthOf(type);
+        std::int32_t as = type;
+        if (type == 0x0A) {  // float64 before YARP 4, float32 from it: read from the byte count
+            if (n > 0 && body == n * 8) {
+                w = 8;
+                as = 0x14;
+            } else if (n > 0 && body == n * 4) {
+                w = 4;
+                as = 0x0A;
+            }
+        }
+        if (w == 0)
+            throw YarpError("the binary message carries a list of tag " + hex(tag) +
+                            ", not of numbers");
+        if (n > body / w || body != n * w)
+            throw YarpError("the binary vector claims " + std::to_string(count) +
+                            " elements but carries " + std::to_string(body) + " bytes");
+        v.resize(n);
+        for (std::size_t i = 0; i < n; ++i) v[i] = element(as, p + 8 + w * i);
+    }
+    for (std::size_t i = 0; i < v.size(); ++i)
         if (!std::isfinite(v[i]))
             throw YarpError("the binary vector holds a non-finite value at element " +
                             std::to_string(i));
-    }
     return v;
 }
 
@@ -191,7 +398,7 @@ void StreamDecoder::fatal(std::vector<Event>& events, const std::string& problem
     dead_ = true;
     buffer_.clear();
     start_ = 0;
-    events.push_back({Event::Fatal, {}, problem});
+    events.push_back({Event::Fatal, {}, problem, {}});
 }
 
 void StreamDecoder::decodeText(std::vector<Event>& events) {
@@ -212,58 +419,60 @@ void StreamDecoder::decodeText(std::vector<Event>& events) {
         start_ = nl + 1;
         if (!line.empty() && line.back() == '\r') line.pop_back();
         if (wantHeader_) {
-            if (isMessageHeader(line))
+            if (isMessageHeader(line)) {
                 wantHeader_ = false;
-            else
-                events.push_back({Event::Bad, {},
-                                  "a line where a message header belongs: '" +
-                                      line.substr(0, 40) + "'"});
+                const std::size_t space = line.find(' ');
+                envelope_ = space == std::string::npos ? std::string() : line.substr(space + 1);
+            } else
+                events.push_back(
+                    {Event::Bad,
+                     {},
+                     "a line where a message header belongs: '" + line.substr(0, 40) + "'",
+                     {}});
             continue;
         }
         wantHeader_ = true;
         try {
-            events.push_back({Event::Values, parseDataLine(line), {}});
+            events.push_back({Event::Values, parseDataLine(line), {}, envelope_});
         } catch (const YarpError& e) {
-            events.push_back({Event::Bad, {}, e.what()});
+            events.push_back({Event::Bad, {}, e.what(), {}});
         }
     }
 }
 
-namespace {
-
-std::int32_t int32At(const std::string& b, std::size_t at) {
-    std::int32_t v;
-    std::memcpy(&v, b.data() + at, 4);
-    return v;
-}
-
-}  // namespace
-
 void StreamDecoder::decodeBinary(std::vector<Event>& events) {
-    // "YA" int32 "RP", block count, block lengths, reply length, then the blocks.
-    while (!dead_ && buffered() >= 12) {
+    static const std::string kIndex = yarpNumber(10);
+    constexpr std::size_t kIndexBytes = 18;  // the marker, two block counts, eight 0xFF
+    while (!dead_ && buffered() >= kIndexBytes) {
         const std::size_t at = start_;
-        if (buffer_[at] != 'Y' || buffer_[at + 1] != 'A' || buffer_[at + 6] != 'R' ||
-            buffer_[at + 7] != 'P') {
-            const std::size_t next = buffer_.find("YA", at + 1);
-            events.push_back({Event::Bad, {},
-                              "a binary message does not start with its YA..RP marker; skipped "
-                              "to the next one"});
-            start_ = next == std::string::npos ? buffer_.size() - 1 : next;
+        const char* m = buffer_.data() + at;
+        const bool padded = std::all_of(m + 10, m + 18, [](char c) { return c == '\xFF'; });
+        if (buffer_.compare(at, 8, kIndex) != 0 || !padded) {
+            // Lost framing: skip to the next index marker, keeping a partial one at the end.
+            const std::size_t next = buffer_.find(kIndex, at + 1);
+            events.push_back({Event::Bad,
+                              {},
+                              "a binary message does not start with its index (YA 10 RP, the "
+                              "block counts, eight 0xFF); skipped to the next one",
+                              {}});
+            start_ = next != std::string::npos ? next : std::max(at + 1, buffer_.size() - 7);
             continue;
         }
-        const std::int32_t blocks = int32At(buffer_, at + 8);
-        if (blocks < 1 || blocks > kMaxBlocks) {
-            events.push_back({Event::Bad, {},
-                              "a binary message claims " + std::to_string(blocks) + " blocks"});
+        const int data = static_cast<unsigned char>(m[8]), reply = static_cast<unsigned char>(m[9]);
+        if (data < 1 || data > kMaxBlocks || reply > kMaxBlocks) {
+            events.push_back({Event::Bad,
+                              {},
+                              "a binary message claims " + std::to_string(data) +
+                                  " data blocks and " + std::to_string(reply) + " reply blocks",
+                              {}});
             start_ = at + 2;
             continue;
         }
-        const std::size_t headerBytes = 12 + 4 * static_cast<std::size_t>(blocks) + 4;
+        const std::size_t headerBytes = kIndexBytes + 4 * static_cast<std::size_t>(data + reply);
         if (buffered() < headerBytes) return;
-        std::int64_t total = 0;
-        for (int b = 0; b < blocks; ++b) {
-            const std::int32_t length = int32At(buffer_, at + 12 + 4 * static_cast<std::size_t>(b));
+        std::int64_t dataBytes = 0, total = 0;
+        for (int b = 0; b < data + reply; ++b) {
+            const std::int32_t length = int32At(m + kIndexBytes + 4 * static_cast<std::size_t>(b));
             if (length < 0 || length > kMaxBlockBytes) {
                 fatal(events, "a binary message claims a block of " + std::to_string(length) +
                                   " bytes (at most " + std::to_string(kMaxBlockBytes) +
@@ -271,6 +480,7 @@ void StreamDecoder::decodeBinary(std::vector<Event>& events) {
                 return;
             }
             total += length;
+            if (b < data) dataBytes += length;
         }
         if (total > kMaxBlockBytes) {
             fatal(events, "a binary message claims " + std::to_string(total) +
@@ -279,15 +489,28 @@ void StreamDecoder::decodeBinary(std::vector<Event>& events) {
         }
         const std::size_t whole = headerBytes + static_cast<std::size_t>(total);
         if (buffered() < whole) return;
-        const std::int32_t lastLength =
-            int32At(buffer_, at + 12 + 4 * static_cast<std::size_t>(blocks - 1));
-        const char* last = buffer_.data() + at + whole - static_cast<std::size_t>(lastLength);
-        const std::vector<std::uint8_t> payload(last, last + lastLength);
         start_ = at + whole;
         try {
-            events.push_back({Event::Values, parseBinaryVector(payload), {}});
+            BinaryContent c = parseBinaryContent(buffer_.data() + at + headerBytes,
+                                                 static_cast<std::size_t>(dataBytes));
+            if (c.command == 'q') {
+                fatal(events, "the publisher closed its port (it sent ~q)");
+                return;
+            }
+            if (c.command != 'd' && c.command != 'D') {
+                events.push_back({Event::Bad,
+                                  {},
+                                  std::string("a port command '~") +
+                                      (std::isprint(static_cast<unsigned char>(c.command))
+                                           ? std::string(1, c.command)
+                                           : hex(static_cast<unsigned char>(c.command))) +
+                                      "' where data belongs; skipped",
+                                  {}});
+                continue;
+            }
+            events.push_back({Event::Values, std::move(c.values), {}, std::move(c.envelope)});
         } catch (const YarpError& e) {
-            events.push_back({Event::Bad, {}, e.what()});
+            events.push_back({Event::Bad, {}, e.what(), {}});
         }
     }
 }

@@ -109,6 +109,7 @@ struct Emulated {
                                        {"usb_address", 2},
                                        {"degrees_per_mm", bench->tapperSettings().degreesPerMm}}},
                 {"fingertip", QJsonObject{{"device", "yarp"},
+                                          {"name_server", "127.0.0.1"},
                                           {"name_server_port", tip.nameServerPort},
                                           {"port", QString::fromStdString(tip.port)}}},
                 {"time_scale", bench->timeScale()}};

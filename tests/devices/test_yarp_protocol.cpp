@@ -3,12 +3,27 @@
 #include <QtTest>
 #include <cstring>
 
+#include "devices/yarp/YarpConf.h"
 #include "devices/yarp/YarpProtocol.h"
 
 using namespace activetouch::yarp;
 Q_DECLARE_METATYPE(std::vector<std::int32_t>)
 
 namespace {
+std::string fromHex(const char* hex) {
+    return QByteArray::fromHex(hex).toStdString();
+}
+
+/// Every event `bytes` gives, fed in chunks of `chunk` bytes.
+std::vector<StreamDecoder::Event> decodeInChunks(const std::string& bytes, std::size_t chunk) {
+    StreamDecoder d(true);
+    std::vector<StreamDecoder::Event> events;
+    for (std::size_t at = 0; at < bytes.size(); at += chunk)
+        for (auto& e : d.feed(bytes.data() + at, std::min(chunk, bytes.size() - at)))
+            events.push_back(e);
+    return events;
+}
+
 std::vector<std::uint8_t> binaryVector(std::int32_t tag, const std::vector<double>& values,
                                        bool asFloat) {
     std::vector<std::uint8_t> p(8);
@@ -153,6 +168,186 @@ private slots:
         QCOMPARE(endless.feed("d\n", 2).size(), std::size_t{0});  // nothing after the end
     }
 
+    void theBinaryHandshakeIsTheCapturedBytes() {
+        // Captured from a real YARP 4 port (docs/protocols.md §3).
+        QCOMPARE(
+            QByteArray::fromStdString(binaryConnectionHeader("/activetouch/reader")).toHex(' '),
+            (QByteArray::fromHex("5941641e00005250 14000000") +
+             QByteArray("/activetouch/reader", 20))
+                .toHex(' '));
+        QCOMPARE(parseHeaderReply(fromHex("5941122700005250")), 10002);
+        QCOMPARE(QByteArray::fromStdString(headerReply(10002)).toHex(),
+                 QByteArray("5941122700005250"));
+        QVERIFY_THROWS_EXCEPTION(YarpError, parseHeaderReply("YA\x12\x27\0\0RX"));
+        QVERIFY_THROWS_EXCEPTION(YarpError, parseHeaderReply("YA\x12"));
+        QCOMPARE(QByteArray::fromStdString(reverseRequest()).toHex(' '),
+                 QByteArray::fromHex("59410a0000005250 0101 ffffffffffffffff 08000000 00000000"
+                                     " 00000000 7e720001")
+                     .toHex(' '));
+        QCOMPARE(
+            QByteArray::fromStdString(portCommandWithText("D 338 1795648690.92107")),
+            QByteArray::fromHex("170000007e000001") + QByteArray("D 338 1795648690.92107", 23));
+    }
+
+    void binaryFramesInEveryLayoutAreRead_data() {
+        QTest::addColumn<bool>("bottle");
+        QTest::addColumn<QString>("envelope");
+        QTest::addColumn<QByteArray>("start");
+        // The starts of real frames: skinManager's Vector [8, 8, 1536], a Bottle [8, 1544].
+        QTest::newRow("Vector")
+            << false << QString()
+            << QByteArray::fromHex(
+                   "59410a0000005250 0301 ffffffffffffffff 08000000 08000000 00060000 00000000"
+                   " 00000000 7e440001 14010000 c0000000");
+        QTest::newRow("Bottle")
+            << true << QString()
+            << QByteArray::fromHex(
+                   "59410a0000005250 0201 ffffffffffffffff 08000000 08060000 00000000"
+                   " 00000000 7e440001 14010000 c0000000");
+        // With a Stamp the envelope shares the port command's block: [31, 8, 1536].
+        QTest::newRow("Vector with a Stamp")
+            << false << "338 1795648690.92107"
+            << QByteArray::fromHex(
+                   "59410a0000005250 0301 ffffffffffffffff 1f000000 08000000"
+                   " 00060000 00000000 170000007e000001") +
+                   QByteArray("D 338 1795648690.92107", 23) +
+                   QByteArray::fromHex("14010000c0000000");
+        QTest::newRow("Bottle with a Stamp")
+            << true << "338 1795648690.92107"
+            << QByteArray::fromHex(
+                   "59410a0000005250 0201 ffffffffffffffff 1f000000 08060000"
+                   " 00000000 170000007e000001") +
+                   QByteArray("D 338 1795648690.92107", 23) +
+                   QByteArray::fromHex("14010000c0000000");
+    }
+    void binaryFramesInEveryLayoutAreRead() {
+        QFETCH(bool, bottle);
+        QFETCH(QString, envelope);
+        QFETCH(QByteArray, start);
+        std::vector<double> hand(192);
+        for (std::size_t i = 0; i < hand.size(); ++i) hand[i] = 0.5 * static_cast<double>(i) - 7;
+        BinaryFrame f;
+        f.layout = bottle ? BinaryLayout::Bottle : BinaryLayout::Vector;
+        f.envelope = envelope.toStdString();
+        const std::string m = binaryDataMessage(hand, f);
+        // The frame as a port sends it: the captured start, then the doubles.
+        QCOMPARE(QByteArray::fromStdString(m.substr(0, static_cast<std::size_t>(start.size())))
+                     .toHex(' '),
+                 start.toHex(' '));
+        QCOMPARE(m.size(), static_cast<std::size_t>(start.size()) + 192 * 8);
+        QVERIFY(std::memcmp(m.data() + start.size(), hand.data(), 192 * 8) == 0);
+        // Read back whole, byte by byte, and two frames in one read.
+        for (std::size_t chunk : {m.size(), std::size_t{1}, std::size_t{13}}) {
+            const auto events = decodeInChunks(m + m, chunk);
+            QCOMPARE(events.size(), std::size_t{2});
+            for (const auto& e : events) {
+                QCOMPARE(e.kind, StreamDecoder::Event::Values);
+                QVERIFY(e.values == hand);
+                QCOMPARE(QString::fromStdString(e.envelope), envelope);
+            }
+        }
+    }
+
+    void binaryMessagesThatAreNotDataAreNamed() {
+        // A port closing sends ~q: the stream ends with that said.
+        auto events = decodeInChunks(binaryMessage({portCommandWithText("q")}), 5);
+        QCOMPARE(events.size(), std::size_t{1});
+        QCOMPARE(events[0].kind, StreamDecoder::Event::Fatal);
+        QVERIFY(events[0].problem.find("closed its port") != std::string::npos);
+        // Another command is skipped and named; the next frame still reads.
+        const std::string frame = binaryDataMessage(std::vector<double>(192, 1.0), {});
+        events = decodeInChunks(binaryMessage({portCommand('a')}) + frame, 7);
+        QCOMPARE(events.size(), std::size_t{2});
+        QCOMPARE(events[0].kind, StreamDecoder::Event::Bad);
+        QVERIFY(events[0].problem.find("'~a'") != std::string::npos);
+        QCOMPARE(events[1].kind, StreamDecoder::Event::Values);
+        // Lost framing (no FF padding, a torn start): skipped to the next index, which reads.
+        std::string unpadded = frame;
+        unpadded[12] = 0;
+        events = decodeInChunks(unpadded + "junk" + frame, 64);
+        QCOMPARE(events.back().kind, StreamDecoder::Event::Values);
+        QCOMPARE(events.front().kind, StreamDecoder::Event::Bad);
+        // An envelope whose length overruns its block, a command text without NUL.
+        std::string overrun = binaryMessage({portCommandWithText("D 1 2")});
+        overrun[18 + 8] = 50;  // the command's text length
+        events = decodeInChunks(overrun, 3);
+        QCOMPARE(events.size(), std::size_t{1});
+        QCOMPARE(events[0].kind, StreamDecoder::Event::Bad);
+        std::string noNul = binaryMessage({portCommandWithText("D 1 2")});
+        noNul.back() = 'x';
+        events = decodeInChunks(noNul, 3);
+        QVERIFY(events.size() == 1 && events[0].problem.find("NUL") != std::string::npos);
+    }
+
+    void listsOfOtherNumbersAreRead() {
+        // A Bottle of int32 (0x101), and a mixed list (0x100) of an int32, a float64, an int8.
+        std::string ints = fromHex("01010000 03000000 05000000 faffffff 00010000");
+        QVERIFY(parseBinaryVector(ints.data(), ints.size()) == (std::vector<double>{5, -6, 256}));
+        std::string mixed = fromHex("00010000 03000000 01000000 07000000 14000000") +
+                            std::string("\0\0\0\0\0\0\xf8\x3f", 8) + fromHex("20000000 fe");
+        QVERIFY(parseBinaryVector(mixed.data(), mixed.size()) == (std::vector<double>{7, 1.5, -2}));
+        std::string text = fromHex("00010000 01000000 04000000 02000000 6869");
+        QVERIFY_THROWS_EXCEPTION(YarpError, parseBinaryVector(text.data(), text.size()));
+        std::string hugeCount = fromHex("00010000 ffffff7f 01000000");
+        QVERIFY_THROWS_EXCEPTION(YarpError, parseBinaryVector(hugeCount.data(), hugeCount.size()));
+        std::string strings = fromHex("04010000 01000000 00000000");
+        QVERIFY_THROWS_EXCEPTION(YarpError, parseBinaryVector(strings.data(), strings.size()));
+    }
+
+    void theNameServerComesFromTheYarpConfFile() {
+        QTemporaryDir home;
+        const QByteArray dir = (home.path() + "/conf").toUtf8();
+        QDir().mkpath(dir);
+        qputenv("YARP_CONFIG_HOME", dir);
+        qunsetenv("YARP_NAMESPACE");
+        auto write = [&](const char* name, const char* text) {
+            QFile f(QString(dir) + "/" + name);
+            QVERIFY(f.open(QIODevice::WriteOnly));
+            f.write(text);
+        };
+        // No conf file: loopback, and said so.
+        NameServerAddress a = resolveNameServer("", 0);
+        QCOMPARE(a.host, std::string("127.0.0.1"));
+        QCOMPARE(a.port, 10000);
+        QVERIFY(a.source.find("loopback: no YARP conf file at " + dir.toStdString() +
+                              "/yarp.conf") != std::string::npos);
+        // What `yarp conf 10.0.1.7 10111` writes.
+        write("yarp.conf", "10.0.1.7 10111 yarp\n");
+        a = resolveNameServer("", 0);
+        QCOMPARE(a.host, std::string("10.0.1.7"));
+        QCOMPARE(a.port, 10111);
+        QCOMPARE(a.source, dir.toStdString() + "/yarp.conf");
+        // The rig's own address wins; a host alone keeps the file's port.
+        QCOMPARE(resolveNameServer("192.168.1.2", 10002).source, std::string("set for the rig"));
+        a = resolveNameServer("192.168.1.2", 0);
+        QVERIFY(a.host == "192.168.1.2" && a.port == 10111);
+        // The [name] group form, and a namespace's own file.
+        write("yarp.conf", "[name]\nhost 10.0.0.9\nport 10005\n");
+        QCOMPARE(resolveNameServer("", 0).port, 10005);
+        write("yarp_namespace.conf", "/lab2\n");
+        write("_lab2.conf", "10.2.2.2 10222\n");
+        QCOMPARE(yarpConfFile(), dir.toStdString() + "/_lab2.conf");
+        QCOMPARE(resolveNameServer("", 0).host, std::string("10.2.2.2"));
+        qputenv("YARP_NAMESPACE", "/root");
+        QCOMPARE(yarpConfFile(), dir.toStdString() + "/yarp.conf");
+        // A conf file that cannot be read is refused by name, not passed over for loopback.
+        write("yarp.conf", "10.0.1.7 port\n");
+        try {
+            resolveNameServer("", 0);
+            QFAIL("a bad conf file was passed over");
+        } catch (const YarpError& e) {
+            QVERIFY2(QString(e.what()).contains(dir + "/yarp.conf") &&
+                         QString(e.what()).contains("'port'"),
+                     e.what());
+        }
+        write("yarp.conf", "justahost\n");
+        QVERIFY_THROWS_EXCEPTION(YarpError, resolveNameServer("", 0));
+        write("yarp.conf", "[other]\nhost x\n");
+        QVERIFY_THROWS_EXCEPTION(YarpError, resolveNameServer("", 0));
+        qunsetenv("YARP_CONFIG_HOME");
+        qunsetenv("YARP_NAMESPACE");
+    }
+
     void theStreamDecoderChecksEveryBlockLength_data() {
         QTest::addColumn<std::vector<std::int32_t>>("lengths");
         QTest::addColumn<bool>("fatal");
@@ -160,20 +355,23 @@ private slots:
         QTest::newRow("INT32_MAX") << std::vector<std::int32_t>{8, 2147483647} << true;
         QTest::newRow("over a megabyte together")
             << std::vector<std::int32_t>{700000, 700000} << true;
-        QTest::newRow("a torn vector") << std::vector<std::int32_t>{4, 13} << false;
+        QTest::newRow("a torn vector") << std::vector<std::int32_t>{8, 4, 13} << false;
     }
     void theStreamDecoderChecksEveryBlockLength() {
         QFETCH(std::vector<std::int32_t>, lengths);
         QFETCH(bool, fatal);
-        std::string m = "YA";
+        std::string m = fromHex("59410a0000005250");
         auto put = [&](std::int32_t v) { m.append(reinterpret_cast<const char*>(&v), 4); };
-        put(0);
-        m += "RP";
-        put(static_cast<std::int32_t>(lengths.size()));
+        m.push_back(static_cast<char>(lengths.size()));
+        m.push_back('\1');
+        m.append(8, '\xFF');
         for (auto l : lengths) put(l);
         put(0);
-        if (!fatal)
-            for (auto l : lengths) m.append(static_cast<std::size_t>(l), '\x01');
+        if (!fatal) {
+            m += portCommand('D');  // the first block
+            for (std::size_t b = 1; b < lengths.size(); ++b)
+                m.append(static_cast<std::size_t>(lengths[b]), '\x01');
+        }
         StreamDecoder d(true);
         const auto events = d.feed(m.data(), m.size());
         QCOMPARE(events.size(), std::size_t{1});
