@@ -2,6 +2,10 @@
 // window; device panels to and from rig files, driving the simulated rig and the real drivers
 // on the emulated bench; runs taking their taps on the connected devices, and stopped when the
 // window closes mid-tap.
+#include <QLabel>
+#include <QLineEdit>
+#include <QSpinBox>
+
 #include "WindowFixture.h"
 
 class TestWindowDevices : public WindowFixture {
@@ -181,6 +185,27 @@ private slots:
         QCOMPARE(shown.nxt.degreesPerMm, 31.5);  // not on the panel, kept
         QCOMPARE(shown.yarp.finger, yarp::Finger::Ring);
         QVERIFY(shown.yarp.binaryCarrier && shown.yarp.compensateRaw);
+        // The dock says which name server the fingertip will ask, and why; with the fields
+        // emptied, the YARP conf file's (here, one written as `yarp conf` would).
+        auto* asks = panel->findChild<QLabel*>("nameServerShown");
+        QVERIFY(asks);
+        QVERIFY2(asks->text().contains("10.0.0.2:10002 (set for the rig)"),
+                 qPrintable(asks->text()));
+        const QByteArray confHome = dir_.filePath("yarp_conf").toUtf8();
+        QDir().mkpath(confHome);
+        {
+            QFile conf(confHome + "/yarp.conf");
+            QVERIFY(conf.open(QIODevice::WriteOnly));
+            conf.write("10.1.2.3 10007 yarp\n");
+        }
+        qputenv("YARP_CONFIG_HOME", confHome);
+        panel->findChild<QLineEdit*>("nameServerHost")->clear();
+        panel->findChild<QSpinBox*>("nameServerPort")->setValue(0);
+        QVERIFY2(asks->text().contains("10.1.2.3:10007") && asks->text().contains("yarp.conf"),
+                 qPrintable(asks->text()));
+        QVERIFY(panel->choice().config.yarp.nameServerHost.empty());
+        qunsetenv("YARP_CONFIG_HOME");
+        QVERIFY(panel->openRigFile(lab));
         // Saved again, the file says the same.
         const QString saved = dir_.filePath("saved_rig.json");
         QVERIFY(panel->saveRigFile(saved));
