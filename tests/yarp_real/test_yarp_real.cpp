@@ -89,7 +89,8 @@ private slots:
         server_.setProcessEnvironment(environment());
         server_.setWorkingDirectory(home_.path());
         server_.setProcessChannelMode(QProcess::ForwardedChannels);
-        server_.start(YARPSERVER, {"--read"});
+        // --read: the address from the conf file, loopback kept (the port still has to be named).
+        server_.start(YARPSERVER, {"--read", "--socket", QString::number(serverPort_)});
         QVERIFY(server_.waitForStarted(5000));
         const auto t0 = Clock::now();
         bool up = false;
