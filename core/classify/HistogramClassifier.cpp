@@ -152,6 +152,17 @@ HistogramClassifier HistogramClassifier::train(const std::vector<LabelledTap>& t
             }
         }
     }
+    // The screening copies (classify, decide).
+    c.logTableF_.assign(c.logTable_.begin(), c.logTable_.end());
+    const std::size_t cells = static_cast<std::size_t>(K) * B;
+    c.logTableByClass_.resize(cells * C);
+    c.cellMaxAbs_.assign(cells, 0.0);
+    for (std::size_t cell = 0; cell < cells; ++cell)
+        for (std::size_t cls = 0; cls < C; ++cls) {
+            const double v = c.logTable_[cell * C + cls];
+            c.logTableByClass_[cls * cells + cell] = v;
+            c.cellMaxAbs_[cell] = std::max(c.cellMaxAbs_[cell], std::abs(v));
+        }
     return c;
 }
 
@@ -165,8 +176,10 @@ namespace {
 using Double4 = double __attribute__((vector_size(32)));
 
 template <std::size_t Vectors>
-inline void accumulateChunk(const double* const* rows, const double* weights, std::size_t rowCount,
-                            std::size_t c0, double* out) {
+__attribute__((always_inline)) inline void accumulateChunk(const double* const* rows,
+                                                           const double* weights,
+                                                           std::size_t rowCount, std::size_t c0,
+                                                           double* out) {
     Double4 acc[Vectors] = {};
     // The rows are scattered over a table larger than a core's L2: fetch ahead of use.
     constexpr std::size_t kAhead = 10;
@@ -200,6 +213,44 @@ ACTIVETOUCH_AVX2_CLONES void accumulateRows(const double* const* rows, const dou
     }
 }
 
+// The same in single precision over the float table, for screening: 64 classes at a time.
+using Float8 = float __attribute__((vector_size(32)));
+
+template <std::size_t Vectors>
+__attribute__((always_inline)) inline void accumulateChunkF(
+    const float* table, const std::uint32_t* cells, const double* weights, std::size_t rowCount,
+    std::size_t classes, std::size_t c0, float* out) {
+    Float8 acc[Vectors] = {};
+    for (std::size_t i = 0; i < rowCount; ++i) {
+        const float* row = table + static_cast<std::size_t>(cells[i]) * classes + c0;
+        const auto w = static_cast<float>(weights[i]);
+        const Float8 n = {w, w, w, w, w, w, w, w};
+        for (std::size_t j = 0; j < Vectors; ++j) {
+            Float8 r;
+            std::memcpy(&r, row + 8 * j, sizeof r);
+            acc[j] += n * r;
+        }
+    }
+    std::memcpy(out + c0, acc, sizeof acc);
+}
+
+ACTIVETOUCH_AVX2_CLONES void accumulateRowsF(const float* table, const std::uint32_t* cells,
+                                             const double* weights, std::size_t rowCount,
+                                             std::size_t classes, float* out) {
+    std::size_t c0 = 0;
+    for (; c0 + 64 <= classes; c0 += 64)
+        accumulateChunkF<8>(table, cells, weights, rowCount, classes, c0, out);
+    for (; c0 + 8 <= classes; c0 += 8)
+        accumulateChunkF<1>(table, cells, weights, rowCount, classes, c0, out);
+    for (; c0 < classes; ++c0) {
+        float acc = 0.0f;
+        for (std::size_t i = 0; i < rowCount; ++i)
+            acc += static_cast<float>(weights[i]) *
+                   table[static_cast<std::size_t>(cells[i]) * classes + c0];
+        out[c0] = acc;
+    }
+}
+
 // Bins of a block of samples. Branch-free so it vectorises over the flat block, with the per-
 // taxel range tiled to the block's length: (v - min) * scale clamped to [0, B - 1]; NaN compares
 // false and lands in bin 0; a degenerate taxel has scale 0 (and inf * 0 = NaN), so it lands in
@@ -218,18 +269,16 @@ ACTIVETOUCH_AVX2_CLONES void binBlock(const double* __restrict samples, std::siz
 
 }  // namespace
 
-void HistogramClassifier::logLikelihoods(const Tap& tap, double* out) const {
-    const std::size_t C = static_cast<std::size_t>(classes_);
+std::size_t HistogramClassifier::tapCells(const Tap& tap, const std::uint32_t** cellsOut,
+                                          const double** countsOut) const {
     if (tap.taxels != taxels_)
         throw std::invalid_argument("tap has " + std::to_string(tap.taxels) +
                                     " taxels, the classifier was trained on " +
                                     std::to_string(taxels_));
-
     // The tap's count vector over (taxel, bin) cells: count samples per cell and mark the cells
-    // touched in a bitmap, then visit the marked cells in ascending order (so the sum does not
-    // depend on sample order) and clear as we go.
-    thread_local std::vector<std::uint32_t> counts, cellOf;
-    thread_local std::vector<const double*> rows;
+    // touched in a bitmap, then visit the marked cells in ascending order (so every sum over
+    // them does not depend on sample order) and clear as we go.
+    thread_local std::vector<std::uint32_t> counts, cellOf, cells;
     thread_local std::vector<double> weights;
     thread_local std::vector<std::uint64_t> touched;
     const std::size_t cellsTotal =
@@ -250,25 +299,73 @@ void HistogramClassifier::logLikelihoods(const Tap& tap, double* out) const {
         ++count[cell];
         marks[cell >> 6] |= std::uint64_t{1} << (cell & 63);
     }
-    rows.resize(std::min(cellOf.size(), cellsTotal));
-    weights.resize(rows.size());
+    cells.resize(std::min(cellOf.size(), cellsTotal));
+    weights.resize(cells.size());
     std::size_t distinct = 0;
-    const double* const table = logTable_.data();
-    const double** const rowOut = rows.data();
-    double* const weightOut = weights.data();
     const std::size_t words = (cellsTotal + 63) / 64;
     for (std::size_t w = 0; w < words; ++w) {
         std::uint64_t bits = marks[w];
         marks[w] = 0;
         while (bits) {
-            const std::size_t cell = w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits));
+            const auto cell = static_cast<std::uint32_t>(
+                w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits)));
             bits &= bits - 1;
-            rowOut[distinct] = table + cell * C;
-            weightOut[distinct++] = static_cast<double>(count[cell]);
+            cells[distinct] = cell;
+            weights[distinct++] = static_cast<double>(count[cell]);
             count[cell] = 0;
         }
     }
-    accumulateRows(rows.data(), weights.data(), distinct, C, out);
+    *cellsOut = cells.data();
+    *countsOut = weights.data();
+    return distinct;
+}
+
+void HistogramClassifier::logLikelihoods(const Tap& tap, double* out) const {
+    const std::size_t C = static_cast<std::size_t>(classes_);
+    const std::uint32_t* cells = nullptr;
+    const double* weights = nullptr;
+    const std::size_t distinct = tapCells(tap, &cells, &weights);
+    thread_local std::vector<const double*> rows;
+    rows.resize(distinct);
+    for (std::size_t i = 0; i < distinct; ++i)
+        rows[i] = logTable_.data() + static_cast<std::size_t>(cells[i]) * C;
+    accumulateRows(rows.data(), weights, distinct, C, out);
+}
+
+void HistogramClassifier::screenedScores(const Tap& tap, double marginNats, double* out) const {
+    const std::size_t C = static_cast<std::size_t>(classes_);
+    const std::uint32_t* cells = nullptr;
+    const double* weights = nullptr;
+    const std::size_t distinct = tapCells(tap, &cells, &weights);
+    thread_local std::vector<float> rough;
+    rough.resize(C);
+    accumulateRowsF(logTableF_.data(), cells, weights, distinct, C, rough.data());
+    // Each single-precision score is within `bound` of the exact one: every table entry is
+    // rounded once (relative error u = 2^-24), every product once, and a sum of R terms errs by
+    // at most R u times the sum of their magnitudes (the standard bound, doubled for margin).
+    double magnitude = 0.0;
+    for (std::size_t i = 0; i < distinct; ++i) magnitude += weights[i] * cellMaxAbs_[cells[i]];
+    constexpr double u = 0x1p-24;
+    const double bound = 2.0 * (static_cast<double>(distinct) + 3.0) * u * magnitude;
+    float best = -std::numeric_limits<float>::infinity();
+    for (float v : rough) best = std::max(best, v);
+    // Classes that could be within `marginNats` of the exact maximum (or of a tie with it) are
+    // summed exactly, in the same order and operations as logLikelihoods(); the rest keep their
+    // single-precision score.
+    const double floor = static_cast<double>(best) - 2.0 * bound - marginNats -
+                         2.0 * kTieTolerance * (std::abs(static_cast<double>(best)) + bound + 1.0);
+    const std::size_t cellsTotal =
+        static_cast<std::size_t>(taxels_) * static_cast<std::size_t>(bins_);
+    for (std::size_t c = 0; c < C; ++c) {
+        if (!(static_cast<double>(rough[c]) >= floor) && std::isfinite(floor)) {
+            out[c] = static_cast<double>(rough[c]);
+            continue;
+        }
+        const double* row = logTableByClass_.data() + c * cellsTotal;
+        double acc = 0.0;
+        for (std::size_t i = 0; i < distinct; ++i) acc += weights[i] * row[cells[i]];
+        out[c] = acc;
+    }
 }
 
 int argmaxLowestIndex(const double* v, int n) {
@@ -298,14 +395,16 @@ double logSumExp(const double* v, int n) {
 int HistogramClassifier::classify(const Tap& tap) const {
     thread_local std::vector<double> scores;
     scores.resize(static_cast<std::size_t>(classes_));
-    logLikelihoods(tap, scores.data());
+    screenedScores(tap, 0.0, scores.data());  // every possible winner exact: the same argmax
     return argmaxLowestIndex(scores.data(), classes_);
 }
 
 HistogramClassifier::Decision HistogramClassifier::decide(const Tap& tap) const {
+    // Classes more than 60 nats below the best add under e^-60 each to the normaliser, far
+    // below any posterior's resolution; within that, every score is exact.
     thread_local std::vector<double> scores;
     scores.resize(static_cast<std::size_t>(classes_));
-    logLikelihoods(tap, scores.data());
+    screenedScores(tap, 60.0, scores.data());
     Decision d;
     d.cls = argmaxLowestIndex(scores.data(), classes_);
     d.posterior =

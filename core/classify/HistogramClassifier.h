@@ -53,10 +53,11 @@ struct CacheLineAllocator {
 inline constexpr double kMaxKernelSigma_bins = 50.0;
 
 struct ClassifierSettings {
-    int bins = 100;  ///< B (paper: 100)
-    double smoothing =
-        0.01;  ///< alpha, additive pseudo-count per bin, > 0 (docs/results.md: chosen by validation)
-    double kernelSigma_bins = 0.0;  ///< 0 = the paper's histogram; docs/results.md: a choice beyond it
+    int bins = 100;           ///< B (paper: 100)
+    double smoothing = 0.01;  ///< alpha, additive pseudo-count per bin, > 0 (docs/results.md:
+                              ///< chosen by validation)
+    double kernelSigma_bins =
+        0.0;  ///< 0 = the paper's histogram; docs/results.md: a choice beyond it
     /// Why the settings cannot train a classifier, or empty.
     std::string problem() const;
 };
@@ -96,7 +97,9 @@ public:
     /// Sum over the tap's samples of log P for every class into `out` (classCount values).
     void logLikelihoods(const Tap& tap, double* out) const;
 
-    /// The maximum-likelihood class (lowest index on ties).
+    /// The maximum-likelihood class (lowest index on ties): the same as the argmax of
+    /// logLikelihoods(), found by scoring every class in single precision, bounding that
+    /// score's error, and summing exactly only the classes within the bound of the best.
     int classify(const Tap& tap) const;
 
     struct Decision {
@@ -106,12 +109,24 @@ public:
     Decision decide(const Tap& tap) const;
 
 private:
+    /// The tap's distinct (taxel, bin) cells in ascending order with their sample counts, in
+    /// thread-local buffers; returns how many.
+    std::size_t tapCells(const Tap& tap, const std::uint32_t** cells, const double** counts) const;
+    /// Exact scores (as logLikelihoods gives them) of the classes that can decide the tap, and
+    /// single-precision scores of the rest, which cannot: see classify().
+    void screenedScores(const Tap& tap, double marginNats, double* out) const;
+
     int classes_ = 0, taxels_ = 0, bins_ = 0;
     std::vector<double> min_, max_,
         scale_;  // per taxel; scale_ = bins / (max - min), 0 if degenerate
     std::vector<double> minTiled_, scaleTiled_;  // the same, repeated over a block of frames
     std::vector<std::uint32_t> cellBaseTiled_;   // taxel * bins, likewise
     std::vector<double, CacheLineAllocator<double>> logTable_;  // [taxel][bin][class]
+    // For classify() and decide(): the table in single precision, the same by class
+    // ([class][taxel][bin]) for exact sums of a few classes, and each cell's largest |log P|.
+    std::vector<float, CacheLineAllocator<float>> logTableF_;
+    std::vector<double, CacheLineAllocator<double>> logTableByClass_;
+    std::vector<double> cellMaxAbs_;
 };
 
 /// Relative width of a tie: scores this close to the maximum are equal for the decision. Sums

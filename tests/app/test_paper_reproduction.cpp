@@ -276,7 +276,8 @@ private slots:
         ExperimentSpec four = eight;
         four.classes.orientationsDeg = {270.0, 0.0, 90.0, 180.0};
         four.scene = loadExperiment(test::sourcePath("experiments/paper.json")).scene;
-        const SeedRates r8 = runSeeds(simulatedRigs(), eight, 1, 10, ""), r4 = runSeeds(simulatedRigs(), four, 1, 10, "");
+        const SeedRates r8 = runSeeds(simulatedRigs(), eight, 1, 10, ""),
+                        r4 = runSeeds(simulatedRigs(), four, 1, 10, "");
         auto diagonal = [](const SeedRates& r) {
             Rate sum;
             for (const auto& [label, rate] : r.activeCompletedByLabel())
@@ -335,7 +336,8 @@ private slots:
         o.activeTrials = o.activeCompleted = 8;
         o.recognition = true;
         for (int trial = 1; trial <= 8; ++trial)
-            o.namings.push_back({"rectangle", trial, trial == 1 ? "C" : "rectangle", "rectangle"});
+            o.namings.push_back(
+                {"rectangle", trial, trial == 1 ? "C" : "rectangle", "rectangle", "", -1.0, -1.0});
         one.seeds.push_back(o);
         QCOMPARE(one.paperResult().count, 0);
         QCOMPARE(one.paperResultSmoothed().count, 1);
@@ -377,7 +379,8 @@ private slots:
         SeedRates one;
         SeedOutcome o;
         o.recognition = true;
-        o.namings = {{"rectangle", 1, "C", "rectangle"}, {"C", 1, "C", "C"}};
+        o.namings = {{"rectangle", 1, "C", "rectangle", "", -1.0, -1.0},
+                     {"C", 1, "C", "C", "", -1.0, -1.0}};
         one.seeds.push_back(o);
         QCOMPARE(o.misnamed(),
                  (std::vector<std::string>{
@@ -577,7 +580,8 @@ private slots:
         // report them in seed order; a stop after the fourth keeps four.
         const ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
         std::vector<std::uint64_t> heard;
-        const SeedRates side = runSeeds(simulatedRigs(), spec, 1, 10, "",
+        const SeedRates side = runSeeds(
+            simulatedRigs(), spec, 1, 10, "",
             [&](const SeedOutcome& o) {
                 heard.push_back(o.seed);
                 return true;
@@ -595,7 +599,8 @@ private slots:
             QCOMPARE(a.runRobotTime_s, b.runRobotTime_s);
             QCOMPARE(a.angleError_deg, b.angleError_deg);
         }
-        const SeedRates stopped = runSeeds(simulatedRigs(), spec, 1, 10, "", [](const SeedOutcome& o) { return o.seed < 4; }, 3);
+        const SeedRates stopped = runSeeds(
+            simulatedRigs(), spec, 1, 10, "", [](const SeedOutcome& o) { return o.seed < 4; }, 3);
         QCOMPARE(stopped.seeds.size(), std::size_t(4));
         QCOMPARE(stopped.seeds.back().seed, std::uint64_t(4));
     }
@@ -661,7 +666,8 @@ private slots:
         // totals are that experiment's own rates, and every trial the two ended differently is
         // among the disagreements.
         std::vector<int> heard;  // seeds compared, as each seed reports it
-        const PairedComparison c = comparePaired(simulatedRigs(), loadExperiment(test::sourcePath("experiments/paper.json")),
+        const PairedComparison c = comparePaired(
+            simulatedRigs(), loadExperiment(test::sourcePath("experiments/paper.json")),
             loadExperiment(test::sourcePath("experiments/paper_kernel.json")), 1, 10, "",
             [&](std::uint64_t seed, const std::vector<PairedTrial>& pairs,
                 const PairedComparison& soFar) {
