@@ -120,6 +120,11 @@ private slots:
             for (const auto& p : d.parameters) e[p.key] = p.typical;
             if (d.name == "adc_quantisation") e["max_counts"] = 60;  // low enough to saturate
             if (d.name == "dead_taxel") e["taxels"] = {9};
+            if (d.name == "intermittent_taxel") {
+                e["taxels"] = {9};
+                e["off_fraction"] = 0.3;
+            }
+            if (d.name == "saturation_recovery") e["saturation_counts"] = 20;  // reached here
             if (d.name == "stage_error") e["sigma_mm"] = 0.3;
             if (d.name == "contact_latency") e["latency_s"] = 0.04;
             if (d.name == "viscoelastic_memory") {
@@ -201,6 +206,54 @@ private slots:
                 for (int s = 0; s < t.tap.sampleCount(); ++s) QCOMPARE(t.tap.at(s, 9), 0.0);
             for (int k = 0; k < 12; ++k)
                 if (k != 9) QCOMPARE(plane.at(25, k), idealPlane.at(25, k));
+        } else if (name == "taxel_gain") {
+            // Every taxel reads its ideal pressure times a gain of its own, the same in every
+            // tap, and the gains differ.
+            std::vector<double> gain(12, 0.0);
+            for (std::size_t i = 0; i < taps.size(); ++i)
+                for (int s = 0; s < taps[i].tap.sampleCount(); ++s)
+                    for (int k = 0; k < 12; ++k) {
+                        const double ideal = ideal_[i].tap.at(s, k);
+                        if (ideal < 1.0) continue;
+                        const double g = taps[i].tap.at(s, k) / ideal;
+                        if (gain[static_cast<std::size_t>(k)] == 0.0)
+                            gain[static_cast<std::size_t>(k)] = g;
+                        QVERIFY(std::abs(g - gain[static_cast<std::size_t>(k)]) < 1e-9);
+                    }
+            const auto [lo, hi] = std::minmax_element(gain.begin(), gain.end());
+            QVERIFY(*lo > 0.0 && *hi > *lo * 1.05);
+            // The fingertip's gains do not depend on the run's seed: another seed, same gains.
+            SceneSpec other = withEffect(effect.toStdString());
+            other.seed += 1000;
+            SimulatedRig again(other, model());
+            QVERIFY(tapAcrossEdge(again)[0].tap.samples == plane.samples);
+        } else if (name == "saturation_recovery") {
+            // Nothing reads above the level; once the press eases, a saturated taxel comes down
+            // along the recovery, not with the pressure.
+            bool saturated = false, lingering = false;
+            for (std::size_t i = 0; i < taps.size(); ++i)
+                for (int s = 0; s < taps[i].tap.sampleCount(); ++s)
+                    for (int k = 0; k < 12; ++k) {
+                        const double v = taps[i].tap.at(s, k);
+                        QVERIFY(v <= 20.0);
+                        saturated = saturated || v == 20.0;
+                        lingering = lingering || (v < 20.0 && v > ideal_[i].tap.at(s, k) + 1.0);
+                    }
+            QVERIFY(saturated && lingering);
+        } else if (name == "intermittent_taxel") {
+            // Taxel 9 drops to 0 now and then where it is pressed; the others are untouched.
+            int dropped = 0, pressed = 0;
+            for (std::size_t i = 0; i < taps.size(); ++i)
+                for (int s = 0; s < taps[i].tap.sampleCount(); ++s) {
+                    for (int k = 0; k < 12; ++k)
+                        if (k != 9) QCOMPARE(taps[i].tap.at(s, k), ideal_[i].tap.at(s, k));
+                    if (ideal_[i].tap.at(s, 9) > 1.0) {
+                        ++pressed;
+                        dropped += taps[i].tap.at(s, 9) == 0.0;
+                    }
+                }
+            qInfo("taxel 9 off in %d of %d pressed samples (long-run share 0.3)", dropped, pressed);
+            QVERIFY(dropped > 0 && dropped < pressed);
         } else {
             QFAIL(qPrintable("no behaviour check for effect " + QString::fromStdString(name)));
         }

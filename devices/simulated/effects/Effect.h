@@ -1,13 +1,13 @@
 #pragma once
-// A physical effect of the simulated rig beyond the ideal model (docs/simulated-rig.md). An effect exists
-// only if the scene lists it: the pipeline constructs exactly the listed ones, so an unlisted
-// effect costs nothing at run time. Each effect acts at one place:
+// A physical effect of the simulated rig beyond the ideal model (docs/simulated-rig.md). An effect
+// exists only if the scene lists it: the pipeline constructs exactly the listed ones, so an
+// unlisted effect costs nothing at run time. Each effect acts at one place:
 //   pose      - where the stage really puts the fingertip (stage_error)
 //   mechanics - how the tapper's stroke ends (contact_latency)
 //   signal    - what the taxels report (everything else), in a fixed physical order:
 //               link_dropout (the stream failing before anything is reported),
-//               viscoelastic_memory, crosstalk, dead_taxel, baseline_drift, taxel_noise,
-//               adc_quantisation.
+//               viscoelastic_memory, crosstalk, taxel_gain, saturation_recovery, dead_taxel,
+//               intermittent_taxel, baseline_drift, taxel_noise, adc_quantisation.
 #include <functional>
 #include <memory>
 #include <string>
@@ -68,7 +68,7 @@ struct EffectDescription {
     std::string name;
     std::string models;  ///< one sentence: what the effect models
     std::vector<EffectParameter> parameters;
-    bool takesTaxelList = false;  ///< dead_taxel's "taxels": [indices]
+    bool takesTaxelList = false;  ///< "taxels": [indices] (dead_taxel, intermittent_taxel)
     std::function<std::unique_ptr<Effect>(const JsonFields&, const FingertipContactModel&,
                                           RandomStream)>
         make;

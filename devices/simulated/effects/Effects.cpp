@@ -124,6 +124,104 @@ private:
     std::vector<std::pair<int, int>> pairs_;  // (reader, neighbour)
 };
 
+/// Each taxel's own sensitivity: real skins differ taxel to taxel, so the same pressure reads
+/// higher on some than on others. The gains are log-normal around 1 (the log's standard
+/// deviation is `spread`) and belong to the fingertip, not to a tap or a trial: they are drawn
+/// from `fingertip_seed`, so training and trials, and every seed of a sweep, use the same
+/// fingertip unless the scene names another.
+class TaxelGain final : public Effect {
+public:
+    TaxelGain(double spread, double fingertipSeed, int taxels)
+        : Effect("taxel_gain", Acts::Signal, 25) {
+        RandomStream draw =
+            RandomStream::derived(static_cast<std::uint64_t>(fingertipSeed), "taxel_gain");
+        for (int k = 0; k < taxels; ++k) gains_.push_back(std::exp(spread * draw.normal()));
+    }
+    void shapeSignal(Tap& tap, const SignalContext&) override {
+        for (int t = 0; t < tap.sampleCount(); ++t)
+            for (int k = 0; k < tap.taxels; ++k)
+                tap.at(t, k) *= gains_[static_cast<std::size_t>(k)];
+    }
+
+private:
+    std::vector<double> gains_;
+};
+
+/// A taxel that saturates and then recovers slowly: above `level` it reads `level`, and once
+/// the pressure falls back its reading decays from the level with time constant `tau` instead
+/// of following at once, across taps too (the lingering reading of an overloaded skin).
+class SaturationRecovery final : public Effect {
+public:
+    SaturationRecovery(double level, double tau, int taxels)
+        : Effect("saturation_recovery", Acts::Signal, 27),
+          level_(level),
+          tau_(tau),
+          lastSaturated_(static_cast<std::size_t>(taxels), -INFINITY) {}
+    void shapeSignal(Tap& tap, const SignalContext& c) override {
+        for (int t = 0; t < tap.sampleCount(); ++t) {
+            const double now = c.startTime_s + t * c.samplePeriod_s;
+            for (int k = 0; k < tap.taxels; ++k) {
+                double& since = lastSaturated_[static_cast<std::size_t>(k)];
+                double& v = tap.at(t, k);
+                if (v >= level_) {
+                    v = level_;
+                    since = now;
+                } else if (std::isfinite(since)) {
+                    v = std::max(v, level_ * std::exp(-(now - since) / tau_));
+                }
+            }
+        }
+    }
+
+private:
+    double level_, tau_;
+    std::vector<double> lastSaturated_;  ///< robot time each taxel was last saturated
+};
+
+/// Taxels that blink: each listed taxel switches between working and reading a fixed value
+/// (0: dropping out; a high value: a spurious activation) as a two-state Markov process in
+/// robot time, off a long-run `off_fraction` of the time for `mean_off_s` on average.
+class IntermittentTaxel final : public Effect {
+public:
+    IntermittentTaxel(std::vector<int> taxels, double offFraction, double meanOff, double reading,
+                      RandomStream rng)
+        : Effect("intermittent_taxel", Acts::Signal, 35),
+          taxels_(std::move(taxels)),
+          onRate_(1.0 / meanOff),
+          offRate_(offFraction >= 1.0 ? INFINITY : offFraction / (1.0 - offFraction) / meanOff),
+          stationaryOff_(offFraction),
+          reading_(reading),
+          off_(taxels_.size(), false),
+          rng_(rng) {}
+    void shapeSignal(Tap& tap, const SignalContext& c) override {
+        // Between taps the chain runs on unobserved: the chance of being off after a gap is the
+        // two-state chain's, relaxing to the long-run fraction at rate on + off.
+        const double gap = std::isfinite(lastTime_) ? c.startTime_s - lastTime_ : INFINITY;
+        for (std::size_t i = 0; i < taxels_.size(); ++i) {
+            const double start = off_[i] ? 1.0 : 0.0;
+            const double relax =
+                std::isfinite(offRate_) ? std::exp(-(onRate_ + offRate_) * gap) : 0.0;
+            off_[i] = rng_.uniform() < stationaryOff_ + (start - stationaryOff_) * relax;
+        }
+        const double dt = c.samplePeriod_s;
+        const double pOff = std::isfinite(offRate_) ? 1.0 - std::exp(-offRate_ * dt) : 1.0;
+        const double pOn = 1.0 - std::exp(-onRate_ * dt);
+        for (int t = 0; t < tap.sampleCount(); ++t)
+            for (std::size_t i = 0; i < taxels_.size(); ++i) {
+                if (t > 0) off_[i] = off_[i] ? !(rng_.uniform() < pOn) : rng_.uniform() < pOff;
+                if (off_[i]) tap.at(t, taxels_[i]) = reading_;
+            }
+        lastTime_ = c.startTime_s + tap.sampleCount() * dt;
+    }
+
+private:
+    std::vector<int> taxels_;
+    double onRate_, offRate_, stationaryOff_, reading_;
+    std::vector<bool> off_;
+    RandomStream rng_;
+    double lastTime_ = -INFINITY;
+};
+
 /// Taxels that never respond (or are stuck at a reading).
 class DeadTaxel final : public Effect {
 public:
@@ -310,14 +408,51 @@ const std::vector<EffectDescription>& effectCatalogue() {
                          return std::make_unique<Crosstalk>(f.number("coupling", 0.0, 0.5),
                                                             f.number("radius_mm", 0.0, 30.0), m);
                      }});
+        c.push_back({"dead_taxel",
+                     "Listed taxels read a fixed value (0 = dead) whatever the contact.",
+                     {{"reading_counts", "the stuck reading, counts", 0.0, 255.0, 0.0}},
+                     true,
+                     [](const JsonFields& f, const M& m, RandomStream) {
+                         return std::make_unique<DeadTaxel>(effectTaxelList(f, m.taxelCount()),
+                                                            f.number("reading_counts", 0.0, 255.0));
+                     }});
         c.push_back(
-            {"dead_taxel",
-             "Listed taxels read a fixed value (0 = dead) whatever the contact.",
-             {{"reading_counts", "the stuck reading, counts", 0.0, 255.0, 0.0}},
-             true,
+            {"taxel_gain",
+             "Each taxel's own sensitivity: gains log-normal around 1, fixed for the "
+             "fingertip.",
+             {{"spread", "standard deviation of the gains' logarithm", 0.0, 1.0, 0.2},
+              {"fingertip_seed", "which fingertip's gains (any whole number)", 0.0, 1e9, 1.0}},
+             false,
              [](const JsonFields& f, const M& m, RandomStream) {
-                 return std::make_unique<DeadTaxel>(effectTaxelList(f, m.taxelCount()),
-                                                    f.number("reading_counts", 0.0, 255.0));
+                 const double seed = f.number("fingertip_seed", 0.0, 1e9);
+                 if (seed != std::floor(seed)) f.fail("fingertip_seed", "give a whole number");
+                 return std::make_unique<TaxelGain>(f.number("spread", 0.0, 1.0), seed,
+                                                    m.taxelCount());
+             }});
+        c.push_back(
+            {"saturation_recovery",
+             "Taxels saturate at a level and, once released, recover from it slowly.",
+             {{"saturation_counts", "the level a taxel saturates at, counts", 1.0, 1000.0, 150.0},
+              {"recovery_s", "time constant of the recovery, seconds", 0.001, 60.0, 1.0}},
+             false,
+             [](const JsonFields& f, const M& m, RandomStream) {
+                 return std::make_unique<SaturationRecovery>(
+                     f.number("saturation_counts", 1.0, 1000.0),
+                     f.number("recovery_s", 0.001, 60.0), m.taxelCount());
+             }});
+        c.push_back(
+            {"intermittent_taxel",
+             "Listed taxels blink: off (reading a fixed value) for a share of the time, at "
+             "random.",
+             {{"off_fraction", "long-run share of the time a taxel is off", 0.0, 1.0, 0.1},
+              {"mean_off_s", "mean length of an off spell, seconds", 0.001, 60.0, 0.1},
+              {"reading_counts", "what an off taxel reads (0: nothing), counts", 0.0, 255.0, 0.0}},
+             true,
+             [](const JsonFields& f, const M& m, RandomStream r) {
+                 return std::make_unique<IntermittentTaxel>(
+                     effectTaxelList(f, m.taxelCount()), f.number("off_fraction", 0.0, 1.0),
+                     f.number("mean_off_s", 0.001, 60.0), f.number("reading_counts", 0.0, 255.0),
+                     r);
              }});
         c.push_back({"link_dropout",
                      "The fingertip's stream drops during a tap, as a flaky cable or network "
@@ -336,15 +471,16 @@ const std::vector<EffectDescription>& effectCatalogue() {
 std::vector<int> effectTaxelList(const JsonFields& f, int taxelCount) {
     const std::string indices = "taxel indices 0.." + std::to_string(taxelCount - 1);
     if (!f.has("taxels") || !f.raw("taxels").is_array() || f.raw("taxels").empty())
-        f.fail("taxels", "dead_taxel needs 'taxels': a non-empty list of " + indices);
+        f.fail("taxels", "this effect needs 'taxels': a non-empty list of " + indices);
     std::vector<int> list;
     for (const auto& v : f.raw("taxels")) {
         // An index is compared as a whole number of any size: a huge one must not wrap.
-        const bool valid = v.is_number_integer() && v.get<long long>() >= 0 &&
-                           v.get<long long>() < taxelCount && !(v.is_number_unsigned() &&
-                                                                v.get<unsigned long long>() >=
-                                                                    static_cast<unsigned long long>(taxelCount));
-        if (!valid) f.fail("taxels", "taxel " + describeJson(v) + " does not exist; use " + indices);
+        const bool valid =
+            v.is_number_integer() && v.get<long long>() >= 0 && v.get<long long>() < taxelCount &&
+            !(v.is_number_unsigned() &&
+              v.get<unsigned long long>() >= static_cast<unsigned long long>(taxelCount));
+        if (!valid)
+            f.fail("taxels", "taxel " + describeJson(v) + " does not exist; use " + indices);
         list.push_back(static_cast<int>(v.get<long long>()));
     }
     return list;
