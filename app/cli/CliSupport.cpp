@@ -275,6 +275,12 @@ void printReport(const RunResult& result, double wall, double figures_s,
         "%s\n",
         v.angleError_deg, v.positionError_mm, 100.0 * v.correctFraction,
         v.validRange.text().c_str());
+    if (const BeliefCalibration& b = result.beliefCalibration; b.measured)
+        std::printf(
+            "belief calibration: expected calibration error %.3f raw, %.3f scaled (%s, factor "
+            "%.3g; per-sample mean %.3g gives %.3f) on %d held-out taps\n",
+            b.eceRaw, b.eceCalibrated, b.method.c_str(), b.scale, b.perSampleScale, b.ecePerSample,
+            b.evaluationTaps);
     if (v.continuousValidated)
         std::printf(
             "continuous percept: median angle error %.2f deg inside the valid range (%.2f deg "

@@ -291,6 +291,15 @@ void trainAndValidate(RunResult& result, const std::vector<IdealClassContact>& i
         result.classifier, result.classes, tests, spec.validRangeWidth,
         spec.following.percept == PerceptKind::Continuous ? spec.following.perceptTemperature
                                                           : -1.0);
+    {
+        std::vector<const Tap*> heldOut;
+        std::vector<int> truth;
+        for (const CollectedTap* t : tests) {
+            heldOut.push_back(&t->record.tap);
+            truth.push_back(t->cls);
+        }
+        result.beliefCalibration = calibrateBelief(result.classifier, heldOut, truth);
+    }
     const ControllerRange range = controllerRange(result.classes, result.validation,
                                                   spec.following.orientationTrustMaxError_deg);
     result.validOffsets = range.offsets;

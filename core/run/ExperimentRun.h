@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/classify/BeliefCalibration.h"
 #include "core/classify/HistogramClassifier.h"
 #include "core/control/ContourFollower.h"
 #include "core/experiment/Experiment.h"
@@ -100,6 +101,9 @@ struct RunResult {
     /// training.retrain_on_all_sets); 0: the trials follow with the validated classifier.
     int classifierRetrainedOnTaps = 0;
     ValidationResult validation;
+    /// How far one tap's posterior can be believed, raw and scaled, on the held-out taps
+    /// (core/classify/BeliefCalibration.h).
+    BeliefCalibration beliefCalibration;
     ValidOffsets
         validOffsets;  ///< the valid range as offsets from the edge, used by the controller
     std::pair<int, int> trustedPositions{1,

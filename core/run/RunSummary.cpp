@@ -69,24 +69,23 @@ Json validationJson(const RunResult& r) {
             {"temperature", r.spec.following.perceptTemperature > 0.0
                                 ? Json(r.spec.following.perceptTemperature)
                                 : Json("samples per taxel")}};
-    return {
-        {"continuous_percept", continuous},
-        {"angle_error_deg_mean", v.angleError_deg},
-        {"position_error_mm_mean", v.positionError_mm},
-        {"class_accuracy", v.correctFraction},
-        {"valid_range_mm",
-         {v.validRange.first * cs.positionStep_mm, v.validRange.last * cs.positionStep_mm}},
-        {"valid_range_positions", {v.validRange.first, v.validRange.last}},
-        {"valid_range_offset_mm",
-         {cs.offsetOf(v.validRange.first), cs.offsetOf(v.validRange.last)}},
-        {"valid_range_rule", "the window of " + std::to_string(r.spec.validRangeWidth) +
-                                 " consecutive positions with the lowest sum of "
-                                 "orientation-averaged angle and position errors, "
-                                 "each normalised by its maximum over positions; ties to the "
-                                 "window nearest the edge"},
-        {"test_taps", v.percepts.size()},
-        {"by_class", byClass},
-        {"by_position", byPosition}};
+    return {{"continuous_percept", continuous},
+            {"angle_error_deg_mean", v.angleError_deg},
+            {"position_error_mm_mean", v.positionError_mm},
+            {"class_accuracy", v.correctFraction},
+            {"valid_range_mm",
+             {v.validRange.first * cs.positionStep_mm, v.validRange.last * cs.positionStep_mm}},
+            {"valid_range_positions", {v.validRange.first, v.validRange.last}},
+            {"valid_range_offset_mm",
+             {cs.offsetOf(v.validRange.first), cs.offsetOf(v.validRange.last)}},
+            {"valid_range_rule", "the window of " + std::to_string(r.spec.validRangeWidth) +
+                                     " consecutive positions with the lowest sum of "
+                                     "orientation-averaged angle and position errors, "
+                                     "each normalised by its maximum over positions; ties to the "
+                                     "window nearest the edge"},
+            {"test_taps", v.percepts.size()},
+            {"by_class", byClass},
+            {"by_position", byPosition}};
 }
 
 Json followingJson(const RunResult& r) {
@@ -146,22 +145,22 @@ Json recognitionJson(const RunResult& r) {
         ++confusionSmoothed[t.label][t.recognition.predictedSmoothed];
     }
     return {{"accuracy", r.recognitionAccuracy},
-                        {"accuracy_smoothed", r.recognitionAccuracySmoothed},
-                        {"of_mode", modeName(r.spec.recognition.ofMode)},
-                        {"bins", r.spec.recognition.bins},
-                        {"smoothing_sigma_bins", r.spec.recognition.smoothingSigmaBins},
-                        {"trials", trials},
-                        {"confusion", confusion},
-                        {"confusion_smoothed", confusionSmoothed},
-                        {"any_pose",
-                         {{"accuracy", r.recognitionAccuracyAnyPose},
-                          {"median_rotation_error_deg", r.medianRotationError_deg},
-                          {"median_position_error_mm", r.medianPositionError_mm},
-                          {"confusion", confusionAnyPose},
-                          {"rule",
-                           "each shape's outline turned and moved onto the path, scored by the "
-                           "root mean square of distances both ways capped at 5 mm; the lowest "
-                           "score names the path"}}}};
+            {"accuracy_smoothed", r.recognitionAccuracySmoothed},
+            {"of_mode", modeName(r.spec.recognition.ofMode)},
+            {"bins", r.spec.recognition.bins},
+            {"smoothing_sigma_bins", r.spec.recognition.smoothingSigmaBins},
+            {"trials", trials},
+            {"confusion", confusion},
+            {"confusion_smoothed", confusionSmoothed},
+            {"any_pose",
+             {{"accuracy", r.recognitionAccuracyAnyPose},
+              {"median_rotation_error_deg", r.medianRotationError_deg},
+              {"median_position_error_mm", r.medianPositionError_mm},
+              {"confusion", confusionAnyPose},
+              {"rule",
+               "each shape's outline turned and moved onto the path, scored by the "
+               "root mean square of distances both ways capped at 5 mm; the lowest "
+               "score names the path"}}}};
 }
 
 Json sweepsJson(const SweepResults& sweeps) {
@@ -235,6 +234,32 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
                      {"placement_jitter_mm", r.spec.training.placementJitter_mm},
                      {"retrain_on_all_sets", r.spec.training.retrainOnAllSets}};
     if (!r.validation.byClass.empty()) j["validation"] = validationJson(r);
+    if (const BeliefCalibration& b = r.beliefCalibration; b.measured) {
+        auto bins = [](const std::vector<ReliabilityBin>& v) {
+            Json a = Json::array();
+            for (const ReliabilityBin& x : v)
+                a.push_back({{"confidence_from", x.lo},
+                             {"confidence_to", x.hi},
+                             {"taps", x.taps},
+                             {"mean_confidence", x.meanConfidence},
+                             {"accuracy", x.accuracy}});
+            return a;
+        };
+        j["belief_calibration"] = {
+            {"ece_raw", b.eceRaw},
+            {"ece_calibrated", b.eceCalibrated},
+            {"scaling", {{"method", b.method}, {"factor", b.scale}}},
+            {"candidates",
+             {{"fitted_temperature", {{"factor", b.fittedScale}, {"ece", b.eceFitted}}},
+              {"mean_per_sample", {{"factor", b.perSampleScale}, {"ece", b.ecePerSample}}}}},
+            {"single_tap_accuracy", b.accuracy},
+            {"taps_fitted", b.fitTaps},
+            {"taps_evaluated", b.evaluationTaps},
+            {"which_taps",
+             "the held-out (test) taps: the factor fitted on every other one, every error "
+             "measured on the rest"},
+            {"reliability", {{"raw", bins(b.raw)}, {"calibrated", bins(b.calibrated)}}}};
+    }
     if (!r.failure.empty()) j["failure"] = r.failure;
     j["cautions"] = untrainedEdgeCautions(r.spec);
     j["controller"] = {
@@ -266,8 +291,7 @@ ArtefactTiming writeRunArtefacts(const RunResult& result, const std::string& out
     writeRunTables(result, outDir);
     ArtefactTiming t;
     if (drawFigures) t.figures_s = drawFigures();
-    t.wall_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    t.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     writeSummary(result, outDir, t.wall_s, t.figures_s);
     return t;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/classify/BeliefCalibration.h"
 #include "core/classify/SequentialPerception.h"
 #include "core/common/Random.h"
 
@@ -135,6 +136,65 @@ private slots:
         b.shift({0.0, -50.0});  // far past the window: the mass stays at the end
         QCOMPARE(b.best(), classes_.classOf(0, 18));
         verifyNormalised(b);
+    }
+
+    void expectedCalibrationErrorByHand() {
+        // Four taps at 0.9 of which three are right, two at 0.3 of which one is: |0.75 - 0.9|
+        // over four taps and |0.5 - 0.3| over two.
+        std::vector<ReliabilityBin> bins;
+        const double ece = expectedCalibrationError(
+            {0.9, 0.9, 0.9, 0.9, 0.3, 0.3}, {true, true, true, false, false, true}, 10, &bins);
+        QVERIFY(std::abs(ece - (4 * 0.15 + 2 * 0.2) / 6) < 1e-12);
+        QCOMPARE(bins.size(), std::size_t{10});
+        QCOMPARE(bins[9].taps, 4);
+        QCOMPARE(bins[3].taps, 2);
+        QCOMPARE(bins[9].accuracy, 0.75);
+        // A confidence of exactly 1 falls in the top bin; none at all gives 0, not NaN.
+        QCOMPARE(expectedCalibrationError({1.0, 1.0}, {true, true}, 10), 0.0);
+        QCOMPARE(expectedCalibrationError({}, {}, 10), 0.0);
+        QCOMPARE(expectedCalibrationError({qQNaN()}, {false}, 10), 0.0);  // NaN counts as 0
+    }
+
+    void scaledBeliefsStayFiniteAndKeepTheArgmax() {
+        // Scaling never moves the winner, at any factor a calibration can give; and at extreme
+        // factors and likelihoods the posterior stays a number in [0, 1].
+        RandomStream r(61);
+        std::vector<double> ll(72);
+        for (int trial = 0; trial < 200; ++trial) {
+            for (double& v : ll) v = -3000.0 + 400.0 * r.uniform();
+            int top = -1;
+            const int exact = argmaxLowestIndex(ll.data(), 72);
+            for (double scale : {1.0, 0.0159, 1.0 / 600, 1e-6}) {
+                const double p = scaledTopPosterior(ll.data(), 72, scale, &top);
+                QCOMPARE(top, exact);
+                QVERIFY(p > 0.0 && p <= 1.0);
+            }
+        }
+        const double inf = std::numeric_limits<double>::infinity();
+        const std::vector<std::vector<double>> hostile{
+            {-inf, -inf, -inf}, {qQNaN(), qQNaN(), qQNaN()}, {-1e308, -1e308, 0.0},
+            {inf, 0.0, -inf},   {-1e308, 1e308, qQNaN()},    {0.0, 0.0, 0.0}};
+        for (const auto& h : hostile)
+            for (double scale : {0.0, 1e-300, 1e-3, 1.0, 1e300, inf, qQNaN(), -1.0}) {
+                int top = -1;
+                const double p = scaledTopPosterior(h.data(), 3, scale, &top);
+                QVERIFY2(std::isfinite(p) && p >= 0.0 && p <= 1.0 && top >= 0 && top < 3,
+                         qPrintable(QString("scale %1 gives %2").arg(scale).arg(p)));
+            }
+        // Fitting a factor on taps that are right with 80 % confidence at factor 0.01.
+        std::vector<std::vector<double>> taps;
+        std::vector<int> truth;
+        for (int t = 0; t < 400; ++t) {
+            std::vector<double> v(4, -100.0 * std::log(20.0));  // each wrong class: 1/20 as likely
+            v[0] = 0.0;
+            taps.push_back(v);
+            truth.push_back(r.uniform() < 0.87 ? 0 : 1 + t % 3);
+        }
+        const double s = fitLogLikelihoodScale(taps, truth);
+        int top = 0;
+        qInfo("fitted factor %.5f; confidence %.3f for 87 %% right", s,
+              scaledTopPosterior(taps[0].data(), 4, s, &top));
+        QVERIFY(std::abs(scaledTopPosterior(taps[0].data(), 4, s, &top) - 0.87) < 0.05);
     }
 };
 

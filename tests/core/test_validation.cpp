@@ -76,6 +76,15 @@ private slots:
             QVERIFY(mean(v.angleMean, 17, 18) > 45.0);
             // Each tap was classified once, into one of 72 classes.
             QCOMPARE(int(v.percepts.size()), 4 * 72);
+            // One tap's raw posterior is overconfident; the fitted temperature (cross-fitted on
+            // the held-out taps) brings its calibration error down by far.
+            const BeliefCalibration& b = r.beliefCalibration;
+            QVERIFY(b.measured && b.evaluationTaps == 4 * 72);
+            qInfo("seed %d: ECE raw %.3f, scaled %.3f (factor %.4f; per-sample mean %.3f)",
+                  int(seed), b.eceRaw, b.eceCalibrated, b.scale, b.ecePerSample);
+            QVERIFY(b.eceRaw > 0.25);
+            QVERIFY(b.eceCalibrated < 0.5 * b.eceRaw && b.eceCalibrated < 0.1);
+            QVERIFY(b.scale > 0.0 && b.scale < 1.0);
         }
     }
 
