@@ -300,6 +300,8 @@ void DevicesPanel::addFingertipBox(QVBoxLayout* layout) {
     nameServerShown_ = new QLabel;
     nameServerShown_->setObjectName("nameServerShown");
     nameServerShown_->setWordWrap(true);
+    // A conf file's path is one long word: let the dock's width decide, not the path.
+    nameServerShown_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
     nameServerShown_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     yarpPort_ = new QLineEdit("/icub/skin/right_hand_comp");
     yarpPort_->setObjectName("yarpPort");
@@ -307,8 +309,11 @@ void DevicesPanel::addFingertipBox(QVBoxLayout* layout) {
     finger_->addItems({tr("index"), tr("middle"), tr("ring"), tr("little"), tr("thumb")});
     carrier_ = new QComboBox;
     carrier_->setObjectName("yarpCarrier");
-    carrier_->addItems({tr("binary (YARP's own; reads Vector and Bottle ports)"),
-                        tr("text (Bottle ports only: Vector ports answer it with raw memory)")});
+    carrier_->addItems({tr("binary (Vector and Bottle ports)"), tr("text (Bottle ports only)")});
+    carrier_->setToolTip(
+        tr("The binary carrier is YARP's own and reads skinManager's Vector ports and Bottle "
+           "ports. The text carrier reads Bottle ports only: a YARP 4 Vector port answers a text "
+           "reader with raw memory and its publisher crashes."));
     compensate_ = new QCheckBox(tr("raw stream: compensate here (skinManager style)"));
     picksDevices_ << nameServerHost_ << nameServerPort_ << yarpPort_ << finger_ << carrier_
                   << compensate_;
