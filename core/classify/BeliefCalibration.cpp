@@ -139,14 +139,15 @@ BeliefCalibration calibrateBelief(const HistogramClassifier& classifier,
             }
         return expectedCalibrationError(confidence, correct, 10, bins);
     };
+    std::vector<ReliabilityBin> fittedBins, perSampleBins;
     r.eceRaw = ece([](int) { return 1.0; }, &r.raw);
-    r.eceFitted = ece([&](int f) { return foldScale[f]; }, nullptr);
-    r.ecePerSample = ece([&](int) { return r.perSampleScale; }, nullptr);
+    r.eceFitted = ece([&](int f) { return foldScale[f]; }, &fittedBins);
+    r.ecePerSample = ece([&](int) { return r.perSampleScale; }, &perSampleBins);
     const bool fitted = r.eceFitted <= r.ecePerSample;
     r.scale = fitted ? r.fittedScale : r.perSampleScale;
     r.method = fitted ? "temperature fitted on held-out taps" : "mean per sample";
-    r.eceCalibrated = fitted ? ece([&](int f) { return foldScale[f]; }, &r.calibrated)
-                             : ece([&](int) { return r.perSampleScale; }, &r.calibrated);
+    r.eceCalibrated = fitted ? r.eceFitted : r.ecePerSample;
+    r.calibrated = fitted ? fittedBins : perSampleBins;
     int right = 0;
     for (std::size_t t = 0; t < all.size(); ++t)
         right += argmaxLowestIndex(all[t].data(), C) == allTruth[t];

@@ -263,7 +263,11 @@ void FakeYarp::serveData(Client& c) {
             return;
         }
         if (c.in.size() < head + total) return;
-        const bool reverse = total >= 8 && c.in[head + 4] == '~' && c.in[head + 5] == 'r';
+        bool reverse = false;
+        try {
+            reverse = yarp::parseBinaryContent(c.in.data() + head, total).command == 'r';
+        } catch (const yarp::YarpError&) {
+        }
         c.in.erase(0, head + total);
         if (!reverse) return;
     }

@@ -197,10 +197,9 @@ public:
         // Between taps the chain runs on unobserved: the chance of being off after a gap is the
         // two-state chain's, relaxing to the long-run fraction at rate on + off.
         const double gap = std::isfinite(lastTime_) ? c.startTime_s - lastTime_ : INFINITY;
+        const double relax = std::isfinite(offRate_) ? std::exp(-(onRate_ + offRate_) * gap) : 0.0;
         for (std::size_t i = 0; i < taxels_.size(); ++i) {
             const double start = off_[i] ? 1.0 : 0.0;
-            const double relax =
-                std::isfinite(offRate_) ? std::exp(-(onRate_ + offRate_) * gap) : 0.0;
             off_[i] = rng_.uniform() < stationaryOff_ + (start - stationaryOff_) * relax;
         }
         const double dt = c.samplePeriod_s;
