@@ -29,7 +29,7 @@ void pointLabel(QCPAxisRect* rect, double x, double y, const QString& text) {
 void fit(QCPAxisRect* rect) {
     bool found = false;
     QCPRange x, y;
-    for (QCPGraph* g : rect->graphs()) {
+    for (QCPAbstractPlottable* g : rect->plottables()) {  // graphs and their error bars
         bool ok = false;
         const QCPRange gx = g->getKeyRange(ok);
         if (!ok) continue;
@@ -59,21 +59,37 @@ bool buildPerceptionSweepFigure(QCustomPlot& plot, const RunResult& r) {
                 "Accuracy costs time (a): sequential perception, error against taps per decision");
     if (rows.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    QVector<double> taps, angle, position;
+    QVector<double> taps, angle, position, angleBelow, angleAbove, positionBelow, positionAbove;
     for (const auto& row : rows) {
         taps << row.meanTaps;
         angle << row.angleError_deg;
         position << row.positionError_mm;
+        angleBelow << row.angleError_deg - row.angle_deg.low;
+        angleAbove << row.angle_deg.high - row.angleError_deg;
+        positionBelow << row.positionError_mm - row.position_mm.low;
+        positionAbove << row.position_mm.high - row.positionError_mm;
     }
-    auto* a = addTitledPanel(grid, 0, "angle error", "mean taps per decision", "angle error (°)");
+    auto* a = addTitledPanel(grid, 0, "edge angle error (edge classes)", "mean taps per decision",
+                             "angle error (°)");
     auto* p =
         addTitledPanel(grid, 1, "position error", "mean taps per decision", "position error (mm)");
     auto* la = addLegend(a);
     auto* lp = addLegend(p);
-    addSeries(a, la, "belief thresholds", taps, angle, seriesColour(0));
-    addSeries(p, lp, "belief thresholds", taps, position, seriesColour(0));
-    markPaper(a, la, 1.0, r.validation.angleError_deg, "paper: single tap (validation)");
-    markPaper(p, lp, 1.0, r.validation.positionError_mm, "paper: single tap (validation)");
+    const QString name = r.sweeps.perceptionCalibration.calibrated
+                             ? "belief thresholds (calibrated belief), 95 % intervals"
+                             : "belief thresholds, 95 % intervals";
+    auto bars = [](QCPGraph* g, const QVector<double>& below, const QVector<double>& above) {
+        auto* e = new QCPErrorBars(g->keyAxis(), g->valueAxis());
+        e->setDataPlottable(g);
+        e->setData(below, above);
+        e->setPen(g->pen());
+        e->removeFromLegend();
+    };
+    bars(addSeries(a, la, name, taps, angle, seriesColour(0)), angleBelow, angleAbove);
+    bars(addSeries(p, lp, name, taps, position, seriesColour(0)), positionBelow, positionAbove);
+    const PerceptionSweepRow& one = r.sweeps.perceptionSingleTap;
+    markPaper(a, la, one.meanTaps, one.angleError_deg, "paper: single tap (same taps)");
+    markPaper(p, lp, one.meanTaps, one.positionError_mm, "paper: single tap (same taps)");
     for (std::size_t i = 0; i < rows.size(); ++i) {
         pointLabel(a, taps[int(i)], angle[int(i)], QString::number(rows[i].threshold, 'g', 12));
         pointLabel(p, taps[int(i)], position[int(i)], QString::number(rows[i].threshold, 'g', 12));

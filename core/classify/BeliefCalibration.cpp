@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <limits>
 
 namespace activetouch {
@@ -56,7 +58,74 @@ double scaledTopPosterior(const double* ll, int count, double scale, int* top) {
     return std::clamp(std::exp(v[static_cast<std::size_t>(best)] - norm), 0.0, 1.0);
 }
 
+void calibratedLogBelief(const double* ll, int count, const BeliefScaling& scaling, double* out) {
+    if (count < 1) return;
+    const double s = std::isfinite(scaling.scale) && scaling.scale > 0.0 ? scaling.scale : 0.0;
+    const double e = std::isfinite(scaling.floor) ? std::clamp(scaling.floor, 0.0, 0.999999) : 0.0;
+    const double inf = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < count; ++c) {
+        double x = ll[c];
+        if (std::isnan(x)) x = -inf;
+        if (x == inf) x = std::numeric_limits<double>::max();
+        out[c] = s == 0.0 ? (std::isfinite(x) ? 0.0 : x) : s * x;
+    }
+    double norm = logSumExp(out, count);
+    if (!std::isfinite(norm)) {
+        // Nothing tells the classes apart (every class ruled out): an even belief.
+        for (int c = 0; c < count; ++c) out[c] = -std::log(static_cast<double>(count));
+        return;
+    }
+    for (int c = 0; c < count; ++c) out[c] -= norm;
+    if (e == 0.0) return;
+    // log((1 - e) p + e / C), as a log-sum of two terms so that tiny p stay exact.
+    const double a = std::log1p(-e), b = std::log(e / static_cast<double>(count));
+    for (int c = 0; c < count; ++c) {
+        const double x = a + out[c];
+        const double hi = std::max(x, b), lo = std::min(x, b);
+        out[c] = hi + std::log1p(std::exp(lo - hi));
+    }
+}
+
+double calibratedTopBelief(const double* ll, int count, const BeliefScaling& scaling, int* top) {
+    thread_local std::vector<double> v;
+    v.resize(static_cast<std::size_t>(std::max(1, count)));
+    calibratedLogBelief(ll, count, scaling, v.data());
+    // The top class is the log-likelihoods' own argmax (the calibration is monotone), found on
+    // them so that rounding in the scaling cannot reorder near-ties.
+    thread_local std::vector<double> clean;
+    clean.assign(ll, ll + count);
+    for (double& x : clean)
+        if (std::isnan(x)) x = -std::numeric_limits<double>::infinity();
+    const int best = argmaxLowestIndex(clean.data(), count);
+    if (top) *top = best;
+    return std::clamp(std::exp(v[static_cast<std::size_t>(best)]), 0.0, 1.0);
+}
+
 namespace {
+
+// Golden-section search for the least of f over [a, b].
+template <class F>
+double goldenMinimum(F f, double a, double b, double tolerance) {
+    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+    double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    double f1 = f(x1), f2 = f(x2);
+    for (int i = 0; i < 200 && b - a > tolerance; ++i) {
+        if (f1 <= f2) {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - g * (b - a);
+            f1 = f(x1);
+        } else {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + g * (b - a);
+            f2 = f(x2);
+        }
+    }
+    return 0.5 * (a + b);
+}
 
 double meanNegativeLogPosterior(const std::vector<std::vector<double>>& ll,
                                 const std::vector<int>& truth, double scale) {
@@ -75,29 +144,74 @@ double meanNegativeLogPosterior(const std::vector<std::vector<double>>& ll,
 
 double fitLogLikelihoodScale(const std::vector<std::vector<double>>& ll,
                              const std::vector<int>& truth) {
-    // Golden-section search over log10(scale) in [-8, 0]: the held-out negative log-likelihood
-    // of a temperature is unimodal in it.
-    double a = -8.0, b = 0.0;
-    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-    double x1 = b - g * (b - a), x2 = a + g * (b - a);
-    double f1 = meanNegativeLogPosterior(ll, truth, std::pow(10.0, x1));
-    double f2 = meanNegativeLogPosterior(ll, truth, std::pow(10.0, x2));
-    for (int i = 0; i < 80 && b - a > 1e-6; ++i) {
-        if (f1 <= f2) {
-            b = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = b - g * (b - a);
-            f1 = meanNegativeLogPosterior(ll, truth, std::pow(10.0, x1));
-        } else {
-            a = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = a + g * (b - a);
-            f2 = meanNegativeLogPosterior(ll, truth, std::pow(10.0, x2));
+    // Over log10(scale) in [-8, 0]: the held-out negative log-likelihood of a temperature is
+    // unimodal in it.
+    return std::pow(
+        10.0, goldenMinimum(
+                  [&](double x) { return meanNegativeLogPosterior(ll, truth, std::pow(10.0, x)); },
+                  -8.0, 0.0, 1e-6));
+}
+
+BeliefScaling fitBeliefScaling(const std::vector<std::vector<double>>& ll,
+                               const std::vector<int>& truth) {
+    BeliefScaling best;
+    if (ll.empty()) return best;
+    // For a given scale, the true classes' softmax probabilities; the floor's negative
+    // log-likelihood, -mean log((1 - e) p + e / C), is convex in e.
+    std::vector<double> p(ll.size());
+    std::vector<double> v;
+    auto floorFor = [&](double scale, double* cost) {
+        for (std::size_t t = 0; t < ll.size(); ++t) {
+            v.assign(ll[t].begin(), ll[t].end());
+            for (double& x : v)
+                x = std::isnan(x) ? -std::numeric_limits<double>::infinity() : scale * x;
+            const double norm = logSumExp(v.data(), static_cast<int>(v.size()));
+            const double lp = v[static_cast<std::size_t>(truth[t])] - norm;
+            p[t] = std::isfinite(lp) ? std::exp(lp) : 0.0;
         }
+        const double evenShare = 1.0 / static_cast<double>(ll.front().size());
+        auto nll = [&](double e) {
+            double sum = 0.0;
+            for (double q : p) sum -= std::log((1.0 - e) * q + e * evenShare);
+            return sum / static_cast<double>(p.size());
+        };
+        const double e = goldenMinimum(nll, 0.0, 0.99, 1e-5);
+        // The search's ends are not probed: keep no floor where none does better.
+        const double withFloor = nll(e), without = nll(0.0);
+        *cost = std::min(withFloor, without);
+        return withFloor < without ? e : 0.0;
+    };
+    const double logScale = goldenMinimum(
+        [&](double x) {
+            double cost = 0.0;
+            floorFor(std::pow(10.0, x), &cost);
+            return cost;
+        },
+        -8.0, 0.0, 1e-4);
+    best.scale = std::pow(10.0, logScale);
+    double cost = 0.0;
+    best.floor = floorFor(best.scale, &cost);
+    return best;
+}
+
+double expectedCalibrationErrorIfCalibrated(const std::vector<double>& confidence, int bins) {
+    if (confidence.empty()) return 0.0;
+    // A fixed 64-bit linear congruential sequence (Knuth's MMIX constants), its top 53 bits as
+    // a uniform draw: the same figure on every platform.
+    std::uint64_t state = 0x9E3779B97F4A7C15ULL;
+    auto uniform = [&] {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return static_cast<double>(state >> 11) * 0x1p-53;
+    };
+    constexpr int kDraws = 400;
+    std::vector<bool> right(confidence.size());
+    double sum = 0.0;
+    for (int d = 0; d < kDraws; ++d) {
+        for (std::size_t t = 0; t < confidence.size(); ++t)
+            right[t] = uniform() < std::clamp(confidence[t], 0.0, 1.0);
+        sum += expectedCalibrationError(confidence, right, bins);
     }
-    return std::pow(10.0, 0.5 * (a + b));
+    return sum / kDraws;
 }
 
 BeliefCalibration calibrateBelief(const HistogramClassifier& classifier,
@@ -107,8 +221,8 @@ BeliefCalibration calibrateBelief(const HistogramClassifier& classifier,
     if (heldOut.size() < 4 || heldOut.size() != truth.size() || !classifier.trained()) return r;
     const int C = classifier.classCount();
     // Two folds of the held-out taps (even- and odd-numbered): each tap's calibrated confidence
-    // comes from the factor fitted on the other fold, so every error is measured on taps the
-    // factor never saw; the factor kept for use is fitted on them all.
+    // comes from the scaling fitted on the other fold, so every error is measured on taps the
+    // scaling never saw; the scaling kept for use is fitted on them all.
     std::vector<std::vector<double>> ll[2];
     std::vector<int> fold[2];
     int samples = 0;
@@ -119,35 +233,86 @@ BeliefCalibration calibrateBelief(const HistogramClassifier& classifier,
         ll[t % 2].push_back(std::move(v));
         fold[t % 2].push_back(truth[t]);
     }
-    const double foldScale[2] = {fitLogLikelihoodScale(ll[1], fold[1]),
-                                 fitLogLikelihoodScale(ll[0], fold[0])};
     std::vector<std::vector<double>> all = ll[0];
     all.insert(all.end(), ll[1].begin(), ll[1].end());
     std::vector<int> allTruth = fold[0];
     allTruth.insert(allTruth.end(), fold[1].begin(), fold[1].end());
+    // The candidates: fitted per fold (to measure) and on every tap (to keep).
+    const BeliefScaling temperature[2] = {{fitLogLikelihoodScale(ll[1], fold[1]), 0.0},
+                                          {fitLogLikelihoodScale(ll[0], fold[0]), 0.0}};
+    const BeliefScaling withFloor[2] = {fitBeliefScaling(ll[1], fold[1]),
+                                        fitBeliefScaling(ll[0], fold[0])};
     r.fittedScale = fitLogLikelihoodScale(all, allTruth);
+    r.fittedWithFloor = fitBeliefScaling(all, allTruth);
     r.perSampleScale = 1.0 / std::max(1, samples);
-    // The expected calibration error with each tap's confidence at scale(fold).
-    auto ece = [&](auto scaleOf, std::vector<ReliabilityBin>* bins) {
+    // The expected calibration error with each tap's confidence under scaling(fold).
+    auto ece = [&](auto scalingOf, std::vector<ReliabilityBin>* bins,
+                   std::vector<double>* confidenceOut = nullptr) {
         std::vector<double> confidence;
         std::vector<bool> correct;
         for (int f = 0; f < 2; ++f)
             for (std::size_t t = 0; t < ll[f].size(); ++t) {
                 int top = 0;
-                confidence.push_back(scaledTopPosterior(ll[f][t].data(), C, scaleOf(f), &top));
+                confidence.push_back(calibratedTopBelief(ll[f][t].data(), C, scalingOf(f), &top));
                 correct.push_back(top == fold[f][t]);
             }
+        if (confidenceOut) *confidenceOut = confidence;
         return expectedCalibrationError(confidence, correct, 10, bins);
     };
-    std::vector<ReliabilityBin> fittedBins, perSampleBins;
-    r.eceRaw = ece([](int) { return 1.0; }, &r.raw);
-    r.eceFitted = ece([&](int f) { return foldScale[f]; }, &fittedBins);
-    r.ecePerSample = ece([&](int) { return r.perSampleScale; }, &perSampleBins);
-    const bool fitted = r.eceFitted <= r.ecePerSample;
-    r.scale = fitted ? r.fittedScale : r.perSampleScale;
-    r.method = fitted ? "temperature fitted on held-out taps" : "mean per sample";
-    r.eceCalibrated = fitted ? r.eceFitted : r.ecePerSample;
-    r.calibrated = fitted ? fittedBins : perSampleBins;
+    struct Candidate {
+        const char* method;
+        BeliefScaling kept;
+        double ece;
+        std::vector<ReliabilityBin> bins;
+        std::vector<double> confidence;
+    };
+    Candidate candidates[3] = {
+        {"temperature fitted on held-out taps", {r.fittedScale, 0.0}, 0.0, {}, {}},
+        {"temperature and floor fitted on held-out taps", r.fittedWithFloor, 0.0, {}, {}},
+        {"mean per sample", {r.perSampleScale, 0.0}, 0.0, {}, {}}};
+    candidates[0].ece =
+        ece([&](int f) { return temperature[f]; }, &candidates[0].bins, &candidates[0].confidence);
+    candidates[1].ece =
+        ece([&](int f) { return withFloor[f]; }, &candidates[1].bins, &candidates[1].confidence);
+    candidates[2].ece = ece(
+        [&](int) {
+            return BeliefScaling{r.perSampleScale, 0.0};
+        },
+        &candidates[2].bins, &candidates[2].confidence);
+    r.eceRaw = ece([](int) { return BeliefScaling{}; }, &r.raw);
+    r.eceFitted = candidates[0].ece;
+    r.eceFittedWithFloor = candidates[1].ece;
+    r.ecePerSample = candidates[2].ece;
+    const Candidate* kept = &candidates[0];
+    // The simpler candidate unless another does measurably better (a floor fitted at 0 is the
+    // temperature alone).
+    for (const Candidate& c : candidates)
+        if (c.ece < kept->ece - 1e-9) kept = &c;
+    r.method = kept->method;
+    r.scaling = kept->kept;
+    r.scale = r.scaling.scale;
+    r.eceCalibrated = kept->ece;
+    r.calibrated = kept->bins;
+    r.eceIfCalibrated = expectedCalibrationErrorIfCalibrated(kept->confidence, 10);
+    // The sequential factor: on the running sums of each class's held-out taps, in the order
+    // they were taken.
+    {
+        std::vector<std::vector<double>> sums;
+        std::vector<int> sumTruth;
+        std::vector<std::size_t> lastOfClass(static_cast<std::size_t>(C), SIZE_MAX);
+        for (std::size_t t = 0; t < heldOut.size(); ++t) {
+            const auto& v = ll[t % 2][t / 2];
+            auto& last = lastOfClass[static_cast<std::size_t>(truth[t])];
+            std::vector<double> sum = v;
+            if (last != SIZE_MAX)
+                for (std::size_t c = 0; c < sum.size(); ++c) sum[c] += sums[last][c];
+            last = sums.size();
+            sums.push_back(std::move(sum));
+            sumTruth.push_back(truth[t]);
+        }
+        r.sequential = {fitLogLikelihoodScale(sums, sumTruth), 0.0};
+        r.sequencePrefixes = static_cast<int>(sums.size());
+    }
     int right = 0;
     for (std::size_t t = 0; t < all.size(); ++t)
         right += argmaxLowestIndex(all[t].data(), C) == allTruth[t];

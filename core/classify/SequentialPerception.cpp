@@ -67,6 +67,18 @@ double SequentialBelief::bestPosterior() const {
     return std::exp(logPosterior_[static_cast<std::size_t>(best())]);
 }
 
+double SequentialBelief::perceptBelief() const {
+    // The most likely class's percept: the class alone for an edge, every class of its region
+    // for plane and air.
+    const int top = best();
+    const Region region = classes_.regionOf(top);
+    if (region == Region::Edge) return bestPosterior();
+    double mass = 0.0;
+    for (std::size_t c = 0; c < logPosterior_.size(); ++c)
+        if (classes_.regionOf(static_cast<int>(c)) == region) mass += std::exp(logPosterior_[c]);
+    return std::min(1.0, mass);
+}
+
 double SequentialBelief::posterior(int cls) const {
     return std::exp(logPosterior_[static_cast<std::size_t>(cls)]);
 }

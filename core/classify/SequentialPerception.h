@@ -33,7 +33,14 @@ public:
     double bestPosterior() const;
     double posterior(int cls) const;  ///< exp of the normalised log posterior
     const std::vector<double>& logPosterior() const { return logPosterior_; }
-    bool decided(double threshold) const { return bestPosterior() >= threshold; }
+
+    /// What the belief decides on: percepts, not classes. The percept is the most likely
+    /// class's (best()); an edge class is a percept of its own, while the plane classes together
+    /// are one (the tip rests on the surface: no orientation or position to tell), and so are the
+    /// air classes. This is the belief in that percept: the class's posterior for an edge, its
+    /// region's summed posterior for plane and air. Without regions every class is an edge.
+    double perceptBelief() const;
+    bool decided(double threshold) const { return perceptBelief() >= threshold; }
 
 private:
     ClassSet classes_;

@@ -280,6 +280,8 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
         std::max(1, static_cast<int>(std::ceil(s.tapCapPerimeters * perimeter / s.followStep_mm)) *
                         tapsPerDecision);
     SequentialBelief belief(classes);
+    std::vector<double> evidence(sequential ? std::size_t(classes.classCount()) : 0),
+        calibrated(evidence.size());
     const double startTime = rig.clock.now_s();
 
     ShortTermMemory memory;
@@ -305,14 +307,25 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
             t.contact = contactMade(t.record, setup.noiseFloor);
             bool decisionMade = true;
             if (sequential) {
-                belief.update(classifier, t.record.tap);
+                if (continuous || !s.calibratedBelief) {
+                    belief.update(classifier, t.record.tap);
+                } else {
+                    classifier.logLikelihoods(t.record.tap, evidence.data());
+                    calibratedLogBelief(evidence.data(), classes.classCount(), setup.beliefScaling,
+                                        calibrated.data());
+                    belief.update(calibrated.data());
+                }
                 t.percept = continuous
                                 ? perceiveContinuous(
                                       classes, belief.logPosterior().data(),
                                       belief.taps() *
                                           perceptTemperatureFor(s.perceptTemperature, t.record.tap))
+                            : s.calibratedBelief
+                                ? perceptOf(belief.best(), belief.perceptBelief(), classes)
                                 : perceptOf(belief.best(), belief.bestPosterior(), classes);
-                if (!belief.decided(s.beliefThreshold) && belief.taps() < s.maxTapsPerDecision) {
+                const double believed = s.calibratedBelief && !continuous ? belief.perceptBelief()
+                                                                          : belief.bestPosterior();
+                if (believed < s.beliefThreshold && belief.taps() < s.maxTapsPerDecision) {
                     // Gather more evidence here; optionally reposition toward the valid range.
                     decisionMade = false;
                     t.decision = {RuleId::Sensing, {}, {}};

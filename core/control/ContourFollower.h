@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/classify/BeliefCalibration.h"
 #include "core/classify/HistogramClassifier.h"
 #include "core/control/DecisionRules.h"
 #include "core/geometry/Polygon.h"
@@ -110,6 +111,10 @@ struct TrialSetup {
     FollowingSettings settings;
     ValidOffsets valid;
     double noiseFloor = 1.0;
+    /// How each tap's evidence enters a sequential belief (a belief threshold above 0) with the
+    /// discrete percept: the run's calibration of one tap's belief. The identity leaves the
+    /// naive-Bayes log-likelihoods as they are.
+    BeliefScaling beliefScaling;
 };
 
 /// The start pose the paper uses: on the lower edge (the one facing most nearly down, the lowest

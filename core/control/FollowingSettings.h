@@ -49,6 +49,13 @@ struct FollowingSettings {
     /// reaches it or maxTapsPerDecision taps were taken.
     double beliefThreshold = 0.0;
     int maxTapsPerDecision = 5;
+    /// The evidence a sequential belief accumulates with the discrete percept. Calibrated (the
+    /// default): each tap's log-likelihoods scaled by the run's sequential factor (its
+    /// belief_calibration), and the plane classes, like the air classes, decided on as one
+    /// percept, since the tip cannot tell them apart. Naive Bayes: the log-likelihoods as they
+    /// are, deciding on the single most likely class; one tap's posterior is then already near 1,
+    /// so thresholds act only very near 1.
+    bool calibratedBelief = true;
     /// While gathering evidence, reposition toward the valid range between taps (active mode).
     bool repositionWhileSensing = false;
     // Termination.

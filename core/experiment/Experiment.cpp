@@ -39,6 +39,7 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
                          "belief_threshold",
                          "max_taps_per_decision",
                          "reposition_while_sensing",
+                         "belief_evidence",
                          "completion_radius_mm",
                          "lost_outside_mm",
                          "lost_inside_mm",
@@ -56,6 +57,15 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
     s.edgeConfirmationTaps = f.integer("edge_confirmation_taps", 1, 100, s.edgeConfirmationTaps);
     s.maxTapsPerDecision = f.integer("max_taps_per_decision", 1, 1000, s.maxTapsPerDecision);
     s.repositionWhileSensing = f.flag("reposition_while_sensing", s.repositionWhileSensing);
+    if (f.has("belief_evidence")) {
+        const std::string k = f.text("belief_evidence");
+        if (k != "calibrated" && k != "naive_bayes")
+            f.fail("belief_evidence",
+                   "belief_evidence '" + k +
+                       "' is neither calibrated (each tap scaled by the run's calibration) nor "
+                       "naive_bayes (the log-likelihoods as they are)");
+        s.calibratedBelief = k == "calibrated";
+    }
     s.lostPlaneOrAirTaps = f.integer("lost_plane_or_air_taps", 1, 100000, s.lostPlaneOrAirTaps);
     if (f.has("percept")) {
         const std::string k = f.text("percept");

@@ -73,6 +73,8 @@ TrialSetup trialSetupFor(const RunResult& trained, FollowingMode mode,
     setup.valid = trained.validOffsets;
     setup.noiseFloor = trained.noiseFloor_counts;
     setup.start = start ? *start : lowerEdgeStart(outline, trained.validOffsets);
+    if (trained.beliefCalibration.measured && settings.calibratedBelief)
+        setup.beliefScaling = trained.beliefCalibration.sequential;
     if (settings.percept == PerceptKind::Continuous) {
         // Placed on an edge, the tip starts knowing which way that edge faces, as a paper trial
         // knows it starts on the lower edge; a continuous percept takes the edge's own angle

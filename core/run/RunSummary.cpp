@@ -165,12 +165,30 @@ Json recognitionJson(const RunResult& r) {
 
 Json sweepsJson(const SweepResults& sweeps) {
     Json perception = Json::array(), following = Json::array(), compute = Json::array();
-    for (const auto& row : sweeps.perception)
-        perception.push_back({{"belief_threshold", row.threshold},
-                              {"mean_taps_per_decision", row.meanTaps},
-                              {"angle_error_deg", row.angleError_deg},
-                              {"position_error_mm", row.positionError_mm},
-                              {"correct_fraction", row.correctFraction}});
+    auto interval = [](const SweepEstimate& e) { return Json::array({e.low, e.high}); };
+    auto perceptionRow = [&](const PerceptionSweepRow& row) {
+        return Json{{"belief_threshold", row.threshold},
+                    {"decisions", row.decisions},
+                    {"mean_taps_per_decision", row.meanTaps},
+                    {"mean_taps_per_decision_95ci", interval(row.taps)},
+                    {"mean_robot_time_per_decision_s", row.meanRobotTime_s},
+                    {"mean_robot_time_per_decision_s_95ci", interval(row.robotTime_s)},
+                    {"edge_angle_error_deg", row.angleError_deg},
+                    {"edge_angle_error_deg_95ci", interval(row.angle_deg)},
+                    {"position_error_mm", row.positionError_mm},
+                    {"position_error_mm_95ci", interval(row.position_mm)},
+                    {"edge_angle_error_below_single_tap_deg", row.angleFall_deg.mean},
+                    {"edge_angle_error_below_single_tap_deg_95ci", interval(row.angleFall_deg)},
+                    {"position_error_below_single_tap_mm", row.positionFall_mm.mean},
+                    {"position_error_below_single_tap_mm_95ci", interval(row.positionFall_mm)},
+                    {"correct_fraction", row.correctFraction},
+                    {"correct_fraction_95ci", interval(row.correct)},
+                    {"plane_decisions", row.planeDecisions},
+                    {"plane_perceived_as_plane", row.planeRecognised},
+                    {"air_decisions", row.airDecisions},
+                    {"air_perceived_as_air", row.airRecognised}};
+    };
+    for (const auto& row : sweeps.perception) perception.push_back(perceptionRow(row));
     for (const auto& row : sweeps.following)
         following.push_back(
             {{"mode", modeName(row.mode)},
@@ -193,7 +211,26 @@ Json sweepsJson(const SweepResults& sweeps) {
                            {"position_error_mm", row.positionError_mm},
                            {"microseconds_per_decision", row.microsecondsPerDecision},
                            {"paper_setting", row.paperSetting}});
-    return {{"perception", perception}, {"following", following}, {"compute", compute}};
+    Json out = {{"perception", perception}, {"following", following}, {"compute", compute}};
+    if (!sweeps.perception.empty()) {
+        Json single = perceptionRow(sweeps.perceptionSingleTap);
+        single.erase("belief_threshold");
+        single["what"] =
+            "the paper's operating point on the same taps: one tap, its most likely class";
+        out["perception_single_tap"] = single;
+    }
+    if (const PerceptionSweepCalibration& c = sweeps.perceptionCalibration; c.measured)
+        out["perception_calibration"] = {
+            {"taps", c.taps},
+            {"belief", c.calibrated ? "calibrated (the run's belief_calibration scaling)"
+                                    : "naive Bayes (no calibration measured)"},
+            {"ece_raw", c.eceRaw},
+            {"ece_calibrated", c.eceCalibrated},
+            {"ece_if_perfectly_calibrated", c.eceIfCalibrated},
+            {"which_taps",
+             "the sweep's fresh taps: used neither to train the classifier nor to fit the "
+             "calibration"}};
+    return out;
 }
 
 }  // namespace
@@ -248,9 +285,21 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
         j["belief_calibration"] = {
             {"ece_raw", b.eceRaw},
             {"ece_calibrated", b.eceCalibrated},
-            {"scaling", {{"method", b.method}, {"factor", b.scale}}},
+            {"ece_if_perfectly_calibrated", b.eceIfCalibrated},
+            {"scaling",
+             {{"method", b.method}, {"factor", b.scaling.scale}, {"floor", b.scaling.floor}}},
+            {"sequential",
+             {{"factor", b.sequential.scale},
+              {"running_sums_fitted", b.sequencePrefixes},
+              {"what",
+               "the factor on evidence accumulated over repeated taps (sequential decisions), "
+               "fitted on the running sums of each class's held-out taps"}}},
             {"candidates",
              {{"fitted_temperature", {{"factor", b.fittedScale}, {"ece", b.eceFitted}}},
+              {"fitted_temperature_and_floor",
+               {{"factor", b.fittedWithFloor.scale},
+                {"floor", b.fittedWithFloor.floor},
+                {"ece", b.eceFittedWithFloor}}},
               {"mean_per_sample", {{"factor", b.perSampleScale}, {"ece", b.ecePerSample}}}}},
             {"single_tap_accuracy", b.accuracy},
             {"taps_fitted", b.fitTaps},

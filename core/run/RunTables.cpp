@@ -43,12 +43,10 @@ void writeValidationTables(const RunResult& r, const fs::path& data) {
             "mm_mean,position_error_mm_std,in_valid_range\n");
         for (int p = 1; p <= cs.positions; ++p) {
             const auto i = static_cast<std::size_t>(p - 1);
-            f.print("%d,%g,%.10g,%.10g,%.10g,%.10g,%d\n", p, cs.offsetOf(p),
-                    r.validation.angleMean[i], r.validation.angleStd[i],
-                    r.validation.positionMean[i], r.validation.positionStd[i],
-                    p >= r.validation.validRange.first && p <= r.validation.validRange.last
-                        ? 1
-                        : 0);
+            f.print(
+                "%d,%g,%.10g,%.10g,%.10g,%.10g,%d\n", p, cs.offsetOf(p), r.validation.angleMean[i],
+                r.validation.angleStd[i], r.validation.positionMean[i], r.validation.positionStd[i],
+                p >= r.validation.validRange.first && p <= r.validation.validRange.last ? 1 : 0);
         }
         f.close();
     }
@@ -81,18 +79,16 @@ void writeFollowingTables(const RunResult& r, const fs::path& data) {
         for (const auto& t : r.trials) {
             const ContourPlace& at = t.result.furthest;
             f.print("%s,%s,%d,%d,%s,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s,",
-                    t.label.c_str(), modeName(t.result.mode), t.trial,
-                    t.result.completed() ? 1 : 0, trialEndName(t.result.end),
-                    t.result.taps.size(), t.result.robotTime_s, t.result.coverage,
-                    t.result.meanContourDistance_mm, t.result.maxContourDistance_mm,
-                    t.result.progress_mm, t.start.x, t.start.y, t.result.furthestProgress_mm,
-                    at.point.x, at.point.y, placeKindName(at.kind));
+                    t.label.c_str(), modeName(t.result.mode), t.trial, t.result.completed() ? 1 : 0,
+                    trialEndName(t.result.end), t.result.taps.size(), t.result.robotTime_s,
+                    t.result.coverage, t.result.meanContourDistance_mm,
+                    t.result.maxContourDistance_mm, t.result.progress_mm, t.start.x, t.start.y,
+                    t.result.furthestProgress_mm, at.point.x, at.point.y, placeKindName(at.kind));
             if (at.kind == PlaceKind::AwayFromCorners)
                 f.print(",,");
             else
                 f.print("%.6g,%.6g,%.6g", at.corner.x, at.corner.y, at.pastCorner_mm);
-            f.print(",%d,%d\n", t.result.cornersRounded.convex,
-                    t.result.cornersRounded.concave);
+            f.print(",%d,%d\n", t.result.cornersRounded.convex, t.result.cornersRounded.concave);
         }
         f.close();
     }
@@ -101,8 +97,7 @@ void writeFollowingTables(const RunResult& r, const fs::path& data) {
         f.print("shape,mode,trial,%s\n", kTrialTapColumns);
         for (const auto& t : r.trials)
             printTrialTaps(
-                f,
-                t.label + "," + modeName(t.result.mode) + "," + std::to_string(t.trial) + ",",
+                f, t.label + "," + modeName(t.result.mode) + "," + std::to_string(t.trial) + ",",
                 t);
         f.close();
     }
@@ -147,8 +142,8 @@ void writeRecognitionTables(const RunResult& r, const fs::path& data) {
                         const PathHistogram& h) {
             for (int iy = 0; iy < h.bins; ++iy)
                 for (int ix = 0; ix < h.bins; ++ix)
-                    f.print("%s,%s,%d,%d,%d,%d,%.10g\n", kind, shape.c_str(), trial,
-                            smooth ? 1 : 0, ix, iy, h.at(ix, iy));
+                    f.print("%s,%s,%d,%d,%d,%d,%.10g\n", kind, shape.c_str(), trial, smooth ? 1 : 0,
+                            ix, iy, h.at(ix, iy));
         };
         for (const auto& t : r.templates) {
             dump("template", t.shape, 0, false, t.raw);
@@ -168,11 +163,20 @@ void writeSweepTables(const SweepResults& sw, const fs::path& data) {
         {
             OutputFile f((data / "sweep_perception.csv").string());
             f.print(
-                "belief_threshold,mean_taps_per_decision,angle_error_deg,position_error_mm,"
-                "correct_fraction\n");
+                "belief_threshold,decisions,mean_taps_per_decision,taps_low,taps_high,"
+                "mean_robot_time_s,robot_time_low_s,robot_time_high_s,edge_angle_error_deg,"
+                "angle_low_deg,angle_high_deg,position_error_mm,position_low_mm,"
+                "position_high_mm,correct_fraction,correct_low,correct_high,"
+                "plane_perceived_as_plane,air_perceived_as_air\n");
             for (const auto& row : sw.perception)
-                f.print("%.15g,%.6g,%.6g,%.6g,%.6g\n", row.threshold, row.meanTaps,
-                        row.angleError_deg, row.positionError_mm, row.correctFraction);
+                f.print(
+                    "%.15g,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,"
+                    "%.6g,%.6g,%.6g,%.6g\n",
+                    row.threshold, row.decisions, row.meanTaps, row.taps.low, row.taps.high,
+                    row.meanRobotTime_s, row.robotTime_s.low, row.robotTime_s.high,
+                    row.angleError_deg, row.angle_deg.low, row.angle_deg.high, row.positionError_mm,
+                    row.position_mm.low, row.position_mm.high, row.correctFraction, row.correct.low,
+                    row.correct.high, row.planeRecognised, row.airRecognised);
             f.close();
         }
     }
@@ -235,7 +239,6 @@ void printTrialTaps(OutputFile& f, const std::string& prefix, const TrialRun& t)
                 m.x, m.y, tap.progress_mm, tap.contourDistance_mm);
     }
 }
-
 
 void writeRunTables(const RunResult& r, const std::string& outDir) {
     const fs::path data = fs::path(outDir) / "data";

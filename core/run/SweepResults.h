@@ -7,9 +7,37 @@
 
 namespace activetouch {
 
+/// A mean over a sweep's decisions with its 95 % interval. Decisions about one class share taps,
+/// so the interval treats the classes as the independent units: mean +- 1.96 x the standard
+/// error of the per-class means.
+struct SweepEstimate {
+    double mean = 0.0, low = 0.0, high = 0.0;
+};
+
 struct PerceptionSweepRow {
-    double threshold;
-    double meanTaps, angleError_deg, positionError_mm, correctFraction;
+    double threshold = 0.0;
+    int decisions = 0;
+    /// Over every decision (angle over edge classes only: plane and air have no orientation).
+    double meanTaps = 0, angleError_deg = 0, positionError_mm = 0, correctFraction = 0;
+    double meanRobotTime_s = 0;  ///< the taps' cycle times per decision
+    SweepEstimate taps, robotTime_s, angle_deg, position_mm, correct;
+    /// How much lower the edge angle and position errors are than with single-tap decisions
+    /// (the paper's operating point), paired decision by decision (the same class and starting
+    /// tap), with the interval over classes.
+    SweepEstimate angleFall_deg, positionFall_mm;
+    /// Decisions whose truth is a plane (air) class, and how many of them were perceived as
+    /// plane (air): their orientation cannot be told, so they are reported as recognised or not.
+    int planeDecisions = 0, airDecisions = 0;
+    double planeRecognised = 0, airRecognised = 0;
+};
+
+/// How well one tap's belief is calibrated on the perception sweep's fresh taps, which neither
+/// trained the classifier nor fitted the calibration.
+struct PerceptionSweepCalibration {
+    bool measured = false;
+    bool calibrated = false;  ///< the sweep's decisions used the run's calibrated belief
+    int taps = 0;
+    double eceRaw = 0, eceCalibrated = 0, eceIfCalibrated = 0;
 };
 
 struct FollowingSweepRow {
@@ -29,6 +57,9 @@ struct ComputeSweepRow {
 
 struct SweepResults {
     std::vector<PerceptionSweepRow> perception;
+    PerceptionSweepCalibration perceptionCalibration;
+    /// The paper's operating point on the same taps and axes: one tap, its most likely class.
+    PerceptionSweepRow perceptionSingleTap;
     std::vector<FollowingSweepRow> following;
     std::vector<ComputeSweepRow> compute;
     bool empty() const { return perception.empty() && following.empty() && compute.empty(); }

@@ -6,8 +6,9 @@
 #include <map>
 #include <memory>
 
-#include "core/run/ExperimentRun.h"
+#include "core/classify/BeliefCalibration.h"
 #include "core/classify/SequentialPerception.h"
+#include "core/run/ExperimentRun.h"
 #include "core/validation/TrainingProtocol.h"
 
 namespace activetouch {
@@ -21,7 +22,43 @@ double angleError(const ClassSet& cs, int perceived, int truth) {
     return angleDifferenceDeg(cs.orientationDegOf(perceived), cs.orientationDegOf(truth));
 }
 
-std::vector<PerceptionSweepRow> perceptionSweep(const RunResult& r, const RunOptions& options) {
+// The mean of per-decision values with a 95 % interval over the per-class means (decisions
+// about one class share taps; the classes are the independent units).
+SweepEstimate clusteredEstimate(const std::map<int, std::vector<double>>& byClass,
+                                double least = 0.0,
+                                double most = std::numeric_limits<double>::infinity()) {
+    SweepEstimate e;
+    std::vector<double> means;
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (const auto& [cls, values] : byClass) {
+        if (values.empty()) continue;
+        double m = 0.0;
+        for (double v : values) m += v;
+        sum += m;
+        n += values.size();
+        means.push_back(m / static_cast<double>(values.size()));
+    }
+    if (n == 0) return e;
+    e.mean = sum / static_cast<double>(n);
+    double spread = 0.0;
+    if (means.size() > 1) {
+        double mm = 0.0;
+        for (double m : means) mm += m;
+        mm /= static_cast<double>(means.size());
+        for (double m : means) spread += (m - mm) * (m - mm);
+        spread = std::sqrt(spread / static_cast<double>(means.size() - 1) /
+                           static_cast<double>(means.size()));
+    }
+    // Clamped to the quantity's own range (an error is never negative, a fraction at most 1).
+    e.low = std::max(least, e.mean - 1.96 * spread);
+    e.high = std::min(most, e.mean + 1.96 * spread);
+    return e;
+}
+
+std::vector<PerceptionSweepRow> perceptionSweep(const RunResult& r, const RunOptions& options,
+                                                PerceptionSweepCalibration& calibration,
+                                                PerceptionSweepRow& singleTap) {
     const SweepSpec& sw = r.spec.sweeps;
     // Fresh repeated taps of every class, as the training protocol takes them.
     auto model = std::make_shared<const FingertipContactModel>(r.spec.scene.fingertip);
@@ -37,43 +74,114 @@ std::vector<PerceptionSweepRow> perceptionSweep(const RunResult& r, const RunOpt
                                           [&](const CollectedTap&) { return !cancelled(options); });
     std::map<int, std::vector<const CollectedTap*>> byClass;
     for (const auto& t : taps) byClass[t.cls].push_back(&t);
-    // Log-likelihoods once per tap.
+    // Each tap's evidence once: the run's calibrated belief where it was measured, else the
+    // naive-Bayes log-likelihoods (whose posterior is near 1 after one tap).
+    const int C = r.classes.classCount();
+    const bool useCalibrated = r.beliefCalibration.measured;
     std::map<const CollectedTap*, std::vector<double>> evidence;
+    std::vector<double> rawConfidence, calibratedConfidence;
+    std::vector<bool> right;
     for (const auto& t : taps) {
-        std::vector<double> ll(static_cast<std::size_t>(r.classes.classCount()));
+        std::vector<double> ll(static_cast<std::size_t>(C));
         r.classifier.logLikelihoods(t.record.tap, ll.data());
+        int top = 0;
+        rawConfidence.push_back(calibratedTopBelief(ll.data(), C, BeliefScaling{}, &top));
+        right.push_back(top == t.cls);
+        if (useCalibrated) {
+            calibratedConfidence.push_back(
+                calibratedTopBelief(ll.data(), C, r.beliefCalibration.scaling, nullptr));
+            std::vector<double> belief(ll.size());
+            calibratedLogBelief(ll.data(), C, r.beliefCalibration.sequential, belief.data());
+            ll = std::move(belief);
+        }
         evidence[&t] = std::move(ll);
     }
+    if (!taps.empty()) {
+        calibration.measured = true;
+        calibration.calibrated = useCalibrated;
+        calibration.taps = static_cast<int>(taps.size());
+        calibration.eceRaw = expectedCalibrationError(rawConfidence, right, 10);
+        const auto& kept = useCalibrated ? calibratedConfidence : rawConfidence;
+        calibration.eceCalibrated = expectedCalibrationError(kept, right, 10);
+        calibration.eceIfCalibrated = expectedCalibrationErrorIfCalibrated(kept, 10);
+    }
     std::vector<PerceptionSweepRow> rows;
-    for (double threshold : sw.beliefThresholds) {
-        PerceptionSweepRow row{threshold, 0, 0, 0, 0};
-        int decisions = 0;
+    // The first threshold's errors, decision by decision, to pair the others with.
+    std::map<int, std::vector<double>> firstAngle, firstPosition;
+    const double inf = std::numeric_limits<double>::infinity();
+    auto fall = [&](const std::map<int, std::vector<double>>& first,
+                    const std::map<int, std::vector<double>>& now) {
+        std::map<int, std::vector<double>> d;
+        for (const auto& [cls, values] : now) {
+            const auto& before = first.at(cls);
+            for (std::size_t i = 0; i < values.size(); ++i) d[cls].push_back(before[i] - values[i]);
+        }
+        return clusteredEstimate(d, -inf, inf);
+    };
+    // First the paper's operating point on the same taps and axes: one tap, its most likely
+    // class (threshold 0); then each threshold.
+    std::vector<double> thresholds{0.0};
+    thresholds.insert(thresholds.end(), sw.beliefThresholds.begin(), sw.beliefThresholds.end());
+    for (double threshold : thresholds) {
+        PerceptionSweepRow row;
+        row.threshold = threshold;
+        std::map<int, std::vector<double>> taken, seconds, angle, position, correct;
+        int planeRight = 0, airRight = 0;
         for (const auto& [cls, list] : byClass) {
+            const Region truth = r.classes.regionOf(cls);
             // Each starting tap begins one sequence through the class's repeats, in turn.
             for (std::size_t start = 0; start < list.size(); ++start) {
                 SequentialBelief belief(r.classes);
                 const CollectedTap* last = nullptr;
+                double robot_s = 0.0;
                 for (std::size_t k = 0; k < list.size() && belief.taps() < sw.maxTapsPerDecision;
                      ++k) {
                     last = list[(start + k) % list.size()];
                     belief.update(evidence[last].data());
-                    if (belief.decided(threshold)) break;
+                    robot_s += last->record.cycleTime_s;
+                    if (threshold == 0.0 || belief.decided(threshold)) break;
                 }
                 const int perceived = belief.best();
-                row.meanTaps += belief.taps();
-                row.angleError_deg += angleError(r.classes, perceived, cls);
-                row.positionError_mm += std::abs(
-                    r.classes.offsetOf(r.classes.positionOf(perceived)) - last->trueOffset_mm);
-                row.correctFraction += perceived == cls;
-                ++decisions;
+                taken[cls].push_back(belief.taps());
+                seconds[cls].push_back(robot_s);
+                position[cls].push_back(std::abs(
+                    r.classes.offsetOf(r.classes.positionOf(perceived)) - last->trueOffset_mm));
+                correct[cls].push_back(perceived == cls ? 1.0 : 0.0);
+                if (truth == Region::Edge) {
+                    angle[cls].push_back(angleError(r.classes, perceived, cls));
+                } else if (truth == Region::Plane) {
+                    ++row.planeDecisions;
+                    planeRight += r.classes.regionOf(perceived) == Region::Plane;
+                } else {
+                    ++row.airDecisions;
+                    airRight += r.classes.regionOf(perceived) == Region::Air;
+                }
+                ++row.decisions;
             }
         }
-        if (decisions == 0) break;
-        row.meanTaps /= decisions;
-        row.angleError_deg /= decisions;
-        row.positionError_mm /= decisions;
-        row.correctFraction /= decisions;
-        rows.push_back(row);
+        if (row.decisions == 0) break;
+        row.taps = clusteredEstimate(taken, 1.0);
+        row.robotTime_s = clusteredEstimate(seconds);
+        row.angle_deg = clusteredEstimate(angle);
+        row.position_mm = clusteredEstimate(position);
+        row.correct = clusteredEstimate(correct, 0.0, 1.0);
+        row.meanTaps = row.taps.mean;
+        row.meanRobotTime_s = row.robotTime_s.mean;
+        row.angleError_deg = row.angle_deg.mean;
+        row.positionError_mm = row.position_mm.mean;
+        row.correctFraction = row.correct.mean;
+        if (threshold == 0.0) {
+            firstAngle = angle;
+            firstPosition = position;
+        }
+        row.angleFall_deg = fall(firstAngle, angle);
+        row.positionFall_mm = fall(firstPosition, position);
+        row.planeRecognised = row.planeDecisions ? double(planeRight) / row.planeDecisions : 0.0;
+        row.airRecognised = row.airDecisions ? double(airRight) / row.airDecisions : 0.0;
+        if (threshold == 0.0)
+            singleTap = row;
+        else
+            rows.push_back(row);
     }
     return rows;
 }
@@ -217,7 +325,9 @@ SweepResults runSweeps(const RunResult& trained, const RunOptions& options, bool
     if (!trained.classifier.trained()) return s;
     if (!sw.bins.empty()) s.compute = computeSweep(trained, options);
     if (onTapsOnly) return s;
-    if (!sw.beliefThresholds.empty()) s.perception = perceptionSweep(trained, options);
+    if (!sw.beliefThresholds.empty())
+        s.perception =
+            perceptionSweep(trained, options, s.perceptionCalibration, s.perceptionSingleTap);
     if (!sw.followSteps_mm.empty()) s.following = followingSweep(trained, options);
     return s;
 }

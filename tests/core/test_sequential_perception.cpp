@@ -191,10 +191,115 @@ private slots:
             truth.push_back(r.uniform() < 0.87 ? 0 : 1 + t % 3);
         }
         const double s = fitLogLikelihoodScale(taps, truth);
+        // With a floor too: the same confidence on these taps, and a floor fitted where a fifth
+        // of the "certain" taps are wrong whatever the scale.
+        const BeliefScaling plain = fitBeliefScaling(taps, truth);
+        QVERIFY(std::abs(calibratedTopBelief(taps[0].data(), 4, plain, nullptr) - 0.87) < 0.05);
+        std::vector<std::vector<double>> sure;
+        std::vector<int> sureTruth;
+        for (int t = 0; t < 500; ++t) {
+            std::vector<double> v(4, -1e5);
+            v[0] = 0.0;
+            sure.push_back(v);
+            sureTruth.push_back(t % 5 == 0 ? 1 + t % 3 : 0);
+        }
+        const BeliefScaling floored = fitBeliefScaling(sure, sureTruth);
+        qInfo("floor %.3f scale %.3g for 80 %% right at any scale", floored.floor, floored.scale);
+        int sureTop = -1;
+        QVERIFY(std::abs(calibratedTopBelief(sure[0].data(), 4, floored, &sureTop) - 0.8) < 0.02);
+        QCOMPARE(sureTop, 0);
         int top = 0;
         qInfo("fitted factor %.5f; confidence %.3f for 87 %% right", s,
               scaledTopPosterior(taps[0].data(), 4, s, &top));
         QVERIFY(std::abs(scaledTopPosterior(taps[0].data(), 4, s, &top) - 0.87) < 0.05);
+    }
+
+    void calibratedBeliefStaysFiniteAndKeepsTheArgmax() {
+        // Every scale and floor a calibration can give, and hostile ones, on extreme evidence:
+        // the log belief is finite or -inf, normalised, and its top is the evidence's argmax.
+        RandomStream r(67);
+        const double inf = std::numeric_limits<double>::infinity();
+        std::vector<double> ll(72), out(72);
+        for (int trial = 0; trial < 100; ++trial) {
+            for (double& v : ll) v = -1e6 * r.uniform();
+            const int exact = argmaxLowestIndex(ll.data(), 72);
+            for (const BeliefScaling sc :
+                 {BeliefScaling{1.0, 0.0}, BeliefScaling{0.016, 0.0}, BeliefScaling{0.009, 0.2},
+                  BeliefScaling{1e-8, 0.99}, BeliefScaling{1e-300, 0.5},
+                  BeliefScaling{1.0, 1e-300}}) {
+                calibratedLogBelief(ll.data(), 72, sc, out.data());
+                long double total = 0;
+                for (double v : out) {
+                    QVERIFY(!std::isnan(v) && v <= 1e-12);
+                    total += std::exp(static_cast<long double>(v));
+                }
+                QVERIFY(std::abs(static_cast<double>(total) - 1.0) < 1e-9);
+                QCOMPARE(argmaxLowestIndex(out.data(), 72) == exact ||
+                             out[static_cast<std::size_t>(argmaxLowestIndex(out.data(), 72))] ==
+                                 out[static_cast<std::size_t>(exact)],
+                         true);
+                int top = -1;
+                const double p = calibratedTopBelief(ll.data(), 72, sc, &top);
+                QCOMPARE(top, exact);
+                QVERIFY(p > 0.0 && p <= 1.0);
+                // A sequential belief fed it a thousand times stays normalised.
+                SequentialBelief b(classes_);
+                for (int k = 0; k < 1000; ++k) b.update(out.data());
+                verifyNormalised(b);
+            }
+        }
+        const std::vector<std::vector<double>> hostile{
+            {-inf, -inf, -inf}, {qQNaN(), qQNaN(), qQNaN()}, {-1e308, -1e308, 0.0},
+            {inf, 0.0, -inf},   {-1e308, 1e308, qQNaN()},    {0.0, 0.0, 0.0}};
+        for (const auto& h : hostile)
+            for (double scale : {0.0, 1e-300, 1e-3, 1.0, 1e300, inf, qQNaN(), -1.0})
+                for (double floor : {0.0, 0.5, 1.0, 2.0, -1.0, qQNaN(), inf}) {
+                    std::vector<double> o(3);
+                    calibratedLogBelief(h.data(), 3, {scale, floor}, o.data());
+                    long double total = 0;
+                    for (double v : o) {
+                        QVERIFY2(!std::isnan(v) && v != inf,
+                                 qPrintable(QString("scale %1 floor %2").arg(scale).arg(floor)));
+                        total += std::exp(static_cast<long double>(v));
+                    }
+                    QVERIFY(std::abs(static_cast<double>(total) - 1.0) < 1e-9);
+                }
+        // A floor keeps a class the tap all but rules out believable.
+        std::vector<double> two{0.0, -1e9};
+        std::vector<double> o(2);
+        calibratedLogBelief(two.data(), 2, {1.0, 0.2}, o.data());
+        QVERIFY(std::abs(std::exp(o[1]) - 0.1) < 1e-12);
+    }
+
+    void planeAndAirAreDecidedAsOnePerceptEach() {
+        // Two orientations x 3 positions: position 1 plane, 2 edge, 3 air.
+        ClassSet cs;
+        cs.orientationsDeg = {270, 0};
+        cs.positions = 3;
+        cs.regions = {Region::Plane, Region::Edge, Region::Air,
+                      Region::Plane, Region::Edge, Region::Air};
+        SequentialBelief b(cs);
+        // Plane most likely, spread evenly over both orientations (0.33 + 0.3); an edge at 0.31.
+        std::vector<double> ll{std::log(0.33), std::log(0.31), std::log(0.02),
+                               std::log(0.3),  std::log(0.02), std::log(0.02)};
+        b.update(ll.data());
+        QCOMPARE(b.best(), 0);
+        QVERIFY(std::abs(b.perceptBelief() - 0.63) < 1e-12);  // the plane's whole mass
+        QVERIFY(b.decided(0.63 - 1e-9) && !b.decided(0.64));
+        // An edge class most likely: its own posterior only.
+        SequentialBelief e(cs);
+        std::vector<double> le{std::log(0.2), std::log(0.4),  std::log(0.1),
+                               std::log(0.2), std::log(0.05), std::log(0.05)};
+        e.update(le.data());
+        QCOMPARE(e.best(), 1);
+        QVERIFY(std::abs(e.perceptBelief() - 0.4) < 1e-12);
+        // Without regions, every class is its own percept: the largest posterior.
+        SequentialBelief flat(classes_);
+        std::vector<double> l72(72, -10.0);
+        l72[5] = 0.0;
+        flat.update(l72.data());
+        QCOMPARE(flat.best(), 5);
+        QCOMPARE(flat.perceptBelief(), flat.bestPosterior());
     }
 };
 

@@ -85,6 +85,20 @@ private slots:
             QVERIFY(b.eceRaw > 0.25);
             QVERIFY(b.eceCalibrated < 0.5 * b.eceRaw && b.eceCalibrated < 0.1);
             QVERIFY(b.scale > 0.0 && b.scale < 1.0);
+            // On every validation tap the calibrated belief's top class is the classifier's
+            // own decision, for the single-tap and the sequential scaling alike.
+            std::vector<double> ll(72);
+            for (const auto& t : r.taps) {
+                if (spec.training.isTrainingSet(t.dataSet)) continue;
+                r.classifier.logLikelihoods(t.record.tap, ll.data());
+                const int decided = r.classifier.classify(t.record.tap);
+                for (const BeliefScaling& sc : {b.scaling, b.sequential}) {
+                    int top = -1;
+                    const double p = calibratedTopBelief(ll.data(), 72, sc, &top);
+                    QCOMPARE(top, decided);
+                    QVERIFY(p > 0.0 && p <= 1.0);
+                }
+            }
         }
     }
 
