@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <tuple>
 
 #include "app/figures/FigureLayout.h"
 #include "core/run/ExperimentRun.h"
@@ -85,8 +86,15 @@ bool buildPerceptionSweepFigure(QCustomPlot& plot, const RunResult& r) {
         e->setPen(g->pen());
         e->removeFromLegend();
     };
-    bars(addSeries(a, la, name, taps, angle, seriesColour(0)), angleBelow, angleAbove);
-    bars(addSeries(p, lp, name, taps, position, seriesColour(0)), positionBelow, positionAbove);
+    QVariantList all;
+    for (int i = 0; i < int(rows.size()); ++i) all << i;
+    for (auto [rect, legend, y, below, above] :
+         {std::tuple{a, la, &angle, &angleBelow, &angleAbove},
+          std::tuple{p, lp, &position, &positionBelow, &positionAbove}}) {
+        QCPGraph* g = addSeries(rect, legend, name, taps, *y, seriesColour(0));
+        g->setProperty(kSweepRowsProperty, all);
+        bars(g, *below, *above);
+    }
     const PerceptionSweepRow& one = r.sweeps.perceptionSingleTap;
     markPaper(a, la, one.meanTaps, one.angleError_deg, "paper: single tap (same taps)");
     markPaper(p, lp, one.meanTaps, one.positionError_mm, "paper: single tap (same taps)");
@@ -119,40 +127,48 @@ bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& r) {
     setPanelTitle(trade, "time against path error");
     trade->axis(QCPAxis::atBottom)->setLabel("mean distance of taps to the contour (mm)");
     trade->axis(QCPAxis::atLeft)->setLabel("robot time per completion (s)");
-    std::map<std::pair<int, double>,
-             std::pair<QVector<double>, std::pair<QVector<double>, QVector<double>>>>
-        lines;
-    for (const auto& row : rows) {
+    struct Line {
+        QVector<double> x, completion, time;
+        QVariantList rows;
+    };
+    std::map<std::pair<int, double>, Line> lines;
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        const auto& row = rows[r];
         if (row.beliefThreshold != 0.0) continue;
         auto& l = lines[{int(row.mode), row.repositionStep_mm}];
-        l.first << row.followStep_mm;
-        l.second.first << 100.0 * row.completed / row.trials;
-        l.second.second << (std::isfinite(row.robotTimePerCompletion_s)
-                                ? row.robotTimePerCompletion_s
-                                : qQNaN());
+        l.rows << int(r);
+        l.x << row.followStep_mm;
+        l.completion << 100.0 * row.completed / row.trials;
+        l.time << (std::isfinite(row.robotTimePerCompletion_s) ? row.robotTimePerCompletion_s
+                                                               : qQNaN());
     }
     int i = 0;
     for (const auto& [key, l] : lines) {
         const QString name = key.first == int(FollowingMode::Active)
                                  ? QString("active, reposition %1 mm").arg(key.second)
                                  : QString("passive");
-        addSeries(completion, lc, name, l.first, l.second.first, seriesColour(i));
-        addSeries(time, lt, name, l.first, l.second.second, seriesColour(i));
+        addSeries(completion, lc, name, l.x, l.completion, seriesColour(i))
+            ->setProperty(kSweepRowsProperty, l.rows);
+        addSeries(time, lt, name, l.x, l.time, seriesColour(i))
+            ->setProperty(kSweepRowsProperty, l.rows);
         ++i;
     }
-    std::map<double, std::pair<QVector<double>, QVector<double>>> byThreshold;
-    for (const auto& row : rows) {
+    std::map<double, Line> byThreshold;
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        const auto& row = rows[r];
         if (row.mode != FollowingMode::Active || !std::isfinite(row.robotTimePerCompletion_s))
             continue;
-        byThreshold[row.beliefThreshold].first << row.meanContourDistance_mm;
-        byThreshold[row.beliefThreshold].second << row.robotTimePerCompletion_s;
+        byThreshold[row.beliefThreshold].x << row.meanContourDistance_mm;
+        byThreshold[row.beliefThreshold].time << row.robotTimePerCompletion_s;
+        byThreshold[row.beliefThreshold].rows << int(r);
     }
     i = 0;
     for (const auto& [threshold, pts] : byThreshold)
         addSeries(trade, lx,
                   threshold == 0.0 ? QString("single tap")
                                    : QString("belief threshold %1").arg(threshold, 0, 'g', 12),
-                  pts.first, pts.second, seriesColour(i++), false);
+                  pts.x, pts.time, seriesColour(i++), false)
+            ->setProperty(kSweepRowsProperty, pts.rows);
     for (const auto& row : rows)
         if (row.paperSetting && row.mode == FollowingMode::Active) {
             markPaper(completion, lc, row.followStep_mm, 100.0 * row.completed / row.trials,

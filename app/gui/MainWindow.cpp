@@ -49,6 +49,7 @@
 #include "core/run/ExperimentFiles.h"
 #include "core/run/RunFolder.h"
 #include "core/run/SeedRates.h"
+#include "core/run/Sweeps.h"
 #include "devices/simulated/SimulatedWorld.h"
 #include "qcustomplot.h"
 
@@ -93,6 +94,20 @@ void MainWindow::buildTabs() {
     tabs_->addTab(recognition_, tr("Recognition"));
     sweeps_ = new SweepsTab;
     tabs_->addTab(sweeps_, tr("Accuracy vs time"));
+    connect(sweeps_, &SweepsTab::settingRequested, this, [this](const SweepSetting& s) {
+        // The point's setting into the protocol panel, then following with it.
+        protocol_->setField("following", "follow_step_mm", s.followStep_mm);
+        protocol_->setField("following", "reposition_step_mm", s.repositionStep_mm);
+        protocol_->setField("following", "belief_threshold", s.beliefThreshold);
+        if (startRun(RunController::What::FollowingOnly)) tabs_->setCurrentWidget(following_);
+    });
+    connect(sweeps_, &SweepsTab::standardSweepsRequested, this, [this] {
+        auto toRun = experimentToRun();
+        if (!toRun) return;
+        toRun->sweeps = standardSweeps();
+        launch(*toRun, RunController::What::Everything,
+               QString::fromStdString(toRun->name) + "_sweeps", nullptr);
+    });
     seeds_ = new SeedsTab;
     tabs_->addTab(seeds_, tr("Rates over seeds"));
     connect(seeds_, &SeedsTab::runRequested, this,

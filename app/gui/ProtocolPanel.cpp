@@ -366,6 +366,15 @@ double ProtocolPanel::valueOf(const Field& f) const {
     return static_cast<QDoubleSpinBox*>(f.widget)->value();
 }
 
+bool ProtocolPanel::setField(const std::string& section, const std::string& key, double value) {
+    for (const Field& f : fields_)
+        if (f.section == section && f.key == key) {
+            setValueOf(f, value);
+            return true;
+        }
+    return false;
+}
+
 void ProtocolPanel::setValueOf(const Field& f, double v) {
     if (f.kind == Kind::Flag)
         static_cast<QCheckBox*>(f.widget)->setChecked(v != 0.0);

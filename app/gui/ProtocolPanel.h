@@ -38,6 +38,9 @@ public:
     /// "Group: label" of the field at a JSON pointer the panel writes (or an enclosing one), for
     /// messages; empty for a place the panel does not show.
     QString fieldAt(const std::string& pointer) const;
+    /// Shows `value` in the field that writes `key` of `section` (as a person typing it would,
+    /// so the experiment reads as modified); false if the panel has no such field.
+    bool setField(const std::string& section, const std::string& key, double value);
 
 signals:
     void changed();

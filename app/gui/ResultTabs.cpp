@@ -5,8 +5,10 @@
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
+#include <QPushButton>
 #include <QTableWidget>
 #include <QVBoxLayout>
+#include <cmath>
 #include <tuple>
 
 #include "app/figures/FollowingFigures.h"
@@ -137,33 +139,157 @@ void RecognitionTab::showRun(const RunResult& r) {
                                 .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0));
 }
 
-SweepsTab::SweepsTab(QWidget* parent) : QTabWidget(parent) {
+SweepsTab::SweepsTab(QWidget* parent) : QWidget(parent) {
+    tabs_ = new QTabWidget;
     perception_ = new PlotPanel("sweep_a_sequential_perception");
     following_ = new PlotPanel("sweep_b_following");
     compute_ = new PlotPanel("sweep_c_compute");
-    addTab(perception_, tr("(a) taps per decision"));
-    addTab(following_, tr("(b) following steps"));
-    addTab(compute_, tr("(c) compute"));
+    tabs_->addTab(perception_, tr("(a) taps per decision"));
+    tabs_->addTab(following_, tr("(b) following steps"));
+    tabs_->addTab(compute_, tr("(c) compute"));
     setToolTip(tr("Run an experiment with sweeps, such as experiments/accuracy_vs_time.json"));
     for (PlotPanel* p : {perception_, following_, compute_})
         p->setEmptyHint(
             tr("No sweeps measured yet. Open experiments/accuracy_vs_time.json (or any "
                "experiment with a \"sweeps\" section) and click Run whole protocol "
                "to measure what accuracy costs in time."));
+    pickedLabel_ = new QLabel(tr("Click a point of (a) or (b) to see its setting."));
+    pickedLabel_->setObjectName("sweepPicked");
+    pickedLabel_->setWordWrap(true);
+    pickedLabel_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    runPicked_ = new QPushButton(tr("Follow with this setting"));
+    runPicked_->setObjectName("sweepRunPicked");
+    runPicked_->setToolTip(
+        tr("Sets the protocol's follow step, repositioning step and belief threshold to the "
+           "point's and runs following with the classifier the last run trained"));
+    runPicked_->setEnabled(false);
+    runStandard_ = new QPushButton(tr("Run the standard sweeps on this experiment"));
+    runStandard_->setObjectName("sweepRunStandard");
+    runStandard_->setToolTip(
+        tr("Runs the experiment shown with the sweeps of experiments/accuracy_vs_time.json: "
+           "belief thresholds 0.5-0.999, follow steps 1-4 mm, repositioning 0.5-2 mm, "
+           "histogram bins and samples per tap"));
+    runStandard_->hide();
+    auto* bar = new QHBoxLayout;
+    bar->addWidget(pickedLabel_, 1);
+    bar->addWidget(runPicked_);
+    bar->addWidget(runStandard_);
+    auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->addWidget(tabs_, 1);
+    layout->addLayout(bar);
+    for (auto [panel, following] : {std::pair{perception_, false}, std::pair{following_, true}}) {
+        // A click (not a drag) picks the nearest point within reach, whatever is drawn over it
+        // (its label, its error bar).
+        QCustomPlot& plot = panel->plot();
+        connect(&plot, &QCustomPlot::mousePress, this,
+                [this](QMouseEvent* e) { pressedAt_ = e->position(); });
+        connect(&plot, &QCustomPlot::mouseRelease, this,
+                [this, &plot, following = following](QMouseEvent* e) {
+                    if ((e->position() - pressedAt_).manhattanLength() <= 4)
+                        pickAt(plot, following, e->position());
+                });
+    }
+    connect(runPicked_, &QPushButton::clicked, this, [this] {
+        if (picked_) emit settingRequested(*picked_);
+    });
+    connect(runStandard_, &QPushButton::clicked, this, &SweepsTab::standardSweepsRequested);
 }
 
 void SweepsTab::showRun(const RunResult& r, bool analysis) {
-    if (r.sweeps.empty()) return;
+    // A run of an experiment without a "sweeps" section is offered the standard ones.
+    runStandard_->setVisible(!analysis && !r.spec.sweeps.any());
+    if (r.sweeps.empty()) return;  // following alone keeps the sweeps shown
     if (analysis)
         for (PlotPanel* p : {perception_, following_})
             p->setEmptyHint(
                 tr("This sweep takes new taps and follows contours on simulated "
                    "rigs: run the experiment to measure it. An analysed or replayed "
                    "recording measures only the compute sweep (c), on its own taps."));
+    perceptionRows_ = r.sweeps.perception;
+    followingRows_ = r.sweeps.following;
+    shownFollowing_ = r.spec.following;
+    picked_.reset();
+    runPicked_->setEnabled(false);
+    pickedLabel_->setText(tr("Click a point of (a) or (b) to see its setting."));
     buildPerceptionSweepFigure(perception_->plot(), r);
     buildFollowingSweepFigure(following_->plot(), r);
     buildComputeSweepFigure(compute_->plot(), r);
     for (auto* p : {perception_, following_, compute_}) p->plot().replot();
+}
+
+void SweepsTab::pickAt(QCustomPlot& plot, bool following, QPointF at) {
+    constexpr double kReach_px = 12.0;
+    int best = -1;
+    double bestDistance = kReach_px;
+    for (int i = 0; i < plot.graphCount(); ++i) {
+        QCPGraph* g = plot.graph(i);
+        const QVariantList rows = g->property(kSweepRowsProperty).toList();
+        if (rows.isEmpty() || !g->keyAxis()->axisRect()->rect().contains(at.toPoint())) continue;
+        int k = 0;
+        for (auto it = g->data()->constBegin(); it != g->data()->constEnd() && k < rows.size();
+             ++it, ++k) {
+            if (!std::isfinite(it->value)) continue;
+            const QPointF p(g->keyAxis()->coordToPixel(it->key),
+                            g->valueAxis()->coordToPixel(it->value));
+            const double d = std::hypot(p.x() - at.x(), p.y() - at.y());
+            if (d < bestDistance) {
+                bestDistance = d;
+                best = rows[k].toInt();
+            }
+        }
+    }
+    if (best >= 0) pick(following, best);
+}
+
+bool SweepsTab::pick(bool following, int row) {
+    QString text;
+    SweepSetting s{shownFollowing_.followStep_mm, shownFollowing_.repositionStep_mm, 0.0};
+    if (following) {
+        if (row < 0 || row >= int(followingRows_.size())) return false;
+        const FollowingSweepRow& f = followingRows_[std::size_t(row)];
+        s = {f.followStep_mm,
+             f.mode == FollowingMode::Active ? f.repositionStep_mm
+                                             : shownFollowing_.repositionStep_mm,
+             f.beliefThreshold};
+        text = tr("%1, follow %2 mm, reposition %3 mm, %4: %5/%6 trials completed, %7 s robot "
+                  "time per trial, taps %8 mm from the contour")
+                   .arg(f.mode == FollowingMode::Active ? tr("active") : tr("passive"))
+                   .arg(f.followStep_mm)
+                   .arg(f.repositionStep_mm)
+                   .arg(f.beliefThreshold > 0 ? tr("belief threshold %1").arg(f.beliefThreshold)
+                                              : tr("single tap"))
+                   .arg(f.completed)
+                   .arg(f.trials)
+                   .arg(f.meanRobotTime_s, 0, 'f', 0)
+                   .arg(f.meanContourDistance_mm, 0, 'f', 2);
+        if (f.paperSetting) text += tr(" (the paper's setting)");
+    } else {
+        if (row < 0 || row >= int(perceptionRows_.size())) return false;
+        const PerceptionSweepRow& a = perceptionRows_[std::size_t(row)];
+        s.beliefThreshold = a.threshold;
+        text = tr("belief threshold %1: %2 taps (%3-%4) and %5 s per decision; edge angle error "
+                  "%6° (%7-%8), position error %9 mm (%10-%11)")
+                   .arg(a.threshold)
+                   .arg(a.meanTaps, 0, 'f', 2)
+                   .arg(a.taps.low, 0, 'f', 2)
+                   .arg(a.taps.high, 0, 'f', 2)
+                   .arg(a.meanRobotTime_s, 0, 'f', 1)
+                   .arg(a.angleError_deg, 0, 'f', 1)
+                   .arg(a.angle_deg.low, 0, 'f', 1)
+                   .arg(a.angle_deg.high, 0, 'f', 1)
+                   .arg(a.positionError_mm, 0, 'f', 2)
+                   .arg(a.position_mm.low, 0, 'f', 2)
+                   .arg(a.position_mm.high, 0, 'f', 2);
+    }
+    picked_ = s;
+    pickedLabel_->setText(text);
+    runPicked_->setEnabled(true);
+    return true;
+}
+
+QString SweepsTab::pickedText() const {
+    return pickedLabel_->text();
 }
 
 }  // namespace activetouch

@@ -319,6 +319,21 @@ std::vector<ComputeSweepRow> computeSweep(const RunResult& r, const RunOptions& 
 
 }  // namespace
 
+SweepSpec standardSweeps() {
+    SweepSpec s;
+    s.beliefThresholds = {0.5, 0.8, 0.9, 0.95, 0.99, 0.995, 0.999};
+    s.tapsPerClass = 20;
+    s.maxTapsPerDecision = 20;
+    s.followSteps_mm = {1, 2, 3, 4};
+    s.repositionSteps_mm = {0.5, 1, 2};
+    s.followingBeliefThresholds = {0, 0.9, 0.99};
+    s.modes = {FollowingMode::Active, FollowingMode::Passive};
+    s.followingRepeats = 3;
+    s.bins = {10, 25, 50, 100, 200};
+    s.samplesPerTap = {5, 10, 25, 50};
+    return s;
+}
+
 SweepResults runSweeps(const RunResult& trained, const RunOptions& options, bool onTapsOnly) {
     SweepResults s;
     const SweepSpec& sw = trained.spec.sweeps;

@@ -17,4 +17,9 @@ namespace activetouch {
 SweepResults runSweeps(const RunResult& trained, const RunOptions& options,
                        bool onTapsOnly = false);
 
+/// The standard sweeps, those of experiments/accuracy_vs_time.json: (a) belief thresholds
+/// 0.5-0.999 over 20 taps per class, (b) follow steps 1-4 mm x repositioning 0.5-2 mm x single
+/// tap, 0.9 and 0.99, active and passive, 3 repeats, (c) 10-200 bins x 5-50 samples.
+SweepSpec standardSweeps();
+
 }  // namespace activetouch

@@ -32,6 +32,7 @@
 #include <immintrin.h>
 #endif
 
+#include "app/figures/SweepFigures.h"
 #include "app/gui/ComparisonTab.h"
 #include "app/gui/DevicesPanel.h"
 #include "app/gui/FollowingTab.h"
@@ -39,10 +40,12 @@
 #include "app/gui/MainWindow.h"
 #include "app/gui/PlotPanel.h"
 #include "app/gui/ProtocolPanel.h"
+#include "app/gui/ResultTabs.h"
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
 #include "core/common/VectorState.h"
 #include "core/fingertip/FingertipContactModel.h"
+#include "core/run/Sweeps.h"
 #include "devices/rigs/RigFile.h"
 #include "qcustomplot.h"
 #include "support/FigureChecks.h"

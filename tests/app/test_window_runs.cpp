@@ -7,6 +7,67 @@
 class TestWindowRuns : public WindowFixture {
     Q_OBJECT
 
+public:
+    // Part of the sweeps test: the curves of (a) carry their intervals and the paper's point;
+    // clicking a point of (a) or (b) shows its setting, and the button follows with it.
+    void clickingAPointShowsItsSettingAndRunsIt() {
+        auto* tab = window_->findChild<SweepsTab*>();
+        QVERIFY(tab);
+        const auto& sw = window_->lastRun()->sweeps;
+        PlotPanel* a = tab->perceptionPanel();
+        int bars = 0, stars = 0;
+        for (int i = 0; i < a->plot().plottableCount(); ++i) {
+            bars += qobject_cast<QCPErrorBars*>(a->plot().plottable(i)) != nullptr;
+            stars += a->plot().plottable(i)->name().startsWith("paper: single tap");
+        }
+        QCOMPARE(bars, 2);   // angle and position, each with its 95 % intervals
+        QCOMPARE(stars, 2);  // the paper's single tap on the same taps, in both panels
+        // Click the second point of (a)'s first series where it is drawn.
+        auto clickPoint = [](PlotPanel* panel, int point) {
+            showTab(panel);
+            showAt(panel, QSize(1366, 768));
+            for (int i = 0; i < panel->plot().graphCount(); ++i) {
+                QCPGraph* g = panel->plot().graph(i);
+                if (g->property(kSweepRowsProperty).toList().size() <= point) continue;
+                const auto it = g->data()->at(point);
+                const QPoint at(int(std::lround(g->keyAxis()->coordToPixel(it->key))),
+                                int(std::lround(g->valueAxis()->coordToPixel(it->value))));
+                QTest::mouseClick(&panel->plot(), Qt::LeftButton, {}, at);
+                return g->property(kSweepRowsProperty).toList()[point].toInt();
+            }
+            return -1;
+        };
+        const int rowA = clickPoint(a, 1);
+        QCOMPARE(rowA, 1);
+        QVERIFY(tab->picked());
+        QCOMPARE(tab->picked()->beliefThreshold, sw.perception[1].threshold);
+        QVERIFY2(tab->pickedText().contains("belief threshold 0.999999"),
+                 qPrintable(tab->pickedText()));
+        // A point of (b): its follow step.
+        const int rowB = clickPoint(tab->followingPanel(), 1);
+        QVERIFY(rowB >= 0);
+        const FollowingSweepRow& b = sw.following[std::size_t(rowB)];
+        QCOMPARE(tab->picked()->followStep_mm, b.followStep_mm);
+        const SweepSetting picked = *tab->picked();
+        QVERIFY2(tab->pickedText().contains(QString("follow %1 mm").arg(b.followStep_mm)),
+                 qPrintable(tab->pickedText()));
+        // The button follows with that setting, on the classifier just trained.
+        QTRY_VERIFY(!window_->running());
+        auto* run = tab->findChild<QPushButton*>("sweepRunPicked");
+        QVERIFY(run && run->isEnabled());
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QTest::mouseClick(run, Qt::LeftButton);
+        QVERIFY(window_->running());
+        QVERIFY(ended.wait(120000));
+        const ExperimentSpec& followed = window_->lastRun()->spec;
+        QCOMPARE(followed.following.followStep_mm, picked.followStep_mm);
+        QCOMPARE(followed.following.repositionStep_mm, picked.repositionStep_mm);
+        QCOMPARE(followed.following.beliefThreshold, picked.beliefThreshold);
+        // Following alone measures no sweeps: the curves stay.
+        QVERIFY(!a->showsEmptyHint() && a->plot().plottableCount() > 0);
+        QTRY_VERIFY(!window_->running());
+    }
+
 private slots:
     void initTestCase() { openWindow(); }
 
@@ -319,6 +380,8 @@ private slots:
             if (p->name().startsWith("sweep"))
                 QVERIFY2(p->plot().plottableCount() > 0 && !p->showsEmptyHint(),
                          qPrintable(p->name()));
+        clickingAPointShowsItsSettingAndRunsIt();
+        if (QTest::currentTestFailed()) return;
         // This experiment recognises nothing: the recognition tab says so and claims no accuracy.
         for (PlotPanel* p : window_->plotPanels())
             if (p->name() == "figure9_recognition") {
@@ -363,6 +426,46 @@ private slots:
             if (QTest::currentTestFailed()) return;
         }
         showAt(seeds, start);
+    }
+
+    void standardSweepsAreOfferedOnAnExperimentWithout() {
+        const QString path = dir_.filePath("no_sweeps.json");
+        QFile f(path);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write(QString(R"({"name": "no_sweeps", "scene": "%1",
+            "following": {"trials": [{"object": {"shape": "rectangle", "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150]}}]}})")
+                    .arg(sourceFile("experiments/scenes/paper_rectangle.json"))
+                    .toUtf8());
+        f.close();
+        QTRY_VERIFY(!window_->running());
+        QVERIFY(window_->openExperiment(path));
+        window_->setPace(Pace::Fastest);
+        auto* tab = window_->findChild<SweepsTab*>();
+        auto* offer = tab->findChild<QPushButton*>("sweepRunStandard");
+        QVERIFY(offer);
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QVERIFY(window_->startRun(RunController::What::TrainingOnly));
+        QVERIFY(ended.wait(60000));
+        QVERIFY(!offer->isHidden());
+        QTRY_VERIFY(!window_->running());
+        // It runs the experiment shown with the standard sweeps; stopped at once here.
+        QTest::mouseClick(offer, Qt::LeftButton);
+        QVERIFY(window_->running());
+        window_->cancelRun();
+        QVERIFY(ended.wait(120000));
+        QTRY_VERIFY(!window_->running());
+        QVERIFY2(window_->lastRunDirectory().contains("no_sweeps_sweeps"),
+                 qPrintable(window_->lastRunDirectory()));
+        QVERIFY(window_->lastRun()->spec.sweeps.any());
+        const SweepSpec standard = standardSweeps();
+        const SweepSpec file =
+            loadExperiment(sourceFile("experiments/accuracy_vs_time.json").toStdString()).sweeps;
+        QVERIFY(standard.beliefThresholds == file.beliefThresholds);
+        QVERIFY(standard.followSteps_mm == file.followSteps_mm);
+        QVERIFY(standard.followingBeliefThresholds == file.followingBeliefThresholds);
+        QVERIFY(standard.bins == file.bins && standard.samplesPerTap == file.samplesPerTap);
+        QCOMPARE(standard.tapsPerClass, file.tapsPerClass);
+        QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
     }
 
     void cleanupTestCase() {
