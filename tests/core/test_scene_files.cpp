@@ -418,6 +418,11 @@ private slots:
             << "not both";
         QTest::newRow("unknown percept") << head + R"("following": {"percept": "fuzzy"}})"
                                          << "percept 'fuzzy' is neither discrete";
+        QTest::newRow("unknown belief evidence")
+            << head + R"("following": {"belief_evidence": "bayes"}})"
+            << "belief_evidence 'bayes' is neither calibrated";
+        QTest::newRow("belief evidence not text")
+            << head + R"("following": {"belief_evidence": 1}})" << "belief_evidence";
         QTest::newRow("curvature from one tap") << head + R"("following": {"curvature_taps": 1}})"
                                                 << "a turn needs two angles";
         QTest::newRow("negative temperature")
