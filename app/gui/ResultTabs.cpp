@@ -163,6 +163,7 @@ SweepsTab::SweepsTab(QWidget* parent) : QWidget(parent) {
         tr("Sets the protocol's follow step, repositioning step and belief threshold to the "
            "point's and runs following with the classifier the last run trained"));
     runPicked_->setEnabled(false);
+    runPicked_->hide();  // until sweeps are shown
     runStandard_ = new QPushButton(tr("Run the standard sweeps on this experiment"));
     runStandard_->setObjectName("sweepRunStandard");
     runStandard_->setToolTip(
@@ -199,7 +200,14 @@ SweepsTab::SweepsTab(QWidget* parent) : QWidget(parent) {
 void SweepsTab::showRun(const RunResult& r, bool analysis) {
     // A run of an experiment without a "sweeps" section is offered the standard ones.
     runStandard_->setVisible(!analysis && !r.spec.sweeps.any());
-    if (r.sweeps.empty()) return;  // following alone keeps the sweeps shown
+    if (r.sweeps.empty()) {  // following alone keeps the sweeps shown
+        if (perceptionRows_.empty() && followingRows_.empty() && runStandard_->isVisibleTo(this))
+            pickedLabel_->setText(tr("%1 has no sweeps: run the standard ones on it, or open "
+                                     "experiments/accuracy_vs_time.json.")
+                                      .arg(QString::fromStdString(r.spec.name)));
+        return;
+    }
+    runPicked_->show();
     if (analysis)
         for (PlotPanel* p : {perception_, following_})
             p->setEmptyHint(

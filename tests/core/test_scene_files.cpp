@@ -422,7 +422,8 @@ private slots:
             << head + R"("following": {"belief_evidence": "bayes"}})"
             << "belief_evidence 'bayes' is neither calibrated";
         QTest::newRow("belief evidence not text")
-            << head + R"("following": {"belief_evidence": 1}})" << "belief_evidence";
+            << head + R"("following": {"belief_evidence": 1}})"
+            << "belief_evidence";
         QTest::newRow("curvature from one tap") << head + R"("following": {"curvature_taps": 1}})"
                                                 << "a turn needs two angles";
         QTest::newRow("negative temperature")
