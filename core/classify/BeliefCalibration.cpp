@@ -38,26 +38,6 @@ double expectedCalibrationError(const std::vector<double>& confidence,
     return total > 0 ? ece / total : 0.0;
 }
 
-double scaledTopPosterior(const double* ll, int count, double scale, int* top) {
-    // Scaled in place of a copy; NaN and -inf rule a class out; +inf can only come from a
-    // broken table and is treated as the largest finite value.
-    thread_local std::vector<double> v;
-    v.resize(static_cast<std::size_t>(count));
-    const double s = std::isfinite(scale) && scale > 0.0 ? scale : 0.0;
-    for (int c = 0; c < count; ++c) {
-        double x = ll[c];
-        if (std::isnan(x)) x = -std::numeric_limits<double>::infinity();
-        if (x == std::numeric_limits<double>::infinity()) x = std::numeric_limits<double>::max();
-        v[static_cast<std::size_t>(c)] = s == 0.0 ? (std::isfinite(x) ? 0.0 : x) : s * x;
-    }
-    const int best = argmaxLowestIndex(v.data(), count);
-    if (top) *top = best;
-    const double norm = logSumExp(v.data(), count);
-    if (!std::isfinite(norm) || !std::isfinite(v[static_cast<std::size_t>(best)]))
-        return 1.0 / static_cast<double>(std::max(1, count));  // nothing to tell classes apart
-    return std::clamp(std::exp(v[static_cast<std::size_t>(best)] - norm), 0.0, 1.0);
-}
-
 void calibratedLogBelief(const double* ll, int count, const BeliefScaling& scaling, double* out) {
     if (count < 1) return;
     const double s = std::isfinite(scaling.scale) && scaling.scale > 0.0 ? scaling.scale : 0.0;
@@ -90,15 +70,15 @@ double calibratedTopBelief(const double* ll, int count, const BeliefScaling& sca
     thread_local std::vector<double> v;
     v.resize(static_cast<std::size_t>(std::max(1, count)));
     calibratedLogBelief(ll, count, scaling, v.data());
-    // The top class is the log-likelihoods' own argmax (the calibration is monotone), found on
-    // them so that rounding in the scaling cannot reorder near-ties.
-    thread_local std::vector<double> clean;
-    clean.assign(ll, ll + count);
-    for (double& x : clean)
-        if (std::isnan(x)) x = -std::numeric_limits<double>::infinity();
-    const int best = argmaxLowestIndex(clean.data(), count);
+    // The top class is the log-likelihoods' own argmax (the calibration is monotone; NaN never
+    // wins), found on them so that rounding in the scaling cannot reorder near-ties.
+    const int best = argmaxLowestIndex(ll, count);
     if (top) *top = best;
     return std::clamp(std::exp(v[static_cast<std::size_t>(best)]), 0.0, 1.0);
+}
+
+double scaledTopPosterior(const double* ll, int count, double scale, int* top) {
+    return calibratedTopBelief(ll, count, {scale, 0.0}, top);
 }
 
 namespace {
@@ -127,16 +107,27 @@ double goldenMinimum(F f, double a, double b, double tolerance) {
     return 0.5 * (a + b);
 }
 
-double meanNegativeLogPosterior(const std::vector<std::vector<double>>& ll,
-                                const std::vector<int>& truth, double scale) {
-    double sum = 0.0;
+// Each tap's log posterior of its true class with the log-likelihoods scaled by `scale` (NaN
+// rules a class out), into `out`.
+void trueClassLogPosteriors(const std::vector<std::vector<double>>& ll,
+                            const std::vector<int>& truth, double scale, std::vector<double>& out) {
     thread_local std::vector<double> v;
+    out.resize(ll.size());
     for (std::size_t t = 0; t < ll.size(); ++t) {
         v.assign(ll[t].begin(), ll[t].end());
-        for (double& x : v) x *= scale;
-        const double norm = logSumExp(v.data(), static_cast<int>(v.size()));
-        sum += norm - v[static_cast<std::size_t>(truth[t])];
+        for (double& x : v)
+            x = std::isnan(x) ? -std::numeric_limits<double>::infinity() : scale * x;
+        out[t] =
+            v[static_cast<std::size_t>(truth[t])] - logSumExp(v.data(), static_cast<int>(v.size()));
     }
+}
+
+double meanNegativeLogPosterior(const std::vector<std::vector<double>>& ll,
+                                const std::vector<int>& truth, double scale) {
+    thread_local std::vector<double> lp;
+    trueClassLogPosteriors(ll, truth, scale, lp);
+    double sum = 0.0;
+    for (double x : lp) sum -= x;
     return ll.empty() ? 0.0 : sum / static_cast<double>(ll.size());
 }
 
@@ -158,17 +149,10 @@ BeliefScaling fitBeliefScaling(const std::vector<std::vector<double>>& ll,
     if (ll.empty()) return best;
     // For a given scale, the true classes' softmax probabilities; the floor's negative
     // log-likelihood, -mean log((1 - e) p + e / C), is convex in e.
-    std::vector<double> p(ll.size());
-    std::vector<double> v;
+    std::vector<double> p;
     auto floorFor = [&](double scale, double* cost) {
-        for (std::size_t t = 0; t < ll.size(); ++t) {
-            v.assign(ll[t].begin(), ll[t].end());
-            for (double& x : v)
-                x = std::isnan(x) ? -std::numeric_limits<double>::infinity() : scale * x;
-            const double norm = logSumExp(v.data(), static_cast<int>(v.size()));
-            const double lp = v[static_cast<std::size_t>(truth[t])] - norm;
-            p[t] = std::isfinite(lp) ? std::exp(lp) : 0.0;
-        }
+        trueClassLogPosteriors(ll, truth, scale, p);
+        for (double& x : p) x = std::isfinite(x) ? std::exp(x) : 0.0;
         const double evenShare = 1.0 / static_cast<double>(ll.front().size());
         auto nll = [&](double e) {
             double sum = 0.0;
@@ -237,49 +221,51 @@ BeliefCalibration calibrateBelief(const HistogramClassifier& classifier,
     all.insert(all.end(), ll[1].begin(), ll[1].end());
     std::vector<int> allTruth = fold[0];
     allTruth.insert(allTruth.end(), fold[1].begin(), fold[1].end());
-    // The candidates: fitted per fold (to measure) and on every tap (to keep).
-    const BeliefScaling temperature[2] = {{fitLogLikelihoodScale(ll[1], fold[1]), 0.0},
-                                          {fitLogLikelihoodScale(ll[0], fold[0]), 0.0}};
-    const BeliefScaling withFloor[2] = {fitBeliefScaling(ll[1], fold[1]),
-                                        fitBeliefScaling(ll[0], fold[0])};
     r.fittedScale = fitLogLikelihoodScale(all, allTruth);
     r.fittedWithFloor = fitBeliefScaling(all, allTruth);
     r.perSampleScale = 1.0 / std::max(1, samples);
-    // The expected calibration error with each tap's confidence under scaling(fold).
-    auto ece = [&](auto scalingOf, std::vector<ReliabilityBin>* bins,
+    // The expected calibration error with each tap's confidence under scaling[fold].
+    auto ece = [&](const BeliefScaling(&scaling)[2], std::vector<ReliabilityBin>* bins,
                    std::vector<double>* confidenceOut = nullptr) {
         std::vector<double> confidence;
         std::vector<bool> correct;
         for (int f = 0; f < 2; ++f)
             for (std::size_t t = 0; t < ll[f].size(); ++t) {
                 int top = 0;
-                confidence.push_back(calibratedTopBelief(ll[f][t].data(), C, scalingOf(f), &top));
+                confidence.push_back(calibratedTopBelief(ll[f][t].data(), C, scaling[f], &top));
                 correct.push_back(top == fold[f][t]);
             }
         if (confidenceOut) *confidenceOut = confidence;
         return expectedCalibrationError(confidence, correct, 10, bins);
     };
+    // The candidates: fitted per fold on the other fold (to measure) and on every tap (to keep).
     struct Candidate {
         const char* method;
         BeliefScaling kept;
-        double ece;
+        BeliefScaling perFold[2];
+        double ece = 0.0;
         std::vector<ReliabilityBin> bins;
         std::vector<double> confidence;
     };
+    const BeliefScaling perSample{r.perSampleScale, 0.0};
     Candidate candidates[3] = {
-        {"temperature fitted on held-out taps", {r.fittedScale, 0.0}, 0.0, {}, {}},
-        {"temperature and floor fitted on held-out taps", r.fittedWithFloor, 0.0, {}, {}},
-        {"mean per sample", {r.perSampleScale, 0.0}, 0.0, {}, {}}};
-    candidates[0].ece =
-        ece([&](int f) { return temperature[f]; }, &candidates[0].bins, &candidates[0].confidence);
-    candidates[1].ece =
-        ece([&](int f) { return withFloor[f]; }, &candidates[1].bins, &candidates[1].confidence);
-    candidates[2].ece = ece(
-        [&](int) {
-            return BeliefScaling{r.perSampleScale, 0.0};
-        },
-        &candidates[2].bins, &candidates[2].confidence);
-    r.eceRaw = ece([](int) { return BeliefScaling{}; }, &r.raw);
+        {"temperature fitted on held-out taps",
+         {r.fittedScale, 0.0},
+         {{fitLogLikelihoodScale(ll[1], fold[1]), 0.0},
+          {fitLogLikelihoodScale(ll[0], fold[0]), 0.0}},
+         0.0,
+         {},
+         {}},
+        {"temperature and floor fitted on held-out taps",
+         r.fittedWithFloor,
+         {fitBeliefScaling(ll[1], fold[1]), fitBeliefScaling(ll[0], fold[0])},
+         0.0,
+         {},
+         {}},
+        {"mean per sample", perSample, {perSample, perSample}, 0.0, {}, {}}};
+    for (Candidate& c : candidates) c.ece = ece(c.perFold, &c.bins, &c.confidence);
+    const BeliefScaling raw[2] = {};
+    r.eceRaw = ece(raw, &r.raw);
     r.eceFitted = candidates[0].ece;
     r.eceFittedWithFloor = candidates[1].ece;
     r.ecePerSample = candidates[2].ece;
@@ -290,7 +276,6 @@ BeliefCalibration calibrateBelief(const HistogramClassifier& classifier,
         if (c.ece < kept->ece - 1e-9) kept = &c;
     r.method = kept->method;
     r.scaling = kept->kept;
-    r.scale = r.scaling.scale;
     r.eceCalibrated = kept->ece;
     r.calibrated = kept->bins;
     r.eceIfCalibrated = expectedCalibrationErrorIfCalibrated(kept->confidence, 10);

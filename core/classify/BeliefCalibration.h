@@ -83,7 +83,6 @@ struct BeliefCalibration {
     /// sequence); sequential decisions use it.
     BeliefScaling sequential;
     int sequencePrefixes = 0;  ///< how many running sums it was fitted on
-    double scale = 1.0;        ///< scaling.scale, kept for readers of the factor alone
     double fittedScale = 1.0, perSampleScale = 1.0;
     BeliefScaling fittedWithFloor;
     double eceRaw = 0.0, eceCalibrated = 0.0;  ///< on the evaluation taps

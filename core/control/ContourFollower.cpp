@@ -315,16 +315,16 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
                                         calibrated.data());
                     belief.update(calibrated.data());
                 }
+                // The calibrated belief decides on percepts (plane and air each one); the naive
+                // one, and the continuous percept, on the single most likely class.
+                const double believed = s.calibratedBelief && !continuous ? belief.perceptBelief()
+                                                                          : belief.bestPosterior();
                 t.percept = continuous
                                 ? perceiveContinuous(
                                       classes, belief.logPosterior().data(),
                                       belief.taps() *
                                           perceptTemperatureFor(s.perceptTemperature, t.record.tap))
-                            : s.calibratedBelief
-                                ? perceptOf(belief.best(), belief.perceptBelief(), classes)
-                                : perceptOf(belief.best(), belief.bestPosterior(), classes);
-                const double believed = s.calibratedBelief && !continuous ? belief.perceptBelief()
-                                                                          : belief.bestPosterior();
+                                : perceptOf(belief.best(), believed, classes);
                 if (believed < s.beliefThreshold && belief.taps() < s.maxTapsPerDecision) {
                     // Gather more evidence here; optionally reposition toward the valid range.
                     decisionMade = false;

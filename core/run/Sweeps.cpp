@@ -106,7 +106,7 @@ std::vector<PerceptionSweepRow> perceptionSweep(const RunResult& r, const RunOpt
         calibration.eceIfCalibrated = expectedCalibrationErrorIfCalibrated(kept, 10);
     }
     std::vector<PerceptionSweepRow> rows;
-    // The first threshold's errors, decision by decision, to pair the others with.
+    // The single tap's errors, decision by decision, to pair each threshold's with.
     std::map<int, std::vector<double>> firstAngle, firstPosition;
     const double inf = std::numeric_limits<double>::infinity();
     auto fall = [&](const std::map<int, std::vector<double>>& first,

@@ -81,10 +81,10 @@ private slots:
             const BeliefCalibration& b = r.beliefCalibration;
             QVERIFY(b.measured && b.evaluationTaps == 4 * 72);
             qInfo("seed %d: ECE raw %.3f, scaled %.3f (factor %.4f; per-sample mean %.3f)",
-                  int(seed), b.eceRaw, b.eceCalibrated, b.scale, b.ecePerSample);
+                  int(seed), b.eceRaw, b.eceCalibrated, b.scaling.scale, b.ecePerSample);
             QVERIFY(b.eceRaw > 0.25);
             QVERIFY(b.eceCalibrated < 0.5 * b.eceRaw && b.eceCalibrated < 0.1);
-            QVERIFY(b.scale > 0.0 && b.scale < 1.0);
+            QVERIFY(b.scaling.scale > 0.0 && b.scaling.scale < 1.0);
             // On every validation tap the calibrated belief's top class is the classifier's
             // own decision, for the single-tap and the sequential scaling alike.
             std::vector<double> ll(72);
