@@ -36,6 +36,7 @@
 #include "core/run/RunFolder.h"
 #include "core/run/SeedRates.h"
 #include "core/run/SeedShards.h"
+#include "core/run/SweepRates.h"
 #include "devices/rigs/RigAssembly.h"
 #include "devices/rigs/RigFile.h"
 #include "devices/simulated/SimulatedWorld.h"
@@ -384,6 +385,11 @@ void printSeedRates(const std::string& name, const SeedRates& rates, std::uint64
     std::printf("\n%s over %zu seeds (%llu-%llu):\n", name.c_str(), rates.seeds.size(),
                 static_cast<unsigned long long>(first), static_cast<unsigned long long>(last));
     for (const std::string& line : describeRates(rates)) std::printf("%s\n", line.c_str());
+    if (const SweepRates sweeps = sweepRates(rates.seeds); !sweeps.empty()) {
+        std::printf("\n");
+        for (const std::string& line : describeSweepRates(sweeps))
+            std::printf("%s\n", line.c_str());
+    }
 }
 
 }  // namespace activetouch::cli

@@ -4,7 +4,9 @@
 
 #include "app/figures/FigureExport.h"
 #include "app/figures/FigureLayout.h"
+#include "app/figures/SweepFigures.h"
 #include "core/run/SeedRates.h"
+#include "core/run/SweepRates.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
@@ -97,9 +99,22 @@ bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QStri
 QStringList writeSeedFigures(const SeedRates& rates, const QString& experiment,
                              const QString& outDir) {
     const QString dir = figuresDirectory(outDir);
-    QCustomPlot plot;
-    if (!buildSeedRatesFigure(plot, rates, experiment)) return {};
-    return exportFigure(plot, dir + "/seed_rates", {"png", "pdf", "svg"}, kSeedFigureSize);
+    QStringList files;
+    {
+        QCustomPlot plot;
+        if (buildSeedRatesFigure(plot, rates, experiment))
+            files << exportFigure(plot, dir + "/seed_rates", {"png", "pdf", "svg"},
+                                  kSeedFigureSize);
+    }
+    const SweepRates sweeps = sweepRates(rates.seeds);
+    for (auto [build, name] : {std::pair{&buildPerceptionSweepOverSeedsFigure, "sweeps_perception"},
+                               std::pair{&buildFollowingParetoFigure, "sweeps_following_pareto"}}) {
+        QCustomPlot plot;
+        if (build(plot, sweeps))
+            files << exportFigure(plot, dir + "/" + name, {"png", "pdf", "svg"},
+                                  FigureSize::physical(kDoubleColumn_mm, 120, kFigureDpi));
+    }
+    return files;
 }
 
 }  // namespace activetouch

@@ -6,6 +6,7 @@
 
 #include "app/figures/FigureLayout.h"
 #include "core/run/ExperimentRun.h"
+#include "core/run/SweepRates.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
@@ -231,6 +232,185 @@ bool buildComputeSweepFigure(QCustomPlot& plot, const RunResult& r) {
         }
     fit(a);
     fit(p);
+    return true;
+}
+
+namespace {
+
+/// Error bars on `g`: values (and keys, if given) from their intervals.
+void intervalBars(QCPGraph* g, const std::vector<SweepEstimate>& y,
+                  const std::vector<SweepEstimate>* x = nullptr) {
+    auto bars = [g](QCPErrorBars::ErrorType type, const std::vector<SweepEstimate>& e) {
+        QVector<double> below, above;
+        for (const SweepEstimate& v : e) {
+            below << (std::isfinite(v.low) ? v.mean - v.low : 0.0);
+            above << (std::isfinite(v.high) ? v.high - v.mean : 0.0);
+        }
+        auto* bar = new QCPErrorBars(g->keyAxis(), g->valueAxis());
+        bar->setErrorType(type);
+        bar->setDataPlottable(g);
+        bar->setData(below, above);
+        bar->setPen(g->pen());
+        bar->removeFromLegend();
+    };
+    bars(QCPErrorBars::etValueError, y);
+    if (x) bars(QCPErrorBars::etKeyError, *x);
+}
+
+QString settingLabel(const FollowingOverSeeds& f) {
+    const QString threshold =
+        f.beliefThreshold > 0 ? QString(", %1").arg(f.beliefThreshold, 0, 'g', 6) : QString();
+    return f.mode == FollowingMode::Active
+               ? QString("%1/%2%3").arg(f.followStep_mm).arg(f.repositionStep_mm).arg(threshold)
+               : QString("passive %1%2").arg(f.followStep_mm).arg(threshold);
+}
+
+}  // namespace
+
+bool buildPerceptionSweepOverSeedsFigure(QCustomPlot& plot, const SweepRates& r) {
+    startFigure(plot, QString("Accuracy costs time (a) over %1 seeds: sequential perception, "
+                              "error against taps per decision")
+                          .arg(r.seeds));
+    if (r.perception.empty()) return false;
+    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
+    const auto [a, la] = addPanelWithLegendBelow(grid, 0, 0, /*perLine=*/2);
+    setPanelTitle(a, "edge angle error (edge classes)");
+    a->axis(QCPAxis::atBottom)->setLabel("mean taps per decision");
+    a->axis(QCPAxis::atLeft)->setLabel("angle error (°)");
+    const auto [p, lp] = addPanelWithLegendBelow(grid, 0, 1, /*perLine=*/2);
+    setPanelTitle(p, "position error");
+    p->axis(QCPAxis::atBottom)->setLabel("mean taps per decision");
+    p->axis(QCPAxis::atLeft)->setLabel("position error (mm)");
+    QVector<double> taps, angle, position;
+    std::vector<SweepEstimate> tapsE, angleE, positionE;
+    for (const auto& row : r.perception) {
+        taps << row.taps.mean;
+        angle << row.angle_deg.mean;
+        position << row.position_mm.mean;
+        tapsE.push_back(row.taps);
+        angleE.push_back(row.angle_deg);
+        positionE.push_back(row.position_mm);
+    }
+    const QString name = "belief thresholds, mean over seeds, 95 % intervals";
+    intervalBars(addSeries(a, la, name, taps, angle, seriesColour(0)), angleE, &tapsE);
+    intervalBars(addSeries(p, lp, name, taps, position, seriesColour(0)), positionE, &tapsE);
+    const PerceptionOverSeeds& one = r.perceptionSingleTap;
+    markPaper(a, la, one.taps.mean, one.angle_deg.mean, "paper: single tap (same taps)");
+    markPaper(p, lp, one.taps.mean, one.position_mm.mean, "paper: single tap (same taps)");
+    for (std::size_t i = 0; i < r.perception.size(); ++i) {
+        const QString t = QString::number(r.perception[i].threshold, 'g', 12);
+        pointLabel(a, taps[int(i)], angle[int(i)], t);
+        pointLabel(p, taps[int(i)], position[int(i)], t);
+    }
+    fit(a);
+    fit(p);
+    return true;
+}
+
+bool buildFollowingParetoFigure(QCustomPlot& plot, const SweepRates& r) {
+    startFigure(plot, QString("Accuracy costs time (b) over %1 seeds: contour following, the "
+                              "trade-off and its Pareto front (labels: follow/reposition mm, "
+                              "threshold)")
+                          .arg(r.seeds));
+    // Active settings only: passive trials almost never complete, and their time per completion
+    // (tens of thousands of seconds) would crush the active trade-off into a corner. They stay
+    // in the tables.
+    std::vector<const FollowingOverSeeds*> shown;
+    for (const auto& f : r.following)
+        if (f.mode == FollowingMode::Active && std::isfinite(f.robotTimePerCompletion_s.mean))
+            shown.push_back(&f);
+    if (shown.empty()) return false;
+    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
+    const auto [completion, lc] = addPanelWithLegendBelow(grid, 0, 0, /*perLine=*/2);
+    setPanelTitle(completion, "completion (front circled)");
+    completion->axis(QCPAxis::atBottom)->setLabel("robot time per completed trial (s)");
+    completion->axis(QCPAxis::atLeft)->setLabel("trials completed (%)");
+    const auto [distance, ld] = addPanelWithLegendBelow(grid, 0, 1, /*perLine=*/2);
+    setPanelTitle(distance, "path error (front circled)");
+    distance->axis(QCPAxis::atBottom)->setLabel("robot time per completed trial (s)");
+    distance->axis(QCPAxis::atLeft)->setLabel("mean distance of taps to the contour (mm)");
+    // One series per mode and threshold; the front joined in order of time.
+    std::map<std::pair<int, double>, std::vector<const FollowingOverSeeds*>> groups;
+    for (const auto* f : shown) groups[{int(f->mode), f->beliefThreshold}].push_back(f);
+    int colour = 0;
+    for (const auto& [key, list] : groups) {
+        QVector<double> t, c, d;
+        std::vector<SweepEstimate> tE, cE, dE;
+        for (const auto* f : list) {
+            t << f->robotTimePerCompletion_s.mean;
+            tE.push_back(f->robotTimePerCompletion_s);
+            c << 100.0 * f->completed.fraction();
+            cE.push_back({100.0 * f->completed.fraction(), 100.0 * f->completed.low(),
+                          100.0 * f->completed.high()});
+            d << f->contourDistance_mm.mean;
+            dE.push_back(f->contourDistance_mm);
+        }
+        const QString name =
+            QString("%1, %2")
+                .arg(modeName(FollowingMode(key.first)))
+                .arg(key.second > 0 ? QString("threshold %1").arg(key.second, 0, 'g', 6)
+                                    : QString("single tap"));
+        intervalBars(addSeries(completion, lc, name, t, c, seriesColour(colour), false), cE, &tE);
+        intervalBars(addSeries(distance, ld, name, t, d, seriesColour(colour), false), dE, &tE);
+        ++colour;
+    }
+    std::vector<const FollowingOverSeeds*> front;
+    for (const auto* f : shown)
+        if (f->onParetoFront) front.push_back(f);
+    std::sort(front.begin(), front.end(), [](const auto* a, const auto* b) {
+        return a->robotTimePerCompletion_s.mean < b->robotTimePerCompletion_s.mean;
+    });
+    QVector<double> ft, fc, fd;
+    for (const auto* f : front) {
+        ft << f->robotTimePerCompletion_s.mean;
+        fc << 100.0 * f->completed.fraction();
+        fd << f->contourDistance_mm.mean;
+    }
+    for (auto [rect, legend, y] :
+         {std::tuple{completion, lc, &fc}, std::tuple{distance, ld, &fd}}) {
+        auto* g =
+            addSeries(rect, legend, "Pareto front (time, completion, distance)", ft, *y, Qt::black);
+        g->setScatterStyle(
+            QCPScatterStyle(QCPScatterStyle::ssCircle, QPen(Qt::black, 1.5), Qt::NoBrush, 10));
+        g->setLineStyle(QCPGraph::lsNone);  // a front in three measures: no line joins it
+    }
+    for (const auto* f : shown) {
+        if (f->paperSetting && f->mode == FollowingMode::Active) {
+            markPaper(completion, lc, f->robotTimePerCompletion_s.mean,
+                      100.0 * f->completed.fraction(), "paper: 2 mm, 1 mm, single tap");
+            markPaper(distance, ld, f->robotTimePerCompletion_s.mean, f->contourDistance_mm.mean,
+                      "paper: 2 mm, 1 mm, single tap");
+        }
+        // Only the paper's setting and those that beat it are named, so that labels do not pile
+        // up; the front is circled, and named in the tables.
+        const bool paper = f->paperSetting && f->mode == FollowingMode::Active;
+        const QString label = settingLabel(*f) + (f->beatsPaper ? " (beats paper)" : "");
+        if (f->beatsPaper || paper)
+            pointLabel(completion, f->robotTimePerCompletion_s.mean,
+                       100.0 * f->completed.fraction(), label);
+        if (f->beatsPaper || paper)
+            pointLabel(distance, f->robotTimePerCompletion_s.mean, f->contourDistance_mm.mean,
+                       label);
+    }
+    for (QCPAxisRect* rect : {completion, distance}) {
+        QCPAxis* x = rect->axis(QCPAxis::atBottom);
+        x->setScaleType(QCPAxis::stLogarithmic);
+        QSharedPointer<QCPAxisTickerText> ticks(new QCPAxisTickerText);
+        for (double decade = 1e-2; decade < 1e7; decade *= 10)
+            for (double step : {1.0, 2.0, 5.0})
+                ticks->addTick(decade * step, QString::number(decade * step, 'g', 6));
+        x->setTicker(ticks);
+        fit(rect);
+        // Logarithmic: widen by factors, not by steps, and keep the lower end positive.
+        double lo = qInf(), hi = 0;
+        for (const auto* f : shown) {
+            lo = std::min(lo, f->robotTimePerCompletion_s.low);
+            hi = std::max(hi, std::isfinite(f->robotTimePerCompletion_s.high)
+                                  ? f->robotTimePerCompletion_s.high
+                                  : f->robotTimePerCompletion_s.mean);
+        }
+        x->setRange(std::max(1e-3, lo) / 1.15, hi * 1.15);
+    }
     return true;
 }
 

@@ -6,6 +6,7 @@ class QCustomPlot;
 namespace activetouch {
 
 struct RunResult;
+struct SweepRates;
 
 /// The property on each plotted series of (a) and (b) that lists, per data point, the index of
 /// its row in the run's sweep (sweeps.perception or sweeps.following), as a QVariantList of int:
@@ -19,5 +20,13 @@ bool buildPerceptionSweepFigure(QCustomPlot& plot, const RunResult& result);
 bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& result);
 /// (c) classifier error against microseconds per decision, one series per samples per tap.
 bool buildComputeSweepFigure(QCustomPlot& plot, const RunResult& result);
+
+/// Sweep (a) over seeds: angle and position error against mean taps per decision, each point the
+/// mean over seeds with its 95 % interval both ways, the paper's single tap starred.
+bool buildPerceptionSweepOverSeedsFigure(QCustomPlot& plot, const SweepRates& rates);
+/// Sweep (b) over seeds as a trade-off: completion and contour distance against robot time per
+/// completion, every setting a point with its intervals, the Pareto front joined, the paper's
+/// setting starred and the settings that beat it named.
+bool buildFollowingParetoFigure(QCustomPlot& plot, const SweepRates& rates);
 
 }  // namespace activetouch

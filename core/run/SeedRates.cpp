@@ -152,6 +152,7 @@ SeedOutcome seedOutcome(const RunResult& run) {
     o.validRange = run.validation.validRange;
     o.recognition = run.spec.recognition.enabled;
     o.runFailure = run.failure;
+    o.sweeps = run.sweeps;
     int planned = 0;
     for (const TrialSpec& t : run.spec.trials) planned += t.repeats;
     int counted = 0;

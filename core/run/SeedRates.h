@@ -94,6 +94,9 @@ struct SeedOutcome {
     /// correcting its offset from the edge, and these say how closely it traced the contour.
     Tracing activeTracing, passiveTracing;
     CornerTally activeCorners, passiveCorners;
+    /// The run's accuracy-versus-time sweeps, if the experiment has them (SweepRates.h sets them
+    /// over seeds).
+    SweepResults sweeps;
     /// Passive trials lost where they got no further than near a corner.
     int passiveLostAtCorner() const {
         return passiveCorners.endedConvex + passiveCorners.endedConcave;
@@ -182,9 +185,9 @@ struct SeedRates {
     Rate passiveLost() const;
     Rate passiveLostAtCorner() const;  ///< of passive trials
     Rate activeCompleted() const;
-    Rate recognisedRaw() const;        ///< of completed active paths
-    Rate recognisedSmoothed() const;   ///< of completed active paths
-    Rate recognisedAnyPose() const;    ///< of completed active paths
+    Rate recognisedRaw() const;       ///< of completed active paths
+    Rate recognisedSmoothed() const;  ///< of completed active paths
+    Rate recognisedAnyPose() const;   ///< of completed active paths
     /// Over the paths named right at any pose: the median error of the recovered turn (shapes
     /// with one) and place; -1 where there is none.
     double medianTurnError_deg() const;
@@ -217,7 +220,10 @@ SeedRates runSeeds(const SimulatedRigs& rigs, const ExperimentSpec& spec, std::u
                    const std::function<bool(const SeedOutcome&)>& seedDone = {},
                    int jobs = defaultSeedJobs());
 
+/// The rates, and with them the sweeps over seeds where the runs measured any.
 Json seedRatesJson(const SeedRates& rates);
+/// Writes <outDir>/rates.json, and the sweep tables over seeds (SweepRates.h) where there are.
+void writeSeedRatesFiles(const SeedRates& rates, const std::string& outDir);
 
 /// Opens <outDir>/rates.csv with its header (removing a rates.json beside it), and appends one
 /// seed's row: what runSeeds writes, and a merge of shards writes again.

@@ -5,6 +5,7 @@
 
 #include "core/run/OutputFiles.h"
 #include "core/run/SeedRates.h"
+#include "core/run/SweepRates.h"
 
 namespace activetouch {
 
@@ -46,7 +47,7 @@ Json cornersJson(const CornerTally& t) {
 
 }  // namespace
 
-Json seedRatesJson(const SeedRates& r) {
+static Json seedRatesCoreJson(const SeedRates& r) {
     Json seeds = Json::array();
     for (const auto& s : r.seeds)
         seeds.push_back(
@@ -121,6 +122,19 @@ Json seedRatesJson(const SeedRates& r) {
              {{"active", tracingJson(r.tracing(FollowingMode::Active))},
               {"passive", tracingJson(r.tracing(FollowingMode::Passive))}}},
             {"intervals", "Wilson score, 95 %"}};
+}
+
+Json seedRatesJson(const SeedRates& r) {
+    Json out = seedRatesCoreJson(r);
+    if (const SweepRates sweeps = sweepRates(r.seeds); !sweeps.empty())
+        out["sweeps"] = sweepRatesJson(sweeps);
+    return out;
+}
+
+void writeSeedRatesFiles(const SeedRates& rates, const std::string& outDir) {
+    writeJsonAtomically((fs::path(outDir) / "rates.json").string(), seedRatesJson(rates));
+    if (const SweepRates sweeps = sweepRates(rates.seeds); !sweeps.empty())
+        writeSweepRateTables(sweeps, outDir);
 }
 
 std::vector<ReportRow> rateReport(const SeedRates& r) {
@@ -308,7 +322,7 @@ SeedRates runSeeds(const SimulatedRigs& rigs, const ExperimentSpec& spec, std::u
     });
     if (file) {
         file->close();
-        writeJsonAtomically((fs::path(outDir) / "rates.json").string(), seedRatesJson(rates));
+        writeSeedRatesFiles(rates, outDir);
     }
     return rates;
 }

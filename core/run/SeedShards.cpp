@@ -5,9 +5,10 @@
 #include <filesystem>
 #include <map>
 
-#include "core/run/OutputFiles.h"
 #include "core/common/InputError.h"
 #include "core/io/JsonFields.h"
+#include "core/run/OutputFiles.h"
+#include "core/run/SweepRates.h"
 
 namespace activetouch {
 namespace fs = std::filesystem;
@@ -34,7 +35,8 @@ Json byLabelJson(const RatesByLabel& rates) {
 
 RatesByLabel byLabelOf(const Json& j) {
     RatesByLabel rates;
-    for (const Json& entry : j) rates.emplace_back(entry.at(0).get<std::string>(), rateOf(entry.at(1)));
+    for (const Json& entry : j)
+        rates.emplace_back(entry.at(0).get<std::string>(), rateOf(entry.at(1)));
     return rates;
 }
 
@@ -101,8 +103,8 @@ std::string seedList(const std::vector<std::uint64_t>& seeds) {
 std::optional<Shard> parseShard(const std::string& text, std::string* error) {
     int k = 0, n = 0;
     char tail = 0;
-    if (std::sscanf(text.c_str(), "%d/%d%c", &k, &n, &tail) != 2 || n < 1 || n > 100000 ||
-        k < 1 || k > n) {
+    if (std::sscanf(text.c_str(), "%d/%d%c", &k, &n, &tail) != 2 || n < 1 || n > 100000 || k < 1 ||
+        k > n) {
         if (error)
             *error = "--shard '" + text +
                      "' is not a shard; give K/N with 1 <= K <= N, e.g. --shard 2/3 for the "
@@ -113,8 +115,8 @@ std::optional<Shard> parseShard(const std::string& text, std::string* error) {
 }
 
 std::optional<std::pair<std::uint64_t, std::uint64_t>> shardSeeds(std::uint64_t first,
-                                                                   std::uint64_t last,
-                                                                   const Shard& shard) {
+                                                                  std::uint64_t last,
+                                                                  const Shard& shard) {
     const std::uint64_t count = last - first + 1;
     const auto edge = [&](std::uint64_t k) {
         // first + floor(k * count / N), without overflow for any range of seeds.
@@ -159,7 +161,8 @@ Json seedOutcomeJson(const SeedOutcome& o) {
             {"active_tracing", tracingJson(o.activeTracing)},
             {"passive_tracing", tracingJson(o.passiveTracing)},
             {"active_corners", cornersJson(o.activeCorners)},
-            {"passive_corners", cornersJson(o.passiveCorners)}};
+            {"passive_corners", cornersJson(o.passiveCorners)},
+            {"sweeps", o.sweeps.empty() ? Json() : seedSweepsJson(o.sweeps)}};
 }
 
 SeedOutcome seedOutcomeFromJson(const Json& j, const std::string& source,
@@ -194,6 +197,8 @@ SeedOutcome seedOutcomeFromJson(const Json& j, const std::string& source,
         o.passiveTracing = tracingOf(j.at("passive_tracing"));
         o.activeCorners = cornersOf(j.at("active_corners"));
         o.passiveCorners = cornersOf(j.at("passive_corners"));
+        if (const auto sweeps = j.find("sweeps"); sweeps != j.end() && !sweeps->is_null())
+            o.sweeps = seedSweepsFromJson(*sweeps);
         return o;
     } catch (const std::exception& e) {
         throw InputError(source, place,
@@ -218,7 +223,8 @@ void readShardPlace(const JsonFields& f, std::uint64_t* first, std::uint64_t* la
     const Json& range = f.has("range") ? f.raw("range") : kMissing;
     const Json& part = f.has("shard") ? f.raw("shard") : kMissing;
     if (!range.is_array() || range.size() != 2 || !range[0].is_number_unsigned() ||
-        !range[1].is_number_unsigned() || range[0].get<std::uint64_t>() > range[1].get<std::uint64_t>())
+        !range[1].is_number_unsigned() ||
+        range[0].get<std::uint64_t>() > range[1].get<std::uint64_t>())
         f.fail("range", "expected [first, last] seeds; the file is damaged");
     if (!part.is_array() || part.size() != 2 || !part[0].is_number_integer() ||
         !part[1].is_number_integer() || part[0].get<int>() < 1 ||
@@ -246,7 +252,8 @@ SeedShardFile readSeedShardFile(const std::string& dir) {
     const Json& outcomes = f.raw("outcomes");
     if (!outcomes.is_array()) f.fail("outcomes", "expected each seed's outcome");
     for (std::size_t i = 0; i < outcomes.size(); ++i)
-        s.outcomes.push_back(seedOutcomeFromJson(outcomes[i], path, "/outcomes/" + std::to_string(i)));
+        s.outcomes.push_back(
+            seedOutcomeFromJson(outcomes[i], path, "/outcomes/" + std::to_string(i)));
     return s;
 }
 
@@ -296,8 +303,8 @@ void checkShardsCover(const std::vector<ShardPart>& parts, const std::string& co
     }
     if (!missing.empty())
         throw InputError("merge", "",
-                         "seeds " + seedList(missing) + " of " + std::to_string(first.first) +
-                             "-" + std::to_string(first.last) + " are in no shard given; run their " +
+                         "seeds " + seedList(missing) + " of " + std::to_string(first.first) + "-" +
+                             std::to_string(first.last) + " are in no shard given; run their " +
                              "shards (" + command + " --shard K/" +
                              std::to_string(first.shard.count) + ") and give their folders too");
 }
@@ -333,7 +340,7 @@ SeedRates writeMergedSeeds(const SeedShardFile& merged, const std::string& outDi
         appendRatesRow(*table, o);
     }
     table->close();
-    writeJsonAtomically((fs::path(outDir) / "rates.json").string(), seedRatesJson(rates));
+    writeSeedRatesFiles(rates, outDir);
     writeSeedShardFile(outDir, merged);
     return rates;
 }

@@ -2,10 +2,15 @@
 // whole runs: one tap's calibrated belief means what it says on fresh taps; belief thresholds
 // from 0.5 to 0.999 span one to several taps per decision, and more taps lower the perception
 // error; coarser histograms and fewer samples cost accuracy; following trades robot time against
-// path error, and accumulating evidence costs robot time.
+// path error, and accumulating evidence costs robot time. Over seeds, each figure is the mean of
+// the seeds' figures, the following settings are paired with the paper's seed by seed, and what
+// a seed keeps of its sweeps reads back to the same rates.
 #include <QtTest>
+#include <cmath>
 
 #include "core/run/ExperimentRun.h"
+#include "core/run/SeedRates.h"
+#include "core/run/SweepRates.h"
 #include "support/Paths.h"
 #include "support/SimulatedRun.h"
 
@@ -167,6 +172,132 @@ private slots:
             "runs with a sequential setting completing every trial in less robot time than the "
             "paper's setting: %d of 3",
             cheaperComplete);
+    }
+
+    void sweepsOverSeedsAreMeansOverTheSeeds() {
+        std::vector<SeedOutcome> outcomes;
+        for (const auto& r : runs_) outcomes.push_back(seedOutcome(r));
+        const SweepRates rates = sweepRates(outcomes);
+        QCOMPARE(rates.seeds, 3);
+        QCOMPARE(rates.perception.size(), runs_.front().sweeps.perception.size());
+        for (std::size_t i = 0; i < rates.perception.size(); ++i) {
+            double taps = 0, angle = 0;
+            for (const auto& r : runs_) {
+                taps += r.sweeps.perception[i].meanTaps / 3;
+                angle += r.sweeps.perception[i].angleError_deg / 3;
+            }
+            QVERIFY(std::abs(rates.perception[i].taps.mean - taps) < 1e-12);
+            QVERIFY(std::abs(rates.perception[i].angle_deg.mean - angle) < 1e-12);
+            QVERIFY(rates.perception[i].angle_deg.low <= angle);
+            QVERIFY(rates.perception[i].angle_deg.high >= angle);
+            QVERIFY(rates.perception[i].angle_deg.low >= 0.0);  // an error is never negative
+        }
+        QCOMPARE(rates.calibrationSeeds, 3);
+        // Each following setting against the paper's, seed by seed.
+        std::size_t paper = rates.following.size();
+        for (std::size_t i = 0; i < rates.following.size(); ++i)
+            if (rates.following[i].paperSetting && rates.following[i].mode == FollowingMode::Active)
+                paper = i;
+        QVERIFY(paper < rates.following.size());
+        QVERIFY(!rates.following[paper].paired && !rates.following[paper].beatsPaper);
+        for (std::size_t i = 0; i < rates.following.size(); ++i) {
+            const FollowingOverSeeds& f = rates.following[i];
+            if (f.mode != FollowingMode::Active || i == paper) continue;
+            QVERIFY(f.paired);
+            double difference = 0, time = 0, paperTime = 0, completed = 0, paperCompleted = 0;
+            for (const auto& r : runs_) {
+                const FollowingSweepRow &a = r.sweeps.following[i], &b = r.sweeps.following[paper];
+                difference +=
+                    100.0 * (double(a.completed) / a.trials - double(b.completed) / b.trials) / 3;
+                time += a.meanRobotTime_s * a.trials;
+                paperTime += b.meanRobotTime_s * b.trials;
+                completed += a.completed;
+                paperCompleted += b.completed;
+            }
+            QVERIFY(std::abs(f.completionDifference_points.mean - difference) < 1e-9);
+            if (completed > 0)
+                QVERIFY(std::abs(f.timeRatio.mean -
+                                 (time / completed) / (paperTime / paperCompleted)) < 1e-9);
+        }
+        // What a seed keeps reads back to the same rates.
+        std::vector<SeedOutcome> kept;
+        for (const SeedOutcome& o : outcomes) {
+            SeedOutcome back = o;
+            back.sweeps = seedSweepsFromJson(Json::parse(seedSweepsJson(o.sweeps).dump()));
+            kept.push_back(back);
+        }
+        QCOMPARE(QString::fromStdString(sweepRatesJson(sweepRates(kept)).dump()),
+                 QString::fromStdString(sweepRatesJson(rates).dump()));
+    }
+
+    void aSettingBeatsThePaperOnlyFasterAtNoLossOfCompletion() {
+        // Ten seeds with three settings: the paper's; one that completes as often in two thirds
+        // of the robot time; one faster still that loses a tenth of its trials.
+        std::vector<SeedOutcome> seeds;
+        for (int s = 0; s < 10; ++s) {
+            SeedOutcome o;
+            o.seed = s + 1;
+            auto row = [&](double follow, bool paper, int completed, double time) {
+                FollowingSweepRow r{FollowingMode::Active, follow, 1.0, 0.0};
+                r.paperSetting = paper;
+                r.trials = 10;
+                r.completed = completed;
+                r.meanRobotTime_s = time + 3.0 * (s % 3);
+                r.meanContourDistance_mm = follow / 2;
+                return r;
+            };
+            o.sweeps.following = {row(2, true, 10 - s % 2, 300), row(3, false, 10 - s % 2, 200),
+                                  row(4, false, 9 - s % 2, 150)};
+            seeds.push_back(o);
+        }
+        SeedOutcome failed;  // a run stopped by a rig error measured no sweep
+        failed.seed = 11;
+        failed.runFailure = "stage asked past its travel";
+        seeds.push_back(failed);
+        const SweepRates rates = sweepRates(seeds);
+        QCOMPARE(rates.seeds, 10);
+        QCOMPARE(rates.following[0].completed.total, 100);
+        QVERIFY(rates.following[1].beatsPaper);
+        QVERIFY(std::abs(rates.following[1].completionDifference_points.mean) < 1e-12);
+        QVERIFY(rates.following[1].timeRatio.high < 1.0);
+        QVERIFY(!rates.following[2].beatsPaper);  // faster, but completes less
+        QVERIFY(rates.following[2].completionDifference_points.high < 0);
+        // Every setting is on the front: each is faster or closer to the contour than the next.
+        for (const auto& f : rates.following) QVERIFY(f.onParetoFront);
+        // A setting slower, less complete and further from the contour is off it.
+        for (auto& o : seeds)
+            if (!o.failed()) {
+                FollowingSweepRow worse = o.sweeps.following[0];
+                worse.paperSetting = false;
+                worse.completed -= 2;
+                worse.meanRobotTime_s += 100;
+                worse.meanContourDistance_mm += 1;
+                o.sweeps.following.push_back(worse);
+            }
+        const SweepRates more = sweepRates(seeds);
+        QVERIFY(!more.following[3].onParetoFront);
+        QVERIFY(!more.following[3].beatsPaper);
+        QVERIFY(more.following[0].onParetoFront);
+    }
+
+    void overSeedsIntervalsAreStudentsT() {
+        const SweepEstimate none = overSeeds({});
+        QCOMPARE(none.mean, 0.0);
+        const SweepEstimate one = overSeeds({2.0}, 0.0, 5.0);
+        QCOMPARE(one.mean, 2.0);
+        QCOMPARE(one.low, 0.0);  // one seed says nothing of the spread
+        QCOMPARE(one.high, 5.0);
+        // 1, 2, 3: mean 2, standard error 1/sqrt(3), t(2) = 4.303.
+        const SweepEstimate three = overSeeds({1.0, 2.0, 3.0});
+        QCOMPARE(three.mean, 2.0);
+        QVERIFY(std::abs(three.high - (2.0 + 4.303 / std::sqrt(3.0))) < 1e-9);
+        QVERIFY(std::abs(three.low - (2.0 - 4.303 / std::sqrt(3.0))) < 1e-9);
+        QCOMPARE(overSeeds({1.0, 2.0, 3.0}, 1.5).low, 1.5);
+        const SweepEstimate flat = overSeeds(std::vector<double>(100, 0.25));
+        QCOMPARE(flat.low, 0.25);
+        QCOMPARE(flat.high, 0.25);
+        const SweepEstimate bad = overSeeds({1.0, std::nan("")});  // no NaN interval passes as one
+        QVERIFY(std::isnan(bad.mean) && std::isnan(bad.low) && std::isnan(bad.high));
     }
 };
 

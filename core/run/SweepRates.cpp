@@ -1,0 +1,620 @@
+#include "core/run/SweepRates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+
+#include "core/run/OutputFiles.h"
+
+namespace activetouch {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Student's t at 97.5 % for `df` degrees of freedom (a table to 30, then the Cornish-Fisher
+/// expansion, within 0.001 of the exact value).
+double tQuantile975(int df) {
+    static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306,
+                                   2.262,  2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120,
+                                   2.110,  2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064,
+                                   2.060,  2.056, 2.052, 2.048, 2.045, 2.042};
+    if (df < 1) return kInf;
+    if (df <= 30) return table[df - 1];
+    const double z = 1.959964, d = df;
+    return z + (z * z * z + z) / (4 * d) +
+           (5 * std::pow(z, 5) + 16 * z * z * z + 3 * z) / (96 * d * d);
+}
+
+/// A fixed generator for resampling, so that the intervals are the same on every machine.
+struct Lcg {
+    std::uint64_t state;
+    std::size_t below(std::size_t n) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return static_cast<std::size_t>((state >> 33) % n);
+    }
+};
+
+/// The 2.5 and 97.5 percentiles of `values` (sorted in place); non-finite values sort last.
+std::pair<double, double> percentiles95(std::vector<double>& values) {
+    std::sort(values.begin(), values.end(), [](double a, double b) {
+        if (std::isnan(a)) return false;
+        if (std::isnan(b)) return true;
+        return a < b;
+    });
+    const std::size_t n = values.size();
+    const auto at = [&](double q) {
+        return values[std::min(n - 1,
+                               static_cast<std::size_t>(std::floor(q * double(n - 1) + 0.5)))];
+    };
+    return {at(0.025), at(0.975)};
+}
+
+constexpr int kResamples = 2000;
+
+struct SettingSums {
+    double time = 0, completed = 0;
+};
+
+double ratio(const SettingSums& s) {
+    return s.completed > 0 ? s.time / s.completed : kInf;
+}
+
+std::string estimateText(const SweepEstimate& e, const char* format) {
+    char buf[96];
+    const std::string f = std::string(format) + " (" + format + " to " + format + ")";
+    std::snprintf(buf, sizeof buf, f.c_str(), e.mean, e.low, e.high);
+    return buf;
+}
+
+Json intervalJson(const SweepEstimate& e) {
+    auto finite = [](double v) { return std::isfinite(v) ? Json(v) : Json(); };
+    return Json::array({finite(e.low), finite(e.high)});
+}
+
+Json estimateJson(const SweepEstimate& e) {
+    return {{"mean", std::isfinite(e.mean) ? Json(e.mean) : Json()}, {"ci95", intervalJson(e)}};
+}
+
+Json perceptionJson(const PerceptionOverSeeds& p) {
+    return {{"belief_threshold", p.threshold},
+            {"seeds", p.seeds},
+            {"mean_taps_per_decision", estimateJson(p.taps)},
+            {"mean_robot_time_per_decision_s", estimateJson(p.robotTime_s)},
+            {"edge_angle_error_deg", estimateJson(p.angle_deg)},
+            {"position_error_mm", estimateJson(p.position_mm)},
+            {"correct_fraction", estimateJson(p.correct)},
+            {"edge_angle_error_below_single_tap_deg", estimateJson(p.angleFall_deg)},
+            {"position_error_below_single_tap_mm", estimateJson(p.positionFall_mm)},
+            {"plane_perceived_as_plane", estimateJson(p.planeRecognised)},
+            {"air_perceived_as_air", estimateJson(p.airRecognised)}};
+}
+
+std::string thresholdName(double threshold) {
+    if (threshold <= 0) return "single tap";
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "threshold %g", threshold);
+    return buf;
+}
+
+std::string settingName(const FollowingOverSeeds& f) {
+    char buf[96];
+    if (f.mode == FollowingMode::Active)
+        std::snprintf(buf, sizeof buf, "active %g/%g mm, %s", f.followStep_mm, f.repositionStep_mm,
+                      thresholdName(f.beliefThreshold).c_str());
+    else
+        std::snprintf(buf, sizeof buf, "passive %g mm, %s", f.followStep_mm,
+                      thresholdName(f.beliefThreshold).c_str());
+    return buf;
+}
+
+/// A number a seed keeps: non-finite values as null, read back as NaN.
+Json kept(double v) {
+    return std::isfinite(v) ? Json(v) : Json();
+}
+double keptOf(const Json& j) {
+    return j.is_null() ? std::nan("") : j.get<double>();
+}
+
+}  // namespace
+
+SweepEstimate overSeeds(const std::vector<double>& perSeed, double least, double most) {
+    SweepEstimate e;
+    const std::size_t n = perSeed.size();
+    if (n == 0) return e;
+    double sum = 0.0;
+    for (double v : perSeed) sum += v;
+    e.mean = sum / double(n);
+    if (n == 1 || !std::isfinite(e.mean)) {
+        e.low = n == 1 ? least : e.mean;
+        e.high = n == 1 ? most : e.mean;
+        return e;
+    }
+    double ss = 0.0;
+    for (double v : perSeed) ss += (v - e.mean) * (v - e.mean);
+    const double half = tQuantile975(int(n) - 1) * std::sqrt(ss / double(n - 1) / double(n));
+    e.low = std::max(least, e.mean - half);
+    e.high = std::min(most, e.mean + half);
+    return e;
+}
+
+SweepRates sweepRates(const std::vector<SeedOutcome>& all) {
+    SweepRates out;
+    std::vector<const SweepResults*> runs;
+    for (const SeedOutcome& s : all)
+        if (!s.failed() && !s.sweeps.empty()) runs.push_back(&s.sweeps);
+    out.seeds = static_cast<int>(runs.size());
+    if (runs.empty()) return out;
+    const SweepResults& first = *runs.front();
+
+    // (a): each figure the mean of the seeds' means; an angle error only where the seed had edge
+    // decisions, a plane (air) share only where it had plane (air) decisions.
+    auto perception = [&](auto rowOf, double threshold) {
+        PerceptionOverSeeds p;
+        p.threshold = threshold;
+        std::vector<double> taps, time, angle, position, correct, angleFall, positionFall, plane,
+            air;
+        for (const SweepResults* r : runs) {
+            const PerceptionSweepRow* row = rowOf(*r);
+            if (!row || row->decisions == 0) continue;
+            ++p.seeds;
+            taps.push_back(row->meanTaps);
+            time.push_back(row->meanRobotTime_s);
+            angle.push_back(row->angleError_deg);
+            position.push_back(row->positionError_mm);
+            correct.push_back(row->correctFraction);
+            angleFall.push_back(row->angleFall_deg.mean);
+            positionFall.push_back(row->positionFall_mm.mean);
+            if (row->planeDecisions > 0) plane.push_back(row->planeRecognised);
+            if (row->airDecisions > 0) air.push_back(row->airRecognised);
+        }
+        p.taps = overSeeds(taps, 1.0);
+        p.robotTime_s = overSeeds(time, 0.0);
+        p.angle_deg = overSeeds(angle, 0.0);
+        p.position_mm = overSeeds(position, 0.0);
+        p.correct = overSeeds(correct, 0.0, 1.0);
+        p.angleFall_deg = overSeeds(angleFall);
+        p.positionFall_mm = overSeeds(positionFall);
+        p.planeRecognised = overSeeds(plane, 0.0, 1.0);
+        p.airRecognised = overSeeds(air, 0.0, 1.0);
+        return p;
+    };
+    for (std::size_t i = 0; i < first.perception.size(); ++i)
+        out.perception.push_back(perception(
+            [i](const SweepResults& r) {
+                return i < r.perception.size() ? &r.perception[i] : nullptr;
+            },
+            first.perception[i].threshold));
+    if (!first.perception.empty())
+        out.perceptionSingleTap = perception(
+            [](const SweepResults& r) {
+                return r.perception.empty() ? nullptr : &r.perceptionSingleTap;
+            },
+            0.0);
+
+    std::vector<double> raw, calibrated, ideal;
+    for (const SweepResults* r : runs) {
+        const PerceptionSweepCalibration& c = r->perceptionCalibration;
+        if (!c.measured) continue;
+        ++out.calibrationSeeds;
+        out.calibrationWithin005 += c.eceCalibrated <= 0.05;
+        raw.push_back(c.eceRaw);
+        calibrated.push_back(c.eceCalibrated);
+        ideal.push_back(c.eceIfCalibrated);
+    }
+    out.eceRaw = overSeeds(raw, 0.0, 1.0);
+    out.eceCalibrated = overSeeds(calibrated, 0.0, 1.0);
+    out.eceIfCalibrated = overSeeds(ideal, 0.0, 1.0);
+
+    // (b): per setting, and paired with the paper's setting of the same mode seed by seed.
+    const std::size_t settings = first.following.size();
+    std::vector<std::vector<SettingSums>> sums(settings);  // [setting][run]
+    for (std::size_t i = 0; i < settings; ++i) {
+        const FollowingSweepRow& head = first.following[i];
+        FollowingOverSeeds f;
+        f.mode = head.mode;
+        f.followStep_mm = head.followStep_mm;
+        f.repositionStep_mm = head.repositionStep_mm;
+        f.beliefThreshold = head.beliefThreshold;
+        f.paperSetting = head.paperSetting;
+        std::vector<double> distance, time, taps;
+        SettingSums total;
+        for (const SweepResults* r : runs) {
+            SettingSums s;
+            if (i < r->following.size() && r->following[i].trials > 0) {
+                const FollowingSweepRow& row = r->following[i];
+                ++f.seeds;
+                f.completed.count += row.completed;
+                f.completed.total += row.trials;
+                distance.push_back(row.meanContourDistance_mm);
+                time.push_back(row.meanRobotTime_s);
+                taps.push_back(row.meanTaps);
+                s = {row.meanRobotTime_s * row.trials, double(row.completed)};
+            }
+            sums[i].push_back(s);
+            total.time += s.time;
+            total.completed += s.completed;
+        }
+        f.contourDistance_mm = overSeeds(distance, 0.0);
+        f.robotTimePerTrial_s = overSeeds(time, 0.0);
+        f.tapsPerTrial = overSeeds(taps, 0.0);
+        f.robotTimePerCompletion_s.mean = ratio(total);
+        out.following.push_back(f);
+    }
+    const std::size_t n = runs.size();
+    // Resampled seeds, the same draws for every setting so that the pairs stay paired.
+    std::vector<std::vector<std::size_t>> draws(kResamples, std::vector<std::size_t>(n));
+    Lcg lcg{0x5eed5eedULL};
+    for (auto& d : draws)
+        for (auto& k : d) k = lcg.below(n);
+    auto resampledTotal = [&](std::size_t setting, const std::vector<std::size_t>& d) {
+        SettingSums t;
+        for (std::size_t k : d) {
+            t.time += sums[setting][k].time;
+            t.completed += sums[setting][k].completed;
+        }
+        return t;
+    };
+    for (std::size_t i = 0; i < settings; ++i) {
+        std::vector<double> values;
+        for (const auto& d : draws) values.push_back(ratio(resampledTotal(i, d)));
+        std::tie(out.following[i].robotTimePerCompletion_s.low,
+                 out.following[i].robotTimePerCompletion_s.high) = percentiles95(values);
+    }
+    for (std::size_t i = 0; i < settings; ++i) {
+        FollowingOverSeeds& f = out.following[i];
+        std::size_t paper = settings;
+        for (std::size_t j = 0; j < settings; ++j)
+            if (out.following[j].paperSetting && out.following[j].mode == f.mode) paper = j;
+        if (paper == settings || paper == i) continue;
+        f.paired = true;
+        std::vector<double> completion, distance;
+        for (std::size_t k = 0; k < n; ++k) {
+            const auto& rows = runs[k]->following;
+            if (std::max(i, paper) >= rows.size() || rows[i].trials == 0 || rows[paper].trials == 0)
+                continue;
+            completion.push_back(100.0 * (double(rows[i].completed) / rows[i].trials -
+                                          double(rows[paper].completed) / rows[paper].trials));
+            distance.push_back(rows[i].meanContourDistance_mm - rows[paper].meanContourDistance_mm);
+        }
+        f.completionDifference_points = overSeeds(completion);
+        f.distanceDifference_mm = overSeeds(distance);
+        std::vector<double> ratios;
+        for (const auto& d : draws)
+            ratios.push_back(ratio(resampledTotal(i, d)) / ratio(resampledTotal(paper, d)));
+        SettingSums mine, theirs;
+        for (std::size_t k = 0; k < n; ++k) {
+            mine.time += sums[i][k].time, mine.completed += sums[i][k].completed;
+            theirs.time += sums[paper][k].time, theirs.completed += sums[paper][k].completed;
+        }
+        f.timeRatio.mean = ratio(mine) / ratio(theirs);
+        std::tie(f.timeRatio.low, f.timeRatio.high) = percentiles95(ratios);
+        f.beatsPaper =
+            f.timeRatio.high < 1.0 && f.completionDifference_points.low > -kCompletionMargin_points;
+    }
+    // The front: no other setting at most as slow per completion, at least as complete and at
+    // most as far from the contour, and better in one of them.
+    for (FollowingOverSeeds& f : out.following) {
+        const double t = f.robotTimePerCompletion_s.mean, c = f.completed.fraction(),
+                     d = f.contourDistance_mm.mean;
+        f.onParetoFront = f.completed.count > 0;
+        for (const FollowingOverSeeds& g : out.following) {
+            const double tg = g.robotTimePerCompletion_s.mean, cg = g.completed.fraction(),
+                         dg = g.contourDistance_mm.mean;
+            if (tg <= t && cg >= c && dg <= d && (tg < t || cg > c || dg < d))
+                f.onParetoFront = false;
+        }
+    }
+
+    for (std::size_t i = 0; i < first.compute.size(); ++i) {
+        ComputeOverSeeds c;
+        c.bins = first.compute[i].bins;
+        c.samples = first.compute[i].samples;
+        c.paperSetting = first.compute[i].paperSetting;
+        std::vector<double> angle, position, us;
+        for (const SweepResults* r : runs) {
+            if (i >= r->compute.size()) continue;
+            angle.push_back(r->compute[i].angleError_deg);
+            position.push_back(r->compute[i].positionError_mm);
+            us.push_back(r->compute[i].microsecondsPerDecision);
+        }
+        c.angle_deg = overSeeds(angle, 0.0);
+        c.position_mm = overSeeds(position, 0.0);
+        c.microsecondsPerDecision = overSeeds(us, 0.0);
+        out.compute.push_back(c);
+    }
+    return out;
+}
+
+Json sweepRatesJson(const SweepRates& r) {
+    Json perception = Json::array(), following = Json::array(), compute = Json::array();
+    for (const auto& p : r.perception) perception.push_back(perceptionJson(p));
+    for (const auto& f : r.following) {
+        Json row = {{"mode", modeName(f.mode)},
+                    {"follow_step_mm", f.followStep_mm},
+                    {"reposition_step_mm", f.repositionStep_mm},
+                    {"belief_threshold", f.beliefThreshold},
+                    {"paper_setting", f.paperSetting},
+                    {"seeds", f.seeds},
+                    {"completed", rateJson(f.completed)},
+                    {"mean_contour_distance_mm", estimateJson(f.contourDistance_mm)},
+                    {"mean_robot_time_per_trial_s", estimateJson(f.robotTimePerTrial_s)},
+                    {"mean_taps_per_trial", estimateJson(f.tapsPerTrial)},
+                    {"robot_time_per_completion_s", estimateJson(f.robotTimePerCompletion_s)},
+                    {"on_pareto_front", f.onParetoFront}};
+        if (f.paired)
+            row["against_paper_setting"] = {
+                {"completion_difference_points", estimateJson(f.completionDifference_points)},
+                {"robot_time_per_completion_ratio", estimateJson(f.timeRatio)},
+                {"contour_distance_difference_mm", estimateJson(f.distanceDifference_mm)},
+                {"beats_paper", f.beatsPaper}};
+        following.push_back(row);
+    }
+    for (const auto& c : r.compute)
+        compute.push_back({{"bins", c.bins},
+                           {"samples_per_tap", c.samples},
+                           {"paper_setting", c.paperSetting},
+                           {"angle_error_deg", estimateJson(c.angle_deg)},
+                           {"position_error_mm", estimateJson(c.position_mm)},
+                           {"microseconds_per_decision", estimateJson(c.microsecondsPerDecision)}});
+    Json out = {{"seeds", r.seeds},
+                {"intervals",
+                 "95 %: Student's t over the seeds' means; completion by Wilson over trials; robot "
+                 "time per completion and its ratio to the paper's setting by resampling the seeds "
+                 "(2000 draws, a fixed generator)"},
+                {"perception", perception},
+                {"following", following},
+                {"compute", compute}};
+    if (!r.perception.empty()) out["perception_single_tap"] = perceptionJson(r.perceptionSingleTap);
+    if (r.calibrationSeeds > 0)
+        out["perception_calibration"] = {
+            {"seeds", r.calibrationSeeds},
+            {"seeds_with_ece_calibrated_at_most_0.05", r.calibrationWithin005},
+            {"ece_raw", estimateJson(r.eceRaw)},
+            {"ece_calibrated", estimateJson(r.eceCalibrated)},
+            {"ece_if_perfectly_calibrated", estimateJson(r.eceIfCalibrated)}};
+    if (!r.following.empty())
+        out["beats_paper_rule"] =
+            "robot time per completion below the paper's setting (upper end of the 95 % interval "
+            "of the ratio under 1) and completion no lower (lower end of the paired difference "
+            "above -" +
+            std::to_string(int(kCompletionMargin_points)) + " percentage points)";
+    return out;
+}
+
+void writeSweepRateTables(const SweepRates& r, const std::string& dir) {
+    auto finite = [](double v) { return std::isfinite(v) ? v : std::nan(""); };
+    if (!r.perception.empty()) {
+        OutputFile f((fs::path(dir) / "sweeps_perception.csv").string());
+        f.print(
+            "belief_threshold,seeds,mean_taps,mean_taps_lo,mean_taps_hi,robot_time_s,"
+            "robot_time_s_lo,robot_time_s_hi,edge_angle_error_deg,edge_angle_error_deg_lo,"
+            "edge_angle_error_deg_hi,position_error_mm,position_error_mm_lo,position_error_mm_hi,"
+            "correct_fraction,correct_fraction_lo,correct_fraction_hi,angle_fall_deg,"
+            "angle_fall_deg_lo,angle_fall_deg_hi,position_fall_mm,position_fall_mm_lo,"
+            "position_fall_mm_hi,plane_as_plane,air_as_air\n");
+        std::vector<PerceptionOverSeeds> rows{r.perceptionSingleTap};
+        rows.insert(rows.end(), r.perception.begin(), r.perception.end());
+        for (const auto& p : rows) {
+            if (p.threshold == 0)
+                f.print("single_tap,%d", p.seeds);
+            else
+                f.print("%g,%d", p.threshold, p.seeds);
+            for (const SweepEstimate* e : {&p.taps, &p.robotTime_s, &p.angle_deg, &p.position_mm,
+                                           &p.correct, &p.angleFall_deg, &p.positionFall_mm})
+                f.print(",%.5g,%.5g,%.5g", e->mean, finite(e->low), finite(e->high));
+            f.print(",%.4f,%.4f\n", p.planeRecognised.mean, p.airRecognised.mean);
+        }
+        f.close();
+    }
+    if (!r.following.empty()) {
+        OutputFile f((fs::path(dir) / "sweeps_following.csv").string());
+        f.print(
+            "mode,follow_step_mm,reposition_step_mm,belief_threshold,paper_setting,seeds,trials,"
+            "completed,completed_rate,completed_lo,completed_hi,contour_distance_mm,"
+            "contour_distance_mm_lo,contour_distance_mm_hi,robot_time_per_trial_s,taps_per_trial,"
+            "robot_time_per_completion_s,robot_time_per_completion_s_lo,"
+            "robot_time_per_completion_s_hi,completion_vs_paper_points,"
+            "completion_vs_paper_points_lo,completion_vs_paper_points_hi,time_ratio_vs_paper,"
+            "time_ratio_vs_paper_lo,time_ratio_vs_paper_hi,on_pareto_front,beats_paper\n");
+        for (const auto& s : r.following) {
+            f.print(
+                "%s,%g,%g,%g,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.2f,%.3f,%.3f,%.3f",
+                modeName(s.mode), s.followStep_mm, s.repositionStep_mm, s.beliefThreshold,
+                int(s.paperSetting), s.seeds, s.completed.total, s.completed.count,
+                s.completed.fraction(), s.completed.low(), s.completed.high(),
+                s.contourDistance_mm.mean, s.contourDistance_mm.low, s.contourDistance_mm.high,
+                s.robotTimePerTrial_s.mean, s.tapsPerTrial.mean,
+                finite(s.robotTimePerCompletion_s.mean), finite(s.robotTimePerCompletion_s.low),
+                finite(s.robotTimePerCompletion_s.high));
+            if (s.paired)
+                f.print(",%.3f,%.3f,%.3f,%.4f,%.4f,%.4f", s.completionDifference_points.mean,
+                        finite(s.completionDifference_points.low),
+                        finite(s.completionDifference_points.high), finite(s.timeRatio.mean),
+                        finite(s.timeRatio.low), finite(s.timeRatio.high));
+            else
+                f.print(",,,,,,");
+            f.print(",%d,%d\n", int(s.onParetoFront), int(s.beatsPaper));
+        }
+        f.close();
+    }
+    if (!r.compute.empty()) {
+        OutputFile f((fs::path(dir) / "sweeps_compute.csv").string());
+        f.print(
+            "bins,samples_per_tap,paper_setting,angle_error_deg,angle_error_deg_lo,"
+            "angle_error_deg_hi,position_error_mm,position_error_mm_lo,position_error_mm_hi,"
+            "microseconds_per_decision\n");
+        for (const auto& c : r.compute)
+            f.print("%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f\n", c.bins, c.samples,
+                    int(c.paperSetting), c.angle_deg.mean, finite(c.angle_deg.low),
+                    finite(c.angle_deg.high), c.position_mm.mean, finite(c.position_mm.low),
+                    finite(c.position_mm.high), c.microsecondsPerDecision.mean);
+        f.close();
+    }
+}
+
+std::vector<std::string> describeSweepRates(const SweepRates& r) {
+    std::vector<std::string> lines;
+    if (r.empty()) return lines;
+    char buf[512];
+    std::snprintf(
+        buf, sizeof buf,
+        "accuracy-versus-time sweeps over %d seeds (means over seeds, 95 %% intervals):", r.seeds);
+    lines.push_back(buf);
+    if (r.calibrationSeeds > 0) {
+        std::snprintf(buf, sizeof buf,
+                      "  one tap's belief, expected calibration error: raw %s, calibrated %s "
+                      "(perfectly calibrated would show %s); calibrated <= 0.05 in %d of %d seeds",
+                      estimateText(r.eceRaw, "%.3f").c_str(),
+                      estimateText(r.eceCalibrated, "%.3f").c_str(),
+                      estimateText(r.eceIfCalibrated, "%.3f").c_str(), r.calibrationWithin005,
+                      r.calibrationSeeds);
+        lines.push_back(buf);
+    }
+    if (!r.perception.empty()) {
+        lines.push_back("  (a) sequential perception");
+        lines.push_back(
+            "    threshold   taps per decision     edge angle error (deg)   position error (mm)   "
+            "angle fall (deg)      position fall (mm)");
+        std::vector<PerceptionOverSeeds> rows{r.perceptionSingleTap};
+        rows.insert(rows.end(), r.perception.begin(), r.perception.end());
+        for (const auto& p : rows) {
+            std::snprintf(
+                buf, sizeof buf, "    %-10s  %-20s  %-23s  %-20s  %-20s  %s",
+                p.threshold == 0 ? "single tap" : thresholdName(p.threshold).substr(10).c_str(),
+                estimateText(p.taps, "%.2f").c_str(), estimateText(p.angle_deg, "%.1f").c_str(),
+                estimateText(p.position_mm, "%.2f").c_str(),
+                p.threshold == 0 ? "" : estimateText(p.angleFall_deg, "%.1f").c_str(),
+                p.threshold == 0 ? "" : estimateText(p.positionFall_mm, "%.2f").c_str());
+            lines.push_back(buf);
+        }
+    }
+    if (!r.following.empty()) {
+        lines.push_back("  (b) contour following (time: robot seconds per completed trial)");
+        lines.push_back(
+            "    setting                          completed               distance (mm)          "
+            "time per completion (s)   vs paper: completion (points)  time ratio");
+        for (const auto& f : r.following) {
+            char completed[64];
+            std::snprintf(completed, sizeof completed, "%5.1f %% (%.1f to %.1f)",
+                          100 * f.completed.fraction(), 100 * f.completed.low(),
+                          100 * f.completed.high());
+            std::string mark = f.paperSetting ? " paper" : "";
+            if (f.onParetoFront) mark += " front";
+            if (f.beatsPaper) mark += " BEATS";
+            std::snprintf(
+                buf, sizeof buf, "    %-32s %-23s %-22s %-25s %-30s %-20s%s",
+                settingName(f).c_str(), completed,
+                estimateText(f.contourDistance_mm, "%.2f").c_str(),
+                std::isfinite(f.robotTimePerCompletion_s.mean)
+                    ? estimateText(f.robotTimePerCompletion_s, "%.1f").c_str()
+                    : "none completed",
+                f.paired ? estimateText(f.completionDifference_points, "%+.1f").c_str() : "",
+                f.paired && std::isfinite(f.timeRatio.mean)
+                    ? estimateText(f.timeRatio, "%.2f").c_str()
+                    : "",
+                mark.c_str());
+            lines.push_back(buf);
+        }
+        std::string beating;
+        for (const auto& f : r.following)
+            if (f.beatsPaper) beating += (beating.empty() ? "" : "; ") + settingName(f);
+        lines.push_back("    beat the paper's setting in robot time at no loss of completion: " +
+                        (beating.empty() ? std::string("none") : beating));
+    }
+    if (!r.compute.empty()) {
+        lines.push_back("  (c) compute");
+        for (const auto& c : r.compute) {
+            std::snprintf(buf, sizeof buf,
+                          "    %3d bins x %2d samples: angle %s deg, position %s mm, %.2f us per "
+                          "decision%s",
+                          c.bins, c.samples, estimateText(c.angle_deg, "%.1f").c_str(),
+                          estimateText(c.position_mm, "%.2f").c_str(),
+                          c.microsecondsPerDecision.mean, c.paperSetting ? "  (paper)" : "");
+            lines.push_back(buf);
+        }
+    }
+    return lines;
+}
+
+Json seedSweepsJson(const SweepResults& s) {
+    auto perception = [](const PerceptionSweepRow& p) {
+        return Json::array({p.threshold, p.decisions, kept(p.meanTaps), kept(p.meanRobotTime_s),
+                            kept(p.angleError_deg), kept(p.positionError_mm),
+                            kept(p.correctFraction), kept(p.angleFall_deg.mean),
+                            kept(p.positionFall_mm.mean), p.planeDecisions, kept(p.planeRecognised),
+                            p.airDecisions, kept(p.airRecognised)});
+    };
+    Json rowsA = Json::array(), rowsB = Json::array(), rowsC = Json::array();
+    for (const auto& p : s.perception) rowsA.push_back(perception(p));
+    for (const auto& f : s.following)
+        rowsB.push_back({modeName(f.mode), f.followStep_mm, f.repositionStep_mm, f.beliefThreshold,
+                         f.paperSetting, f.trials, f.completed, kept(f.meanContourDistance_mm),
+                         kept(f.meanTaps), kept(f.meanRobotTime_s)});
+    for (const auto& c : s.compute)
+        rowsC.push_back({c.bins, c.samples, kept(c.angleError_deg), kept(c.positionError_mm),
+                         kept(c.microsecondsPerDecision), c.paperSetting});
+    const PerceptionSweepCalibration& c = s.perceptionCalibration;
+    return {{"perception", rowsA},
+            {"single_tap", perception(s.perceptionSingleTap)},
+            {"calibration",
+             {c.measured, c.calibrated, c.taps, kept(c.eceRaw), kept(c.eceCalibrated),
+              kept(c.eceIfCalibrated)}},
+            {"following", rowsB},
+            {"compute", rowsC}};
+}
+
+SweepResults seedSweepsFromJson(const Json& j) {
+    SweepResults s;
+    auto perception = [](const Json& a) {
+        PerceptionSweepRow p;
+        p.threshold = keptOf(a.at(0));
+        p.decisions = a.at(1).get<int>();
+        p.meanTaps = keptOf(a.at(2));
+        p.meanRobotTime_s = keptOf(a.at(3));
+        p.angleError_deg = keptOf(a.at(4));
+        p.positionError_mm = keptOf(a.at(5));
+        p.correctFraction = keptOf(a.at(6));
+        p.angleFall_deg.mean = keptOf(a.at(7));
+        p.positionFall_mm.mean = keptOf(a.at(8));
+        p.planeDecisions = a.at(9).get<int>();
+        p.planeRecognised = keptOf(a.at(10));
+        p.airDecisions = a.at(11).get<int>();
+        p.airRecognised = keptOf(a.at(12));
+        return p;
+    };
+    for (const Json& a : j.at("perception")) s.perception.push_back(perception(a));
+    s.perceptionSingleTap = perception(j.at("single_tap"));
+    const Json& c = j.at("calibration");
+    s.perceptionCalibration = {c.at(0).get<bool>(), c.at(1).get<bool>(), c.at(2).get<int>(),
+                               keptOf(c.at(3)),     keptOf(c.at(4)),     keptOf(c.at(5))};
+    for (const Json& a : j.at("following")) {
+        const auto mode = modeNamed(a.at(0).get<std::string>());
+        if (!mode)
+            throw std::runtime_error("unknown following mode '" + a.at(0).get<std::string>() + "'");
+        FollowingSweepRow f{*mode, keptOf(a.at(1)), keptOf(a.at(2)), keptOf(a.at(3))};
+        f.paperSetting = a.at(4).get<bool>();
+        f.trials = a.at(5).get<int>();
+        f.completed = a.at(6).get<int>();
+        f.meanContourDistance_mm = keptOf(a.at(7));
+        f.meanTaps = keptOf(a.at(8));
+        f.meanRobotTime_s = keptOf(a.at(9));
+        f.robotTimePerCompletion_s =
+            f.completed > 0 ? f.meanRobotTime_s * f.trials / f.completed : kInf;
+        s.following.push_back(f);
+    }
+    for (const Json& a : j.at("compute")) {
+        ComputeSweepRow row{a.at(0).get<int>(), a.at(1).get<int>(), keptOf(a.at(2)),
+                            keptOf(a.at(3)), keptOf(a.at(4))};
+        row.paperSetting = a.at(5).get<bool>();
+        s.compute.push_back(row);
+    }
+    return s;
+}
+
+}  // namespace activetouch

@@ -1,0 +1,94 @@
+#pragma once
+// The accuracy-versus-time sweeps over many seeds (docs/accuracy-vs-time.md, "Over seeds"). One
+// seed is a whole run: its own training, calibration, sweep taps and following trials, so the
+// seeds are the independent units. Each figure is the mean over seeds with a 95 % interval over
+// seeds; sweep (b)'s settings are set against the paper's, paired seed by seed, and the settings
+// on the trade-off's Pareto front are named.
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/io/OutputFile.h"
+#include "core/run/SeedRates.h"
+#include "core/run/SweepResults.h"
+
+namespace activetouch {
+
+/// A mean over seeds with its 95 % interval (Student's t over the seeds' values), the interval
+/// kept within the quantity's own range [least, most] (an error is never negative). With one
+/// seed the interval is the whole range; with none, all zero.
+SweepEstimate overSeeds(const std::vector<double>& perSeed,
+                        double least = -std::numeric_limits<double>::infinity(),
+                        double most = std::numeric_limits<double>::infinity());
+
+/// One threshold of sweep (a) over seeds: each figure the mean of the seeds' means.
+struct PerceptionOverSeeds {
+    double threshold = 0.0;  ///< 0: the paper's single tap
+    int seeds = 0;
+    SweepEstimate taps, robotTime_s, angle_deg, position_mm, correct;
+    SweepEstimate angleFall_deg, positionFall_mm;  ///< below the single tap, paired in each seed
+    SweepEstimate planeRecognised, airRecognised;
+};
+
+/// One setting of sweep (b) over seeds.
+struct FollowingOverSeeds {
+    FollowingMode mode = FollowingMode::Active;
+    double followStep_mm = 0, repositionStep_mm = 0, beliefThreshold = 0;
+    bool paperSetting = false;
+    int seeds = 0;
+    Rate completed;  ///< over every trial of every seed, Wilson interval
+    SweepEstimate contourDistance_mm, robotTimePerTrial_s, tapsPerTrial;
+    /// All robot time spent over all seeds / trials completed (infinite if none), with a 95 %
+    /// interval from resampling the seeds.
+    SweepEstimate robotTimePerCompletion_s;
+    /// Against the paper's setting of the same mode, seed by seed: completion (percentage
+    /// points, this minus the paper's), robot time per completion (this / the paper's, from
+    /// resampling the seeds) and contour distance (this minus the paper's).
+    bool paired = false;
+    SweepEstimate completionDifference_points, timeRatio, distanceDifference_mm;
+    bool onParetoFront = false;  ///< no other setting is as fast, as complete and as close
+    bool beatsPaper = false;     ///< faster than the paper's at no loss of completion
+};
+
+/// Sweep (c) at one setting over seeds.
+struct ComputeOverSeeds {
+    int bins = 0, samples = 0;
+    bool paperSetting = false;
+    SweepEstimate angle_deg, position_mm, microsecondsPerDecision;
+};
+
+struct SweepRates {
+    int seeds = 0;  ///< runs whose sweeps were measured
+    std::vector<PerceptionOverSeeds> perception;
+    PerceptionOverSeeds perceptionSingleTap;
+    int calibrationSeeds = 0, calibrationWithin005 = 0;
+    SweepEstimate eceRaw, eceCalibrated, eceIfCalibrated;
+    std::vector<FollowingOverSeeds> following;
+    std::vector<ComputeOverSeeds> compute;
+    bool empty() const { return perception.empty() && following.empty() && compute.empty(); }
+};
+
+/// A non-inferiority margin: a setting beats the paper's only if the lower end of its paired
+/// completion difference is above minus this many percentage points.
+constexpr double kCompletionMargin_points = 2.0;
+
+/// The sweeps of the runs in `seeds` that measured them (a failed run measured none) over seeds.
+/// The settings are matched by position, which is the same for every seed of one experiment.
+SweepRates sweepRates(const std::vector<SeedOutcome>& seeds);
+
+Json sweepRatesJson(const SweepRates& rates);
+
+/// Writes sweeps_perception.csv, sweeps_following.csv and sweeps_compute.csv (those that have
+/// rows) in `dir`.
+void writeSweepRateTables(const SweepRates& rates, const std::string& dir);
+
+/// The tables as text for a terminal: (a), the calibration, (b) with the front and the settings
+/// that beat the paper's, (c).
+std::vector<std::string> describeSweepRates(const SweepRates& rates);
+
+/// What a seed keeps of its run's sweeps, and back: enough to aggregate over seeds (the per-run
+/// intervals over classes are not kept).
+Json seedSweepsJson(const SweepResults& sweeps);
+SweepResults seedSweepsFromJson(const Json& j);
+
+}  // namespace activetouch
