@@ -279,11 +279,22 @@ MainWindow::~MainWindow() {
 }
 
 QList<PlotPanel*> MainWindow::plotPanels() const {
-    return {live_->barsPanel(),         live_->tracesPanel(),      validation_->tapsPanel(),
-            validation_->errorsPanel(), following_->activePanel(), following_->passivePanel(),
-            following_->replayPanel(),  recognition_->panel(),     sweeps_->perceptionPanel(),
-            sweeps_->followingPanel(),  sweeps_->computePanel(),   seeds_->ratesPanel(),
-            comparison_->plotPanel(),   comparison_->pairPanel()};
+    return {live_->barsPanel(),
+            live_->tracesPanel(),
+            validation_->tapsPanel(),
+            validation_->errorsPanel(),
+            following_->activePanel(),
+            following_->passivePanel(),
+            following_->replayPanel(),
+            recognition_->panel(),
+            sweeps_->perceptionPanel(),
+            sweeps_->followingPanel(),
+            sweeps_->computePanel(),
+            sweeps_->perceptionOverSeedsPanel(),
+            sweeps_->paretoOverSeedsPanel(),
+            seeds_->ratesPanel(),
+            comparison_->plotPanel(),
+            comparison_->pairPanel()};
 }
 
 void MainWindow::setPace(Pace pace) {

@@ -48,6 +48,7 @@
 #include "core/run/ExperimentFiles.h"
 #include "core/run/RunFolder.h"
 #include "core/run/SeedRates.h"
+#include "core/run/SweepRates.h"
 #include "devices/simulated/SimulatedWorld.h"
 #include "qcustomplot.h"
 
@@ -334,6 +335,7 @@ void MainWindow::showTrialPair(const std::shared_ptr<const TrialPairRun>& pair,
 void MainWindow::showSeeds(std::shared_ptr<const SeedRates> rates, const QString& dir,
                            bool cancelled) {
     seeds_->finish(dir, cancelled);
+    sweeps_->showSeeds(sweepRates(rates->seeds));
     QString figures;
     try {
         const QStringList files = writeSeedFigures(*rates, seeds_->experiment(), dir);

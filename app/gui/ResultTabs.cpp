@@ -16,6 +16,7 @@
 #include "app/figures/ValidationFigures.h"
 #include "app/gui/PlotPanel.h"
 #include "core/run/SeedRates.h"
+#include "core/run/SweepRates.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
@@ -147,12 +148,21 @@ SweepsTab::SweepsTab(QWidget* parent) : QWidget(parent) {
     tabs_->addTab(perception_, tr("(a) taps per decision"));
     tabs_->addTab(following_, tr("(b) following steps"));
     tabs_->addTab(compute_, tr("(c) compute"));
+    perceptionSeeds_ = new PlotPanel("seeds_sweep_a_perception");
+    pareto_ = new PlotPanel("seeds_sweep_b_pareto_front");
+    tabs_->addTab(perceptionSeeds_, tr("(a) over seeds"));
+    tabs_->addTab(pareto_, tr("(b) Pareto front over seeds"));
     setToolTip(tr("Run an experiment with sweeps, such as experiments/accuracy_vs_time.json"));
     for (PlotPanel* p : {perception_, following_, compute_})
         p->setEmptyHint(
             tr("No sweeps measured yet. Open experiments/accuracy_vs_time.json (or any "
                "experiment with a \"sweeps\" section) and click Run whole protocol "
                "to measure what accuracy costs in time."));
+    for (PlotPanel* p : {perceptionSeeds_, pareto_})
+        p->setEmptyHint(
+            tr("No sweeps over seeds yet. Open experiments/accuracy_vs_time.json and click "
+               "Run over seeds in the Seeds tab to see each sweep as means over seeds with "
+               "their 95 % intervals, and the following settings set against the paper's."));
     pickedLabel_ = new QLabel(tr("Click a point of (a) or (b) to see its setting."));
     pickedLabel_->setObjectName("sweepPicked");
     pickedLabel_->setWordWrap(true);
@@ -224,6 +234,13 @@ void SweepsTab::showRun(const RunResult& r, bool analysis) {
     buildFollowingSweepFigure(following_->plot(), r);
     buildComputeSweepFigure(compute_->plot(), r);
     for (auto* p : {perception_, following_, compute_}) p->plot().replot();
+}
+
+void SweepsTab::showSeeds(const SweepRates& rates) {
+    if (rates.empty()) return;
+    buildPerceptionSweepOverSeedsFigure(perceptionSeeds_->plot(), rates);
+    buildFollowingParetoFigure(pareto_->plot(), rates);
+    for (auto* p : {perceptionSeeds_, pareto_}) p->plot().replot();
 }
 
 void SweepsTab::pickAt(QCustomPlot& plot, bool following, QPointF at) {

@@ -21,6 +21,7 @@ class QCustomPlot;
 namespace activetouch {
 
 struct RunResult;
+struct SweepRates;
 class PlotPanel;
 
 /// Figure 6 (errors by orientation and position) and Figure 5 (taps across each edge).
@@ -73,6 +74,10 @@ public:
     PlotPanel* perceptionPanel() const { return perception_; }
     PlotPanel* followingPanel() const { return following_; }
     PlotPanel* computePanel() const { return compute_; }
+    /// Shows sweeps (a) and (b) over the seeds of a seeds run, if its runs measured them.
+    void showSeeds(const SweepRates& rates);
+    PlotPanel* perceptionOverSeedsPanel() const { return perceptionSeeds_; }
+    PlotPanel* paretoOverSeedsPanel() const { return pareto_; }
     /// Picks row `row` of the shown sweep (a) (`following` false) or (b), as a click on its
     /// point does; false if there is no such row.
     bool pick(bool following, int row);
@@ -91,7 +96,7 @@ private:
     void pickAt(QCustomPlot& plot, bool following, QPointF at);
     QPointF pressedAt_;
     QTabWidget* tabs_;
-    PlotPanel *perception_, *following_, *compute_;
+    PlotPanel *perception_, *following_, *compute_, *perceptionSeeds_, *pareto_;
     QLabel* pickedLabel_;
     QPushButton *runPicked_, *runStandard_;
     std::vector<PerceptionSweepRow> perceptionRows_;

@@ -104,7 +104,7 @@ inline void clickCheckBox(QGroupBox* box) {
 
 /// Whether a single run fills the panel (sweeps and seeds have their own runs).
 inline bool filledByARun(const PlotPanel* p) {
-    return !p->name().startsWith("sweep") && p->name() != "seed_rates" &&
+    return !p->name().startsWith("sweep") && !p->name().startsWith("seed") &&
            !p->name().startsWith("compare");
 }
 

@@ -2,7 +2,11 @@
 // cancels half-way keeping every finished tap, uses a toggled effect in the next run, exports
 // every figure in every format, keeps paths and histograms at one scale through resizes and no
 // legend over a value, draws the live view only in front, and runs sweeps.
+#include <QSpinBox>
+
 #include "WindowFixture.h"
+#include "app/gui/PlotPanel.h"
+#include "app/gui/SeedsTab.h"
 
 class TestWindowRuns : public WindowFixture {
     Q_OBJECT
@@ -465,6 +469,46 @@ private slots:
         QVERIFY(standard.followingBeliefThresholds == file.followingBeliefThresholds);
         QVERIFY(standard.bins == file.bins && standard.samplesPerTap == file.samplesPerTap);
         QCOMPARE(standard.tapsPerClass, file.tapsPerClass);
+        QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
+    }
+
+    void sweepsOverSeedsAreShownAfterASeedsRun() {
+        // A small experiment with sweeps run over seeds 1-3 from the Seeds tab: the Accuracy vs
+        // time tab shows (a) over the seeds with its intervals and (b)'s Pareto front.
+        const QString path = dir_.filePath("small_sweeps.json");
+        QFile f(path);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write(QString(R"({"name": "small_sweeps", "scene": "%1",
+            "training": {"data_sets": 3, "training_sets": [1]},
+            "following": {"trials": [{"object": {"shape": "rectangle", "width_mm": 48, "height_mm": 58, "offset_mm": [150, 150]}}]},
+            "sweeps": {"perception": {"belief_thresholds": [0.9, 0.99], "taps_per_class": 3, "max_taps_per_decision": 6},
+                       "following": {"follow_steps_mm": [2, 3], "reposition_steps_mm": [1], "belief_thresholds": [0], "modes": ["active"], "repeats": 1}}})")
+                    .arg(sourceFile("experiments/scenes/paper_rectangle.json"))
+                    .toUtf8());
+        f.close();
+        QTRY_VERIFY(!window_->running());
+        QVERIFY(window_->openExperiment(path));
+        auto* tab = window_->findChild<SweepsTab*>();
+        QVERIFY(tab->perceptionOverSeedsPanel()->showsEmptyHint());
+        SeedsTab* seeds = window_->seedsTab();
+        seeds->findChild<QSpinBox*>("firstSeed")->setValue(1);
+        seeds->findChild<QSpinBox*>("lastSeed")->setValue(3);
+        QSignalSpy ended(window_.get(), &MainWindow::runEnded);
+        QTest::mouseClick(seeds->findChild<QPushButton*>("runSeeds"), Qt::LeftButton);
+        QVERIFY(ended.wait(120000));
+        QVERIFY(ended.takeFirst().at(0).toBool());
+        QTRY_VERIFY(!window_->running());
+        for (PlotPanel* panel : {tab->perceptionOverSeedsPanel(), tab->paretoOverSeedsPanel()}) {
+            QVERIFY2(!panel->showsEmptyHint(), qPrintable(panel->name()));
+            QVERIFY(panel->plot().plottableCount() > 0);
+            QVERIFY(panel->plot().plotLayout()->elementCount() > 0);
+        }
+        // (a): one point per threshold, its x the mean taps over the seeds.
+        const QCPGraph* curve = tab->perceptionOverSeedsPanel()->plot().graph(0);
+        QCOMPARE(curve->dataCount(), 2);
+        QVERIFY(curve->data()->at(1)->key >= curve->data()->at(0)->key);
+        QVERIFY(QFileInfo(window_->lastSeedsDirectory() + "/figures/sweeps_following_pareto.png")
+                    .size() > 0);
         QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
     }
 
