@@ -345,6 +345,9 @@ void printReport(const RunResult& result, double wall, double figures_s,
                 row.position_mm.low, row.position_mm.high, 100.0 * row.correctFraction,
                 100.0 * row.planeRecognised, 100.0 * row.airRecognised);
     }
+    if (const std::string b = describeBandit(result.sweeps.bandit, result.sweeps.following);
+        !b.empty())
+        std::printf("%s\n", b.c_str());
     std::printf("wall time %.3f s (figures %.3f s); results in %s\n", wall, figures_s,
                 outDir.c_str());
 }

@@ -158,7 +158,7 @@ std::vector<double> sweepRange(const JsonFields& f, const std::string& key, doub
 }
 
 void parseSweeps(const JsonFields& f, ExperimentSpec& e) {
-    f.rejectUnknownKeys({"perception", "following", "compute"});
+    f.rejectUnknownKeys({"perception", "following", "compute", "bandit"});
     SweepSpec& s = e.sweeps;
     if (f.has("perception")) {
         const JsonFields p = f.object("perception");
@@ -206,6 +206,18 @@ void parseSweeps(const JsonFields& f, ExperimentSpec& e) {
             p.fail("follow_steps_mm",
                    "a following sweep needs trials (following.trials) to know which objects to "
                    "follow");
+    }
+    if (f.has("bandit")) {
+        const JsonFields p = f.object("bandit");
+        p.rejectUnknownKeys({"rounds", "completion_worth_s"});
+        if (s.followSteps_mm.empty() ||
+            std::find(s.modes.begin(), s.modes.end(), FollowingMode::Active) == s.modes.end())
+            p.fail("rounds",
+                   "the bandit learns among the following sweep's active settings: give "
+                   "sweeps.following with the active mode");
+        s.bandit = true;
+        s.banditRounds = p.integer("rounds", 0, 100000, 0);
+        s.completionWorth_s = p.number("completion_worth_s", 1.0, 1e7, s.completionWorth_s);
     }
     if (f.has("compute")) {
         const JsonFields p = f.object("compute");

@@ -43,6 +43,11 @@ struct SweepSpec {
     int followingRepeats = 1;  ///< trials per object per setting
     // (c) compute: classifier error vs bins and samples per tap, against microseconds per decision
     std::vector<int> bins, samplesPerTap;
+    // (d) a bandit learning the operating point among (b)'s active settings by reward: each
+    // trial's reward is 1 if it completed, less its robot time over completionWorth_s.
+    bool bandit = false;
+    int banditRounds = 0;  ///< trials the learner runs; 0: four per setting
+    double completionWorth_s = 2000.0;
 
     bool any() const {
         return !beliefThresholds.empty() || !followSteps_mm.empty() || !bins.empty();

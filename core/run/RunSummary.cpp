@@ -4,6 +4,7 @@
 #include "core/run/OutputFiles.h"
 #include "core/run/RunArtefacts.h"
 #include "core/run/RunFolder.h"
+#include "core/run/SweepRates.h"
 
 namespace activetouch {
 namespace fs = std::filesystem;
@@ -212,6 +213,7 @@ Json sweepsJson(const SweepResults& sweeps) {
                            {"microseconds_per_decision", row.microsecondsPerDecision},
                            {"paper_setting", row.paperSetting}});
     Json out = {{"perception", perception}, {"following", following}, {"compute", compute}};
+    if (sweeps.bandit.ran) out["bandit"] = banditJson(sweeps.bandit, sweeps.following);
     if (!sweeps.perception.empty()) {
         Json single = perceptionRow(sweeps.perceptionSingleTap);
         single.erase("belief_threshold");

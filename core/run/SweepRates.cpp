@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <map>
 
 #include "core/run/OutputFiles.h"
 
@@ -111,6 +112,15 @@ std::string settingName(const FollowingOverSeeds& f) {
         std::snprintf(buf, sizeof buf, "passive %g mm, %s", f.followStep_mm,
                       thresholdName(f.beliefThreshold).c_str());
     return buf;
+}
+
+std::string rowName(const FollowingSweepRow& r) {
+    FollowingOverSeeds f;
+    f.mode = r.mode;
+    f.followStep_mm = r.followStep_mm;
+    f.repositionStep_mm = r.repositionStep_mm;
+    f.beliefThreshold = r.beliefThreshold;
+    return settingName(f);
 }
 
 /// A number a seed keeps: non-finite values as null, read back as NaN.
@@ -311,6 +321,47 @@ SweepRates sweepRates(const std::vector<SeedOutcome>& all) {
         }
     }
 
+    // (d): each seed's choice against that seed's best, and against the best over seeds.
+    {
+        BanditOverSeeds& b = out.bandit;
+        int pooledBest = -1;
+        double pooledBestReward = -kInf;
+        std::vector<double> pooledReward(out.following.size(), -kInf);
+        for (const SweepResults* r : runs) {
+            if (!r->bandit.ran) continue;
+            b.completionWorth_s = r->bandit.completionWorth_s;
+        }
+        for (std::size_t i = 0; i < out.following.size() && b.completionWorth_s > 0; ++i) {
+            const FollowingOverSeeds& f = out.following[i];
+            if (f.mode != FollowingMode::Active || f.completed.total == 0) continue;
+            pooledReward[i] =
+                f.completed.fraction() - f.robotTimePerTrial_s.mean / b.completionWorth_s;
+            if (pooledReward[i] > pooledBestReward)
+                pooledBestReward = pooledReward[i], pooledBest = int(i);
+        }
+        b.pooledBest = pooledBest;
+        std::vector<double> regret, pooled;
+        std::map<int, int> chosen;
+        for (const SweepResults* r : runs) {
+            const BanditResult& x = r->bandit;
+            if (!x.ran || x.chosen < 0 || x.sweepBest < 0) continue;
+            ++b.seeds;
+            b.choseBest += x.chosen == x.sweepBest;
+            regret.push_back(x.bestSweepReward - x.chosenSweepReward);
+            const int row = x.arms[std::size_t(x.chosen)].sweepRow;
+            ++chosen[row];
+            if (row >= 0 && std::size_t(row) < pooledReward.size())
+                pooled.push_back(pooledBestReward - pooledReward[std::size_t(row)]);
+            b.robotTime_s += x.robotTime_s;
+            b.sweepRobotTime_s += x.sweepRobotTime_s;
+        }
+        b.regret = overSeeds(regret, 0.0);
+        b.pooledRegret = overSeeds(pooled, 0.0);
+        for (const auto& [row, count] : chosen) b.choices.push_back({row, count});
+        std::stable_sort(b.choices.begin(), b.choices.end(),
+                         [](const auto& a, const auto& c) { return a.second > c.second; });
+    }
+
     for (std::size_t i = 0; i < first.compute.size(); ++i) {
         ComputeOverSeeds c;
         c.bins = first.compute[i].bins;
@@ -378,6 +429,25 @@ Json sweepRatesJson(const SweepRates& r) {
             {"ece_raw", estimateJson(r.eceRaw)},
             {"ece_calibrated", estimateJson(r.eceCalibrated)},
             {"ece_if_perfectly_calibrated", estimateJson(r.eceIfCalibrated)}};
+    if (const BanditOverSeeds& b = r.bandit; b.seeds > 0) {
+        Json choices = Json::array();
+        for (const auto& [row, count] : b.choices)
+            choices.push_back({{"setting", settingName(r.following[std::size_t(row)])},
+                               {"sweep_row", row},
+                               {"seeds", count}});
+        out["bandit"] = {
+            {"seeds", b.seeds},
+            {"completion_worth_s", b.completionWorth_s},
+            {"chose_the_seeds_best", b.choseBest},
+            {"regret_per_trial", estimateJson(b.regret)},
+            {"regret_against_best_over_seeds", estimateJson(b.pooledRegret)},
+            {"best_over_seeds", b.pooledBest >= 0
+                                    ? Json(settingName(r.following[std::size_t(b.pooledBest)]))
+                                    : Json()},
+            {"robot_time_s", b.robotTime_s},
+            {"sweep_robot_time_s", b.sweepRobotTime_s},
+            {"choices", choices}};
+    }
     if (!r.following.empty())
         out["beats_paper_rule"] =
             "robot time per completion below the paper's setting (upper end of the 95 % interval "
@@ -527,6 +597,25 @@ std::vector<std::string> describeSweepRates(const SweepRates& r) {
         lines.push_back("    beat the paper's setting in robot time at no loss of completion: " +
                         (beating.empty() ? std::string("none") : beating));
     }
+    if (const BanditOverSeeds& b = r.bandit; b.seeds > 0) {
+        std::snprintf(
+            buf, sizeof buf,
+            "  (d) bandit (reward: completion less robot time / %g s): chose its seed's "
+            "best setting in %d of %d seeds; regret per trial %s against the seed's "
+            "best, %s against the best over seeds (%s); robot time %.0f%% of sweep "
+            "(b)'s active settings",
+            b.completionWorth_s, b.choseBest, b.seeds, estimateText(b.regret, "%.3f").c_str(),
+            estimateText(b.pooledRegret, "%.3f").c_str(),
+            b.pooledBest >= 0 ? settingName(r.following[std::size_t(b.pooledBest)]).c_str()
+                              : "none",
+            b.sweepRobotTime_s > 0 ? 100.0 * b.robotTime_s / b.sweepRobotTime_s : 0.0);
+        lines.push_back(buf);
+        std::string most = "    chosen most often:";
+        for (std::size_t i = 0; i < b.choices.size() && i < 4; ++i)
+            most += (i ? "; " : " ") + settingName(r.following[std::size_t(b.choices[i].first)]) +
+                    " (" + std::to_string(b.choices[i].second) + ")";
+        lines.push_back(most);
+    }
     if (!r.compute.empty()) {
         lines.push_back("  (c) compute");
         for (const auto& c : r.compute) {
@@ -540,6 +629,92 @@ std::vector<std::string> describeSweepRates(const SweepRates& r) {
         }
     }
     return lines;
+}
+
+namespace {
+
+Json keptBandit(const BanditResult& b) {
+    if (!b.ran) return Json();
+    Json arms = Json::array();
+    for (const BanditArm& a : b.arms)
+        arms.push_back({a.sweepRow, a.followStep_mm, a.repositionStep_mm, a.beliefThreshold,
+                        a.pulls, a.completed, kept(a.rewardSum), kept(a.robotTime_s)});
+    return {{"worth_s", b.completionWorth_s},
+            {"rounds", b.rounds},
+            {"chosen", b.chosen},
+            {"best", b.sweepBest},
+            {"chosen_reward", kept(b.chosenSweepReward)},
+            {"best_reward", kept(b.bestSweepReward)},
+            {"robot_time_s", kept(b.robotTime_s)},
+            {"sweep_robot_time_s", kept(b.sweepRobotTime_s)},
+            {"arms", arms}};
+}
+
+BanditResult keptBanditOf(const Json& j) {
+    BanditResult b;
+    if (j.is_null()) return b;
+    b.ran = true;
+    b.completionWorth_s = keptOf(j.at("worth_s"));
+    b.rounds = j.at("rounds").get<int>();
+    b.chosen = j.at("chosen").get<int>();
+    b.sweepBest = j.at("best").get<int>();
+    b.chosenSweepReward = keptOf(j.at("chosen_reward"));
+    b.bestSweepReward = keptOf(j.at("best_reward"));
+    b.robotTime_s = keptOf(j.at("robot_time_s"));
+    b.sweepRobotTime_s = keptOf(j.at("sweep_robot_time_s"));
+    for (const Json& a : j.at("arms"))
+        b.arms.push_back({a.at(0).get<int>(), keptOf(a.at(1)), keptOf(a.at(2)), keptOf(a.at(3)),
+                          a.at(4).get<int>(), a.at(5).get<int>(), keptOf(a.at(6)),
+                          keptOf(a.at(7))});
+    const int A = static_cast<int>(b.arms.size());
+    if (b.chosen < 0 || b.chosen >= A || b.sweepBest < 0 || b.sweepBest >= A)
+        throw std::runtime_error("the bandit's chosen or best setting is not one of its arms");
+    return b;
+}
+
+}  // namespace
+
+Json banditJson(const BanditResult& b, const std::vector<FollowingSweepRow>& following) {
+    if (!b.ran) return Json();
+    Json arms = Json::array();
+    for (const BanditArm& a : b.arms)
+        arms.push_back({{"setting", rowName(following[std::size_t(a.sweepRow)])},
+                        {"sweep_row", a.sweepRow},
+                        {"trials", a.pulls},
+                        {"completed", a.completed},
+                        {"robot_time_s", a.robotTime_s},
+                        {"mean_reward", a.pulls > 0 ? Json(a.meanReward()) : Json()}});
+    return {
+        {"method", "UCB1 over the following sweep's active settings, each tried once first"},
+        {"reward", "1 if the trial completed, less its robot time over completion_worth_s"},
+        {"completion_worth_s", b.completionWorth_s},
+        {"rounds", b.rounds},
+        {"chosen", rowName(following[std::size_t(b.arms[std::size_t(b.chosen)].sweepRow)])},
+        {"sweep_best", rowName(following[std::size_t(b.arms[std::size_t(b.sweepBest)].sweepRow)])},
+        {"chosen_reward_in_sweep", b.chosenSweepReward},
+        {"best_reward_in_sweep", b.bestSweepReward},
+        {"robot_time_s", b.robotTime_s},
+        {"sweep_robot_time_s", b.sweepRobotTime_s},
+        {"arms", arms}};
+}
+
+std::string describeBandit(const BanditResult& b, const std::vector<FollowingSweepRow>& following) {
+    if (!b.ran || b.chosen < 0) return "";
+    const BanditArm& c = b.arms[std::size_t(b.chosen)];
+    char buf[512];
+    std::snprintf(
+        buf, sizeof buf,
+        "bandit: %d trials (%.0f s of robot time, %.0f %% of sweep (b)'s active "
+        "settings) chose %s (%d trials); the sweep's best by the same reward (completion "
+        "less robot time / %g s) is %s: %.3f against %.3f per trial",
+        b.rounds, b.robotTime_s,
+        b.sweepRobotTime_s > 0 ? 100.0 * b.robotTime_s / b.sweepRobotTime_s : 0.0,
+        rowName(following[std::size_t(c.sweepRow)]).c_str(), c.pulls, b.completionWorth_s,
+        b.chosen == b.sweepBest
+            ? "the same"
+            : rowName(following[std::size_t(b.arms[std::size_t(b.sweepBest)].sweepRow)]).c_str(),
+        b.chosenSweepReward, b.bestSweepReward);
+    return buf;
 }
 
 Json seedSweepsJson(const SweepResults& s) {
@@ -566,7 +741,8 @@ Json seedSweepsJson(const SweepResults& s) {
              {c.measured, c.calibrated, c.taps, kept(c.eceRaw), kept(c.eceCalibrated),
               kept(c.eceIfCalibrated)}},
             {"following", rowsB},
-            {"compute", rowsC}};
+            {"compute", rowsC},
+            {"bandit", keptBandit(s.bandit)}};
 }
 
 SweepResults seedSweepsFromJson(const Json& j) {
@@ -607,6 +783,12 @@ SweepResults seedSweepsFromJson(const Json& j) {
         f.robotTimePerCompletion_s =
             f.completed > 0 ? f.meanRobotTime_s * f.trials / f.completed : kInf;
         s.following.push_back(f);
+    }
+    if (const auto bandit = j.find("bandit"); bandit != j.end()) {
+        s.bandit = keptBanditOf(*bandit);
+        for (const BanditArm& a : s.bandit.arms)
+            if (a.sweepRow < 0 || std::size_t(a.sweepRow) >= s.following.size())
+                throw std::runtime_error("a bandit setting is not a row of the following sweep");
     }
     for (const Json& a : j.at("compute")) {
         ComputeSweepRow row{a.at(0).get<int>(), a.at(1).get<int>(), keptOf(a.at(2)),

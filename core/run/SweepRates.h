@@ -57,6 +57,21 @@ struct ComputeOverSeeds {
     SweepEstimate angle_deg, position_mm, microsecondsPerDecision;
 };
 
+/// (d) over seeds: how often the bandit chose (b)'s best setting of the same seed, what its
+/// choice lost against that best by (b)'s own measure, and what it spent.
+struct BanditOverSeeds {
+    int seeds = 0, choseBest = 0;
+    double completionWorth_s = 0;
+    SweepEstimate regret;  ///< best reward minus the chosen setting's, per trial
+    /// The same over seeds: the pooled reward of each seed's chosen setting against the best
+    /// setting over all seeds, both from (b) over seeds.
+    SweepEstimate pooledRegret;
+    double robotTime_s = 0, sweepRobotTime_s = 0;  ///< summed over seeds
+    /// How often each setting was chosen, most chosen first: (b)'s row and the count.
+    std::vector<std::pair<int, int>> choices;
+    int pooledBest = -1;  ///< (b)'s row with the highest pooled reward
+};
+
 struct SweepRates {
     int seeds = 0;  ///< runs whose sweeps were measured
     std::vector<PerceptionOverSeeds> perception;
@@ -65,6 +80,7 @@ struct SweepRates {
     SweepEstimate eceRaw, eceCalibrated, eceIfCalibrated;
     std::vector<FollowingOverSeeds> following;
     std::vector<ComputeOverSeeds> compute;
+    BanditOverSeeds bandit;
     bool empty() const { return perception.empty() && following.empty() && compute.empty(); }
 };
 
@@ -85,6 +101,11 @@ void writeSweepRateTables(const SweepRates& rates, const std::string& dir);
 /// The tables as text for a terminal: (a), the calibration, (b) with the front and the settings
 /// that beat the paper's, (c).
 std::vector<std::string> describeSweepRates(const SweepRates& rates);
+
+/// One run's bandit as JSON (summary.json's sweeps.bandit) and as a line of text.
+Json banditJson(const BanditResult& bandit, const std::vector<FollowingSweepRow>& following);
+std::string describeBandit(const BanditResult& bandit,
+                           const std::vector<FollowingSweepRow>& following);
 
 /// What a seed keeps of its run's sweeps, and back: enough to aggregate over seeds (the per-run
 /// intervals over classes are not kept).

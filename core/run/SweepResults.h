@@ -55,6 +55,36 @@ struct ComputeSweepRow {
     bool paperSetting = false;  ///< 100 bins, 50 samples
 };
 
+/// One setting the bandit could choose: (b)'s active setting at `sweepRow`.
+struct BanditArm {
+    int sweepRow = -1;
+    double followStep_mm = 0, repositionStep_mm = 0, beliefThreshold = 0;
+    int pulls = 0, completed = 0;
+    double rewardSum = 0, robotTime_s = 0;
+    double meanReward() const { return pulls > 0 ? rewardSum / pulls : 0.0; }
+};
+
+/// (d) The operating point learnt by reward: UCB1 over (b)'s active settings, each trial's
+/// reward 1 if it completed, less its robot time over completionWorth_s. Its choice (the setting
+/// it ran most) is set against (b)'s best by the same reward.
+struct BanditResult {
+    bool ran = false;
+    double completionWorth_s = 0;
+    int rounds = 0;
+    std::vector<BanditArm> arms;
+    int chosen = -1;     ///< arm the learner ran most (ties: the higher mean reward)
+    int sweepBest = -1;  ///< arm whose (b) row has the highest mean reward
+    /// The mean reward per trial of the chosen and the best arm, both as (b) measured them.
+    double chosenSweepReward = 0, bestSweepReward = 0;
+    double robotTime_s = 0;       ///< what the learner spent
+    double sweepRobotTime_s = 0;  ///< what (b)'s active settings spent
+};
+
+/// The bandit's reward for one trial.
+inline double banditReward(bool completed, double robotTime_s, double completionWorth_s) {
+    return (completed ? 1.0 : 0.0) - robotTime_s / completionWorth_s;
+}
+
 struct SweepResults {
     std::vector<PerceptionSweepRow> perception;
     PerceptionSweepCalibration perceptionCalibration;
@@ -62,6 +92,7 @@ struct SweepResults {
     PerceptionSweepRow perceptionSingleTap;
     std::vector<FollowingSweepRow> following;
     std::vector<ComputeSweepRow> compute;
+    BanditResult bandit;
     bool empty() const { return perception.empty() && following.empty() && compute.empty(); }
 };
 

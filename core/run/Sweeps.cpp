@@ -1,10 +1,12 @@
 #include "core/run/Sweeps.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <memory>
+#include <string>
 
 #include "core/classify/BeliefCalibration.h"
 #include "core/classify/SequentialPerception.h"
@@ -186,15 +188,41 @@ std::vector<PerceptionSweepRow> perceptionSweep(const RunResult& r, const RunOpt
     return rows;
 }
 
-std::vector<FollowingSweepRow> followingSweep(const RunResult& r, const RunOptions& options) {
-    const SweepSpec& sw = r.spec.sweeps;
-    // One of each object the experiment follows.
+/// One of each object the experiment follows.
+std::vector<const TrialSpec*> objectsFollowed(const RunResult& r) {
     std::vector<const TrialSpec*> objects;
     for (const auto& t : r.spec.trials) {
         bool seen = false;
         for (const auto* o : objects) seen = seen || o->label == t.label;
         if (!seen) objects.push_back(&t);
     }
+    return objects;
+}
+
+/// One trial following `object` with the setting of `row` on a rig of its own, whose random
+/// streams are named by `tag`.
+TrialResult followOnce(const RunResult& r, const RunOptions& options,
+                       const std::shared_ptr<const FingertipContactModel>& model,
+                       const TrialSpec& object, const FollowingSweepRow& row,
+                       const std::string& tag) {
+    SceneSpec scene = r.spec.scene;
+    scene.object = object.object;
+    scene.seed = RandomStream::derived(r.spec.scene.seed, tag).next() >> 1;
+    const auto simulated = simulatedRigsOf(options).build(scene, model);
+    Rig rig = simulated->rig();
+    FollowingSettings settings = r.spec.following;
+    settings.followStep_mm = row.followStep_mm;
+    settings.repositionStep_mm = row.repositionStep_mm;
+    settings.beliefThreshold = row.beliefThreshold;
+    const Polygon outline = simulated->object();
+    const TrialSetup setup = trialSetupFor(r, row.mode, settings, outline, object.start);
+    return runTrial(rig, r.classifier, r.classes, outline, setup,
+                    [&](const FollowedTap&) { return !cancelled(options); });
+}
+
+std::vector<FollowingSweepRow> followingSweep(const RunResult& r, const RunOptions& options) {
+    const SweepSpec& sw = r.spec.sweeps;
+    const std::vector<const TrialSpec*> objects = objectsFollowed(r);
     auto model = std::make_shared<const FingertipContactModel>(r.spec.scene.fingertip);
     std::vector<FollowingSweepRow> rows;
     int setting = 0;
@@ -211,26 +239,10 @@ std::vector<FollowingSweepRow> followingSweep(const RunResult& r, const RunOptio
                     for (const TrialSpec* object : objects) {
                         for (int k = 0; k < sw.followingRepeats; ++k) {
                             if (cancelled(options)) return rows;
-                            SceneSpec scene = r.spec.scene;
-                            scene.object = object->object;
-                            scene.seed = RandomStream::derived(
-                                             r.spec.scene.seed,
-                                             "sweep:following:" + std::to_string(setting) + ":" +
-                                                 object->label + ":" + std::to_string(k))
-                                             .next() >>
-                                         1;
-                            const auto simulated = simulatedRigsOf(options).build(scene, model);
-                            Rig rig = simulated->rig();
-                            FollowingSettings settings = r.spec.following;
-                            settings.followStep_mm = follow;
-                            settings.repositionStep_mm = reposition;
-                            settings.beliefThreshold = threshold;
-                            const Polygon outline = simulated->object();
-                            const TrialSetup setup =
-                                trialSetupFor(r, mode, settings, outline, object->start);
                             const TrialResult t =
-                                runTrial(rig, r.classifier, r.classes, outline, setup,
-                                         [&](const FollowedTap&) { return !cancelled(options); });
+                                followOnce(r, options, model, *object, row,
+                                           "sweep:following:" + std::to_string(setting) + ":" +
+                                               object->label + ":" + std::to_string(k));
                             ++row.trials;
                             row.completed += t.completed();
                             time += t.robotTime_s;
@@ -317,6 +329,74 @@ std::vector<ComputeSweepRow> computeSweep(const RunResult& r, const RunOptions& 
     return rows;
 }
 
+BanditResult banditSweep(const RunResult& r, const RunOptions& options,
+                         const std::vector<FollowingSweepRow>& sweep) {
+    const SweepSpec& sw = r.spec.sweeps;
+    BanditResult b;
+    b.completionWorth_s = sw.completionWorth_s;
+    for (std::size_t i = 0; i < sweep.size(); ++i) {
+        const FollowingSweepRow& row = sweep[i];
+        if (row.mode != FollowingMode::Active) continue;
+        b.arms.push_back({int(i), row.followStep_mm, row.repositionStep_mm, row.beliefThreshold});
+        b.sweepRobotTime_s += row.meanRobotTime_s * row.trials;
+    }
+    const std::vector<const TrialSpec*> objects = objectsFollowed(r);
+    if (b.arms.empty() || objects.empty()) return b;
+    const int A = static_cast<int>(b.arms.size());
+    const int rounds = sw.banditRounds > 0 ? sw.banditRounds : 4 * A;
+    auto model = std::make_shared<const FingertipContactModel>(r.spec.scene.fingertip);
+    double highest = -std::numeric_limits<double>::infinity(), lowest = -highest;
+    for (int n = 0; n < rounds; ++n) {
+        if (cancelled(options)) return b;
+        // UCB1: every arm once, then the highest mean plus its exploration bonus, scaled by the
+        // range of the rewards seen so far (at least 1, the worth of a completion).
+        int arm = n < A ? n : 0;
+        if (n >= A) {
+            double bestIndex = -std::numeric_limits<double>::infinity();
+            const double range = std::max(1.0, highest - lowest);
+            for (int a = 0; a < A; ++a) {
+                const BanditArm& x = b.arms[std::size_t(a)];
+                const double index =
+                    x.meanReward() + range * std::sqrt(2.0 * std::log(double(n)) / x.pulls);
+                if (index > bestIndex) bestIndex = index, arm = a;
+            }
+        }
+        BanditArm& x = b.arms[std::size_t(arm)];
+        // Each arm follows the experiment's objects in turn, so that no arm sees only the easy
+        // ones.
+        const TrialSpec& object = *objects[std::size_t(x.pulls) % objects.size()];
+        const TrialResult t = followOnce(r, options, model, object, sweep[std::size_t(x.sweepRow)],
+                                         "sweep:bandit:" + std::to_string(n));
+        ++x.pulls;
+        x.completed += t.completed();
+        x.robotTime_s += t.robotTime_s;
+        const double reward = banditReward(t.completed(), t.robotTime_s, sw.completionWorth_s);
+        x.rewardSum += reward;
+        highest = std::max(highest, reward);
+        lowest = std::min(lowest, reward);
+        b.robotTime_s += t.robotTime_s;
+        ++b.rounds;
+    }
+    b.ran = true;
+    auto sweepReward = [&](const BanditArm& a) {  // the mean reward over (b)'s trials
+        const FollowingSweepRow& row = sweep[std::size_t(a.sweepRow)];
+        return double(row.completed) / std::max(1, row.trials) -
+               row.meanRobotTime_s / sw.completionWorth_s;
+    };
+    for (int a = 0; a < A; ++a) {
+        const BanditArm& x = b.arms[std::size_t(a)];
+        if (b.chosen < 0 || x.pulls > b.arms[std::size_t(b.chosen)].pulls ||
+            (x.pulls == b.arms[std::size_t(b.chosen)].pulls &&
+             x.meanReward() > b.arms[std::size_t(b.chosen)].meanReward()))
+            b.chosen = a;
+        if (b.sweepBest < 0 || sweepReward(x) > sweepReward(b.arms[std::size_t(b.sweepBest)]))
+            b.sweepBest = a;
+    }
+    b.chosenSweepReward = sweepReward(b.arms[std::size_t(b.chosen)]);
+    b.bestSweepReward = sweepReward(b.arms[std::size_t(b.sweepBest)]);
+    return b;
+}
+
 }  // namespace
 
 SweepSpec standardSweeps() {
@@ -331,6 +411,9 @@ SweepSpec standardSweeps() {
     s.followingRepeats = 3;
     s.bins = {10, 25, 50, 100, 200};
     s.samplesPerTap = {5, 10, 25, 50};
+    s.bandit = true;
+    s.banditRounds = 144;
+    s.completionWorth_s = 2000.0;
     return s;
 }
 
@@ -344,6 +427,7 @@ SweepResults runSweeps(const RunResult& trained, const RunOptions& options, bool
         s.perception =
             perceptionSweep(trained, options, s.perceptionCalibration, s.perceptionSingleTap);
     if (!sw.followSteps_mm.empty()) s.following = followingSweep(trained, options);
+    if (sw.bandit && !s.following.empty()) s.bandit = banditSweep(trained, options, s.following);
     return s;
 }
 

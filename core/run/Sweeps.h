@@ -5,6 +5,7 @@
 //       repositioning step and belief threshold, active and passive
 //   (c) compute: classifier error vs histogram bins and samples per tap, against microseconds
 //       per decision
+//   (d) a bandit learning the following setting by reward, set against (b)'s best
 #include "core/run/ExperimentRun.h"
 #include "core/run/SweepResults.h"
 
@@ -19,7 +20,8 @@ SweepResults runSweeps(const RunResult& trained, const RunOptions& options,
 
 /// The standard sweeps, those of experiments/accuracy_vs_time.json: (a) belief thresholds
 /// 0.5-0.999 over 20 taps per class, (b) follow steps 1-4 mm x repositioning 0.5-2 mm x single
-/// tap, 0.9 and 0.99, active and passive, 3 repeats, (c) 10-200 bins x 5-50 samples.
+/// tap, 0.9 and 0.99, active and passive, 3 repeats, (c) 10-200 bins x 5-50 samples, (d) a
+/// bandit of 144 trials, a completed contour worth 2000 robot seconds.
 SweepSpec standardSweeps();
 
 }  // namespace activetouch

@@ -174,6 +174,30 @@ private slots:
             cheaperComplete);
     }
 
+    void theBanditLearnsASettingAndIsSetAgainstTheSweep() {
+        for (const auto& r : runs_) {
+            const BanditResult& b = r.sweeps.bandit;
+            QVERIFY(b.ran);
+            QCOMPARE(b.rounds, 144);
+            int pulls = 0, active = 0;
+            for (const auto& row : r.sweeps.following) active += row.mode == FollowingMode::Active;
+            QCOMPARE(int(b.arms.size()), active);
+            for (const BanditArm& a : b.arms) {
+                QVERIFY(a.pulls >= 1);  // UCB1 tries every setting once
+                QCOMPARE(r.sweeps.following[std::size_t(a.sweepRow)].mode, FollowingMode::Active);
+                QVERIFY(std::abs(a.rewardSum - (a.completed - a.robotTime_s / 2000.0)) < 1e-6);
+                QVERIFY(a.pulls <= b.arms[std::size_t(b.chosen)].pulls);  // its choice: run most
+                pulls += a.pulls;
+            }
+            QCOMPARE(pulls, 144);
+            QVERIFY(b.chosenSweepReward <= b.bestSweepReward);
+            // The learner spends a fraction of what the sweep spends.
+            QVERIFY(b.robotTime_s < b.sweepRobotTime_s);
+            // It concentrates its trials: its choice ran more than the even share.
+            QVERIFY(b.arms[std::size_t(b.chosen)].pulls > 144 / active);
+        }
+    }
+
     void sweepsOverSeedsAreMeansOverTheSeeds() {
         std::vector<SeedOutcome> outcomes;
         for (const auto& r : runs_) outcomes.push_back(seedOutcome(r));
@@ -228,6 +252,12 @@ private slots:
         }
         QCOMPARE(QString::fromStdString(sweepRatesJson(sweepRates(kept)).dump()),
                  QString::fromStdString(sweepRatesJson(rates).dump()));
+        // The bandit over seeds: each seed's choice against that seed's best.
+        QCOMPARE(rates.bandit.seeds, 3);
+        int same = 0;
+        for (const auto& r : runs_) same += r.sweeps.bandit.chosen == r.sweeps.bandit.sweepBest;
+        QCOMPARE(rates.bandit.choseBest, same);
+        QVERIFY(rates.bandit.regret.mean >= 0.0);
     }
 
     void aSettingBeatsThePaperOnlyFasterAtNoLossOfCompletion() {

@@ -504,6 +504,21 @@ private slots:
             << head +
                    R"("sweeps": {"following": {"follow_steps_mm": [2], "reposition_steps_mm": [1]}}})"
             << "needs trials";
+        QTest::newRow("sweep: bandit without a following sweep")
+            << head + trials + R"("sweeps": {"bandit": {"rounds": 10}}})"
+            << "/sweeps/bandit/rounds: the bandit learns among the following sweep's active";
+        QTest::newRow("sweep: bandit over passive settings only")
+            << head + trials +
+                   R"("sweeps": {"following": {"follow_steps_mm": [2], "reposition_steps_mm": [1], "modes": ["passive"]}, "bandit": {}}})"
+            << "give sweeps.following with the active mode";
+        QTest::newRow("sweep: bandit with a completion worth nothing")
+            << head + trials +
+                   R"("sweeps": {"following": {"follow_steps_mm": [2], "reposition_steps_mm": [1]}, "bandit": {"completion_worth_s": 0}}})"
+            << "/sweeps/bandit/completion_worth_s";
+        QTest::newRow("sweep: bandit with an unknown key")
+            << head + trials +
+                   R"("sweeps": {"following": {"follow_steps_mm": [2], "reposition_steps_mm": [1]}, "bandit": {"epsilon": 0.1}}})"
+            << "epsilon";
         QTest::newRow("sweep: empty bins")
             << head + R"("sweeps": {"compute": {"bins": [], "samples_per_tap": [50]}}})"
             << "non-empty list";
