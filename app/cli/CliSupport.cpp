@@ -345,6 +345,8 @@ void printReport(const RunResult& result, double wall, double figures_s,
                 row.position_mm.low, row.position_mm.high, 100.0 * row.correctFraction,
                 100.0 * row.planeRecognised, 100.0 * row.airRecognised);
     }
+    for (const std::string& line : describeRobustness(result.sweeps))
+        std::printf("%s\n", line.c_str());
     if (const std::string b = describeBandit(result.sweeps.bandit, result.sweeps.following);
         !b.empty())
         std::printf("%s\n", b.c_str());

@@ -108,7 +108,8 @@ QStringList writeSeedFigures(const SeedRates& rates, const QString& experiment,
     }
     const SweepRates sweeps = sweepRates(rates.seeds);
     for (auto [build, name] : {std::pair{&buildPerceptionSweepOverSeedsFigure, "sweeps_perception"},
-                               std::pair{&buildFollowingParetoFigure, "sweeps_following_pareto"}}) {
+                               std::pair{&buildFollowingParetoFigure, "sweeps_following_pareto"},
+                               std::pair{&buildRobustnessFigure, "sweeps_robustness"}}) {
         QCustomPlot plot;
         if (build(plot, sweeps))
             files << exportFigure(plot, dir + "/" + name, {"png", "pdf", "svg"},

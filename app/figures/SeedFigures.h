@@ -24,7 +24,8 @@ inline constexpr FigureSize kSeedFigureSize =
     FigureSize::physical(kDoubleColumn_mm, 85, kFigureDpi);
 
 /// Writes <outDir>/figures/seed_rates.{png,pdf,svg} at kSeedFigureSize, and where the runs measured
-/// accuracy-versus-time sweeps, sweeps_perception.* and sweeps_following_pareto.*; returns the
+/// accuracy-versus-time sweeps, sweeps_perception.*, sweeps_following_pareto.* and
+/// sweeps_robustness.*; returns the
 /// files. Throws std::runtime_error naming what could not be written.
 QStringList writeSeedFigures(const SeedRates& rates, const QString& experiment,
                              const QString& outDir);

@@ -250,7 +250,10 @@ void intervalBars(QCPGraph* g, const std::vector<SweepEstimate>& y,
         bar->setErrorType(type);
         bar->setDataPlottable(g);
         bar->setData(below, above);
-        bar->setPen(g->pen());
+        // A series drawn as points alone has no line pen: the bars take its points' colour.
+        QPen pen = g->pen();
+        if (pen.style() == Qt::NoPen) pen = QPen(g->scatterStyle().pen().color(), 1.5);
+        bar->setPen(pen);
         bar->removeFromLegend();
     };
     bars(QCPErrorBars::etValueError, y);
@@ -411,6 +414,54 @@ bool buildFollowingParetoFigure(QCustomPlot& plot, const SweepRates& r) {
         }
         x->setRange(std::max(1e-3, lo) / 1.15, hi * 1.15);
     }
+    return true;
+}
+
+bool buildRobustnessFigure(QCustomPlot& plot, const SweepRates& r) {
+    startFigure(plot, QString("Robustness over %1 seeds: the whole run again with one fault, "
+                              "against the fault-free run")
+                          .arg(r.seeds));
+    if (r.robustness.empty()) return false;
+    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
+    const auto [rect, legend] = addPanelWithLegendBelow(grid, 0, 0, /*perLine=*/3);
+    rect->axis(QCPAxis::atLeft)->setLabel("share of active trials (%)");
+    std::vector<RobustnessOverSeeds> all{r.robustnessBase};
+    all.insert(all.end(), r.robustness.begin(), r.robustness.end());
+    QSharedPointer<QCPAxisTickerText> names(new QCPAxisTickerText);
+    QVector<double> x, completed, recognised;
+    std::vector<SweepEstimate> completedE, recognisedE;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        const RobustnessOverSeeds& f = all[i];
+        names->addTick(double(i),
+                       f.fault == "none" ? QString("none") : QString::fromStdString(f.fault));
+        x << double(i);
+        completed << 100.0 * f.completed.fraction();
+        completedE.push_back({100.0 * f.completed.fraction(), 100.0 * f.completed.low(),
+                              100.0 * f.completed.high()});
+        // Recognised of the trials run: a path must complete to be named.
+        const Rate named{f.recognisedRaw.count, f.completed.total};
+        recognised << 100.0 * named.fraction();
+        recognisedE.push_back(
+            {100.0 * named.fraction(), 100.0 * named.low(), 100.0 * named.high()});
+    }
+    QCPAxis* bottom = rect->axis(QCPAxis::atBottom);
+    bottom->setTicker(names);
+    bottom->setTickLabelRotation(-45);  // each label ends at its tick
+    intervalBars(addSeries(rect, legend, "active trials completed (Wilson 95 %)", x, completed,
+                           seriesColour(0), false),
+                 completedE);
+    intervalBars(addSeries(rect, legend, "completed and named rightly, paper's rule", x, recognised,
+                           seriesColour(2), false),
+                 recognisedE);
+    auto* base = addSeries(rect, legend, "fault-free run", {-0.5, double(all.size()) - 0.5},
+                           {completed[0], completed[0]}, Qt::gray);
+    base->setPen(QPen(Qt::gray, 1, Qt::DashLine));
+    base->setScatterStyle(QCPScatterStyle::ssNone);
+    bottom->setRange(-0.6, double(all.size()) - 0.4);
+    double lowest = 100;
+    for (const auto& e : completedE) lowest = std::min(lowest, e.low);
+    for (const auto& e : recognisedE) lowest = std::min(lowest, e.low);
+    rect->axis(QCPAxis::atLeft)->setRange(std::max(0.0, lowest - 5), 101);
     return true;
 }
 

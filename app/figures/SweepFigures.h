@@ -29,4 +29,8 @@ bool buildPerceptionSweepOverSeedsFigure(QCustomPlot& plot, const SweepRates& ra
 /// setting starred and the settings that beat it named.
 bool buildFollowingParetoFigure(QCustomPlot& plot, const SweepRates& rates);
 
+/// (e) over seeds: active completion and recognition (the paper's rule, of the trials run) for
+/// the fault-free run and each fault, with their 95 % intervals, one point per fault.
+bool buildRobustnessFigure(QCustomPlot& plot, const SweepRates& rates);
+
 }  // namespace activetouch

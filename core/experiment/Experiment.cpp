@@ -158,7 +158,7 @@ std::vector<double> sweepRange(const JsonFields& f, const std::string& key, doub
 }
 
 void parseSweeps(const JsonFields& f, ExperimentSpec& e) {
-    f.rejectUnknownKeys({"perception", "following", "compute", "bandit"});
+    f.rejectUnknownKeys({"perception", "following", "compute", "bandit", "robustness"});
     SweepSpec& s = e.sweeps;
     if (f.has("perception")) {
         const JsonFields p = f.object("perception");
@@ -206,6 +206,51 @@ void parseSweeps(const JsonFields& f, ExperimentSpec& e) {
             p.fail("follow_steps_mm",
                    "a following sweep needs trials (following.trials) to know which objects to "
                    "follow");
+    }
+    if (f.has("robustness")) {
+        const JsonFields p = f.object("robustness");
+        p.rejectUnknownKeys({"dead_taxels", "gain_spreads", "crosstalk_couplings"});
+        const int taxels = static_cast<int>(e.scene.fingertip.taxels.size());
+        auto fault = [&](const std::string& name, const std::string& effect,
+                         const Json& parameters) {
+            e.sweeps.faults.push_back({name, {effect, parameters, p.placeOf(name)}});
+        };
+        if (p.has("dead_taxels")) {
+            const Json& d = p.raw("dead_taxels");
+            std::vector<int> list;
+            if (d.is_string() && d.get<std::string>() == "each") {
+                for (int t = 0; t < taxels; ++t) list.push_back(t);
+            } else if (d.is_array() && !d.empty()) {
+                for (const Json& t : d) {
+                    if (!t.is_number_integer() || t.get<long>() < 0 || t.get<long>() >= taxels)
+                        p.fail("dead_taxels", "taxel " + describeJson(t) +
+                                                  " is not a taxel index 0.." +
+                                                  std::to_string(taxels - 1));
+                    list.push_back(t.get<int>());
+                }
+            } else {
+                p.fail(
+                    "dead_taxels",
+                    "'dead_taxels' is \"each\" (every taxel in turn) or a list of taxel indices");
+            }
+            for (int t : list)
+                fault("dead taxel " + std::to_string(t), "dead_taxel",
+                      {{"taxels", {t}}, {"reading_counts", 0}});
+        }
+        if (p.has("gain_spreads"))
+            for (double g :
+                 sweepRange(p, "gain_spreads", 0.0, 1.0, false, "a gain spread in (0, 1)"))
+                fault("gain spread " + numberText(g), "taxel_gain",
+                      {{"spread", g}, {"fingertip_seed", 1}});
+        if (p.has("crosstalk_couplings"))
+            for (double c :
+                 sweepRange(p, "crosstalk_couplings", 0.0, 0.5, false, "a coupling in (0, 0.5)"))
+                fault("crosstalk " + numberText(c), "crosstalk",
+                      {{"coupling", c}, {"radius_mm", 4.5}});
+        if (e.sweeps.faults.empty())
+            p.fail("dead_taxels",
+                   "a robustness sweep needs faults: dead_taxels, gain_spreads or "
+                   "crosstalk_couplings");
     }
     if (f.has("bandit")) {
         const JsonFields p = f.object("bandit");

@@ -48,9 +48,17 @@ struct SweepSpec {
     bool bandit = false;
     int banditRounds = 0;  ///< trials the learner runs; 0: four per setting
     double completionWorth_s = 2000.0;
+    // (e) robustness: the whole run again on the same seed, with one fault added to the scene
+    // (an effect of the same name replaced), against active completion and recognition.
+    struct Fault {
+        std::string name;  ///< "dead taxel 3", "gain spread 0.2", "crosstalk 0.1"
+        EffectSpec effect;
+    };
+    std::vector<Fault> faults;
 
     bool any() const {
-        return !beliefThresholds.empty() || !followSteps_mm.empty() || !bins.empty();
+        return !beliefThresholds.empty() || !followSteps_mm.empty() || !bins.empty() ||
+               !faults.empty();
     }
 };
 

@@ -214,6 +214,7 @@ Json sweepsJson(const SweepResults& sweeps) {
                            {"paper_setting", row.paperSetting}});
     Json out = {{"perception", perception}, {"following", following}, {"compute", compute}};
     if (sweeps.bandit.ran) out["bandit"] = banditJson(sweeps.bandit, sweeps.following);
+    if (!sweeps.robustness.empty()) out["robustness"] = robustnessJson(sweeps);
     if (!sweeps.perception.empty()) {
         Json single = perceptionRow(sweeps.perceptionSingleTap);
         single.erase("belief_threshold");

@@ -362,6 +362,54 @@ SweepRates sweepRates(const std::vector<SeedOutcome>& all) {
                          [](const auto& a, const auto& c) { return a.second > c.second; });
     }
 
+    // (e): each fault's rates, and its fall below the same seed's fault-free run.
+    auto robustness = [&](auto rowOf, const std::string& fault) {
+        RobustnessOverSeeds f;
+        f.fault = fault;
+        std::vector<double> completion, recognition, angle;
+        for (const SweepResults* r : runs) {
+            const RobustnessRow* row = rowOf(*r);
+            if (!row) continue;
+            ++f.seeds;
+            if (!row->failure.empty()) {
+                ++f.failedRuns;
+                continue;
+            }
+            const RobustnessRow& base = r->robustnessBase;
+            f.completed.count += row->activeCompleted;
+            f.completed.total += row->activeTrials;
+            f.recognisedRaw.count += row->recognisedRaw;
+            f.recognisedRaw.total += row->recognitionTrials;
+            f.recognisedAnyPose.count += row->recognisedAnyPose;
+            f.recognisedAnyPose.total += row->recognitionTrials;
+            angle.push_back(row->angleError_deg);
+            // Falls over the trials run: completion, and paths completed and named rightly.
+            if (row->activeTrials > 0 && base.activeTrials > 0 && base.failure.empty()) {
+                completion.push_back(100.0 * (double(base.activeCompleted) / base.activeTrials -
+                                              double(row->activeCompleted) / row->activeTrials));
+                recognition.push_back(100.0 * (double(base.recognisedRaw) / base.activeTrials -
+                                               double(row->recognisedRaw) / row->activeTrials));
+            }
+        }
+        f.completionFall_points = overSeeds(completion);
+        f.recognitionFall_points = overSeeds(recognition);
+        f.angleError_deg = overSeeds(angle, 0.0);
+        return f;
+    };
+    if (!first.robustness.empty()) {
+        out.robustnessBase = robustness(
+            [](const SweepResults& r) {
+                return r.robustness.empty() ? nullptr : &r.robustnessBase;
+            },
+            "none");
+        for (std::size_t i = 0; i < first.robustness.size(); ++i)
+            out.robustness.push_back(robustness(
+                [i](const SweepResults& r) {
+                    return i < r.robustness.size() ? &r.robustness[i] : nullptr;
+                },
+                first.robustness[i].fault));
+    }
+
     for (std::size_t i = 0; i < first.compute.size(); ++i) {
         ComputeOverSeeds c;
         c.bins = first.compute[i].bins;
@@ -429,6 +477,23 @@ Json sweepRatesJson(const SweepRates& r) {
             {"ece_raw", estimateJson(r.eceRaw)},
             {"ece_calibrated", estimateJson(r.eceCalibrated)},
             {"ece_if_perfectly_calibrated", estimateJson(r.eceIfCalibrated)}};
+    if (!r.robustness.empty()) {
+        Json rows = Json::array();
+        std::vector<RobustnessOverSeeds> all{r.robustnessBase};
+        all.insert(all.end(), r.robustness.begin(), r.robustness.end());
+        for (const auto& f : all)
+            rows.push_back(
+                {{"fault", f.fault},
+                 {"seeds", f.seeds},
+                 {"failed_runs", f.failedRuns},
+                 {"active_completed", rateJson(f.completed)},
+                 {"recognised_paper_rule", rateJson(f.recognisedRaw)},
+                 {"recognised_any_pose", rateJson(f.recognisedAnyPose)},
+                 {"completion_fall_points", estimateJson(f.completionFall_points)},
+                 {"recognised_of_trials_fall_points", estimateJson(f.recognitionFall_points)},
+                 {"validation_angle_error_deg", estimateJson(f.angleError_deg)}});
+        out["robustness"] = rows;
+    }
     if (const BanditOverSeeds& b = r.bandit; b.seeds > 0) {
         Json choices = Json::array();
         for (const auto& [row, count] : b.choices)
@@ -511,6 +576,30 @@ void writeSweepRateTables(const SweepRates& r, const std::string& dir) {
                 f.print(",,,,,,");
             f.print(",%d,%d\n", int(s.onParetoFront), int(s.beatsPaper));
         }
+        f.close();
+    }
+    if (!r.robustness.empty()) {
+        OutputFile f((fs::path(dir) / "sweeps_robustness.csv").string());
+        f.print(
+            "fault,seeds,failed_runs,active_trials,active_completed,completed_rate,completed_lo,"
+            "completed_hi,completion_fall_points,completion_fall_points_lo,"
+            "completion_fall_points_hi,recognition_trials,recognised_raw,recognised_rate,"
+            "recognised_lo,recognised_hi,recognised_any_pose,recognition_fall_points,"
+            "recognition_fall_points_lo,recognition_fall_points_hi,validation_angle_error_deg\n");
+        std::vector<RobustnessOverSeeds> all{r.robustnessBase};
+        all.insert(all.end(), r.robustness.begin(), r.robustness.end());
+        for (const auto& x : all)
+            f.print(
+                "%s,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%d,%d,%.4f,%.4f,%.4f,%d,%.3f,%.3f,"
+                "%.3f,%.3f\n",
+                csvField({x.fault}).c_str(), x.seeds, x.failedRuns, x.completed.total,
+                x.completed.count, x.completed.fraction(), x.completed.low(), x.completed.high(),
+                x.completionFall_points.mean, finite(x.completionFall_points.low),
+                finite(x.completionFall_points.high), x.recognisedRaw.total, x.recognisedRaw.count,
+                x.recognisedRaw.fraction(), x.recognisedRaw.low(), x.recognisedRaw.high(),
+                x.recognisedAnyPose.count, x.recognitionFall_points.mean,
+                finite(x.recognitionFall_points.low), finite(x.recognitionFall_points.high),
+                x.angleError_deg.mean);
         f.close();
     }
     if (!r.compute.empty()) {
@@ -597,6 +686,35 @@ std::vector<std::string> describeSweepRates(const SweepRates& r) {
         lines.push_back("    beat the paper's setting in robot time at no loss of completion: " +
                         (beating.empty() ? std::string("none") : beating));
     }
+    if (!r.robustness.empty()) {
+        lines.push_back(
+            "  (e) robustness: the whole run again with one fault (falls: below the fault-free "
+            "run of the same seed, percentage points)");
+        lines.push_back(
+            "    fault               active completed          completion fall        "
+            "recognised (paper's rule)   recognised-of-trials fall");
+        std::vector<RobustnessOverSeeds> all{r.robustnessBase};
+        all.insert(all.end(), r.robustness.begin(), r.robustness.end());
+        for (const auto& f : all) {
+            char completed[64], recognised[64];
+            std::snprintf(completed, sizeof completed, "%5.1f %% (%.1f to %.1f)",
+                          100 * f.completed.fraction(), 100 * f.completed.low(),
+                          100 * f.completed.high());
+            std::snprintf(recognised, sizeof recognised, "%5.1f %% (%.1f to %.1f)",
+                          100 * f.recognisedRaw.fraction(), 100 * f.recognisedRaw.low(),
+                          100 * f.recognisedRaw.high());
+            const bool base = f.fault == "none";
+            const std::string failed =
+                f.failedRuns ? " (" + std::to_string(f.failedRuns) + " runs failed)" : "";
+            std::snprintf(buf, sizeof buf, "    %-19s %-25s %-22s %-27s %s%s",
+                          base ? "none (base)" : f.fault.c_str(), completed,
+                          base ? "" : estimateText(f.completionFall_points, "%+.1f").c_str(),
+                          recognised,
+                          base ? "" : estimateText(f.recognitionFall_points, "%+.1f").c_str(),
+                          failed.c_str());
+            lines.push_back(buf);
+        }
+    }
     if (const BanditOverSeeds& b = r.bandit; b.seeds > 0) {
         std::snprintf(
             buf, sizeof buf,
@@ -632,6 +750,32 @@ std::vector<std::string> describeSweepRates(const SweepRates& r) {
 }
 
 namespace {
+
+Json robustnessRowJson(const RobustnessRow& r) {
+    return {{"fault", r.fault},
+            {"failure", r.failure},
+            {"active_trials", r.activeTrials},
+            {"active_completed", r.activeCompleted},
+            {"recognition_trials", r.recognitionTrials},
+            {"recognised_raw", r.recognisedRaw},
+            {"recognised_any_pose", r.recognisedAnyPose},
+            {"validation_angle_error_deg", kept(r.angleError_deg)},
+            {"validation_position_error_mm", kept(r.positionError_mm)}};
+}
+
+RobustnessRow robustnessRowOf(const Json& j) {
+    RobustnessRow r;
+    r.fault = j.at("fault").get<std::string>();
+    r.failure = j.at("failure").get<std::string>();
+    r.activeTrials = j.at("active_trials").get<int>();
+    r.activeCompleted = j.at("active_completed").get<int>();
+    r.recognitionTrials = j.at("recognition_trials").get<int>();
+    r.recognisedRaw = j.at("recognised_raw").get<int>();
+    r.recognisedAnyPose = j.at("recognised_any_pose").get<int>();
+    r.angleError_deg = keptOf(j.at("validation_angle_error_deg"));
+    r.positionError_mm = keptOf(j.at("validation_position_error_mm"));
+    return r;
+}
 
 Json keptBandit(const BanditResult& b) {
     if (!b.ran) return Json();
@@ -673,6 +817,37 @@ BanditResult keptBanditOf(const Json& j) {
 }
 
 }  // namespace
+
+Json robustnessJson(const SweepResults& s) {
+    if (s.robustness.empty()) return Json();
+    Json rows = Json::array();
+    rows.push_back(robustnessRowJson(s.robustnessBase));
+    for (const auto& r : s.robustness) rows.push_back(robustnessRowJson(r));
+    return rows;
+}
+
+std::vector<std::string> describeRobustness(const SweepResults& s) {
+    std::vector<std::string> lines;
+    if (s.robustness.empty()) return lines;
+    lines.push_back("robustness: the whole run again on this seed with one fault added:");
+    std::vector<RobustnessRow> all{s.robustnessBase};
+    all.insert(all.end(), s.robustness.begin(), s.robustness.end());
+    for (const auto& r : all) {
+        char buf[512];
+        if (!r.failure.empty())
+            std::snprintf(buf, sizeof buf, "  %-18s failed: %s", r.fault.c_str(),
+                          r.failure.c_str());
+        else
+            std::snprintf(buf, sizeof buf,
+                          "  %-18s active completed %d/%d, recognised by the paper's rule %d/%d, "
+                          "validation %.1f deg, %.2f mm",
+                          r.fault == "none" ? "none (base)" : r.fault.c_str(), r.activeCompleted,
+                          r.activeTrials, r.recognisedRaw, r.recognitionTrials, r.angleError_deg,
+                          r.positionError_mm);
+        lines.push_back(buf);
+    }
+    return lines;
+}
 
 Json banditJson(const BanditResult& b, const std::vector<FollowingSweepRow>& following) {
     if (!b.ran) return Json();
@@ -742,7 +917,8 @@ Json seedSweepsJson(const SweepResults& s) {
               kept(c.eceIfCalibrated)}},
             {"following", rowsB},
             {"compute", rowsC},
-            {"bandit", keptBandit(s.bandit)}};
+            {"bandit", keptBandit(s.bandit)},
+            {"robustness", robustnessJson(s)}};
 }
 
 SweepResults seedSweepsFromJson(const Json& j) {
@@ -789,6 +965,13 @@ SweepResults seedSweepsFromJson(const Json& j) {
         for (const BanditArm& a : s.bandit.arms)
             if (a.sweepRow < 0 || std::size_t(a.sweepRow) >= s.following.size())
                 throw std::runtime_error("a bandit setting is not a row of the following sweep");
+    }
+    if (const auto rows = j.find("robustness"); rows != j.end() && !rows->is_null()) {
+        if (!rows->is_array() || rows->empty())
+            throw std::runtime_error("'robustness' is not a list of runs");
+        s.robustnessBase = robustnessRowOf(rows->at(0));
+        for (std::size_t i = 1; i < rows->size(); ++i)
+            s.robustness.push_back(robustnessRowOf(rows->at(i)));
     }
     for (const Json& a : j.at("compute")) {
         ComputeSweepRow row{a.at(0).get<int>(), a.at(1).get<int>(), keptOf(a.at(2)),

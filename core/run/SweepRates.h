@@ -72,6 +72,15 @@ struct BanditOverSeeds {
     int pooledBest = -1;  ///< (b)'s row with the highest pooled reward
 };
 
+/// (e) One fault over seeds: its rates, and how far they fall below the fault-free run of the
+/// same seed (paired, percentage points, Student's t over seeds).
+struct RobustnessOverSeeds {
+    std::string fault;
+    int seeds = 0, failedRuns = 0;
+    Rate completed, recognisedRaw, recognisedAnyPose;
+    SweepEstimate completionFall_points, recognitionFall_points, angleError_deg;
+};
+
 struct SweepRates {
     int seeds = 0;  ///< runs whose sweeps were measured
     std::vector<PerceptionOverSeeds> perception;
@@ -81,7 +90,11 @@ struct SweepRates {
     std::vector<FollowingOverSeeds> following;
     std::vector<ComputeOverSeeds> compute;
     BanditOverSeeds bandit;
-    bool empty() const { return perception.empty() && following.empty() && compute.empty(); }
+    RobustnessOverSeeds robustnessBase;
+    std::vector<RobustnessOverSeeds> robustness;
+    bool empty() const {
+        return perception.empty() && following.empty() && compute.empty() && robustness.empty();
+    }
 };
 
 /// A non-inferiority margin: a setting beats the paper's only if the lower end of its paired
@@ -94,13 +107,17 @@ SweepRates sweepRates(const std::vector<SeedOutcome>& seeds);
 
 Json sweepRatesJson(const SweepRates& rates);
 
-/// Writes sweeps_perception.csv, sweeps_following.csv and sweeps_compute.csv (those that have
-/// rows) in `dir`.
+/// Writes sweeps_perception.csv, sweeps_following.csv, sweeps_compute.csv and
+/// sweeps_robustness.csv (those that have rows) in `dir`.
 void writeSweepRateTables(const SweepRates& rates, const std::string& dir);
 
 /// The tables as text for a terminal: (a), the calibration, (b) with the front and the settings
 /// that beat the paper's, (c).
 std::vector<std::string> describeSweepRates(const SweepRates& rates);
+
+/// One run's robustness rows as JSON (summary.json's sweeps.robustness) and as lines of text.
+Json robustnessJson(const SweepResults& sweeps);
+std::vector<std::string> describeRobustness(const SweepResults& sweeps);
 
 /// One run's bandit as JSON (summary.json's sweeps.bandit) and as a line of text.
 Json banditJson(const BanditResult& bandit, const std::vector<FollowingSweepRow>& following);

@@ -1,6 +1,7 @@
 #pragma once
 // What the accuracy-versus-time sweeps measure (docs/accuracy-vs-time.md), as a run keeps it:
 // a row per setting of each sweep. The sweeps themselves run in core/run/Sweeps.h.
+#include <string>
 #include <vector>
 
 #include "core/control/FollowingSettings.h"
@@ -85,6 +86,16 @@ inline double banditReward(bool completed, double robotTime_s, double completion
     return (completed ? 1.0 : 0.0) - robotTime_s / completionWorth_s;
 }
 
+/// (e) One run of the experiment on the same seed with one fault added to the scene, or the run
+/// itself (the fault-free base).
+struct RobustnessRow {
+    std::string fault;    ///< "none" for the base
+    std::string failure;  ///< the device or rig error that stopped the run, if one did
+    int activeTrials = 0, activeCompleted = 0;
+    int recognitionTrials = 0, recognisedRaw = 0, recognisedAnyPose = 0;
+    double angleError_deg = 0, positionError_mm = 0;  ///< its offline validation
+};
+
 struct SweepResults {
     std::vector<PerceptionSweepRow> perception;
     PerceptionSweepCalibration perceptionCalibration;
@@ -93,7 +104,11 @@ struct SweepResults {
     std::vector<FollowingSweepRow> following;
     std::vector<ComputeSweepRow> compute;
     BanditResult bandit;
-    bool empty() const { return perception.empty() && following.empty() && compute.empty(); }
+    RobustnessRow robustnessBase;
+    std::vector<RobustnessRow> robustness;
+    bool empty() const {
+        return perception.empty() && following.empty() && compute.empty() && robustness.empty();
+    }
 };
 
 }  // namespace activetouch

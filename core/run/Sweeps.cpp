@@ -11,6 +11,7 @@
 #include "core/classify/BeliefCalibration.h"
 #include "core/classify/SequentialPerception.h"
 #include "core/run/ExperimentRun.h"
+#include "core/run/SeedRates.h"
 #include "core/validation/TrainingProtocol.h"
 
 namespace activetouch {
@@ -397,6 +398,52 @@ BanditResult banditSweep(const RunResult& r, const RunOptions& options,
     return b;
 }
 
+RobustnessRow robustnessRow(const std::string& fault, const RunResult& run) {
+    const SeedOutcome o = seedOutcome(run);
+    RobustnessRow row;
+    row.fault = fault;
+    row.failure = run.failure;
+    row.activeTrials = o.activeTrials;
+    row.activeCompleted = o.activeCompleted;
+    row.recognitionTrials = o.recognitionTrials();
+    row.recognisedRaw = o.recognisedRaw();
+    row.recognisedAnyPose = o.recognisedAnyPose();
+    row.angleError_deg = run.validation.angleError_deg;
+    row.positionError_mm = run.validation.positionError_mm;
+    return row;
+}
+
+/// The whole experiment again on the run's seed for each fault, the fault's effect added to the
+/// scene (replacing one of the same name), with nothing written and no sweeps.
+std::vector<RobustnessRow> robustnessSweep(const RunResult& r, const RunOptions& options) {
+    std::vector<RobustnessRow> rows;
+    for (const SweepSpec::Fault& fault : r.spec.sweeps.faults) {
+        if (cancelled(options)) break;
+        ExperimentSpec spec = r.spec;
+        spec.sweeps = {};
+        auto& effects = spec.scene.effects;
+        const auto same = std::find_if(effects.begin(), effects.end(), [&](const EffectSpec& e) {
+            return e.name == fault.effect.name;
+        });
+        if (same != effects.end())
+            *same = fault.effect;
+        else
+            effects.push_back(fault.effect);
+        RunOptions once;
+        once.simulated = options.simulated;
+        once.seed = r.spec.scene.seed;
+        // Cancelling the run cancels this one (its observer hears only that question).
+        struct Relay : RunObserver {
+            const RunOptions* outer = nullptr;
+            bool stopRequested() const override { return cancelled(*outer); }
+        } relay;
+        relay.outer = &options;
+        once.observer = &relay;
+        rows.push_back(robustnessRow(fault.name, runExperimentOrFailure(spec, once)));
+    }
+    return rows;
+}
+
 }  // namespace
 
 SweepSpec standardSweeps() {
@@ -428,6 +475,10 @@ SweepResults runSweeps(const RunResult& trained, const RunOptions& options, bool
             perceptionSweep(trained, options, s.perceptionCalibration, s.perceptionSingleTap);
     if (!sw.followSteps_mm.empty()) s.following = followingSweep(trained, options);
     if (sw.bandit && !s.following.empty()) s.bandit = banditSweep(trained, options, s.following);
+    if (!sw.faults.empty()) {
+        s.robustnessBase = robustnessRow("none", trained);
+        s.robustness = robustnessSweep(trained, options);
+    }
     return s;
 }
 

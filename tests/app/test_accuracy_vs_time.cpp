@@ -310,6 +310,52 @@ private slots:
         QVERIFY(more.following[0].onParetoFront);
     }
 
+    void eachFaultIsTheWholeRunOnItsFaultyScene() {
+        // A robustness sweep's row for a fault is exactly the experiment run on the same seed
+        // with that fault in its scene; its base row is the run itself.
+        ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/robustness.json"));
+        spec.trials.resize(1);  // the rectangle, twice
+        spec.sweeps.faults = {spec.sweeps.faults[3], spec.sweeps.faults.back()};
+        QCOMPARE(QString::fromStdString(spec.sweeps.faults[0].name), QString("dead taxel 3"));
+        QCOMPARE(QString::fromStdString(spec.sweeps.faults[1].name), QString("crosstalk 0.2"));
+        RunOptions options = test::onSimulatedRig();
+        options.seed = 2;
+        const RunResult run = runExperiment(spec, options);
+        const auto& rows = run.sweeps.robustness;
+        QCOMPARE(int(rows.size()), 2);
+        const SeedOutcome self = seedOutcome(run);
+        QCOMPARE(run.sweeps.robustnessBase.activeCompleted, self.activeCompleted);
+        QCOMPARE(run.sweeps.robustnessBase.angleError_deg, run.validation.angleError_deg);
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            ExperimentSpec faulty = spec;
+            faulty.sweeps = {};
+            faulty.scene.effects.push_back(spec.sweeps.faults[i].effect);
+            const RunResult direct = runExperiment(faulty, options);
+            const SeedOutcome o = seedOutcome(direct);
+            QCOMPARE(rows[i].activeCompleted, o.activeCompleted);
+            QCOMPARE(rows[i].activeTrials, o.activeTrials);
+            QCOMPARE(rows[i].recognisedRaw, o.recognisedRaw());
+            QCOMPARE(rows[i].angleError_deg, direct.validation.angleError_deg);
+            QCOMPARE(rows[i].positionError_mm, direct.validation.positionError_mm);
+        }
+        // The fault changes what the fingertip reads: the validation is not the base's.
+        QVERIFY(rows[0].angleError_deg != run.validation.angleError_deg ||
+                rows[0].positionError_mm != run.validation.positionError_mm);
+        // Over seeds, a fault's fall is the base's completion less its own, seed by seed.
+        SeedOutcome a = self, b = self;
+        a.seed = 1;
+        b.seed = 2;
+        a.sweeps.robustnessBase.activeCompleted = 2;
+        a.sweeps.robustness[0].activeCompleted = 1;
+        b.sweeps.robustnessBase.activeCompleted = 2;
+        b.sweeps.robustness[0].activeCompleted = 2;
+        const SweepRates rates = sweepRates({a, b});
+        QCOMPARE(rates.robustness[0].completed.count, 3);
+        QCOMPARE(rates.robustness[0].completed.total, 4);
+        QVERIFY(std::abs(rates.robustness[0].completionFall_points.mean - 25.0) < 1e-9);
+        QCOMPARE(QString::fromStdString(rates.robustness[0].fault), QString("dead taxel 3"));
+    }
+
     void overSeedsIntervalsAreStudentsT() {
         const SweepEstimate none = overSeeds({});
         QCOMPARE(none.mean, 0.0);

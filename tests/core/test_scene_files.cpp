@@ -519,6 +519,17 @@ private slots:
             << head + trials +
                    R"("sweeps": {"following": {"follow_steps_mm": [2], "reposition_steps_mm": [1]}, "bandit": {"epsilon": 0.1}}})"
             << "epsilon";
+        QTest::newRow("robustness: a taxel the fingertip does not have")
+            << head + R"("sweeps": {"robustness": {"dead_taxels": [3, 12]}}})"
+            << "/sweeps/robustness/dead_taxels: taxel 12 is not a taxel index 0..11";
+        QTest::newRow("robustness: dead taxels neither each nor a list")
+            << head + R"("sweeps": {"robustness": {"dead_taxels": "all"}}})"
+            << "is \"each\" (every taxel in turn) or a list of taxel indices";
+        QTest::newRow("robustness: no fault") << head + R"("sweeps": {"robustness": {}}})"
+                                              << "a robustness sweep needs faults";
+        QTest::newRow("robustness: a coupling past 0.5")
+            << head + R"("sweeps": {"robustness": {"crosstalk_couplings": [0.1, 0.7]}}})"
+            << "/sweeps/robustness/crosstalk_couplings/1";
         QTest::newRow("sweep: empty bins")
             << head + R"("sweeps": {"compute": {"bins": [], "samples_per_tap": [50]}}})"
             << "non-empty list";
