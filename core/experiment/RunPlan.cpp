@@ -71,7 +71,16 @@ RunPlan planOf(const ExperimentSpec& e) {
         p.sweepTaps += perSetting * double(sw.repositionSteps_mm.size()) *
                        double(sw.followingBeliefThresholds.size()) * double(sw.modes.size()) *
                        double(sw.followingRepeats);
+        if (sw.bandit && !e.trials.empty()) {
+            // Trials of an average object at an average follow step, as many as its rounds.
+            const double active = double(sw.followSteps_mm.size() * sw.repositionSteps_mm.size() *
+                                         sw.followingBeliefThresholds.size());
+            const double rounds = sw.banditRounds > 0 ? sw.banditRounds : 4.0 * active;
+            p.sweepTaps += rounds * perSetting / double(e.trials.size() * sw.followSteps_mm.size());
+        }
     }
+    // Each fault of a robustness sweep is the whole run again.
+    p.sweepTaps += double(sw.faults.size()) * (p.trainingTaps + p.trialTaps);
     const TapSpec& tap = e.scene.tap;
     const double move_s = e.following.followStep_mm / e.scene.stage.speed_mm_s;
     p.robotTime_s = (p.trainingTaps + p.trialTaps) * (tap.window_s() + tap.settle_s + move_s);
@@ -102,8 +111,8 @@ PlanProblem planProblem(const RunPlan& p, const std::string& what, bool onRig) {
                countText(kMaxHeldTapBytes / (1024.0 * 1024.0)) + " MiB)";
     if (over.empty()) return {};
     const double biggest = std::max({p.trainingTaps, p.trialTaps, p.sweepTaps});
-    const bool memoryOnly = p.taps() <= kMaxPlannedTaps &&
-                            (!onRig || p.robotTime_s <= kMaxPlannedRobotTime_s);
+    const bool memoryOnly =
+        p.taps() <= kMaxPlannedTaps && (!onRig || p.robotTime_s <= kMaxPlannedRobotTime_s);
     PlanProblem problem;
     problem.place = memoryOnly                  ? "/scene/tap/samples"
                     : biggest == p.trainingTaps ? "/training"

@@ -8,6 +8,7 @@
 #include <QtTest>
 #include <cmath>
 
+#include "core/experiment/RunPlan.h"
 #include "core/run/ExperimentRun.h"
 #include "core/run/SeedRates.h"
 #include "core/run/SweepRates.h"
@@ -354,6 +355,18 @@ private slots:
         QCOMPARE(rates.robustness[0].completed.total, 4);
         QVERIFY(std::abs(rates.robustness[0].completionFall_points.mean - 25.0) < 1e-9);
         QCOMPARE(QString::fromStdString(rates.robustness[0].fault), QString("dead taxel 3"));
+    }
+
+    void thePlanCountsTheBanditAndEveryFaultsRun() {
+        // A plan that left out (d) or (e) would let a long sweep past the plan's bound unasked.
+        const ExperimentSpec robust =
+            loadExperiment(test::sourcePath("experiments/robustness.json"));
+        const RunPlan p = planOf(robust);
+        QCOMPARE(p.sweepTaps, double(robust.sweeps.faults.size()) * (p.trainingTaps + p.trialTaps));
+        ExperimentSpec avt = loadExperiment(test::sourcePath("experiments/accuracy_vs_time.json"));
+        const double with = planOf(avt).sweepTaps;
+        avt.sweeps.bandit = false;
+        QVERIFY(with > planOf(avt).sweepTaps);
     }
 
     void overSeedsIntervalsAreStudentsT() {
