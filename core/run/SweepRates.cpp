@@ -103,24 +103,28 @@ std::string thresholdName(double threshold) {
     return buf;
 }
 
-std::string settingName(const FollowingOverSeeds& f) {
+std::string settingName(FollowingMode mode, double follow, double reposition, double threshold) {
     char buf[96];
-    if (f.mode == FollowingMode::Active)
-        std::snprintf(buf, sizeof buf, "active %g/%g mm, %s", f.followStep_mm, f.repositionStep_mm,
-                      thresholdName(f.beliefThreshold).c_str());
+    if (mode == FollowingMode::Active)
+        std::snprintf(buf, sizeof buf, "active %g/%g mm, %s", follow, reposition,
+                      thresholdName(threshold).c_str());
     else
-        std::snprintf(buf, sizeof buf, "passive %g mm, %s", f.followStep_mm,
-                      thresholdName(f.beliefThreshold).c_str());
+        std::snprintf(buf, sizeof buf, "passive %g mm, %s", follow,
+                      thresholdName(threshold).c_str());
     return buf;
 }
 
-std::string rowName(const FollowingSweepRow& r) {
-    FollowingOverSeeds f;
-    f.mode = r.mode;
-    f.followStep_mm = r.followStep_mm;
-    f.repositionStep_mm = r.repositionStep_mm;
-    f.beliefThreshold = r.beliefThreshold;
-    return settingName(f);
+template <typename Row>
+std::string settingName(const Row& r) {  // a row of (b), per run or over seeds
+    return settingName(r.mode, r.followStep_mm, r.repositionStep_mm, r.beliefThreshold);
+}
+
+/// `first` followed by `rest`: the single tap then the thresholds, the base then the faults.
+template <typename Row>
+std::vector<Row> firstThen(const Row& first, const std::vector<Row>& rest) {
+    std::vector<Row> all{first};
+    all.insert(all.end(), rest.begin(), rest.end());
+    return all;
 }
 
 /// A number a seed keeps: non-finite values as null, read back as NaN.
@@ -479,8 +483,7 @@ Json sweepRatesJson(const SweepRates& r) {
             {"ece_if_perfectly_calibrated", estimateJson(r.eceIfCalibrated)}};
     if (!r.robustness.empty()) {
         Json rows = Json::array();
-        std::vector<RobustnessOverSeeds> all{r.robustnessBase};
-        all.insert(all.end(), r.robustness.begin(), r.robustness.end());
+        const std::vector<RobustnessOverSeeds> all = firstThen(r.robustnessBase, r.robustness);
         for (const auto& f : all)
             rows.push_back(
                 {{"fault", f.fault},
@@ -533,8 +536,8 @@ void writeSweepRateTables(const SweepRates& r, const std::string& dir) {
             "correct_fraction,correct_fraction_lo,correct_fraction_hi,angle_fall_deg,"
             "angle_fall_deg_lo,angle_fall_deg_hi,position_fall_mm,position_fall_mm_lo,"
             "position_fall_mm_hi,plane_as_plane,air_as_air\n");
-        std::vector<PerceptionOverSeeds> rows{r.perceptionSingleTap};
-        rows.insert(rows.end(), r.perception.begin(), r.perception.end());
+        const std::vector<PerceptionOverSeeds> rows =
+            firstThen(r.perceptionSingleTap, r.perception);
         for (const auto& p : rows) {
             if (p.threshold == 0)
                 f.print("single_tap,%d", p.seeds);
@@ -586,8 +589,7 @@ void writeSweepRateTables(const SweepRates& r, const std::string& dir) {
             "completion_fall_points_hi,recognition_trials,recognised_raw,recognised_rate,"
             "recognised_lo,recognised_hi,recognised_any_pose,recognition_fall_points,"
             "recognition_fall_points_lo,recognition_fall_points_hi,validation_angle_error_deg\n");
-        std::vector<RobustnessOverSeeds> all{r.robustnessBase};
-        all.insert(all.end(), r.robustness.begin(), r.robustness.end());
+        const std::vector<RobustnessOverSeeds> all = firstThen(r.robustnessBase, r.robustness);
         for (const auto& x : all)
             f.print(
                 "%s,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%d,%d,%.4f,%.4f,%.4f,%d,%.3f,%.3f,"
@@ -640,8 +642,8 @@ std::vector<std::string> describeSweepRates(const SweepRates& r) {
         lines.push_back(
             "    threshold   taps per decision     edge angle error (deg)   position error (mm)   "
             "angle fall (deg)      position fall (mm)");
-        std::vector<PerceptionOverSeeds> rows{r.perceptionSingleTap};
-        rows.insert(rows.end(), r.perception.begin(), r.perception.end());
+        const std::vector<PerceptionOverSeeds> rows =
+            firstThen(r.perceptionSingleTap, r.perception);
         for (const auto& p : rows) {
             std::snprintf(
                 buf, sizeof buf, "    %-10s  %-20s  %-23s  %-20s  %-20s  %s",
@@ -693,8 +695,7 @@ std::vector<std::string> describeSweepRates(const SweepRates& r) {
         lines.push_back(
             "    fault               active completed          completion fall        "
             "recognised (paper's rule)   recognised-of-trials fall");
-        std::vector<RobustnessOverSeeds> all{r.robustnessBase};
-        all.insert(all.end(), r.robustness.begin(), r.robustness.end());
+        const std::vector<RobustnessOverSeeds> all = firstThen(r.robustnessBase, r.robustness);
         for (const auto& f : all) {
             char completed[64], recognised[64];
             std::snprintf(completed, sizeof completed, "%5.1f %% (%.1f to %.1f)",
@@ -830,8 +831,7 @@ std::vector<std::string> describeRobustness(const SweepResults& s) {
     std::vector<std::string> lines;
     if (s.robustness.empty()) return lines;
     lines.push_back("robustness: the whole run again on this seed with one fault added:");
-    std::vector<RobustnessRow> all{s.robustnessBase};
-    all.insert(all.end(), s.robustness.begin(), s.robustness.end());
+    const std::vector<RobustnessRow> all = firstThen(s.robustnessBase, s.robustness);
     for (const auto& r : all) {
         char buf[512];
         if (!r.failure.empty())
@@ -853,24 +853,24 @@ Json banditJson(const BanditResult& b, const std::vector<FollowingSweepRow>& fol
     if (!b.ran) return Json();
     Json arms = Json::array();
     for (const BanditArm& a : b.arms)
-        arms.push_back({{"setting", rowName(following[std::size_t(a.sweepRow)])},
+        arms.push_back({{"setting", settingName(following[std::size_t(a.sweepRow)])},
                         {"sweep_row", a.sweepRow},
                         {"trials", a.pulls},
                         {"completed", a.completed},
                         {"robot_time_s", a.robotTime_s},
                         {"mean_reward", a.pulls > 0 ? Json(a.meanReward()) : Json()}});
-    return {
-        {"method", "UCB1 over the following sweep's active settings, each tried once first"},
-        {"reward", "1 if the trial completed, less its robot time over completion_worth_s"},
-        {"completion_worth_s", b.completionWorth_s},
-        {"rounds", b.rounds},
-        {"chosen", rowName(following[std::size_t(b.arms[std::size_t(b.chosen)].sweepRow)])},
-        {"sweep_best", rowName(following[std::size_t(b.arms[std::size_t(b.sweepBest)].sweepRow)])},
-        {"chosen_reward_in_sweep", b.chosenSweepReward},
-        {"best_reward_in_sweep", b.bestSweepReward},
-        {"robot_time_s", b.robotTime_s},
-        {"sweep_robot_time_s", b.sweepRobotTime_s},
-        {"arms", arms}};
+    return {{"method", "UCB1 over the following sweep's active settings, each tried once first"},
+            {"reward", "1 if the trial completed, less its robot time over completion_worth_s"},
+            {"completion_worth_s", b.completionWorth_s},
+            {"rounds", b.rounds},
+            {"chosen", settingName(following[std::size_t(b.arms[std::size_t(b.chosen)].sweepRow)])},
+            {"sweep_best",
+             settingName(following[std::size_t(b.arms[std::size_t(b.sweepBest)].sweepRow)])},
+            {"chosen_reward_in_sweep", b.chosenSweepReward},
+            {"best_reward_in_sweep", b.bestSweepReward},
+            {"robot_time_s", b.robotTime_s},
+            {"sweep_robot_time_s", b.sweepRobotTime_s},
+            {"arms", arms}};
 }
 
 std::string describeBandit(const BanditResult& b, const std::vector<FollowingSweepRow>& following) {
@@ -884,10 +884,11 @@ std::string describeBandit(const BanditResult& b, const std::vector<FollowingSwe
         "less robot time / %g s) is %s: %.3f against %.3f per trial",
         b.rounds, b.robotTime_s,
         b.sweepRobotTime_s > 0 ? 100.0 * b.robotTime_s / b.sweepRobotTime_s : 0.0,
-        rowName(following[std::size_t(c.sweepRow)]).c_str(), c.pulls, b.completionWorth_s,
+        settingName(following[std::size_t(c.sweepRow)]).c_str(), c.pulls, b.completionWorth_s,
         b.chosen == b.sweepBest
             ? "the same"
-            : rowName(following[std::size_t(b.arms[std::size_t(b.sweepBest)].sweepRow)]).c_str(),
+            : settingName(following[std::size_t(b.arms[std::size_t(b.sweepBest)].sweepRow)])
+                  .c_str(),
         b.chosenSweepReward, b.bestSweepReward);
     return buf;
 }
