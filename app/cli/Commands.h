@@ -13,5 +13,7 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv);
 int commandMerge(const std::vector<std::string>& args, int argc, char** argv);
 int commandCompare(const std::vector<std::string>& args, int argc, char** argv);
 int commandCheck(const std::vector<std::string>& args);
+int commandImport(const std::vector<std::string>& args);
+int commandDump(const std::vector<std::string>& args);
 
 }  // namespace activetouch::cli

@@ -3,6 +3,7 @@
 //   activetouch-cli seeds <experiment.json> --from A --to B [--out <dir>] [--no-figures]
 //   activetouch-cli analyse <experiment.json> <taps.csv> [--out <dir>] [--no-figures]
 //   activetouch-cli replay <experiment.json> <run folder> [--out <dir>] [--no-figures]
+//   activetouch-cli import <experiment.json> <dumper log> --taxel-map <map> [--poses <log>]
 //   activetouch-cli check <file.json | taps.csv | following_taps.csv>
 // Exit codes: 0 ok, 1 the run failed, 2 bad input.
 #include <cstdio>
@@ -92,6 +93,19 @@ void printHelp() {
         "      retraces its recording; with others, each trial says at which tap it decided\n"
         "      otherwise and left the recording. --out defaults to\n"
         "      results/<experiment name>_replay.\n"
+        "  activetouch-cli import <experiment.json> <dumper folder | data.log>\n"
+        "                         --taxel-map <map> [--poses <pose log>] [--threshold N]\n"
+        "                         [--lead-frames N] [--out <dir>]\n"
+        "      Imports a skin log written by YARP's data dumper as the tap recording of the\n"
+        "      experiment's training protocol (<dir>/data/taps.csv, ready for analyse): the\n"
+        "      taxel map says which values are the fingertip's taxels; with the stage's pose\n"
+        "      log each tap starts where the log says, without it taps are found where the\n"
+        "      total pressure crosses the reflex threshold (the scene's, or --threshold).\n"
+        "      A bad line in any file is refused, naming it. --out defaults to\n"
+        "      results/<experiment name>_import.\n"
+        "  activetouch-cli dump <experiment.json> <taps.csv> --taxel-map <map> --out <dir>\n"
+        "      Writes a recording's taps as YARP's data dumper logs a skin port (<dir>/data.log,\n"
+        "      info.log) with the stage's pose log (poses.log): for yarpdataplayer, or import.\n"
         "  activetouch-cli check <file.json | taps.csv | following_taps.csv>\n"
         "                        [--allow-long-plan]\n"
         "      Validates an experiment (and prints its plan: taps and robot time), a scene,\n"
@@ -135,6 +149,8 @@ int main(int argc, char** argv) {
     if (command == "compare") return commandCompare(args, argc, argv);
     if (command == "check") return commandCheck(args);
     if (command == "merge") return commandMerge(args, argc, argv);
+    if (command == "import") return commandImport(args);
+    if (command == "dump") return commandDump(args);
     return usageError("unknown command '" + command +
-                      "'; use run, seeds, merge, compare, analyse, replay or check");
+                      "'; use run, seeds, merge, compare, analyse, replay, import, dump or check");
 }

@@ -78,7 +78,8 @@ std::map<std::string, std::uintmax_t> artefactsIn(const std::string& dir) {
 bool isRunArtefact(const std::string& name) {
     static const char* const kNames[] = {"run.json",       "summary.json",  "rates.csv",
                                          "rates.json",     "compare.csv",   "compare_so_far.csv",
-                                         "compare.json",   "data",          "figures"};
+                                         "compare.json",   "import.json",   "data",
+                                         "figures"};
     for (const char* n : kNames)
         if (name == n) return true;
     const auto endsWith = [&](const char* tail) {

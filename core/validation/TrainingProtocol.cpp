@@ -108,7 +108,7 @@ std::vector<CollectedTap> collectTrainingTaps(
                     c.record = rig.tapAt(pose);
                     c.dataSet = set;
                     c.cls = classes.classOf(static_cast<int>(o), p);
-                    c.trueOffset_mm = offset + dot(placement, sites[o].normal);
+                    c.trueOffset_mm = sites[o].offsetOf(pose);
                     taps.push_back(std::move(c));
                     if (onTap && !onTap(taps.back())) return taps;
                 }

@@ -45,6 +45,9 @@ struct EdgeSite {
     Vec2 normal;
     /// The tip pose at signed distance `offset_mm` from the edge along its outward normal.
     Vec2 poseAt(double offset_mm) const { return midpoint + offset_mm * normal; }
+    /// The signed distance of a tip pose from the edge along its outward normal: the true offset
+    /// of a tap taken there, whether the pose came from the protocol or from a stage's log.
+    double offsetOf(Vec2 pose) const { return dot(pose - midpoint, normal); }
 };
 /// Throws std::invalid_argument if the object has no edge for an orientation.
 std::vector<EdgeSite> edgeSites(const Polygon& object, const ClassSet& classes);
