@@ -26,6 +26,7 @@ JsonFields effectFields(const SceneSpec& scene, const EffectSpec& spec,
     std::vector<std::string> keys;
     for (const auto& p : d.parameters) keys.push_back(p.key);
     if (d.takesTaxelList) keys.push_back("taxels");
+    if (d.takesGainList) keys.push_back("gains");
     keys.push_back("name");
     f.rejectUnknownKeys(keys);
     return f;
@@ -47,6 +48,10 @@ void validateEffects(const SceneSpec& scene) {
     for (const auto& spec : scene.effects) {
         const EffectDescription& d = describedEffect(scene, spec);
         const JsonFields f = effectFields(scene, spec, d);
+        if (d.takesGainList && f.has("gains")) {
+            effectGainList(f, taxels);
+            continue;
+        }
         for (const auto& p : d.parameters) f.number(p.key, p.lo, p.hi);
         if (d.takesTaxelList) effectTaxelList(f, taxels);
     }

@@ -72,11 +72,17 @@ struct EffectDescription {
     std::function<std::unique_ptr<Effect>(const JsonFields&, const FingertipContactModel&,
                                           RandomStream)>
         make;
+    /// "gains": [one per taxel] may stand instead of every parameter (taxel_gain: a fingertip
+    /// whose gains were measured, as calibrate writes them).
+    bool takesGainList = false;
 };
 
 /// The taxel indices an effect's "taxels" lists (dead_taxel's), each within 0..taxelCount-1;
 /// InputError naming the place otherwise.
 std::vector<int> effectTaxelList(const JsonFields& f, int taxelCount);
+/// The gains an effect's "gains" lists (taxel_gain's measured gains): one per taxel, each within
+/// 0.05..20, and no other parameter beside them; InputError naming the place otherwise.
+std::vector<double> effectGainList(const JsonFields& f, int taxelCount);
 
 /// Every effect the simulated rig knows.
 const std::vector<EffectDescription>& effectCatalogue();

@@ -137,6 +137,8 @@ public:
             RandomStream::derived(static_cast<std::uint64_t>(fingertipSeed), "taxel_gain");
         for (int k = 0; k < taxels; ++k) gains_.push_back(std::exp(spread * draw.normal()));
     }
+    explicit TaxelGain(std::vector<double> gains)
+        : Effect("taxel_gain", Acts::Signal, 25), gains_(std::move(gains)) {}
     void shapeSignal(Tap& tap, const SignalContext&) override {
         for (int t = 0; t < tap.sampleCount(); ++t)
             for (int k = 0; k < tap.taxels; ++k)
@@ -418,16 +420,19 @@ const std::vector<EffectDescription>& effectCatalogue() {
         c.push_back(
             {"taxel_gain",
              "Each taxel's own sensitivity: gains log-normal around 1, fixed for the "
-             "fingertip.",
+             "fingertip (or 'gains', one per taxel, as measured).",
              {{"spread", "standard deviation of the gains' logarithm", 0.0, 1.0, 0.2},
               {"fingertip_seed", "which fingertip's gains (any whole number)", 0.0, 1e9, 1.0}},
              false,
-             [](const JsonFields& f, const M& m, RandomStream) {
+             [](const JsonFields& f, const M& m, RandomStream) -> std::unique_ptr<Effect> {
+                 if (f.has("gains"))
+                     return std::make_unique<TaxelGain>(effectGainList(f, m.taxelCount()));
                  const double seed = f.number("fingertip_seed", 0.0, 1e9);
                  if (seed != std::floor(seed)) f.fail("fingertip_seed", "give a whole number");
                  return std::make_unique<TaxelGain>(f.number("spread", 0.0, 1.0), seed,
                                                     m.taxelCount());
              }});
+        c.back().takesGainList = true;
         c.push_back(
             {"saturation_recovery",
              "Taxels saturate at a level and, once released, recover from it slowly.",
@@ -483,6 +488,18 @@ std::vector<int> effectTaxelList(const JsonFields& f, int taxelCount) {
         list.push_back(static_cast<int>(v.get<long long>()));
     }
     return list;
+}
+
+std::vector<double> effectGainList(const JsonFields& f, int taxelCount) {
+    for (const char* other : {"spread", "fingertip_seed"})
+        if (f.has(other))
+            f.fail(other, std::string("'gains' gives every taxel's gain; leave '") + other +
+                              "' out, or give 'spread' and 'fingertip_seed' without 'gains'");
+    const std::vector<double> gains = f.numbers("gains", 0.05, 20.0);
+    if (static_cast<int>(gains.size()) != taxelCount)
+        f.fail("gains", "give one gain per taxel: " + std::to_string(taxelCount) + ", not " +
+                            std::to_string(gains.size()));
+    return gains;
 }
 
 const EffectDescription* findEffect(const std::string& name) {

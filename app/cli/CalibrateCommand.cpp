@@ -1,0 +1,237 @@
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/cli/CliSupport.h"
+#include "app/cli/Commands.h"
+#include "core/common/InputError.h"
+#include "core/common/NumberText.h"
+#include "core/experiment/Experiment.h"
+#include "core/io/OutputFile.h"
+#include "core/records/TapCsv.h"
+#include "core/run/ExperimentRun.h"
+#include "core/run/OutputFiles.h"
+#include "core/run/RunFolder.h"
+#include "devices/simulated/SceneFit.h"
+#include "devices/simulated/SimulatedWorld.h"
+
+namespace activetouch::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+ValidationResult validationOf(const ExperimentSpec& spec, const std::vector<CollectedTap>& taps) {
+    RunOptions options;
+    options.simulated = &simulatedRigs();
+    options.recordedTaps = &taps;
+    return runExperiment(spec, options).validation;
+}
+
+Json validationJson(const ValidationResult& v) {
+    Json byPosition = Json::array();
+    for (std::size_t p = 0; p < v.angleMean.size(); ++p)
+        byPosition.push_back({{"position", p + 1},
+                              {"angle_error_deg", v.angleMean[p]},
+                              {"position_error_mm", v.positionMean[p]}});
+    return {{"angle_error_deg_mean", v.angleError_deg},
+            {"position_error_mm_mean", v.positionError_mm},
+            {"correct_fraction", v.correctFraction},
+            {"by_position", byPosition}};
+}
+
+}  // namespace
+
+/// calibrate: a scene fitted to recorded training and test taps (docs/calibration.md).
+int commandCalibrate(const std::vector<std::string>& args) {
+    const RunArguments parsed = parseRunArguments(args, "calibrate", {"--replicates"}, false, true,
+                                                  {{"--scene", "a base scene file"}});
+    if (!parsed.error.empty()) return usageError(parsed.error);
+    if (parsed.outDir.empty())
+        return usageError("calibrate needs --out <fitted scene.json>: where to write the scene");
+    const auto loaded = loadForRun(parsed.experimentPath);
+    if (!loaded) return kBadInput;
+    ExperimentSpec spec = *loaded;
+    SceneFitSettings settings;
+    if (parsed.seeds.count("--replicates")) {
+        const auto n = parsed.seeds.at("--replicates");
+        if (n < 5 || n > 1000) return usageError("--replicates takes 5 to 1000 recordings");
+        settings.bootstrapReplicates = static_cast<int>(n);
+    }
+    std::string recording = parsed.recordingPath;
+    if (fs::is_directory(recording))
+        recording = (fs::path(recording) / "data" / "taps.csv").string();
+    const fs::path out(parsed.outDir);
+    const std::string stem = (out.parent_path() / out.stem()).string();
+    const std::string reportPath = stem + ".calibration.json";
+    const std::string simulatedPath = stem + ".simulated_taps.csv";
+    try {
+        SceneSpec base = spec.scene;
+        if (!parsed.text("--scene").empty()) {
+            base = loadScene(parsed.text("--scene"));
+            simulatedRigs().checkEffects(base);
+        }
+        std::string cutOff;
+        const auto taps =
+            readTapCsv(recording, spec.classes, &cutOff, checkedRecordingBounds(recording));
+        if (!cutOff.empty())
+            std::printf("the recording was cut short: %s; left out\n", cutOff.c_str());
+        for (const char* path : {parsed.outDir.c_str(), reportPath.c_str(), simulatedPath.c_str()})
+            if (fs::exists(path) && !parsed.replace)
+                throw InputError(path, "",
+                                 "already exists; choose another --out, or give --replace");
+        std::vector<TapRecord> records;
+        records.reserve(taps.size());
+        for (const auto& t : taps) records.push_back(t.record);
+        const SceneFit fit = fitScene(base, records, settings);
+
+        // Figure 6 recorded beside Figure 6 simulated: the protocol's labels on the taps the
+        // fitted scene gives at the recorded poses, over every simulated recording (one
+        // recording's validation alone varies by several degrees).
+        const ValidationResult recordedFigure = validationOf(spec, taps);
+        std::vector<ValidationResult> simulatedFigures;
+        std::vector<CollectedTap> simulated = taps;
+        for (std::size_t r = fit.simulated.size(); r-- > 0;) {
+            for (std::size_t i = 0; i < simulated.size(); ++i) {
+                simulated[i].record.tap = fit.simulated[r][i].tap;
+                simulated[i].record.ending = fit.simulated[r][i].ending;
+            }
+            simulatedFigures.push_back(validationOf(spec, simulated));
+        }  // `simulated` ends as the first recording, the one written out
+        auto spread = [&](auto get) {
+            std::vector<double> v;
+            for (const auto& f : simulatedFigures) v.push_back(get(f));
+            std::sort(v.begin(), v.end());
+            double mean = 0.0;
+            for (double x : v) mean += x / static_cast<double>(v.size());
+            return std::array<double, 3>{mean, v.front(), v.back()};
+        };
+        const auto angle = spread([](const ValidationResult& v) { return v.angleError_deg; });
+        const auto position = spread([](const ValidationResult& v) { return v.positionError_mm; });
+        auto inside = [](double x, const std::array<double, 3>& r) {
+            return x >= r[1] && x <= r[2];
+        };
+
+        if (!out.parent_path().empty()) ensureOutputDirectory(out.parent_path().string());
+        SceneSpec written = fit.fitted;
+        written.description =
+            "Fitted by activetouch-cli calibrate to " + recording + " (" +
+            std::to_string(fit.taps) + " taps) from " +
+            (base.source.empty() ? std::string("the experiment's scene") : base.source) +
+            "; the estimates, their uncertainties and the tests are in " +
+            fs::path(reportPath).filename().string() + ".";
+        {
+            OutputFile f(parsed.outDir);
+            f.print("%s\n", sceneToJson(written).dump(2).c_str());
+            f.close();
+        }
+        {
+            TapCsvWriter writer(simulatedPath, static_cast<int>(base.fingertip.taxels.size()));
+            for (const auto& t : simulated) writer.append(t, spec.classes);
+        }
+        Json parameters = Json::array(), choices = Json::array(), taxels = Json::array();
+        for (const auto& p : fit.parameters)
+            parameters.push_back({{"effect", p.effect},
+                                  {"parameter", p.parameter},
+                                  {"value", p.value},
+                                  {"standard_error", p.standardError},
+                                  {"ci95", {p.low, p.high}}});
+        for (const auto& ch : fit.choices)
+            choices.push_back({{"effect", ch.effect},
+                               {"listed", ch.listed},
+                               {"estimated", ch.estimated},
+                               {"test", ch.test},
+                               {"statistic", ch.statistic},
+                               {"threshold", ch.threshold}});
+        for (const auto& tf : fit.taxels)
+            taxels.push_back({{"taxel", tf.taxel},
+                              {"ks", tf.ks},
+                              {"ks_match_at_most", tf.ksMatch},
+                              {"wasserstein_counts", tf.wasserstein},
+                              {"matches", tf.matches}});
+        const Json report = {
+            {"recording", recording},
+            {"base_scene", base.source},
+            {"taps", fit.taps},
+            {"samples_over_nothing", fit.nothingSamples},
+            {"method", "simulated moments at the recorded poses; standard errors from " +
+                           std::to_string(settings.bootstrapReplicates) +
+                           " recordings simulated with the estimate; effects listed at level " +
+                           numberText(settings.alpha)},
+            {"level", settings.alpha},
+            {"bootstrap_replicates", settings.bootstrapReplicates},
+            {"parameters", parameters},
+            {"dead_taxels", fit.deadTaxels},
+            {"choices", choices},
+            {"goodness_of_fit", taxels},
+            {"figure6",
+             {{"recorded", validationJson(recordedFigure)},
+              {"simulated_first", validationJson(simulatedFigures.back())},
+              {"simulated_recordings", simulatedFigures.size()},
+              {"simulated_angle_error_deg",
+               {{"mean", angle[0]}, {"min", angle[1]}, {"max", angle[2]}}},
+              {"simulated_position_error_mm",
+               {{"mean", position[0]}, {"min", position[1]}, {"max", position[2]}}},
+              {"recorded_inside_simulated_range",
+               inside(recordedFigure.angleError_deg, angle) &&
+                   inside(recordedFigure.positionError_mm, position)}}},
+            {"simulated_taps", simulatedPath},
+        };
+        writeJsonAtomically(reportPath, report);
+
+        std::printf("%s: %d taps, %ld samples over nothing; fitted from %s\n", recording.c_str(),
+                    fit.taps, fit.nothingSamples,
+                    base.source.empty() ? "the experiment's scene" : base.source.c_str());
+        std::printf("%-20s %-8s %s\n", "effect", "listed", "test (statistic against threshold)");
+        for (const auto& ch : fit.choices) {
+            if (ch.estimated)
+                std::printf("%-20s %-8s %s: %.3g against %.3g\n", ch.effect.c_str(),
+                            ch.listed ? "yes" : "no", ch.test.c_str(), ch.statistic, ch.threshold);
+            else
+                std::printf("%-20s %-8s %s\n", ch.effect.c_str(), "kept", ch.test.c_str());
+        }
+        for (const auto& p : fit.parameters)
+            std::printf("  %s.%s = %.4g +/- %.2g (95 %% %.4g to %.4g)\n", p.effect.c_str(),
+                        p.parameter.c_str(), p.value, p.standardError, p.low, p.high);
+        if (!fit.deadTaxels.empty()) {
+            std::printf("  dead taxels:");
+            for (int k : fit.deadTaxels) std::printf(" %d", k);
+            std::printf(" (reading %g)\n", fit.deadReading);
+        }
+        int matching = 0;
+        for (const auto& tf : fit.taxels) matching += tf.matches;
+        std::printf(
+            "goodness of fit: %d of %zu taxels' readings match the fitted scene's "
+            "(Kolmogorov-Smirnov within what two simulations of it differ by)\n",
+            matching, fit.taxels.size());
+        for (const auto& tf : fit.taxels)
+            std::printf("  taxel %2d: KS %.3f (match at most %.3f), Wasserstein %.3f counts%s\n",
+                        tf.taxel, tf.ks, tf.ksMatch, tf.wasserstein,
+                        tf.matches ? "" : "  <- differs");
+        std::printf(
+            "Figure 6 recorded: angle %.2f deg, position %.3f mm; over %zu recordings simulated "
+            "with the fitted scene: angle %.2f (%.2f to %.2f) deg, position %.3f (%.3f to %.3f) "
+            "mm: the recording's %s\n",
+            recordedFigure.angleError_deg, recordedFigure.positionError_mm, simulatedFigures.size(),
+            angle[0], angle[1], angle[2], position[0], position[1], position[2],
+            inside(recordedFigure.angleError_deg, angle) &&
+                    inside(recordedFigure.positionError_mm, position)
+                ? "lie inside their range"
+                : "lie outside their range");
+        std::printf("wrote %s, %s and %s (analyse it for its Figure 6)\n", parsed.outDir.c_str(),
+                    reportPath.c_str(), simulatedPath.c_str());
+        return kOk;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return kBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "calibrate failed: %s\n", e.what());
+        return kRunFailed;
+    }
+}
+
+}  // namespace activetouch::cli

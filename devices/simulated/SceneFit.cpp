@@ -1,0 +1,531 @@
+#include "devices/simulated/SceneFit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numeric>
+
+#include "core/common/InputError.h"
+#include "core/common/NumberText.h"
+#include "devices/simulated/SimulatedWorld.h"
+
+namespace activetouch {
+namespace {
+
+/// The effects this fit estimates from taps; every other effect is kept as the base lists it.
+const char* const kEstimated[] = {"taxel_noise", "baseline_drift", "taxel_gain", "dead_taxel",
+                                  "adc_quantisation"};
+
+bool estimatedHere(const std::string& name) {
+    for (const char* e : kEstimated)
+        if (name == e) return true;
+    return false;
+}
+
+/// What the fit varies.
+struct Theta {
+    double sigma = 0.0;  ///< taxel_noise sigma_counts
+    double rate = 0.0;   ///< baseline_drift rate_counts_per_sqrt_s
+    std::vector<double> gains;
+};
+
+/// The statistics both recorded and simulated taps are read through.
+struct Moments {
+    double within = 0.0;  ///< mean within-(tap, taxel) variance of samples over nothing
+    double wander = 0.0;  ///< variance over taps of the (tap, taxel) means over nothing, less noise
+    std::vector<double> pressure;  ///< per taxel, the summed readings of samples in contact
+    long nothing = 0;
+};
+
+/// Which samples of each tap touch nothing and which touch, from the noise-free model.
+struct Masks {
+    std::vector<std::vector<char>> nothing;  ///< [tap][sample]
+    /// [tap][sample * K + taxel]: the model presses the taxel over kPressed counts there
+    std::vector<std::vector<char>> pressed;
+};
+constexpr double kPressed = 10.0;
+
+Moments momentsOf(const std::vector<TapRecord>& taps, const Masks& masks,
+                  const std::vector<char>& skip) {
+    Moments m;
+    const int K = taps.empty() ? 0 : taps.front().tap.taxels;
+    m.pressure.assign(static_cast<std::size_t>(K), 0.0);
+    double withinSum = 0.0;
+    long groups = 0;
+    std::vector<std::vector<double>> means(static_cast<std::size_t>(K));
+    double countSum = 0.0;
+    for (std::size_t i = 0; i < taps.size(); ++i) {
+        const Tap& tap = taps[i].tap;
+        const auto& nothing = masks.nothing[i];
+        for (int k = 0; k < K; ++k) {
+            if (skip[static_cast<std::size_t>(k)]) continue;
+            double s = 0.0, s2 = 0.0;
+            int n = 0;
+            for (int t = 0; t < tap.sampleCount(); ++t) {
+                const double v = tap.at(t, k);
+                if (nothing[static_cast<std::size_t>(t)]) {
+                    s += v;
+                    s2 += v * v;
+                    ++n;
+                } else if (masks.pressed[i][static_cast<std::size_t>(t * K + k)]) {
+                    m.pressure[static_cast<std::size_t>(k)] += v;
+                }
+            }
+            if (n >= 3) {
+                const double mean = s / n;
+                withinSum += (s2 - n * mean * mean) / (n - 1);
+                ++groups;
+                means[static_cast<std::size_t>(k)].push_back(mean);
+                countSum += n;
+            }
+            m.nothing += n;
+        }
+    }
+    if (groups == 0) return m;
+    m.within = withinSum / static_cast<double>(groups);
+    double between = 0.0;
+    long count = 0;
+    for (const auto& list : means) {
+        if (list.size() < 2) continue;
+        const double mean = std::accumulate(list.begin(), list.end(), 0.0) / list.size();
+        for (double v : list) between += (v - mean) * (v - mean);
+        count += static_cast<long>(list.size()) - 1;
+    }
+    const double meanCount = countSum / static_cast<double>(groups);
+    m.wander = count > 0 ? between / count - m.within / meanCount : 0.0;
+    return m;
+}
+
+/// The scene with the fitted effects in place of the base's own of those names.
+SceneSpec sceneWith(const SceneSpec& base, const Theta& th, bool quantised, double maxCounts,
+                    const std::vector<int>& dead, double deadReading,
+                    const EffectSpec* driftTemplate) {
+    SceneSpec s = base;
+    std::vector<EffectSpec> kept;
+    for (const auto& e : base.effects)
+        if (!estimatedHere(e.name)) kept.push_back(e);
+    auto add = [&](const std::string& name, Json parameters) {
+        EffectSpec e;
+        e.name = name;
+        e.parameters = std::move(parameters);
+        e.place = "/effects/" + std::to_string(kept.size());
+        kept.push_back(std::move(e));
+    };
+    bool gained = false;
+    for (double g : th.gains) gained = gained || g != 1.0;
+    if (gained) add("taxel_gain", Json{{"gains", th.gains}});
+    if (!dead.empty()) add("dead_taxel", Json{{"taxels", dead}, {"reading_counts", deadReading}});
+    if (th.rate > 0) {
+        Json p =
+            driftTemplate
+                ? driftTemplate->parameters
+                : Json{{"touch_threshold_counts", 2.0}, {"free_gain", 0.2}, {"touch_gain", 0.05}};
+        p["rate_counts_per_sqrt_s"] = th.rate;
+        add("baseline_drift", p);
+    }
+    if (th.sigma > 0) add("taxel_noise", Json{{"sigma_counts", th.sigma}});
+    if (quantised) add("adc_quantisation", Json{{"max_counts", maxCounts}});
+    s.effects = kept;
+    return s;
+}
+
+std::vector<TapRecord> simulateAt(const SceneSpec& scene,
+                                  const std::shared_ptr<const FingertipContactModel>& model,
+                                  const std::vector<TapRecord>& at, std::uint64_t seed) {
+    SceneSpec s = scene;
+    s.seed = seed;
+    SimulatedWorld world(s, model);
+    std::vector<TapRecord> out;
+    out.reserve(at.size());
+    for (const auto& r : at) {
+        world.moveStage(r.pose);
+        out.push_back(world.tap());
+    }
+    return out;
+}
+
+struct FitContext {
+    const SceneSpec& base;
+    std::shared_ptr<const FingertipContactModel> model;
+    const Masks& masks;
+    const std::vector<TapRecord>& poses;
+    bool quantised;
+    double maxCounts;
+    std::vector<int> dead;
+    double deadReading;
+    const EffectSpec* driftTemplate;
+    std::vector<char> skip;
+    int iterations;
+    int simulations;
+};
+
+/// The parameters at which simulated taps show `target`'s moments.
+Theta fitMoments(const FitContext& c, const Moments& target, std::uint64_t seed) {
+    const int K = static_cast<int>(c.skip.size());
+    Theta th;
+    th.sigma = std::sqrt(std::max(target.within, 0.0));
+    th.rate = target.wander > 0 ? 0.5 : 0.0;
+    th.gains.assign(static_cast<std::size_t>(K), 1.0);
+    for (int round = 0; round < c.iterations; ++round) {
+        const SceneSpec s =
+            sceneWith(c.base, th, c.quantised, c.maxCounts, c.dead, c.deadReading, c.driftTemplate);
+        // The moments of a few simulations, averaged: one simulation's own drift and noise
+        // would pull every round's estimate the same way.
+        Moments m;
+        for (int r = 0; r < c.simulations; ++r) {
+            const Moments one = momentsOf(
+                simulateAt(s, c.model, c.poses, seed + 7919 * static_cast<std::uint64_t>(r)),
+                c.masks, c.skip);
+            if (r == 0) {
+                m = one;
+            } else {
+                m.within += one.within;
+                m.wander += one.wander;
+                for (std::size_t k = 0; k < m.pressure.size(); ++k)
+                    m.pressure[k] += one.pressure[k];
+            }
+        }
+        m.within /= c.simulations;
+        m.wander /= c.simulations;
+        for (double& p : m.pressure) p /= c.simulations;
+        if (th.sigma > 0 && m.within > 0)
+            th.sigma *= std::sqrt(std::clamp(target.within / m.within, 0.25, 4.0));
+        if (target.wander <= 0) {
+            th.rate = 0.0;
+        } else if (m.wander > 0) {
+            th.rate = std::max(th.rate, 1e-3) *
+                      std::sqrt(std::clamp(target.wander / m.wander, 0.25, 4.0));
+        } else {
+            th.rate = std::max(2.0 * th.rate, 0.05);
+        }
+        for (int k = 0; k < K; ++k) {
+            const std::size_t kk = static_cast<std::size_t>(k);
+            if (c.skip[kk] || m.pressure[kk] <= 0 || target.pressure[kk] <= 0) continue;
+            th.gains[kk] =
+                std::clamp(th.gains[kk] * target.pressure[kk] / m.pressure[kk], 0.05, 20.0);
+        }
+    }
+    return th;
+}
+
+double ksDistance(std::vector<double> a, std::vector<double> b) {
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    std::size_t i = 0, j = 0;
+    double d = 0.0;
+    while (i < a.size() && j < b.size()) {
+        const double x = std::min(a[i], b[j]);
+        while (i < a.size() && a[i] <= x) ++i;
+        while (j < b.size() && b[j] <= x) ++j;
+        d = std::max(
+            d, std::abs(static_cast<double>(i) / a.size() - static_cast<double>(j) / b.size()));
+    }
+    return d;
+}
+
+double wasserstein(std::vector<double> a, std::vector<double> b) {
+    // Between two empirical distributions: the mean gap of their quantiles.
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    const std::size_t n = 1000;
+    double sum = 0.0;
+    for (std::size_t q = 0; q < n; ++q) {
+        const double p = (q + 0.5) / n;
+        sum += std::abs(a[static_cast<std::size_t>(p * a.size())] -
+                        b[static_cast<std::size_t>(p * b.size())]);
+    }
+    return sum / n;
+}
+
+std::vector<double> readings(const std::vector<TapRecord>& taps, int k) {
+    std::vector<double> v;
+    for (const auto& r : taps)
+        for (int t = 0; t < r.tap.sampleCount(); ++t) v.push_back(r.tap.at(t, k));
+    return v;
+}
+
+/// The upper quantile of chi-square with `df` degrees of freedom (Wilson-Hilferty).
+double chiSquareQuantile(double df, double z) {
+    const double h = 2.0 / (9.0 * df);
+    return df * std::pow(1.0 - h + z * std::sqrt(h), 3.0);
+}
+
+/// The standard normal quantile of 1 - alpha (one-sided), by bisection on erfc.
+double upperNormalQuantile(double alpha) {
+    double lo = 0.0, hi = 10.0;
+    for (int i = 0; i < 100; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (0.5 * std::erfc(mid / std::sqrt(2.0)) > alpha ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+double sd(const std::vector<double>& v) {
+    if (v.size() < 2) return 0.0;
+    const double m = std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+    double s = 0.0;
+    for (double x : v) s += (x - m) * (x - m);
+    return std::sqrt(s / (v.size() - 1));
+}
+
+}  // namespace
+
+SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
+                  const SceneFitSettings& settings) {
+    if (recorded.size() < 20)
+        throw InputError(base.source, "",
+                         "a fit needs at least 20 recorded taps; the recording has " +
+                             std::to_string(recorded.size()));
+    auto model = std::make_shared<const FingertipContactModel>(base.fingertip);
+    const int K = model->taxelCount();
+    for (const auto& r : recorded)
+        if (r.tap.taxels != K || r.tap.sampleCount() != base.tap.samples)
+            throw InputError(base.source, "/tap/samples",
+                             "the recording's taps have " + std::to_string(r.tap.sampleCount()) +
+                                 " samples of " + std::to_string(r.tap.taxels) +
+                                 " taxels; the scene's fingertip and tap say " +
+                                 std::to_string(base.tap.samples) + " of " + std::to_string(K));
+
+    // Samples over nothing: the noise-free model at each recorded pose touches nothing there.
+    SceneSpec ideal = base;
+    ideal.effects.clear();
+    const std::vector<TapRecord> idealTaps = simulateAt(ideal, model, recorded, 1);
+    Masks masks;
+    for (const auto& r : idealTaps) {
+        std::vector<char> nothing(static_cast<std::size_t>(r.tap.sampleCount()), 0);
+        std::vector<char> pressed(r.tap.samples.size(), 0);
+        for (int t = 0; t < r.tap.sampleCount(); ++t) {
+            double total = 0.0;
+            for (int k = 0; k < K; ++k) {
+                total += r.tap.at(t, k);
+                pressed[static_cast<std::size_t>(t * K + k)] = r.tap.at(t, k) > kPressed;
+            }
+            nothing[static_cast<std::size_t>(t)] = total == 0.0;
+        }
+        masks.nothing.push_back(std::move(nothing));
+        masks.pressed.push_back(std::move(pressed));
+    }
+
+    SceneFit fit;
+    fit.taps = static_cast<int>(recorded.size());
+    // Dead or stuck taxels: where the model presses a taxel hard, it reads no more than over
+    // nothing (under a twentieth of the median taxel's response).
+    std::vector<char> skip(static_cast<std::size_t>(K), 0);
+    {
+        std::vector<double> response(static_cast<std::size_t>(K), 0.0);
+        std::vector<std::vector<double>> all(static_cast<std::size_t>(K));
+        for (int k = 0; k < K; ++k) {
+            double pressed = 0.0, idle = 0.0;
+            long nPressed = 0, nIdle = 0;
+            for (std::size_t i = 0; i < recorded.size(); ++i)
+                for (int t = 0; t < recorded[i].tap.sampleCount(); ++t) {
+                    const double v = recorded[i].tap.at(t, k);
+                    all[static_cast<std::size_t>(k)].push_back(v);
+                    if (masks.nothing[i][static_cast<std::size_t>(t)]) {
+                        idle += v;
+                        ++nIdle;
+                    } else if (idealTaps[i].tap.at(t, k) > 20.0) {
+                        pressed += v;
+                        ++nPressed;
+                    }
+                }
+            response[static_cast<std::size_t>(k)] =
+                nPressed >= 20 && nIdle > 0 ? pressed / nPressed - idle / nIdle : NAN;
+        }
+        std::vector<double> live;
+        for (double r : response)
+            if (std::isfinite(r)) live.push_back(r);
+        std::sort(live.begin(), live.end());
+        const double median = live.empty() ? 0.0 : live[live.size() / 2];
+        for (int k = 0; k < K; ++k) {
+            const double r = response[static_cast<std::size_t>(k)];
+            if (!(std::isfinite(r) && median > 0 && r < 0.05 * median)) continue;
+            fit.deadTaxels.push_back(k);
+            skip[static_cast<std::size_t>(k)] = 1;
+            auto& v = all[static_cast<std::size_t>(k)];
+            std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+            fit.deadReading = v[v.size() / 2];  // its reading under the noise
+        }
+    }
+    // The converter: every reading a whole count.
+    bool whole = true;
+    double top = 0.0;
+    for (const auto& r : recorded)
+        for (double v : r.tap.samples) {
+            whole = whole && v == std::floor(v);
+            top = std::max(top, v);
+        }
+    double maxCounts = 255.0;
+    for (const auto& e : base.effects)
+        if (e.name == "adc_quantisation" && e.parameters.contains("max_counts"))
+            maxCounts = e.parameters["max_counts"].get<double>();
+    const EffectSpec* driftTemplate = nullptr;
+    for (const auto& e : base.effects)
+        if (e.name == "baseline_drift") driftTemplate = &e;
+
+    const Moments target = momentsOf(recorded, masks, skip);
+    fit.nothingSamples = target.nothing;
+    if (target.nothing < 100)
+        throw InputError(base.source, "",
+                         "the recording has only " + std::to_string(target.nothing) +
+                             " samples over nothing (before contact or off the object); the "
+                             "noise and drift cannot be read from it");
+    FitContext c{base,
+                 model,
+                 masks,
+                 recorded,
+                 whole,
+                 maxCounts,
+                 fit.deadTaxels,
+                 fit.deadReading,
+                 driftTemplate,
+                 skip,
+                 settings.iterations,
+                 settings.simulationsPerRound};
+    const Theta raw = fitMoments(c, target, settings.seed);
+    const SceneSpec fittedAll =
+        sceneWith(base, raw, whole, maxCounts, fit.deadTaxels, fit.deadReading, driftTemplate);
+
+    // Uncertainty: the same fit on recordings simulated with the estimate.
+    std::vector<double> sigmas, rates;
+    std::vector<std::vector<double>> logGains(static_cast<std::size_t>(K));
+    for (int b = 0; b < settings.bootstrapReplicates; ++b) {
+        const auto replicate = simulateAt(fittedAll, model, recorded,
+                                          settings.seed + 1000 + static_cast<std::uint64_t>(b));
+        const Theta th = fitMoments(c, momentsOf(replicate, masks, skip),
+                                    settings.seed + 5000 + static_cast<std::uint64_t>(b));
+        sigmas.push_back(th.sigma);
+        rates.push_back(th.rate);
+        for (int k = 0; k < K; ++k)
+            logGains[static_cast<std::size_t>(k)].push_back(
+                std::log(th.gains[static_cast<std::size_t>(k)]));
+    }
+    // The moment fit leans (by about 4 % of the noise on the paper's protocol): the estimate is
+    // corrected by the lean the replicates show about it (the bootstrap's bias correction).
+    Theta est = raw;
+    if (!sigmas.empty()) {
+        auto mean = [](const std::vector<double>& v) {
+            return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+        };
+        est.sigma = std::max(0.0, 2.0 * raw.sigma - mean(sigmas));
+        est.rate = raw.rate > 0 ? std::max(0.0, 2.0 * raw.rate - mean(rates)) : 0.0;
+        for (int k = 0; k < K; ++k) {
+            const std::size_t kk = static_cast<std::size_t>(k);
+            if (!skip[kk])
+                est.gains[kk] = std::clamp(
+                    std::exp(2.0 * std::log(raw.gains[kk]) - mean(logGains[kk])), 0.05, 20.0);
+        }
+    }
+    auto parameter = [&](const std::string& effect, const std::string& name, double value,
+                         double se) {
+        fit.parameters.push_back({effect, name, value, se, value - 1.96 * se, value + 1.96 * se});
+    };
+    const double z = upperNormalQuantile(settings.alpha);
+    Theta chosen = est;
+    // Noise and drift: listed when the estimate lies more than z standard errors above zero.
+    {
+        const double se = sd(sigmas);
+        const double stat = se > 0 ? est.sigma / se : (est.sigma > 0 ? 1e9 : 0.0);
+        const bool listed = stat > z;
+        fit.choices.push_back({"taxel_noise", listed,
+                               "sigma / its standard error against the one-sided normal "
+                               "quantile at the level",
+                               stat, z, true});
+        if (listed)
+            parameter("taxel_noise", "sigma_counts", est.sigma, se);
+        else
+            chosen.sigma = 0.0;
+    }
+    {
+        const double se = sd(rates);
+        const double stat = se > 0 ? est.rate / se : (est.rate > 0 ? 1e9 : 0.0);
+        const bool listed = stat > z;
+        fit.choices.push_back({"baseline_drift", listed,
+                               "drift rate / its standard error against the one-sided normal "
+                               "quantile at the level",
+                               stat, z, true});
+        if (listed)
+            parameter("baseline_drift", "rate_counts_per_sqrt_s", est.rate, se);
+        else
+            chosen.rate = 0.0;
+    }
+    {
+        // Gains: a Wald test of every log gain against 0, chi-square with one degree per taxel.
+        double wald = 0.0;
+        int df = 0;
+        std::vector<double> ses(static_cast<std::size_t>(K), 0.0);
+        for (int k = 0; k < K; ++k) {
+            const std::size_t kk = static_cast<std::size_t>(k);
+            if (skip[kk]) continue;
+            ses[kk] = sd(logGains[kk]);
+            const double lg = std::log(est.gains[kk]);
+            if (ses[kk] > 0) wald += (lg / ses[kk]) * (lg / ses[kk]);
+            ++df;
+        }
+        const double threshold = df > 0 ? chiSquareQuantile(df, z) : 0.0;
+        const bool listed = df > 0 && wald > threshold;
+        fit.choices.push_back({"taxel_gain", listed,
+                               "Wald statistic of the log gains against 0, against chi-square "
+                               "with one degree of freedom per live taxel at the level",
+                               wald, threshold, true});
+        if (listed) {
+            // The gains are one family: 95 % intervals that hold for every live taxel at once
+            // (Bonferroni), each from its log's.
+            const double zAll = upperNormalQuantile(0.025 / std::max(df, 1));
+            for (int k = 0; k < K; ++k) {
+                const std::size_t kk = static_cast<std::size_t>(k);
+                if (skip[kk]) continue;
+                const double g = est.gains[kk];
+                fit.parameters.push_back({"taxel_gain", "gain_" + std::to_string(k), g, g * ses[kk],
+                                          g * std::exp(-zAll * ses[kk]),
+                                          g * std::exp(zAll * ses[kk])});
+            }
+        } else {
+            std::fill(chosen.gains.begin(), chosen.gains.end(), 1.0);
+        }
+    }
+    fit.choices.push_back({"dead_taxel", !fit.deadTaxels.empty(),
+                           "a taxel whose readings where the model presses it over 20 counts "
+                           "exceed its readings over nothing by under a twentieth of the median "
+                           "taxel's",
+                           static_cast<double>(fit.deadTaxels.size()), 1.0, true});
+    fit.choices.push_back(
+        {"adc_quantisation", whole, "every reading a whole count", whole ? 1.0 : 0.0, 1.0, true});
+    for (const auto& e : base.effects)
+        if (!estimatedHere(e.name))
+            fit.choices.push_back({e.name, true,
+                                   "not identifiable from taps by this fit: kept as the base scene "
+                                   "lists it",
+                                   0.0, 0.0, false});
+
+    fit.fitted =
+        sceneWith(base, chosen, whole, maxCounts, fit.deadTaxels, fit.deadReading, driftTemplate);
+
+    // Goodness of fit, per taxel: recorded against simulated with the fitted scene, beside what
+    // two simulations of it show.
+    for (int b = 0; b < 2 * 10; ++b)
+        fit.simulated.push_back(simulateAt(fit.fitted, model, recorded,
+                                           settings.seed + 20000 + static_cast<std::uint64_t>(b)));
+    const auto& pairs = fit.simulated;
+    for (int k = 0; k < K; ++k) {
+        TaxelFit tf;
+        tf.taxel = k;
+        const auto rec = readings(recorded, k), sim = readings(fit.simulated.front(), k);
+        tf.ks = ksDistance(rec, sim);
+        tf.wasserstein = wasserstein(rec, sim);
+        std::vector<double> null;
+        for (std::size_t b = 0; b + 1 < pairs.size(); b += 2)
+            null.push_back(ksDistance(readings(pairs[b], k), readings(pairs[b + 1], k)));
+        std::sort(null.begin(), null.end());
+        tf.ksMatch = null[static_cast<std::size_t>(std::ceil(0.95 * null.size())) - 1];
+        tf.matches = tf.ks <= tf.ksMatch;
+        fit.taxels.push_back(tf);
+    }
+    return fit;
+}
+
+std::string fittedSceneJson(const SceneFit& fit) {
+    return sceneToJson(fit.fitted).dump(2) + "\n";
+}
+
+}  // namespace activetouch

@@ -1,0 +1,78 @@
+#pragma once
+// Fitting a scene to recorded taps (activetouch-cli calibrate; docs/calibration.md). The taps'
+// poses are known, so the simulated rig can take the same taps: each estimate is the parameter
+// value at which taps simulated at the recorded poses show the recorded statistics (the method
+// of simulated moments), its uncertainty the spread of the estimates over recordings simulated
+// with the fitted scene (a parametric bootstrap), and an effect is listed only where a test at
+// the stated level says the taps call for it.
+#include <string>
+#include <vector>
+
+#include "core/scene/Scene.h"
+#include "core/tap/Tap.h"
+
+namespace activetouch {
+
+struct SceneFitSettings {
+    int bootstrapReplicates = 20;  ///< recordings simulated at the estimate, for its uncertainty
+    int iterations = 12;           ///< moment-matching rounds per fit
+    int simulationsPerRound = 3;   ///< simulated recordings whose moments each round matches
+    /// An effect is listed when its test statistic's p-value under "absent" is below this.
+    double alpha = 0.001;
+    std::uint64_t seed = 1;  ///< of the simulations the fit runs (common to every round)
+};
+
+struct FittedParameter {
+    std::string effect, parameter;
+    double value = 0.0;
+    double standardError = 0.0;  ///< over the bootstrap replicates
+    /// 95 % interval: value -/+ 1.96 standard errors; for the gains, a log interval that holds
+    /// for every taxel at once (Bonferroni over the live taxels)
+    double low = 0.0, high = 0.0;
+};
+
+/// Whether the taps call for an effect, and why.
+struct EffectChoice {
+    std::string effect;
+    bool listed = false;
+    std::string test;  ///< how it was decided, in a sentence, with its statistic
+    double statistic = 0.0, threshold = 0.0;
+    bool estimated = true;  ///< false: not identifiable from taps by this fit; kept from the base
+};
+
+/// How well the fitted scene reproduces the taps: per taxel, the Kolmogorov-Smirnov distance
+/// between the recorded readings and readings simulated with the fitted scene at the same poses,
+/// against the distance two simulations of that scene show at the 95th percentile (a match is a
+/// distance at or under it).
+struct TaxelFit {
+    int taxel = 0;
+    double ks = 0.0, ksMatch = 0.0;
+    double wasserstein = 0.0;  ///< counts
+    bool matches = false;
+};
+
+struct SceneFit {
+    SceneSpec fitted;  ///< the base scene with the fitted effects listed, the others as in the base
+    std::vector<FittedParameter> parameters;
+    std::vector<EffectChoice> choices;
+    std::vector<TaxelFit> taxels;
+    std::vector<int> deadTaxels;
+    double deadReading = 0.0;
+    int taps = 0;
+    long nothingSamples = 0;  ///< samples over nothing the noise and drift were read from
+    /// Twenty recordings simulated with the fitted scene at the recorded poses (the first is
+    /// compared with the recording; pairs of the others say what a match is).
+    std::vector<std::vector<TapRecord>> simulated;
+};
+
+/// Fits `base` (its object, fingertip, tap and stage as mounted) to `recorded` taps, taken at
+/// their poses. Throws InputError (naming `base.source`) if the taps cannot be fitted: fewer than
+/// 20, poses outside the stage, none over nothing.
+SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
+                  const SceneFitSettings& settings = {});
+
+/// The fitted scene as a scene file's JSON, with the fit's estimates and choices under
+/// "calibration".
+std::string fittedSceneJson(const SceneFit& fit);
+
+}  // namespace activetouch

@@ -1,0 +1,142 @@
+// Fitting a scene to recorded taps where the truth is known: the paper's training taps recorded
+// on the simulated rig with (a) the paper scene, (b) the paper scene with taxel 3 dead and noise
+// sigma 2.5, (c) the paper scene with per-taxel gains spread by 20 %, each fitted from the paper
+// scene. Every parameter comes back within its reported interval and its stated tolerance, dead
+// taxels exactly, and the fitted scene lists exactly the truth's effects.
+#include <QtTest>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/experiment/Experiment.h"
+#include "devices/simulated/SceneFit.h"
+#include "support/Paths.h"
+#include "support/SimulatedRun.h"
+
+using namespace activetouch;
+
+namespace {
+
+std::vector<TapRecord> recordedOn(const SceneSpec& truth) {
+    ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
+    spec.scene = truth;
+    spec.trials.clear();
+    const RunResult r = runExperiment(spec, test::onSimulatedRig());
+    std::vector<TapRecord> taps;
+    for (const auto& t : r.taps) taps.push_back(t.record);
+    return taps;
+}
+
+const FittedParameter* find(const SceneFit& fit, const std::string& effect,
+                            const std::string& parameter) {
+    for (const auto& p : fit.parameters)
+        if (p.effect == effect && p.parameter == parameter) return &p;
+    return nullptr;
+}
+
+std::set<std::string> effectNames(const SceneSpec& s) {
+    std::set<std::string> names;
+    for (const auto& e : s.effects) names.insert(e.name);
+    return names;
+}
+
+double parameterOf(const SceneSpec& s, const std::string& effect, const std::string& key) {
+    for (const auto& e : s.effects)
+        if (e.name == effect) return e.parameters.at(key).get<double>();
+    return NAN;
+}
+
+}  // namespace
+
+class TestSceneFit : public QObject {
+    Q_OBJECT
+
+    SceneSpec paper_;
+
+    /// The truth's noise and drift, each within its interval and tolerance.
+    static void checkNoiseAndDrift(const SceneFit& fit, const SceneSpec& truth) {
+        const double sigma = parameterOf(truth, "taxel_noise", "sigma_counts");
+        const double rate = parameterOf(truth, "baseline_drift", "rate_counts_per_sqrt_s");
+        const FittedParameter* s = find(fit, "taxel_noise", "sigma_counts");
+        const FittedParameter* d = find(fit, "baseline_drift", "rate_counts_per_sqrt_s");
+        QVERIFY(s && d);
+        QVERIFY2(s->low <= sigma && sigma <= s->high,
+                 qPrintable(QString("sigma %1 [%2, %3]").arg(s->value).arg(s->low).arg(s->high)));
+        QVERIFY2(std::abs(s->value - sigma) <= 0.10 * sigma, qPrintable(QString::number(s->value)));
+        QVERIFY2(d->low <= rate && rate <= d->high,
+                 qPrintable(QString("rate %1 [%2, %3]").arg(d->value).arg(d->low).arg(d->high)));
+        QVERIFY2(std::abs(d->value - rate) <= 0.25 * rate, qPrintable(QString::number(d->value)));
+        QVERIFY(s->standardError > 0 && d->standardError > 0);
+        QCOMPARE(parameterOf(fit.fitted, "taxel_noise", "sigma_counts"), s->value);
+    }
+
+private slots:
+    void initTestCase() {
+        paper_ = loadScene(test::sourcePath("experiments/scenes/paper_rectangle.json"));
+    }
+
+    void thePaperSceneComesBack() {
+        const SceneFit fit = fitScene(paper_, recordedOn(paper_));
+        checkNoiseAndDrift(fit, paper_);
+        QCOMPARE(effectNames(fit.fitted), effectNames(paper_));
+        QVERIFY(fit.deadTaxels.empty());
+        QVERIFY(!find(fit, "taxel_gain", "gain_0"));
+        // The effects taps cannot show are kept, and said so.
+        int kept = 0;
+        for (const auto& c : fit.choices) kept += !c.estimated;
+        QCOMPARE(kept, 3);  // contact_latency, stage_error, viscoelastic_memory
+        QCOMPARE(fit.taxels.size(), std::size_t(12));
+        int matching = 0;
+        for (const auto& t : fit.taxels) matching += t.matches;
+        QVERIFY2(matching >= 9, qPrintable(QString::number(matching)));
+    }
+
+    void aDeadTaxelAndMoreNoiseComeBack() {
+        SceneSpec truth = paper_;
+        for (auto& e : truth.effects)
+            if (e.name == "taxel_noise") e.parameters["sigma_counts"] = 2.5;
+        EffectSpec dead;
+        dead.name = "dead_taxel";
+        dead.parameters = Json{{"taxels", {3}}, {"reading_counts", 0}};
+        truth.effects.push_back(dead);
+        const SceneFit fit = fitScene(paper_, recordedOn(truth));
+        checkNoiseAndDrift(fit, truth);
+        QCOMPARE(fit.deadTaxels, std::vector<int>{3});
+        QCOMPARE(fit.deadReading, 0.0);
+        QCOMPARE(effectNames(fit.fitted), effectNames(truth));
+    }
+
+    void gainsSpreadBy20PercentComeBack() {
+        // Twelve gains drawn once, log-normal with a log standard deviation of 0.2.
+        const std::vector<double> gains{1.287, 0.844, 1.046, 0.65,  0.983, 1.328,
+                                        1.399, 0.796, 0.896, 0.948, 0.582, 1.4};
+        SceneSpec truth = paper_;
+        EffectSpec gain;
+        gain.name = "taxel_gain";
+        gain.parameters = Json{{"gains", gains}};
+        truth.effects.push_back(gain);
+        const SceneFit fit = fitScene(paper_, recordedOn(truth));
+        checkNoiseAndDrift(fit, truth);
+        QCOMPARE(effectNames(fit.fitted), effectNames(truth));
+        for (std::size_t k = 0; k < gains.size(); ++k) {
+            const FittedParameter* g = find(fit, "taxel_gain", "gain_" + std::to_string(k));
+            QVERIFY(g);
+            QVERIFY2(g->low <= gains[k] && gains[k] <= g->high &&
+                         std::abs(g->value - gains[k]) <= 0.10 * gains[k],
+                     qPrintable(QString("taxel %1: %2 [%3, %4], truth %5")
+                                    .arg(k)
+                                    .arg(g->value)
+                                    .arg(g->low)
+                                    .arg(g->high)
+                                    .arg(gains[k])));
+        }
+    }
+
+    void tooFewTapsAreRefused() {
+        std::vector<TapRecord> few(5, TapRecord{});
+        QVERIFY_THROWS_EXCEPTION(InputError, fitScene(paper_, few));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestSceneFit)
+#include "test_scene_fit.moc"
