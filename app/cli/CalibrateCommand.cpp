@@ -166,6 +166,10 @@ int commandCalibrate(const std::vector<std::string>& args) {
             {"bootstrap_replicates", settings.bootstrapReplicates},
             {"parameters", parameters},
             {"dead_taxels", fit.deadTaxels},
+            {"pressure_level",
+             {{"value", fit.pressureScale},
+              {"ci95", {fit.pressureScaleLow, fit.pressureScaleHigh}},
+              {"differs", fit.pressureScaleDiffers}}},
             {"choices", choices},
             {"goodness_of_fit", taxels},
             {"figure6",
@@ -202,6 +206,13 @@ int commandCalibrate(const std::vector<std::string>& args) {
             for (int k : fit.deadTaxels) std::printf(" %d", k);
             std::printf(" (reading %g)\n", fit.deadReading);
         }
+        std::printf("  pressure level against the scene's: %.3f (95 %% %.3f to %.3f)%s\n",
+                    fit.pressureScale, fit.pressureScaleLow, fit.pressureScaleHigh,
+                    fit.pressureScaleDiffers && !fit.gainsListed
+                        ? ": the taps press every taxel differently from the scene's tapper (its "
+                          "stop depth, latency or stroke, or a skin uniformly more or less "
+                          "sensitive); not fitted"
+                        : "");
         int matching = 0;
         for (const auto& tf : fit.taxels) matching += tf.matches;
         std::printf(

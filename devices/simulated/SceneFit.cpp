@@ -40,10 +40,11 @@ struct Moments {
 /// Which samples of each tap touch nothing and which touch, from the noise-free model.
 struct Masks {
     std::vector<std::vector<char>> nothing;  ///< [tap][sample]
-    /// [tap][sample * K + taxel]: the model presses the taxel over kPressed counts there
+    /// [tap][sample * K + taxel]: the model presses the taxel over kPressed counts in the tap
     std::vector<std::vector<char>> pressed;
 };
-constexpr double kPressed = 10.0;
+constexpr double kPressed = 20.0;
+constexpr int kMargin = 2;
 
 Moments momentsOf(const std::vector<TapRecord>& taps, const Masks& masks,
                   const std::vector<char>& skip) {
@@ -291,17 +292,32 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
     ideal.effects.clear();
     const std::vector<TapRecord> idealTaps = simulateAt(ideal, model, recorded, 1);
     Masks masks;
+    // Read so that a tapper whose stroke runs on another schedule than the simulated one (a real
+    // rig's) is read the same: a taxel is pressed in a tap where the model presses it over
+    // kPressed counts at some sample, and its pressure is the whole tap's.
     for (const auto& r : idealTaps) {
-        std::vector<char> nothing(static_cast<std::size_t>(r.tap.sampleCount()), 0);
-        std::vector<char> pressed(r.tap.samples.size(), 0);
-        for (int t = 0; t < r.tap.sampleCount(); ++t) {
-            double total = 0.0;
+        double total = 0.0;
+        std::vector<char> pressedTaxel(static_cast<std::size_t>(K), 0);
+        for (int t = 0; t < r.tap.sampleCount(); ++t)
             for (int k = 0; k < K; ++k) {
                 total += r.tap.at(t, k);
-                pressed[static_cast<std::size_t>(t * K + k)] = r.tap.at(t, k) > kPressed;
+                if (r.tap.at(t, k) > kPressed) pressedTaxel[static_cast<std::size_t>(k)] = 1;
             }
-            nothing[static_cast<std::size_t>(t)] = total == 0.0;
-        }
+        // Over nothing: a whole tap off the object, or the samples of the descent that end
+        // kMargin samples before the model's first contact (a stroke on another schedule may
+        // touch a little earlier).
+        int firstContact = r.tap.sampleCount();
+        for (int t = 0; t < r.tap.sampleCount() && firstContact == r.tap.sampleCount(); ++t)
+            for (int k = 0; k < K; ++k)
+                if (r.tap.at(t, k) > 0.0) firstContact = t;
+        std::vector<char> nothing(static_cast<std::size_t>(r.tap.sampleCount()), 0);
+        for (int t = 0; t < r.tap.sampleCount(); ++t)
+            nothing[static_cast<std::size_t>(t)] = total == 0.0 || t < firstContact - kMargin;
+        std::vector<char> pressed(r.tap.samples.size(), 0);
+        for (int t = 0; t < r.tap.sampleCount(); ++t)
+            for (int k = 0; k < K; ++k)
+                pressed[static_cast<std::size_t>(t * K + k)] =
+                    pressedTaxel[static_cast<std::size_t>(k)];
         masks.nothing.push_back(std::move(nothing));
         masks.pressed.push_back(std::move(pressed));
     }
@@ -324,7 +340,7 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
                     if (masks.nothing[i][static_cast<std::size_t>(t)]) {
                         idle += v;
                         ++nIdle;
-                    } else if (idealTaps[i].tap.at(t, k) > 20.0) {
+                    } else if (masks.pressed[i][static_cast<std::size_t>(t * K + k)]) {
                         pressed += v;
                         ++nPressed;
                     }
@@ -365,10 +381,10 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
 
     const Moments target = momentsOf(recorded, masks, skip);
     fit.nothingSamples = target.nothing;
-    if (target.nothing < 100)
+    if (target.nothing < 1000)
         throw InputError(base.source, "",
                          "the recording has only " + std::to_string(target.nothing) +
-                             " samples over nothing (before contact or off the object); the "
+                             " samples over nothing (off the object, or before contact); the "
                              "noise and drift cannot be read from it");
     FitContext c{base,
                  model,
@@ -450,24 +466,46 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
             chosen.rate = 0.0;
     }
     {
-        // Gains: a Wald test of every log gain against 0, chi-square with one degree per taxel.
-        double wald = 0.0;
-        int df = 0;
+        // Gains: a Wald test of the log gains' spread about their mean (chi-square with one
+        // degree of freedom fewer than the live taxels). Their common level is the tapper's as
+        // much as the skin's (a deeper stop presses every taxel harder), so it is reported apart.
         std::vector<double> ses(static_cast<std::size_t>(K), 0.0);
+        double meanLog = 0.0, meanLogVar = 0.0;
+        int df = 0;
         for (int k = 0; k < K; ++k) {
             const std::size_t kk = static_cast<std::size_t>(k);
             if (skip[kk]) continue;
             ses[kk] = sd(logGains[kk]);
-            const double lg = std::log(est.gains[kk]);
-            if (ses[kk] > 0) wald += (lg / ses[kk]) * (lg / ses[kk]);
+            meanLog += std::log(est.gains[kk]);
+            meanLogVar += ses[kk] * ses[kk];
             ++df;
         }
-        const double threshold = df > 0 ? chiSquareQuantile(df, z) : 0.0;
-        const bool listed = df > 0 && wald > threshold;
+        if (df > 0) {
+            meanLog /= df;
+            meanLogVar /= static_cast<double>(df) * df;
+        }
+        double wald = 0.0;
+        for (int k = 0; k < K; ++k) {
+            const std::size_t kk = static_cast<std::size_t>(k);
+            if (skip[kk] || ses[kk] <= 0) continue;
+            const double d = (std::log(est.gains[kk]) - meanLog) / ses[kk];
+            wald += d * d;
+        }
+        const double threshold = df > 1 ? chiSquareQuantile(df - 1, z) : 0.0;
+        const bool listed = df > 1 && wald > threshold;
         fit.choices.push_back({"taxel_gain", listed,
-                               "Wald statistic of the log gains against 0, against chi-square "
-                               "with one degree of freedom per live taxel at the level",
+                               "Wald statistic of the log gains about their mean, against "
+                               "chi-square with one degree of freedom fewer than the live taxels "
+                               "at the level",
                                wald, threshold, true});
+        fit.gainsListed = listed;
+        const double seCommon = std::sqrt(meanLogVar);
+        fit.pressureScale = std::exp(meanLog);
+        fit.pressureScaleLow = std::exp(meanLog - 1.96 * seCommon);
+        fit.pressureScaleHigh = std::exp(meanLog + 1.96 * seCommon);
+        fit.pressureScaleDiffers =
+            seCommon > 0 ? std::abs(meanLog) / seCommon > upperNormalQuantile(settings.alpha / 2)
+                         : meanLog != 0.0;
         if (listed) {
             // The gains are one family: 95 % intervals that hold for every live taxel at once
             // (Bonferroni), each from its log's.
@@ -485,9 +523,9 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
         }
     }
     fit.choices.push_back({"dead_taxel", !fit.deadTaxels.empty(),
-                           "a taxel whose readings where the model presses it over 20 counts "
-                           "exceed its readings over nothing by under a twentieth of the median "
-                           "taxel's",
+                           "a taxel whose readings in taps where the model presses it over 20 "
+                           "counts exceed its readings in taps over nothing by under a twentieth "
+                           "of the median taxel's",
                            static_cast<double>(fit.deadTaxels.size()), 1.0, true});
     fit.choices.push_back(
         {"adc_quantisation", whole, "every reading a whole count", whole ? 1.0 : 0.0, 1.0, true});

@@ -286,6 +286,14 @@ private slots:
         QTest::newRow("taxel that does not exist")
             << R"({"name": "dead_taxel", "taxels": [12], "reading_counts": 0})"
             << "does not exist";
+        QTest::newRow("gains for too few taxels") << R"({"name": "taxel_gain", "gains": [1, 1, 1]})"
+                                                  << "give one gain per taxel: 12, not 3";
+        QTest::newRow("a gain out of range")
+            << R"({"name": "taxel_gain", "gains": [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0]})"
+            << "gains/11: expected a number between 0.05 and 20";
+        QTest::newRow("gains beside a spread")
+            << R"({"name": "taxel_gain", "spread": 0.2, "gains": [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1]})"
+            << "leave 'spread' out";
     }
     void badEffectEntriesAreNamed() {
         QFETCH(QString, effect);
