@@ -25,13 +25,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-ValidationResult validationOf(const ExperimentSpec& spec, const std::vector<CollectedTap>& taps) {
-    RunOptions options;
-    options.simulated = &simulatedRigs();
-    options.recordedTaps = &taps;
-    return runExperiment(spec, options).validation;
-}
-
 Json validationJson(const ValidationResult& v) {
     Json byPosition = Json::array();
     for (std::size_t p = 0; p < v.angleMean.size(); ++p)
@@ -89,32 +82,8 @@ int commandCalibrate(const std::vector<std::string>& args) {
         for (const auto& t : taps) records.push_back(t.record);
         const SceneFit fit = fitScene(base, records, settings);
 
-        // Figure 6 recorded beside Figure 6 simulated: the protocol's labels on the taps the
-        // fitted scene gives at the recorded poses, over every simulated recording (one
-        // recording's validation alone varies by several degrees).
-        const ValidationResult recordedFigure = validationOf(spec, taps);
-        std::vector<ValidationResult> simulatedFigures;
-        std::vector<CollectedTap> simulated = taps;
-        for (std::size_t r = fit.simulated.size(); r-- > 0;) {
-            for (std::size_t i = 0; i < simulated.size(); ++i) {
-                simulated[i].record.tap = fit.simulated[r][i].tap;
-                simulated[i].record.ending = fit.simulated[r][i].ending;
-            }
-            simulatedFigures.push_back(validationOf(spec, simulated));
-        }  // `simulated` ends as the first recording, the one written out
-        auto spread = [&](auto get) {
-            std::vector<double> v;
-            for (const auto& f : simulatedFigures) v.push_back(get(f));
-            std::sort(v.begin(), v.end());
-            double mean = 0.0;
-            for (double x : v) mean += x / static_cast<double>(v.size());
-            return std::array<double, 3>{mean, v.front(), v.back()};
-        };
-        const auto angle = spread([](const ValidationResult& v) { return v.angleError_deg; });
-        const auto position = spread([](const ValidationResult& v) { return v.positionError_mm; });
-        auto inside = [](double x, const std::array<double, 3>& r) {
-            return x >= r[1] && x <= r[2];
-        };
+        const Figure6Comparison figure6 = compareFigure6(spec, taps, fit);
+        const std::vector<CollectedTap>& simulated = figure6.firstSimulated;
 
         if (!out.parent_path().empty()) ensureOutputDirectory(out.parent_path().string());
         SceneSpec written = fit.fitted;
@@ -173,16 +142,18 @@ int commandCalibrate(const std::vector<std::string>& args) {
             {"choices", choices},
             {"goodness_of_fit", taxels},
             {"figure6",
-             {{"recorded", validationJson(recordedFigure)},
-              {"simulated_first", validationJson(simulatedFigures.back())},
-              {"simulated_recordings", simulatedFigures.size()},
+             {{"recorded", validationJson(figure6.recorded)},
+              {"simulated_first", validationJson(figure6.simulated.front())},
+              {"simulated_recordings", figure6.simulated.size()},
               {"simulated_angle_error_deg",
-               {{"mean", angle[0]}, {"min", angle[1]}, {"max", angle[2]}}},
+               {{"mean", figure6.angleMean},
+                {"min", figure6.angleLeast},
+                {"max", figure6.angleLargest}}},
               {"simulated_position_error_mm",
-               {{"mean", position[0]}, {"min", position[1]}, {"max", position[2]}}},
-              {"recorded_inside_simulated_range",
-               inside(recordedFigure.angleError_deg, angle) &&
-                   inside(recordedFigure.positionError_mm, position)}}},
+               {{"mean", figure6.positionMean},
+                {"min", figure6.positionLeast},
+                {"max", figure6.positionLargest}}},
+              {"recorded_inside_simulated_range", figure6.recordedInsideRange}}},
             {"simulated_taps", simulatedPath},
         };
         writeJsonAtomically(reportPath, report);
@@ -226,13 +197,11 @@ int commandCalibrate(const std::vector<std::string>& args) {
         std::printf(
             "Figure 6 recorded: angle %.2f deg, position %.3f mm; over %zu recordings simulated "
             "with the fitted scene: angle %.2f (%.2f to %.2f) deg, position %.3f (%.3f to %.3f) "
-            "mm: the recording's %s\n",
-            recordedFigure.angleError_deg, recordedFigure.positionError_mm, simulatedFigures.size(),
-            angle[0], angle[1], angle[2], position[0], position[1], position[2],
-            inside(recordedFigure.angleError_deg, angle) &&
-                    inside(recordedFigure.positionError_mm, position)
-                ? "lie inside their range"
-                : "lie outside their range");
+            "mm: the recording's lie %s their range\n",
+            figure6.recorded.angleError_deg, figure6.recorded.positionError_mm,
+            figure6.simulated.size(), figure6.angleMean, figure6.angleLeast, figure6.angleLargest,
+            figure6.positionMean, figure6.positionLeast, figure6.positionLargest,
+            figure6.recordedInsideRange ? "inside" : "outside");
         std::printf("wrote %s, %s and %s (analyse it for its Figure 6)\n", parsed.outDir.c_str(),
                     reportPath.c_str(), simulatedPath.c_str());
         return kOk;

@@ -436,6 +436,7 @@ void MainWindow::updateActions() {
     runTraining_->setEnabled(!busy && ready);
     analyse_->setEnabled(!busy && ready);
     replay_->setEnabled(!busy && ready);
+    if (calibrate_) calibrate_->setEnabled(ready);
     runFollowing_->setEnabled(!busy && ready && last_ && last_->classifier.trained());
     cancel_->setEnabled(busy);
     seeds_->setRunnable(!busy && ready);

@@ -23,6 +23,7 @@ class QTabWidget;
 
 namespace activetouch {
 
+class CalibrationDialog;
 class DevicesPanel;
 class FollowingTab;
 class LiveView;
@@ -77,6 +78,9 @@ public:
     /// decides as the recorded run did. A recording that cannot be read or lacks a trial is
     /// refused with the reason and the session kept.
     bool replayRun(const QString& runDir);
+    /// Opens the Calibrate dialog on the taps recorded in `path` (a taps.csv), fitting the scene
+    /// of the experiment as shown; nullptr (and the reason said) if no experiment can run.
+    CalibrationDialog* calibrateRecording(const QString& path);
     void cancelRun();
     /// Writes every figure of the last run into `dir`/figures; returns the files.
     QStringList exportAllFigures(const QString& dir);
@@ -225,6 +229,7 @@ private:
     QToolBar* runBar_;
     QMenu* recentMenu_;
     QAction *runAll_, *runTraining_, *runFollowing_, *analyse_, *replay_, *cancel_, *exportAll_;
+    QAction* calibrate_ = nullptr;
     QAction *save_, *exportAllMenu_, *runSeeds_, *runCompare_, *pauseLive_;
 };
 

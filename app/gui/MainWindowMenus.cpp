@@ -206,6 +206,18 @@ void MainWindow::buildMenus() {
     analyse_->setShortcut(QKeySequence(tr("Ctrl+Shift+A")));
     run->addAction(replay_);
     replay_->setShortcut(QKeySequence(tr("Ctrl+Shift+P")));
+    calibrate_ = run->addAction(tr("Calibrate..."), this, [this] {
+        const QString path =
+            QFileDialog::getOpenFileName(this, tr("Fit the scene to recorded training and test taps"),
+                                         lastOutDir_, tr("Tap recordings (taps.csv *.csv)"));
+        if (!path.isEmpty()) calibrateRecording(path);
+    });
+    calibrate_->setObjectName("calibrate");
+    calibrate_->setToolTip(
+        tr("Fit the experiment's scene to recorded taps (from the real rig or a simulated one): "
+           "noise, drift, dead taxels and gains with their uncertainties, the effects the taps "
+           "call for, and how well the fitted scene reproduces them"));
+    updateActions();
     run->addSeparator();
     run->addAction(cancel_);
     cancel_->setShortcut(QKeySequence(Qt::Key_Escape));

@@ -36,6 +36,7 @@
 #include "app/gui/FollowingTab.h"
 #include "app/gui/LiveView.h"
 #include "app/gui/MainWindow.h"
+#include "app/gui/CalibrationDialog.h"
 #include "app/gui/PlotPanel.h"
 #include "app/gui/ProtocolPanel.h"
 #include "app/gui/ResultTabs.h"
@@ -90,6 +91,19 @@ bool MainWindow::startSeedRun(std::uint64_t seed) {
 
 bool MainWindow::analyseRecording(const QString& path) {
     return startOnRecording(path, false);
+}
+
+CalibrationDialog* MainWindow::calibrateRecording(const QString& path) {
+    const auto toRun = experimentToRun();
+    if (!toRun) return nullptr;
+    auto* dialog = new CalibrationDialog(*toRun, path, this);
+    dialog->setAttribute(Qt::WA_DeleteOnClose);
+    connect(dialog, &CalibrationDialog::fitFinished, this, [this, path](bool ok) {
+        log(ok ? tr("calibrated the scene to %1").arg(path)
+               : tr("could not calibrate the scene to %1").arg(path));
+    });
+    dialog->show();
+    return dialog;
 }
 
 bool MainWindow::replayRun(const QString& runDir) {

@@ -8,8 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "core/experiment/Experiment.h"
 #include "core/scene/Scene.h"
 #include "core/tap/Tap.h"
+#include "core/validation/OfflineValidation.h"
 
 namespace activetouch {
 
@@ -76,6 +78,20 @@ struct SceneFit {
 /// 20, poses outside the stage, none over nothing.
 SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
                   const SceneFitSettings& settings = {});
+
+/// Figure 6 recorded beside Figure 6 simulated: the experiment's validation on the recorded taps,
+/// and on each of the fit's simulated recordings with the same labels (one recording's validation
+/// alone varies by several degrees), with their mean, least and largest.
+struct Figure6Comparison {
+    ValidationResult recorded;
+    std::vector<ValidationResult> simulated;
+    double angleMean = 0, angleLeast = 0, angleLargest = 0;
+    double positionMean = 0, positionLeast = 0, positionLargest = 0;
+    bool recordedInsideRange = false;  ///< both recorded errors within the simulated least..largest
+    std::vector<CollectedTap> firstSimulated;  ///< the first simulated recording, labelled
+};
+Figure6Comparison compareFigure6(const ExperimentSpec& spec, const std::vector<CollectedTap>& taps,
+                                 const SceneFit& fit);
 
 /// The fitted scene as a scene file's JSON, with the fit's estimates and choices under
 /// "calibration".

@@ -33,6 +33,7 @@
 #endif
 
 #include "app/figures/SweepFigures.h"
+#include "app/gui/CalibrationDialog.h"
 #include "app/gui/ComparisonTab.h"
 #include "app/gui/DevicesPanel.h"
 #include "app/gui/FollowingTab.h"

@@ -147,6 +147,53 @@ private slots:
         QVERIFY(window_->liveView()->framesDrawn() > 0);
     }
 
+    void calibrateFitsARunsTapsAndSavesTheScene() {
+        // The last run's training and test taps (runThePaperExperimentByClicking) fitted from the
+        // experiment's scene, in the Calibrate dialog the Run menu opens.
+        QAction* action = window_->findChild<QAction*>("calibrate");
+        QVERIFY(action && action->isEnabled());
+        const QString recording = window_->lastRunDirectory() + "/data/taps.csv";
+        QVERIFY(QFile::exists(recording));
+        CalibrationDialog* dialog = window_->calibrateRecording(recording);
+        QVERIFY(dialog);
+        QSignalSpy done(dialog, &CalibrationDialog::fitFinished);
+        QVERIFY(done.wait(180000));
+        QCOMPARE(done.front().front().toBool(), true);
+        QMap<QString, QString> listed;
+        QTableWidget* choices = dialog->choicesTable();
+        for (int r = 0; r < choices->rowCount(); ++r)
+            listed[choices->item(r, 0)->text()] = choices->item(r, 1)->text();
+        QCOMPARE(listed["taxel_noise"], "yes");
+        QCOMPARE(listed["adc_quantisation"], "yes");
+        QCOMPARE(listed["taxel_gain"], "no");
+        QCOMPARE(listed["viscoelastic_memory"], "kept");
+        bool sigma = false;
+        QTableWidget* estimates = dialog->estimatesTable();
+        for (int r = 0; r < estimates->rowCount(); ++r)
+            if (estimates->item(r, 1)->text() == "sigma_counts") {
+                sigma = true;
+                QVERIFY2(std::abs(estimates->item(r, 2)->text().toDouble() - 1.5) < 0.15,
+                         qPrintable(estimates->item(r, 2)->text()));
+            }
+        QVERIFY(sigma);
+        QCOMPARE(dialog->taxelsTable()->rowCount(), 12);
+        QVERIFY(dialog->findChild<QPushButton*>("saveFittedScene")->isEnabled());
+        const QString saved = dir_.filePath("fitted_scene.json");
+        QCOMPARE(dialog->saveFittedScene(saved), QString());
+        const SceneSpec fitted = loadScene(saved.toStdString());
+        QCOMPARE(fitted.effects.size(), window_->lastRun()->spec.scene.effects.size());
+        dialog->close();
+
+        // A file that is no recording is said in the dialog; nothing is fitted.
+        CalibrationDialog* bad = window_->calibrateRecording(dir_.filePath("nowhere.csv"));
+        QSignalSpy failed(bad, &CalibrationDialog::fitFinished);
+        QVERIFY(failed.wait(30000));
+        QCOMPARE(failed.front().front().toBool(), false);
+        QVERIFY(!bad->fit());
+        QVERIFY(bad->findChild<QLabel*>("calibrationStatus")->text().contains("nowhere.csv"));
+        bad->close();
+    }
+
     void engineWorkStartsFromACleanVectorState() {
         // Once the toolkit has drawn, threads may start with the upper halves of the vector
         // registers in use, which makes libm's exp some thirty times slower (VectorState.h). A
