@@ -154,11 +154,27 @@ void ScenePanel::showScene(const SceneSpec& scene) {
     polygon_ = o.polygon;
     polygonLabel_->setText(polygon_.empty() ? tr("no polygon loaded")
                                             : tr("polygon of %1 vertices").arg(polygon_.size()));
-    for (auto& [name, w] : effects_) w.box->setChecked(false);
+    for (auto& [name, w] : effects_) {
+        w.box->setChecked(false);
+        w.gains.clear();
+        for (auto& [key, s] : w.parameters) s->setEnabled(true);
+        w.box->setToolTip(QString());
+    }
     for (const EffectSpec& e : scene.effects) {
         auto it = effects_.find(e.name);
         if (it == effects_.end()) continue;
         it->second.box->setChecked(true);
+        if (e.parameters.contains("gains") && e.parameters["gains"].is_array()) {
+            QStringList shown;
+            for (const auto& v : e.parameters["gains"]) {
+                it->second.gains.push_back(v.get<double>());
+                shown << QString::number(v.get<double>(), 'g', 4);
+            }
+            for (auto& [key, s] : it->second.parameters) s->setEnabled(false);
+            it->second.box->setToolTip(
+                tr("Measured gains from the scene file, kept as they are: %1")
+                    .arg(shown.join(", ")));
+        }
         for (auto& [key, s] : it->second.parameters)
             if (e.parameters.contains(key) && e.parameters[key].is_number())
                 s->setValue(e.parameters[key].get<double>());
@@ -193,7 +209,10 @@ SceneSpec ScenePanel::sceneFromPanel(const SceneSpec& base) const {
         const EffectWidgets& w = effects_.at(d.name);
         if (!w.box->isChecked()) continue;
         Json e{{"name", d.name}};
-        for (const auto& [key, s] : w.parameters) e[key] = s->value();
+        if (!w.gains.empty())
+            e["gains"] = w.gains;
+        else
+            for (const auto& [key, s] : w.parameters) e[key] = s->value();
         if (w.taxels) {
             Json list = Json::array();
             for (const QString& part : w.taxels->text().split(',', Qt::SkipEmptyParts)) {

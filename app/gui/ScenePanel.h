@@ -47,6 +47,9 @@ private:
         QGroupBox* box;
         std::map<std::string, QDoubleSpinBox*> parameters;
         QLineEdit* taxels = nullptr;
+        /// A scene's measured gains (taxel_gain's "gains", as calibrate writes them): kept as
+        /// they are, in place of the spread the panel edits.
+        std::vector<double> gains;
     };
     std::map<std::string, EffectWidgets> effects_;
 };

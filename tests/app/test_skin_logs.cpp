@@ -116,6 +116,56 @@ private slots:
         QVERIFY(!QFile::exists(dir_.filePath("no_poses")));
     }
 
+    void dumpWritesALogThatImportReadsBack() {
+        const QString folder = dir_.filePath("dumped");
+        const Outcome d = runCli({"dump", paper_, dir_.filePath("paper/data/taps.csv"),
+                                  "--taxel-map", map_, "--out", folder});
+        QVERIFY2(d.exitCode == 0, qPrintable(d.err));
+        QVERIFY2(d.out.contains("360 taps"), qPrintable(d.out));
+        QFile a(folder + "/data.log"), b(logDir_ + "/data.log");
+        QVERIFY(a.open(QIODevice::ReadOnly) && b.open(QIODevice::ReadOnly));
+        QVERIFY(a.readAll() == b.readAll());
+        // A folder already holding a log is not written over without --replace.
+        const Outcome again = runCli({"dump", paper_, dir_.filePath("paper/data/taps.csv"),
+                                      "--taxel-map", map_, "--out", folder});
+        QCOMPARE(again.exitCode, 2);
+        QVERIFY2(again.err.contains("already holds a data.log"), qPrintable(again.err));
+    }
+
+    void calibrateFitsARunsTapsAndRefusesWhatItCannot() {
+        const QString out = dir_.filePath("fitted/paper_fitted.json");
+        const Outcome o = runCli(
+            {"calibrate", paper_, dir_.filePath("paper"), "--out", out, "--replicates", "5"});
+        QVERIFY2(o.exitCode == 0, qPrintable(o.err));
+        QVERIFY2(o.out.contains("taxel_noise          yes") &&
+                     o.out.contains("adc_quantisation     yes") &&
+                     o.out.contains("contact_latency      kept") &&
+                     o.out.contains("Figure 6 recorded"),
+                 qPrintable(o.out));
+        const QJsonObject report = readJson(dir_.filePath("fitted/paper_fitted.calibration.json"));
+        QCOMPARE(report["taps"].toInt(), 360);
+        QCOMPARE(report["bootstrap_replicates"].toInt(), 5);
+        QCOMPARE(report["goodness_of_fit"].toArray().size(), 12);
+        QVERIFY(report["figure6"].toObject()["simulated_recordings"].toInt() > 0);
+        // The fitted scene is a scene: check reads it, and the paper runs on it.
+        const Outcome check = runCli({"check", out});
+        QVERIFY2(check.exitCode == 0, qPrintable(check.err + check.out));
+        QVERIFY(QFileInfo(dir_.filePath("fitted/paper_fitted.simulated_taps.csv")).size() > 0);
+
+        const Outcome twice = runCli({"calibrate", paper_, dir_.filePath("paper"), "--out", out});
+        QCOMPARE(twice.exitCode, 2);
+        QVERIFY2(twice.err.contains("already exists") && twice.err.contains("--replace"),
+                 qPrintable(twice.err));
+        const Outcome noOut = runCli({"calibrate", paper_, dir_.filePath("paper")});
+        QCOMPARE(noOut.exitCode, 2);
+        QVERIFY2(noOut.err.contains("--out"), qPrintable(noOut.err));
+        const Outcome missing = runCli({"calibrate", paper_, dir_.filePath("nowhere"), "--out",
+                                        dir_.filePath("fitted/none.json")});
+        QCOMPARE(missing.exitCode, 2);
+        QVERIFY2(missing.err.contains("nowhere"), qPrintable(missing.err));
+        QVERIFY(!QFile::exists(dir_.filePath("fitted/none.json")));
+    }
+
     void theReflexThresholdFindsTapsThatTouch() {
         // A stream of three taps that touch, between resting frames: each is found where its total
         // pressure crosses the threshold, its window starting the lead before.

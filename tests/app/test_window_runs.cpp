@@ -184,6 +184,25 @@ private slots:
         QCOMPARE(fitted.effects.size(), window_->lastRun()->spec.scene.effects.size());
         dialog->close();
 
+        // A fitted scene's measured gains pass through the scene panel as they are.
+        SceneSpec withGains = window_->lastRun()->spec.scene;
+        EffectSpec gain;
+        gain.name = "taxel_gain";
+        const std::vector<double> gains{1.2, 0.8, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0.6};
+        gain.parameters = Json{{"gains", gains}};
+        withGains.effects.push_back(gain);
+        window_->scenePanel()->showScene(withGains);
+        const SceneSpec shown = window_->scenePanel()->sceneFromPanel(withGains);
+        bool found = false;
+        for (const auto& e : shown.effects)
+            if (e.name == "taxel_gain") {
+                found = true;
+                QCOMPARE(e.parameters.at("gains").get<std::vector<double>>(), gains);
+                QVERIFY(!e.parameters.contains("spread"));
+            }
+        QVERIFY(found);
+        window_->scenePanel()->showScene(window_->lastRun()->spec.scene);
+
         // A file that is no recording is said in the dialog; nothing is fitted.
         CalibrationDialog* bad = window_->calibrateRecording(dir_.filePath("nowhere.csv"));
         QSignalSpy failed(bad, &CalibrationDialog::fitFinished);
