@@ -213,6 +213,7 @@ void MainWindow::buildMenus() {
         if (!path.isEmpty()) calibrateRecording(path);
     });
     calibrate_->setObjectName("calibrate");
+    calibrate_->setShortcut(QKeySequence(tr("Ctrl+Shift+K")));
     calibrate_->setToolTip(
         tr("Fit the experiment's scene to recorded taps (from the real rig or a simulated one): "
            "noise, drift, dead taxels and gains with their uncertainties, the effects the taps "

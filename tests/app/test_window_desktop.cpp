@@ -156,6 +156,7 @@ private slots:
         QCOMPARE(dialogOf("menuCompare"), QString("Compare with the experiment (B)"));
         QCOMPARE(dialogOf("analyseRecording"), QString("Analyse recorded training and test taps"));
         QCOMPARE(dialogOf("replayRun"), QString("Replay the run recorded in (a run's folder)"));
+        QCOMPARE(dialogOf("calibrate"), QString("Fit the scene to recorded training and test taps"));
         QCOMPARE(dialogOf("menuExportAll"), QString("Export all figures into"));  // a run now
 
         // View: each dock and the tool bar hide and come back; the live view pauses.
