@@ -45,7 +45,7 @@ struct Masks {
     std::vector<std::vector<char>> pressed;
 };
 constexpr double kPressed = 20.0;
-constexpr int kMargin = 2;
+constexpr int kMargin = 4;
 
 Moments momentsOf(const std::vector<TapRecord>& taps, const Masks& masks,
                   const std::vector<char>& skip) {
