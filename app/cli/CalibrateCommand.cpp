@@ -1,3 +1,4 @@
+#include <QStringList>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -8,6 +9,8 @@
 
 #include "app/cli/CliSupport.h"
 #include "app/cli/Commands.h"
+#include "app/figures/CalibrationFigures.h"
+#include "app/figures/FigureExport.h"
 #include "core/common/InputError.h"
 #include "core/common/NumberText.h"
 #include "core/experiment/Experiment.h"
@@ -18,6 +21,7 @@
 #include "core/run/RunFolder.h"
 #include "devices/simulated/SceneFit.h"
 #include "devices/simulated/SimulatedWorld.h"
+#include "qcustomplot.h"
 
 namespace activetouch::cli {
 
@@ -40,7 +44,7 @@ Json validationJson(const ValidationResult& v) {
 }  // namespace
 
 /// calibrate: a scene fitted to recorded training and test taps (docs/calibration.md).
-int commandCalibrate(const std::vector<std::string>& args) {
+int commandCalibrate(const std::vector<std::string>& args, int argc, char** argv) {
     const RunArguments parsed = parseRunArguments(args, "calibrate", {"--replicates"}, false, true,
                                                   {{"--scene", "a base scene file"}});
     if (!parsed.error.empty()) return usageError(parsed.error);
@@ -202,8 +206,20 @@ int commandCalibrate(const std::vector<std::string>& args) {
             figure6.simulated.size(), figure6.angleMean, figure6.angleLeast, figure6.angleLargest,
             figure6.positionMean, figure6.positionLeast, figure6.positionLargest,
             figure6.recordedInsideRange ? "inside" : "outside");
-        std::printf("wrote %s, %s and %s (analyse it for its Figure 6)\n", parsed.outDir.c_str(),
-                    reportPath.c_str(), simulatedPath.c_str());
+        QStringList figures;
+        if (parsed.figures)
+            drawFigures(argc, argv, [&] {
+                QCustomPlot plot;
+                if (buildCalibrationFigure(plot, fit, figure6))
+                    figures = exportFigure(plot, QString::fromStdString(stem + ".calibration"),
+                                           {"png", "pdf", "svg"},
+                                           FigureSize::physical(kDoubleColumn_mm, 90, kFigureDpi));
+            });
+        std::printf("wrote %s, %s and %s (analyse it for its Figure 6)%s\n", parsed.outDir.c_str(),
+                    reportPath.c_str(), simulatedPath.c_str(),
+                    figures.isEmpty()
+                        ? ""
+                        : (", and the figure " + (stem + ".calibration.{png,pdf,svg}")).c_str());
         return kOk;
     } catch (const InputError& e) {
         std::fprintf(stderr, "%s\n", e.what());

@@ -15,6 +15,6 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv);
 int commandCheck(const std::vector<std::string>& args);
 int commandImport(const std::vector<std::string>& args);
 int commandDump(const std::vector<std::string>& args);
-int commandCalibrate(const std::vector<std::string>& args);
+int commandCalibrate(const std::vector<std::string>& args, int argc, char** argv);
 
 }  // namespace activetouch::cli

@@ -108,13 +108,14 @@ void printHelp() {
         "      info.log) with the stage's pose log (poses.log): for yarpdataplayer, or import.\n"
         "  activetouch-cli calibrate <experiment.json> <run folder | taps.csv>\n"
         "                            [--scene <base scene>] --out <fitted scene.json>\n"
-        "                            [--replicates N]\n"
+        "                            [--replicates N] [--no-figures]\n"
         "      Fits a scene to recorded training and test taps (from the real rig or a\n"
         "      simulated one): noise, drift, quantisation, dead taxels and per-taxel gains,\n"
         "      each estimate with its uncertainty; lists only the effects the taps call for;\n"
         "      reports how well the fitted scene reproduces the taps (Kolmogorov-Smirnov per\n"
         "      taxel, Figure 6 recorded beside simulated). Beside the scene it writes\n"
-        "      <stem>.calibration.json and <stem>.simulated_taps.csv (docs/calibration.md).\n"
+        "      <stem>.calibration.json, <stem>.simulated_taps.csv and the figure\n"
+        "      <stem>.calibration.{png,pdf,svg} (docs/calibration.md).\n"
         "  activetouch-cli check <file.json | taps.csv | following_taps.csv>\n"
         "                        [--allow-long-plan]\n"
         "      Validates an experiment (and prints its plan: taps and robot time), a scene,\n"
@@ -160,7 +161,7 @@ int main(int argc, char** argv) {
     if (command == "merge") return commandMerge(args, argc, argv);
     if (command == "import") return commandImport(args);
     if (command == "dump") return commandDump(args);
-    if (command == "calibrate") return commandCalibrate(args);
+    if (command == "calibrate") return commandCalibrate(args, argc, argv);
     return usageError("unknown command '" + command +
                       "'; use run, seeds, merge, compare, analyse, replay, import, dump,\n"
                       "calibrate or check");

@@ -10,6 +10,7 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 
+#include "app/figures/CalibrationFigures.h"
 #include "app/gui/WholeFile.h"
 #include "core/records/TapCsv.h"
 #include "qcustomplot.h"
@@ -61,7 +62,7 @@ CalibrationDialog::CalibrationDialog(const ExperimentSpec& spec, const QString& 
         "calibrationTaxels");
     plot_ = new QCustomPlot;
     plot_->setObjectName("calibrationPlot");
-    plot_->setMinimumHeight(180);
+    plot_->setMinimumHeight(300);
     auto* tables = new QHBoxLayout;
     auto* left = new QVBoxLayout;
     left->addWidget(new QLabel(tr("Which effects the taps call for (level 0.001)")));
@@ -71,10 +72,10 @@ CalibrationDialog::CalibrationDialog(const ExperimentSpec& spec, const QString& 
     auto* right = new QVBoxLayout;
     right->addWidget(new QLabel(tr("Each taxel's readings, recorded against the fitted scene")));
     right->addWidget(taxels_);
-    right->addWidget(plot_);
     tables->addLayout(left, 3);
     tables->addLayout(right, 2);
-    layout->addLayout(tables);
+    layout->addLayout(tables, 1);
+    layout->addWidget(plot_, 1);
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Close);
     save_ = buttons->addButton(tr("Save fitted scene..."), QDialogButtonBox::ActionRole);
     save_->setObjectName("saveFittedScene");
@@ -90,7 +91,7 @@ CalibrationDialog::CalibrationDialog(const ExperimentSpec& spec, const QString& 
                                            : tr("Could not save %1: %2").arg(path, problem));
     });
     layout->addWidget(buttons);
-    resize(1100, 640);
+    resize(1200, 860);
 
     // The fit runs off the window's thread on its own copies; a dialog closed meanwhile is not
     // told.
@@ -110,11 +111,9 @@ CalibrationDialog::CalibrationDialog(const ExperimentSpec& spec, const QString& 
             problem = QString::fromUtf8(e.what());
             fit.reset();
         }
-        QMetaObject::invokeMethod(qApp, [self, fit, figure6, problem] {
-            if (self)
-                self->showFit(fit, figure6.recorded.angleError_deg,
-                              figure6.recorded.positionError_mm, figure6.angleMean,
-                              figure6.positionMean, problem);
+        auto shared = std::make_shared<Figure6Comparison>(std::move(figure6));
+        QMetaObject::invokeMethod(qApp, [self, fit, shared, problem] {
+            if (self) self->showFit(fit, shared, problem);
         });
     });
     worker_.detach();
@@ -122,9 +121,9 @@ CalibrationDialog::CalibrationDialog(const ExperimentSpec& spec, const QString& 
 
 CalibrationDialog::~CalibrationDialog() = default;
 
-void CalibrationDialog::showFit(std::shared_ptr<SceneFit> fit, double recordedAngle,
-                                double recordedPosition, double simulatedAngle,
-                                double simulatedPosition, const QString& problem) {
+void CalibrationDialog::showFit(std::shared_ptr<SceneFit> fit,
+                                std::shared_ptr<Figure6Comparison> figure6,
+                                const QString& problem) {
     done_ = true;
     if (!fit) {
         status_->setText(tr("Could not fit %1:\n%2").arg(recording_, problem));
@@ -155,32 +154,14 @@ void CalibrationDialog::showFit(std::shared_ptr<SceneFit> fit, double recordedAn
                         QString("%1 to %2")
                             .arg(QString::number(fit_->pressureScaleLow, 'g', 4),
                                  QString::number(fit_->pressureScaleHigh, 'g', 4))});
-    QVector<double> x, ks, match;
     int matching = 0;
     for (const auto& t : fit_->taxels) {
         addRow(taxels_, {QString::number(t.taxel), QString::number(t.ks, 'f', 3),
                          QString::number(t.ksMatch, 'f', 3), QString::number(t.wasserstein, 'f', 3),
                          t.matches ? tr("yes") : tr("no")});
-        x << t.taxel;
-        ks << t.ks;
-        match << t.ksMatch;
         matching += t.matches;
     }
-    auto* bars = new QCPBars(plot_->xAxis, plot_->yAxis);
-    bars->setName(tr("recorded against fitted (KS)"));
-    bars->setData(x, ks);
-    bars->setWidth(0.6);
-    auto* line = plot_->addGraph();
-    line->setName(tr("a match is at most"));
-    line->setData(x, match);
-    line->setLineStyle(QCPGraph::lsStepCenter);
-    line->setPen(QPen(Qt::red, 1.5));
-    plot_->xAxis->setLabel(tr("taxel"));
-    plot_->yAxis->setLabel(tr("Kolmogorov-Smirnov distance"));
-    plot_->legend->setVisible(true);
-    plot_->rescaleAxes();
-    plot_->xAxis->setRange(-0.7, static_cast<double>(fit_->taxels.size()) - 0.3);
-    plot_->yAxis->setRangeLower(0);
+    buildCalibrationFigure(*plot_, *fit_, *figure6);
     plot_->replot();
     status_->setText(
         tr("Fitted to %1 taps (%2 samples over nothing). %3 of %4 taxels match the fitted scene. "
@@ -190,11 +171,11 @@ void CalibrationDialog::showFit(std::shared_ptr<SceneFit> fit, double recordedAn
             .arg(fit_->nothingSamples)
             .arg(matching)
             .arg(fit_->taxels.size())
-            .arg(recordedAngle, 0, 'f', 1)
-            .arg(recordedPosition, 0, 'f', 2)
-            .arg(fit_->simulated.size())
-            .arg(simulatedAngle, 0, 'f', 1)
-            .arg(simulatedPosition, 0, 'f', 2));
+            .arg(figure6->recorded.angleError_deg, 0, 'f', 1)
+            .arg(figure6->recorded.positionError_mm, 0, 'f', 2)
+            .arg(figure6->simulated.size())
+            .arg(figure6->angleMean, 0, 'f', 1)
+            .arg(figure6->positionMean, 0, 'f', 2));
     save_->setEnabled(true);
     emit fitFinished(true);
 }

@@ -39,8 +39,8 @@ signals:
     void fitFinished(bool ok);
 
 private:
-    void showFit(std::shared_ptr<SceneFit> fit, double recordedAngle, double recordedPosition,
-                 double simulatedAngle, double simulatedPosition, const QString& problem);
+    void showFit(std::shared_ptr<SceneFit> fit, std::shared_ptr<Figure6Comparison> figure6,
+                 const QString& problem);
 
     ExperimentSpec spec_;
     QString recording_;

@@ -151,6 +151,9 @@ private slots:
         const Outcome check = runCli({"check", out});
         QVERIFY2(check.exitCode == 0, qPrintable(check.err + check.out));
         QVERIFY(QFileInfo(dir_.filePath("fitted/paper_fitted.simulated_taps.csv")).size() > 0);
+        for (const char* ext : {"png", "pdf", "svg"})
+            QVERIFY2(QFileInfo(dir_.filePath("fitted/paper_fitted.calibration.") + ext).size() > 0,
+                     ext);
 
         const Outcome twice = runCli({"calibrate", paper_, dir_.filePath("paper"), "--out", out});
         QCOMPARE(twice.exitCode, 2);
