@@ -183,7 +183,7 @@ int commandCalibrate(const std::vector<std::string>& args, int argc, char** argv
         }
         std::printf("  pressure level against the scene's: %.3f (95 %% %.3f to %.3f)%s\n",
                     fit.pressureScale, fit.pressureScaleLow, fit.pressureScaleHigh,
-                    fit.pressureScaleDiffers && !fit.gainsListed
+                    fit.pressureScaleDiffers && !fit.lists("taxel_gain")
                         ? ": the taps press every taxel differently from the scene's tapper (its "
                           "stop depth, latency or stroke, or a skin uniformly more or less "
                           "sensitive); not fitted"

@@ -440,32 +440,22 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
     const double z = upperNormalQuantile(settings.alpha);
     Theta chosen = est;
     // Noise and drift: listed when the estimate lies more than z standard errors above zero.
-    {
-        const double se = sd(sigmas);
-        const double stat = se > 0 ? est.sigma / se : (est.sigma > 0 ? 1e9 : 0.0);
+    auto aboveZero = [&](const char* effect, const char* name, const char* what, double value,
+                         const std::vector<double>& replicates) {
+        const double se = sd(replicates);
+        const double stat = se > 0 ? value / se : (value > 0 ? 1e9 : 0.0);
         const bool listed = stat > z;
-        fit.choices.push_back({"taxel_noise", listed,
-                               "sigma / its standard error against the one-sided normal "
-                               "quantile at the level",
+        fit.choices.push_back({effect, listed,
+                               std::string(what) +
+                                   " / its standard error against the one-sided normal quantile "
+                                   "at the level",
                                stat, z, true});
-        if (listed)
-            parameter("taxel_noise", "sigma_counts", est.sigma, se);
-        else
-            chosen.sigma = 0.0;
-    }
-    {
-        const double se = sd(rates);
-        const double stat = se > 0 ? est.rate / se : (est.rate > 0 ? 1e9 : 0.0);
-        const bool listed = stat > z;
-        fit.choices.push_back({"baseline_drift", listed,
-                               "drift rate / its standard error against the one-sided normal "
-                               "quantile at the level",
-                               stat, z, true});
-        if (listed)
-            parameter("baseline_drift", "rate_counts_per_sqrt_s", est.rate, se);
-        else
-            chosen.rate = 0.0;
-    }
+        if (listed) parameter(effect, name, value, se);
+        return listed;
+    };
+    if (!aboveZero("taxel_noise", "sigma_counts", "sigma", est.sigma, sigmas)) chosen.sigma = 0.0;
+    if (!aboveZero("baseline_drift", "rate_counts_per_sqrt_s", "drift rate", est.rate, rates))
+        chosen.rate = 0.0;
     {
         // Gains: a Wald test of the log gains' spread about their mean (chi-square with one
         // degree of freedom fewer than the live taxels). Their common level is the tapper's as
@@ -499,7 +489,6 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
                                "chi-square with one degree of freedom fewer than the live taxels "
                                "at the level",
                                wald, threshold, true});
-        fit.gainsListed = listed;
         const double seCommon = std::sqrt(meanLogVar);
         fit.pressureScale = std::exp(meanLog);
         fit.pressureScaleLow = std::exp(meanLog - 1.96 * seCommon);
@@ -598,6 +587,12 @@ Figure6Comparison compareFigure6(const ExperimentSpec& spec, const std::vector<C
                             c.recorded.positionError_mm >= c.positionLeast &&
                             c.recorded.positionError_mm <= c.positionLargest;
     return c;
+}
+
+bool SceneFit::lists(const std::string& effect) const {
+    for (const auto& c : choices)
+        if (c.effect == effect) return c.listed;
+    return false;
 }
 
 std::string fittedSceneJson(const SceneFit& fit) {

@@ -58,12 +58,13 @@ struct SceneFit {
     std::vector<FittedParameter> parameters;
     std::vector<EffectChoice> choices;
     std::vector<TaxelFit> taxels;
+    /// Whether the fitted scene lists `effect` (its choice says so).
+    bool lists(const std::string& effect) const;
     /// The taps' pressure level against the fitted scene's, over every live taxel: a tapper that
     /// stops at another depth (latency, stroke) or a skin more sensitive throughout. Not fitted;
     /// said when it differs at the level.
     double pressureScale = 1.0, pressureScaleLow = 1.0, pressureScaleHigh = 1.0;
     bool pressureScaleDiffers = false;
-    bool gainsListed = false;  ///< taxel_gain is listed: the gains carry the level
     std::vector<int> deadTaxels;
     double deadReading = 0.0;
     int taps = 0;

@@ -482,7 +482,8 @@ private slots:
         // machine's load (docs/calibration.md): it is printed, and held to the noise's order.
         qInfo("noise sigma %.3f [%.3f, %.3f] against the bench's 1.5", sigma->value, sigma->low,
               sigma->high);
-        QVERIFY2(sigma->value > 1.0 && sigma->value < 2.0, qPrintable(QString::number(sigma->value)));
+        QVERIFY2(sigma->value > 1.0 && sigma->value < 2.0,
+                 qPrintable(QString::number(sigma->value)));
     }
 
     void aTrialOnAnotherObjectIsRefusedBeforeAnyTap() {
