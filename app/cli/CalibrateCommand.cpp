@@ -45,7 +45,7 @@ Json validationJson(const ValidationResult& v) {
 
 /// calibrate: a scene fitted to recorded training and test taps (docs/calibration.md).
 int commandCalibrate(const std::vector<std::string>& args, int argc, char** argv) {
-    const RunArguments parsed = parseRunArguments(args, "calibrate", {"--replicates"}, false, true,
+    const RunArguments parsed = parseRunArguments(args, "calibrate", {"--replicates"}, true, true,
                                                   {{"--scene", "a base scene file"}});
     if (!parsed.error.empty()) return usageError(parsed.error);
     if (parsed.outDir.empty())

@@ -159,6 +159,13 @@ private slots:
         QCOMPARE(twice.exitCode, 2);
         QVERIFY2(twice.err.contains("already exists") && twice.err.contains("--replace"),
                  qPrintable(twice.err));
+        // --no-figures writes the scene and its report without the figure.
+        const QString bare = dir_.filePath("fitted/bare.json");
+        const Outcome noFigures = runCli({"calibrate", paper_, dir_.filePath("paper"), "--out",
+                                          bare, "--replicates", "5", "--no-figures"});
+        QVERIFY2(noFigures.exitCode == 0, qPrintable(noFigures.err));
+        QVERIFY(QFile::exists(bare) &&
+                !QFile::exists(dir_.filePath("fitted/bare.calibration.png")));
         const Outcome noOut = runCli({"calibrate", paper_, dir_.filePath("paper")});
         QCOMPARE(noOut.exitCode, 2);
         QVERIFY2(noOut.err.contains("--out"), qPrintable(noOut.err));
