@@ -7,16 +7,6 @@
 
 namespace activetouch {
 
-namespace {
-/// Whole-number ticks every `step` on `axis` (positions and taxels are counted, not measured).
-void wholeTicks(QCPAxis* axis, double step) {
-    QSharedPointer<QCPAxisTickerFixed> ticker(new QCPAxisTickerFixed);
-    ticker->setTickStep(step);
-    ticker->setScaleStrategy(QCPAxisTickerFixed::ssNone);
-    axis->setTicker(ticker);
-}
-}  // namespace
-
 bool buildCalibrationFigure(QCustomPlot& plot, const SceneFit& fit,
                             const Figure6Comparison& figure6) {
     int matching = 0;
@@ -68,7 +58,7 @@ bool buildCalibrationFigure(QCustomPlot& plot, const SceneFit& fit,
                        seriesColour(1));
         addSeries(rect, legend, "recorded", x, recorded, seriesColour(0));
         rect->axis(QCPAxis::atBottom)->setRange(0.5, double(positions) + 0.5);
-        wholeTicks(rect->axis(QCPAxis::atBottom), positions > 12 ? 3.0 : 1.0);
+        integerTicks(rect->axis(QCPAxis::atBottom), positions > 12 ? 3.0 : 1.0);
         rect->axis(QCPAxis::atLeft)->rescale();
         rect->axis(QCPAxis::atLeft)->setRangeLower(0);
     };
@@ -94,7 +84,7 @@ bool buildCalibrationFigure(QCustomPlot& plot, const SceneFit& fit,
     limit->setPen(QPen(Qt::gray, 1, Qt::DashLine));
     addSeries(rect, legend, "recorded against fitted", x, ks, seriesColour(0), false);
     rect->axis(QCPAxis::atBottom)->setRange(-0.6, double(fit.taxels.size()) - 0.4);
-    wholeTicks(rect->axis(QCPAxis::atBottom), fit.taxels.size() > 12 ? 4.0 : 1.0);
+    integerTicks(rect->axis(QCPAxis::atBottom), fit.taxels.size() > 12 ? 4.0 : 1.0);
     rect->axis(QCPAxis::atLeft)->rescale();
     rect->axis(QCPAxis::atLeft)->setRangeLower(0);
     rect->axis(QCPAxis::atLeft)->setRangeUpper(rect->axis(QCPAxis::atLeft)->range().upper * 1.15);

@@ -62,6 +62,13 @@ QCPCurve* addPolyline(QCPAxis* xAxis, QCPAxis* yAxis, const std::vector<Vec2>& p
     return c;
 }
 
+void integerTicks(QCPAxis* axis, double step) {
+    QSharedPointer<QCPAxisTickerFixed> t(new QCPAxisTickerFixed);
+    t->setTickStep(step);
+    t->setScaleStrategy(QCPAxisTickerFixed::ssNone);
+    axis->setTicker(t);
+}
+
 void setPanelTitle(QCPAxisRect* rect, const QString& text) {
     QCPAxis* top = rect->axis(QCPAxis::atTop);
     top->setVisible(true);

@@ -48,6 +48,9 @@ QColor taxelColour(int k);
 QCPAxisRect* addTitledPanel(QCPLayoutGrid* grid, int column, const QString& title,
                             const QString& xLabel, const QString& yLabel);
 
+/// Ticks every `step` on `axis`, never rescaled: for counted things (positions, taxels, seeds).
+void integerTicks(QCPAxis* axis, double step);
+
 /// A legend inside the panel's top right corner.
 QCPLegend* addLegend(QCPAxisRect* rect);
 

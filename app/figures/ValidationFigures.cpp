@@ -11,13 +11,6 @@
 namespace activetouch {
 namespace {
 
-void integerTicks(QCPAxis* axis, double step) {
-    QSharedPointer<QCPAxisTickerFixed> t(new QCPAxisTickerFixed);
-    t->setTickStep(step);
-    t->setScaleStrategy(QCPAxisTickerFixed::ssNone);
-    axis->setTicker(t);
-}
-
 QCPAxisRect* addPanel(QCPLayoutGrid* grid, int row, int column, const QString& xLabel,
                       const QString& yLabel) {
     auto* rect = new QCPAxisRect(grid->parentPlot());
