@@ -7,6 +7,10 @@
 #include <limits>
 #include <stdexcept>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include "core/common/Avx2Clones.h"
 #include "core/common/NumberText.h"
 
@@ -34,6 +38,16 @@ int HistogramClassifier::binOf(int taxel, double value) const {
 }
 
 namespace {
+
+// The screening table's largest level: a row's half-range maps to +-32767.
+constexpr double kScreenLevels = 32767.0;
+// Screening sums stay exact in 32 bits while a tap has at most this many samples (each a count
+// times a level of at most 32767 in magnitude); longer taps are summed exactly throughout.
+constexpr std::size_t kMaxScreenSamples = 32767;
+
+// Up to this many cells per sample, a tap's counts are scanned whole (a few operations per
+// sixteen cells) rather than marked per sample in a bitmap (about six per sample).
+constexpr std::size_t kScanCellsPerSample = 8;
 
 // Spreads each (taxel, class) column of counts over neighbouring bins by a Gaussian of `sigma`
 // bins, cut at the range's ends and scaled per source bin so that no count is lost.
@@ -152,16 +166,34 @@ HistogramClassifier HistogramClassifier::train(const std::vector<LabelledTap>& t
             }
         }
     }
-    // The screening copies (classify, decide).
-    c.logTableF_.assign(c.logTable_.begin(), c.logTable_.end());
+    // The screening copies (classify, decide). Each cell's row is stored about its midrange in
+    // steps of one size for the whole table, the widest half-range taking the full 16 bits.
     const std::size_t cells = static_cast<std::size_t>(K) * B;
     c.logTableByClass_.resize(cells * C);
-    c.cellMaxAbs_.assign(cells, 0.0);
-    for (std::size_t cell = 0; cell < cells; ++cell)
+    c.screenOffset_.assign(cells, 0.0);
+    double widestHalfRange = 0.0;
+    for (std::size_t cell = 0; cell < cells; ++cell) {
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
         for (std::size_t cls = 0; cls < C; ++cls) {
             const double v = c.logTable_[cell * C + cls];
             c.logTableByClass_[cls * cells + cell] = v;
-            c.cellMaxAbs_[cell] = std::max(c.cellMaxAbs_[cell], std::abs(v));
+            c.maxAbsLog_ = std::max(c.maxAbsLog_, std::abs(v));
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+        }
+        c.screenOffset_[cell] = 0.5 * (lo + hi);
+        widestHalfRange = std::max(widestHalfRange, 0.5 * (hi - lo));
+    }
+    c.screenStep_ = widestHalfRange > 0.0 ? widestHalfRange / kScreenLevels : 1.0;
+    c.screenStride_ = (C + 15) / 16 * 16;
+    // One row more, all zeros: the partner of an odd row out in the pairwise sums.
+    c.screenTable_.assign((cells + 1) * c.screenStride_, 0);
+    for (std::size_t cell = 0; cell < cells; ++cell)
+        for (std::size_t cls = 0; cls < C; ++cls) {
+            const double q = std::nearbyint((c.logTable_[cell * C + cls] - c.screenOffset_[cell]) /
+                                            c.screenStep_);
+            c.screenTable_[cell * c.screenStride_ + cls] =
+                static_cast<std::int16_t>(std::clamp(q, -kScreenLevels, kScreenLevels));
         }
     return c;
 }
@@ -213,43 +245,74 @@ ACTIVETOUCH_AVX2_CLONES void accumulateRows(const double* const* rows, const dou
     }
 }
 
-// The same in single precision over the float table, for screening: 64 classes at a time.
-using Float8 = float __attribute__((vector_size(32)));
+// The screening sums, exact in 32-bit integers: out[c] = sum_i counts[i] * q[cells[i]][c] for
+// every padded class. Integer sums do not depend on their order, so both builds give the same.
+void screenSumsPortable(const std::int16_t* table, std::size_t stride, const std::uint32_t* cells,
+                        const std::int32_t* counts, std::size_t rows, std::int32_t* out) {
+    std::fill(out, out + stride, 0);
+    for (std::size_t i = 0; i < rows; ++i) {
+        const std::int16_t* row = table + static_cast<std::size_t>(cells[i]) * stride;
+        const std::int32_t n = counts[i];
+        for (std::size_t c = 0; c < stride; ++c) out[c] += n * row[c];
+    }
+}
 
-template <std::size_t Vectors>
-__attribute__((always_inline)) inline void accumulateChunkF(
-    const float* table, const std::uint32_t* cells, const double* weights, std::size_t rowCount,
-    std::size_t classes, std::size_t c0, float* out) {
-    Float8 acc[Vectors] = {};
-    for (std::size_t i = 0; i < rowCount; ++i) {
-        const float* row = table + static_cast<std::size_t>(cells[i]) * classes + c0;
-        const auto w = static_cast<float>(weights[i]);
-        const Float8 n = {w, w, w, w, w, w, w, w};
-        for (std::size_t j = 0; j < Vectors; ++j) {
-            Float8 r;
-            std::memcpy(&r, row + 8 * j, sizeof r);
-            acc[j] += n * r;
+#if defined(__x86_64__)
+// Two rows at a time: their levels interleaved 16 bits apart, multiplied by the two counts and
+// added pairwise (vpmaddwd), for `Blocks` blocks of 16 classes held in registers over all rows.
+// Within each 128-bit lane, the low unpack holds classes 0-3 (8-11), the high one 4-7 (12-15).
+template <std::size_t Blocks>
+__attribute__((target("avx2"), always_inline)) inline void screenChunkAvx2(
+    const std::int16_t* table, std::size_t stride, const std::uint32_t* cells,
+    const std::int32_t* counts, std::size_t rows, std::size_t c0, std::int32_t* out) {
+    __m256i lo[Blocks], hi[Blocks];
+    for (std::size_t j = 0; j < Blocks; ++j) lo[j] = hi[j] = _mm256_setzero_si256();
+    // The zero row after the table partners an odd last row.
+    const std::int16_t* zero = table + static_cast<std::size_t>(cells[rows]) * stride + c0;
+    const auto rowAt = [&](std::size_t i) {
+        return table + static_cast<std::size_t>(cells[i]) * stride + c0;
+    };
+    // The rows are scattered over the table: fetch ahead of use.
+    constexpr std::size_t kAhead = 8;
+    for (std::size_t i = 0; i < rows; i += 2) {
+        if (i + kAhead + 1 < rows)
+            for (std::size_t j = 0; j < Blocks; j += 2) {
+                __builtin_prefetch(rowAt(i + kAhead) + 16 * j);
+                __builtin_prefetch(rowAt(i + kAhead + 1) + 16 * j);
+            }
+        const bool pair = i + 1 < rows;
+        const std::int16_t* a = rowAt(i);
+        const std::int16_t* b = pair ? rowAt(i + 1) : zero;
+        const auto w = static_cast<std::uint32_t>(static_cast<std::uint16_t>(counts[i])) |
+                       (pair ? static_cast<std::uint32_t>(counts[i + 1]) << 16 : 0u);
+        const __m256i weights = _mm256_set1_epi32(static_cast<int>(w));
+        for (std::size_t j = 0; j < Blocks; ++j) {
+            const __m256i va = _mm256_load_si256(reinterpret_cast<const __m256i*>(a + 16 * j));
+            const __m256i vb = _mm256_load_si256(reinterpret_cast<const __m256i*>(b + 16 * j));
+            lo[j] =
+                _mm256_add_epi32(lo[j], _mm256_madd_epi16(_mm256_unpacklo_epi16(va, vb), weights));
+            hi[j] =
+                _mm256_add_epi32(hi[j], _mm256_madd_epi16(_mm256_unpackhi_epi16(va, vb), weights));
         }
     }
-    std::memcpy(out + c0, acc, sizeof acc);
-}
-
-ACTIVETOUCH_AVX2_CLONES void accumulateRowsF(const float* table, const std::uint32_t* cells,
-                                             const double* weights, std::size_t rowCount,
-                                             std::size_t classes, float* out) {
-    std::size_t c0 = 0;
-    for (; c0 + 64 <= classes; c0 += 64)
-        accumulateChunkF<8>(table, cells, weights, rowCount, classes, c0, out);
-    for (; c0 + 8 <= classes; c0 += 8)
-        accumulateChunkF<1>(table, cells, weights, rowCount, classes, c0, out);
-    for (; c0 < classes; ++c0) {
-        float acc = 0.0f;
-        for (std::size_t i = 0; i < rowCount; ++i)
-            acc += static_cast<float>(weights[i]) *
-                   table[static_cast<std::size_t>(cells[i]) * classes + c0];
-        out[c0] = acc;
+    for (std::size_t j = 0; j < Blocks; ++j) {
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + c0 + 16 * j),
+                            _mm256_permute2x128_si256(lo[j], hi[j], 0x20));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + c0 + 16 * j + 8),
+                            _mm256_permute2x128_si256(lo[j], hi[j], 0x31));
     }
 }
+
+__attribute__((target("avx2"))) void screenSumsAvx2(const std::int16_t* table, std::size_t stride,
+                                                    const std::uint32_t* cells,
+                                                    const std::int32_t* counts, std::size_t rows,
+                                                    std::int32_t* out) {
+    std::size_t c0 = 0;
+    for (; c0 + 80 <= stride; c0 += 80)
+        screenChunkAvx2<5>(table, stride, cells, counts, rows, c0, out);
+    for (; c0 < stride; c0 += 16) screenChunkAvx2<1>(table, stride, cells, counts, rows, c0, out);
+}
+#endif
 
 // Bins of a block of samples. Branch-free so it vectorises over the flat block, with the per-
 // taxel range tiled to the block's length: (v - min) * scale clamped to [0, B - 1]; NaN compares
@@ -269,52 +332,96 @@ ACTIVETOUCH_AVX2_CLONES void binBlock(const double* __restrict samples, std::siz
 
 }  // namespace
 
+namespace detail {
+
+void screenSums(const std::int16_t* table, std::size_t stride, const std::uint32_t* cells,
+                const std::int32_t* counts, std::size_t rows, std::int32_t* out, bool portable) {
+#if defined(__x86_64__)
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2 && !portable) return screenSumsAvx2(table, stride, cells, counts, rows, out);
+#endif
+    screenSumsPortable(table, stride, cells, counts, rows, out);
+}
+
+}  // namespace detail
+
 std::size_t HistogramClassifier::tapCells(const Tap& tap, const std::uint32_t** cellsOut,
-                                          const double** countsOut) const {
+                                          const std::int32_t** countsOut) const {
     if (tap.taxels != taxels_)
         throw std::invalid_argument("tap has " + std::to_string(tap.taxels) +
                                     " taxels, the classifier was trained on " +
                                     std::to_string(taxels_));
-    // The tap's count vector over (taxel, bin) cells: count samples per cell and mark the cells
-    // touched in a bitmap, then visit the marked cells in ascending order (so every sum over
-    // them does not depend on sample order) and clear as we go.
+    // The tap's count vector over (taxel, bin) cells: count samples per cell, then visit the
+    // touched cells in ascending order (so every sum over them does not depend on sample order)
+    // and clear as we go.
     thread_local std::vector<std::uint32_t> counts, cellOf, cells;
-    thread_local std::vector<double> weights;
+    thread_local std::vector<std::uint16_t> smallCounts;
+    thread_local std::vector<std::int32_t> weights;
     thread_local std::vector<std::uint64_t> touched;
     const std::size_t cellsTotal =
         static_cast<std::size_t>(taxels_) * static_cast<std::size_t>(bins_);
-    if (counts.size() < cellsTotal) {
-        counts.assign(cellsTotal, 0);
-        touched.assign((cellsTotal + 63) / 64, 0);
-    }
     cellOf.resize(tap.samples.size());
     const std::size_t block = minTiled_.size();
     for (std::size_t start = 0; start < tap.samples.size(); start += block)
         binBlock(tap.samples.data() + start, std::min(block, tap.samples.size() - start),
                  minTiled_.data(), scaleTiled_.data(), cellBaseTiled_.data(),
                  static_cast<double>(bins_ - 1), cellOf.data() + start);
-    std::uint32_t* const count = counts.data();
-    std::uint64_t* const marks = touched.data();
-    for (const std::uint32_t cell : cellOf) {
-        ++count[cell];
-        marks[cell >> 6] |= std::uint64_t{1} << (cell & 63);
-    }
-    cells.resize(std::min(cellOf.size(), cellsTotal));
+    // One cell more than can be touched, for the end marker naming the screening table's zero
+    // row, and room for a block of sixteen written whole.
+    cells.resize(std::min(cellOf.size(), cellsTotal) + 17);
     weights.resize(cells.size());
     std::size_t distinct = 0;
-    const std::size_t words = (cellsTotal + 63) / 64;
-    for (std::size_t w = 0; w < words; ++w) {
-        std::uint64_t bits = marks[w];
-        marks[w] = 0;
-        while (bits) {
-            const auto cell = static_cast<std::uint32_t>(
-                w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits)));
-            bits &= bits - 1;
-            cells[distinct] = cell;
-            weights[distinct++] = static_cast<double>(count[cell]);
-            count[cell] = 0;
+    const auto emit = [&](std::size_t cell, std::uint32_t n) {
+        cells[distinct] = static_cast<std::uint32_t>(cell);
+        weights[distinct++] = static_cast<std::int32_t>(n);
+    };
+    if (cellsTotal <= kScanCellsPerSample * cellOf.size() && cellOf.size() <= 0xffff) {
+        // Few cells for the samples: count in 16 bits and scan the counts four to a word.
+        // Sixteen cells (four words) at a time, most of them untouched.
+        const std::size_t blocks = (cellsTotal + 15) / 16;
+        if (smallCounts.size() < 16 * blocks) smallCounts.assign(16 * blocks, 0);
+        std::uint16_t* const count = smallCounts.data();
+        for (const std::uint32_t cell : cellOf) ++count[cell];
+        // Within a touched block every cell is written and the next write moves on past the
+        // touched ones only: no branch on what a tap's counts happen to be.
+        for (std::size_t b = 0; b < blocks; ++b) {
+            std::uint64_t v[4];
+            std::memcpy(v, count + 16 * b, sizeof v);
+            if ((v[0] | v[1] | v[2] | v[3]) == 0) continue;
+            std::uint16_t n[16];
+            std::memcpy(n, v, sizeof n);
+            std::memset(count + 16 * b, 0, sizeof v);
+            for (std::size_t lane = 0; lane < 16; ++lane) {
+                cells[distinct] = static_cast<std::uint32_t>(16 * b + lane);
+                weights[distinct] = n[lane];
+                distinct += n[lane] != 0 ? 1 : 0;
+            }
+        }
+    } else {
+        // Many: count in 32 bits and mark the cells touched in a bitmap.
+        if (counts.size() < cellsTotal) {
+            counts.assign(cellsTotal, 0);
+            touched.assign((cellsTotal + 63) / 64, 0);
+        }
+        std::uint32_t* const count = counts.data();
+        std::uint64_t* const marks = touched.data();
+        for (const std::uint32_t cell : cellOf) {
+            ++count[cell];
+            marks[cell >> 6] |= std::uint64_t{1} << (cell & 63);
+        }
+        const std::size_t words = (cellsTotal + 63) / 64;
+        for (std::size_t w = 0; w < words; ++w) {
+            std::uint64_t bits = marks[w];
+            marks[w] = 0;
+            while (bits) {
+                const std::size_t cell = w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits));
+                bits &= bits - 1;
+                emit(cell, count[cell]);
+                count[cell] = 0;
+            }
         }
     }
+    cells[distinct] = static_cast<std::uint32_t>(cellsTotal);
     *cellsOut = cells.data();
     *countsOut = weights.data();
     return distinct;
@@ -323,49 +430,71 @@ std::size_t HistogramClassifier::tapCells(const Tap& tap, const std::uint32_t** 
 void HistogramClassifier::logLikelihoods(const Tap& tap, double* out) const {
     const std::size_t C = static_cast<std::size_t>(classes_);
     const std::uint32_t* cells = nullptr;
-    const double* weights = nullptr;
-    const std::size_t distinct = tapCells(tap, &cells, &weights);
+    const std::int32_t* counts = nullptr;
+    const std::size_t distinct = tapCells(tap, &cells, &counts);
     thread_local std::vector<const double*> rows;
+    thread_local std::vector<double> weights;
     rows.resize(distinct);
-    for (std::size_t i = 0; i < distinct; ++i)
+    weights.resize(distinct);
+    for (std::size_t i = 0; i < distinct; ++i) {
         rows[i] = logTable_.data() + static_cast<std::size_t>(cells[i]) * C;
-    accumulateRows(rows.data(), weights, distinct, C, out);
+        weights[i] = static_cast<double>(counts[i]);
+    }
+    accumulateRows(rows.data(), weights.data(), distinct, C, out);
 }
 
-void HistogramClassifier::screenedScores(const Tap& tap, double marginNats, double* out) const {
+HistogramClassifier::Screen HistogramClassifier::screenedScores(const Tap& tap, double marginNats,
+                                                                bool exactIfAlone,
+                                                                double* out) const {
     const std::size_t C = static_cast<std::size_t>(classes_);
+    if (tap.samples.size() > kMaxScreenSamples) {
+        logLikelihoods(tap, out);
+        return {C, -1};
+    }
     const std::uint32_t* cells = nullptr;
-    const double* weights = nullptr;
-    const std::size_t distinct = tapCells(tap, &cells, &weights);
-    thread_local std::vector<float> rough;
-    rough.resize(C);
-    accumulateRowsF(logTableF_.data(), cells, weights, distinct, C, rough.data());
-    // Each single-precision score is within `bound` of the exact one: every table entry is
-    // rounded once (relative error u = 2^-24), every product once, and a sum of R terms errs by
-    // at most R u times the sum of their magnitudes (the standard bound, doubled for margin).
-    double magnitude = 0.0;
-    for (std::size_t i = 0; i < distinct; ++i) magnitude += weights[i] * cellMaxAbs_[cells[i]];
-    constexpr double u = 0x1p-24;
-    const double bound = 2.0 * (static_cast<double>(distinct) + 3.0) * u * magnitude;
-    float best = -std::numeric_limits<float>::infinity();
-    for (float v : rough) best = std::max(best, v);
+    const std::int32_t* counts = nullptr;
+    const std::size_t distinct = tapCells(tap, &cells, &counts);
+    thread_local std::vector<std::int32_t> sums;
+    sums.resize(screenStride_);
+    detail::screenSums(screenTable_.data(), screenStride_, cells, counts, distinct, sums.data(),
+                       false);
+    // A screening score is offset + step * sum. Each level is within half a step of its entry,
+    // so a score is within step/2 per sample of the exact one, plus the rounding of the double
+    // sums (far below 1e-12 of the terms' magnitudes, at most samples * max |log P|); the bound
+    // takes twice both.
+    double base = 0.0;
+    for (std::size_t i = 0; i < distinct; ++i)
+        base += static_cast<double>(counts[i]) * screenOffset_[cells[i]];
+    const auto samples = static_cast<double>(tap.samples.size());
+    const double bound = screenStep_ * samples + 2e-12 * samples * maxAbsLog_;
+    for (std::size_t c = 0; c < C; ++c) out[c] = base + screenStep_ * static_cast<double>(sums[c]);
+    double best = -std::numeric_limits<double>::infinity();
+    for (std::size_t c = 0; c < C; ++c) best = out[c] > best ? out[c] : best;
     // Classes that could be within `marginNats` of the exact maximum (or of a tie with it) are
     // summed exactly, in the same order and operations as logLikelihoods(); the rest keep their
-    // single-precision score.
-    const double floor = static_cast<double>(best) - 2.0 * bound - marginNats -
-                         2.0 * kTieTolerance * (std::abs(static_cast<double>(best)) + bound + 1.0);
+    // screening score, which cannot decide anything.
+    const double floor =
+        best - 2.0 * bound - marginNats - 2.0 * kTieTolerance * (std::abs(best) + bound + 1.0);
+    if (!std::isfinite(floor)) {
+        logLikelihoods(tap, out);
+        return {C, -1};
+    }
+    std::size_t within = 0;
+    for (std::size_t c = 0; c < C; ++c) within += out[c] >= floor ? 1 : 0;
+    // One class alone within the margin is the maximum, and no other ties with it.
+    if (within == 1 && !exactIfAlone)
+        return {0, static_cast<int>(std::find(out, out + C, best) - out)};
     const std::size_t cellsTotal =
         static_cast<std::size_t>(taxels_) * static_cast<std::size_t>(bins_);
     for (std::size_t c = 0; c < C; ++c) {
-        if (!(static_cast<double>(rough[c]) >= floor) && std::isfinite(floor)) {
-            out[c] = static_cast<double>(rough[c]);
-            continue;
-        }
+        if (!(out[c] >= floor)) continue;
         const double* row = logTableByClass_.data() + c * cellsTotal;
         double acc = 0.0;
-        for (std::size_t i = 0; i < distinct; ++i) acc += weights[i] * row[cells[i]];
+        for (std::size_t i = 0; i < distinct; ++i)
+            acc += static_cast<double>(counts[i]) * row[cells[i]];
         out[c] = acc;
     }
+    return {within, -1};
 }
 
 int argmaxLowestIndex(const double* v, int n) {
@@ -395,8 +524,9 @@ double logSumExp(const double* v, int n) {
 int HistogramClassifier::classify(const Tap& tap) const {
     thread_local std::vector<double> scores;
     scores.resize(static_cast<std::size_t>(classes_));
-    screenedScores(tap, 0.0, scores.data());  // every possible winner exact: the same argmax
-    return argmaxLowestIndex(scores.data(), classes_);
+    // Every possible winner exact, or the one possible winner known: the same argmax.
+    const Screen screen = screenedScores(tap, 0.0, false, scores.data());
+    return screen.alone >= 0 ? screen.alone : argmaxLowestIndex(scores.data(), classes_);
 }
 
 HistogramClassifier::Decision HistogramClassifier::decide(const Tap& tap) const {
@@ -404,7 +534,7 @@ HistogramClassifier::Decision HistogramClassifier::decide(const Tap& tap) const 
     // below any posterior's resolution; within that, every score is exact.
     thread_local std::vector<double> scores;
     scores.resize(static_cast<std::size_t>(classes_));
-    screenedScores(tap, 60.0, scores.data());
+    screenedScores(tap, 60.0, true, scores.data());
     Decision d;
     d.cls = argmaxLowestIndex(scores.data(), classes_);
     d.posterior =

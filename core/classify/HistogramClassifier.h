@@ -98,8 +98,9 @@ public:
     void logLikelihoods(const Tap& tap, double* out) const;
 
     /// The maximum-likelihood class (lowest index on ties): the same as the argmax of
-    /// logLikelihoods(), found by scoring every class in single precision, bounding that
-    /// score's error, and summing exactly only the classes within the bound of the best.
+    /// logLikelihoods(), found by scoring every class from a 16-bit fixed-point copy of the
+    /// table in exact integer sums, bounding that score's error, and summing exactly only the
+    /// classes within the bound of the best (none when one class alone is within it).
     int classify(const Tap& tap) const;
 
     struct Decision {
@@ -110,11 +111,18 @@ public:
 
 private:
     /// The tap's distinct (taxel, bin) cells in ascending order with their sample counts, in
-    /// thread-local buffers; returns how many.
-    std::size_t tapCells(const Tap& tap, const std::uint32_t** cells, const double** counts) const;
+    /// thread-local buffers; returns how many. The cell after the last names the screening
+    /// table's zero row.
+    std::size_t tapCells(const Tap& tap, const std::uint32_t** cells,
+                         const std::int32_t** counts) const;
     /// Exact scores (as logLikelihoods gives them) of the classes that can decide the tap, and
-    /// single-precision scores of the rest, which cannot: see classify().
-    void screenedScores(const Tap& tap, double marginNats, double* out) const;
+    /// screening scores of the rest, which cannot: see classify(). With `exactIfAlone` false, a
+    /// class alone within the margin keeps its screening score and is named.
+    struct Screen {
+        std::size_t exact = 0;  ///< classes summed exactly
+        int alone = -1;         ///< the one class within the margin, or -1
+    };
+    Screen screenedScores(const Tap& tap, double marginNats, bool exactIfAlone, double* out) const;
 
     int classes_ = 0, taxels_ = 0, bins_ = 0;
     std::vector<double> min_, max_,
@@ -122,12 +130,25 @@ private:
     std::vector<double> minTiled_, scaleTiled_;  // the same, repeated over a block of frames
     std::vector<std::uint32_t> cellBaseTiled_;   // taxel * bins, likewise
     std::vector<double, CacheLineAllocator<double>> logTable_;  // [taxel][bin][class]
-    // For classify() and decide(): the table in single precision, the same by class
-    // ([class][taxel][bin]) for exact sums of a few classes, and each cell's largest |log P|.
-    std::vector<float, CacheLineAllocator<float>> logTableF_;
+    // For classify() and decide(): the table in 16-bit fixed point, log P = offset[cell] +
+    // step * q[cell][class], rows padded to a multiple of 16 classes; the double table by class
+    // ([class][taxel][bin]) for exact sums of a few classes; and the largest |log P|.
+    std::vector<std::int16_t, CacheLineAllocator<std::int16_t>> screenTable_;
+    std::vector<double> screenOffset_;
+    double screenStep_ = 1.0;
+    std::size_t screenStride_ = 0;
     std::vector<double, CacheLineAllocator<double>> logTableByClass_;
-    std::vector<double> cellMaxAbs_;
+    double maxAbsLog_ = 0.0;
 };
+
+namespace detail {
+/// The screening sums of classify(): out[c] = sum over i < rows of counts[i] *
+/// table[cells[i] * stride + c] for c < stride (a multiple of 16), exact in 32-bit integers.
+/// `cells[rows]` must name an all-zero row. By the portable loop, or where the CPU has AVX2 and
+/// `portable` is false, by the vector kernel; the two give the same sums.
+void screenSums(const std::int16_t* table, std::size_t stride, const std::uint32_t* cells,
+                const std::int32_t* counts, std::size_t rows, std::int32_t* out, bool portable);
+}  // namespace detail
 
 /// Relative width of a tie: scores this close to the maximum are equal for the decision. Sums
 /// that are equal in exact arithmetic can differ in the last bits when their terms are added in

@@ -2,6 +2,7 @@
 // and decides exactly as an independent long-double implementation of eq. 1-2 does.
 #include <QtTest>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/classify/HistogramClassifier.h"
@@ -145,7 +146,7 @@ void verifyFiniteAndMatchesReference(const HistogramClassifier& clf, const Refer
     clf.logLikelihoods(tap, scores.data());
     for (double s : scores) QVERIFY2(std::isfinite(s), "a log-likelihood is not finite");
     QCOMPARE(clf.classify(tap), ref.decide(tap));
-    // classify() and decide() screen classes in single precision: the same winner as the exact
+    // classify() and decide() screen classes in 16-bit fixed point: the same winner as the exact
     // scores, and the same posterior to far below any threshold's resolution.
     const int exactWinner = argmaxLowestIndex(scores.data(), clf.classCount());
     QCOMPARE(clf.classify(tap), exactWinner);
@@ -275,6 +276,9 @@ private slots:
     void singleSampleAndTenThousandSampleTaps_data() {
         QTest::addColumn<int>("samples");
         QTest::newRow("T = 1") << 1;
+        // 32,760 samples: the longest taps the fixed-point screen sums, with counts in the
+        // thousands; 10,000 per taxel is past it and summed exactly throughout.
+        QTest::newRow("T = 2730") << 2730;
         QTest::newRow("T = 10000") << 10000;
     }
     void singleSampleAndTenThousandSampleTaps() {
@@ -302,7 +306,7 @@ private slots:
 
     void screeningKeepsDecisionsBetweenNearTwins() {
         // Classes trained on one tap, each with a single sample moved: their scores on a tap
-        // like it differ by far less than a single-precision sum resolves (about 1e-4 nats
+        // like it differ by far less than the fixed-point screen resolves (about 0.1 nats
         // here), so the winner rests on the exact sums alone.
         RandomStream r(53);
         const Tap base = randomTap(r, 50, 12, 60.0, 6.0);
@@ -328,6 +332,45 @@ private slots:
         }
         qInfo("%d of 200 taps with the best two classes within 0.001 nats", within);
         QVERIFY(within > 20);  // the case this test is for does occur
+    }
+
+    void screenSumsAgreeBetweenTheVectorAndPortableKernels() {
+        // Every class count from 1 to 100 (rows padded to 16), odd and even row counts, extreme
+        // levels and counts: the AVX2 kernel's pairwise sums equal the plain loop's.
+        RandomStream r(61);
+        for (int classes = 1; classes <= 100; ++classes) {
+            const std::size_t stride = (static_cast<std::size_t>(classes) + 15) / 16 * 16;
+            const std::size_t tableRows = 40;
+            std::vector<std::int16_t, CacheLineAllocator<std::int16_t>> table(
+                (tableRows + 1) * stride, 0);
+            for (std::size_t row = 0; row < tableRows; ++row)
+                for (std::size_t c = 0; c < static_cast<std::size_t>(classes); ++c)
+                    table[row * stride + c] =
+                        r.uniform(0, 1) < 0.1
+                            ? static_cast<std::int16_t>(r.uniform(0, 1) < 0.5 ? -32767 : 32767)
+                            : static_cast<std::int16_t>(std::lround(r.uniform(-32767, 32767)));
+            const std::size_t rows = 1 + static_cast<std::size_t>(classes) % 37;
+            std::vector<std::uint32_t> cells(rows + 1);
+            std::vector<std::int32_t> counts(rows);
+            for (std::size_t i = 0; i < rows; ++i) {
+                cells[i] = static_cast<std::uint32_t>(i);
+                // At most 32,767 samples in all, as in a tap the screen takes.
+                counts[i] = i == 0 ? 20000 : static_cast<std::int32_t>(r.uniform(1, 300));
+            }
+            cells[rows] = static_cast<std::uint32_t>(tableRows);
+            std::vector<std::int32_t> vectorSums(stride), portableSums(stride);
+            detail::screenSums(table.data(), stride, cells.data(), counts.data(), rows,
+                               vectorSums.data(), false);
+            detail::screenSums(table.data(), stride, cells.data(), counts.data(), rows,
+                               portableSums.data(), true);
+            for (std::size_t c = 0; c < stride; ++c) {
+                std::int64_t exact = 0;
+                for (std::size_t i = 0; i < rows; ++i)
+                    exact += std::int64_t{counts[i]} * table[cells[i] * stride + c];
+                QCOMPARE(static_cast<std::int64_t>(portableSums[c]), exact);
+                QCOMPARE(vectorSums[c], portableSums[c]);
+            }
+        }
     }
 
     void nearUniformLikelihood() {
