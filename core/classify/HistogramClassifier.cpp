@@ -45,10 +45,6 @@ constexpr double kScreenLevels = 32767.0;
 // times a level of at most 32767 in magnitude); longer taps are summed exactly throughout.
 constexpr std::size_t kMaxScreenSamples = 32767;
 
-// Up to this many cells per sample, a tap's counts are scanned whole (a few operations per
-// sixteen cells) rather than marked per sample in a bitmap (about six per sample).
-constexpr std::size_t kScanCellsPerSample = 8;
-
 // Spreads each (taxel, class) column of counts over neighbouring bins by a Gaussian of `sigma`
 // bins, cut at the range's ends and scaled per source bin so that no count is lost.
 void spreadCounts(std::vector<double, CacheLineAllocator<double>>& table, int taxels, std::size_t B,
@@ -351,11 +347,10 @@ std::size_t HistogramClassifier::tapCells(const Tap& tap, const std::uint32_t** 
         throw std::invalid_argument("tap has " + std::to_string(tap.taxels) +
                                     " taxels, the classifier was trained on " +
                                     std::to_string(taxels_));
-    // The tap's count vector over (taxel, bin) cells: count samples per cell, then visit the
-    // touched cells in ascending order (so every sum over them does not depend on sample order)
-    // and clear as we go.
+    // The tap's count vector over (taxel, bin) cells: count samples per cell and mark the cells
+    // touched in a bitmap, then visit the marked cells in ascending order (so every sum over
+    // them does not depend on sample order) and clear as we go.
     thread_local std::vector<std::uint32_t> counts, cellOf, cells;
-    thread_local std::vector<std::uint16_t> smallCounts;
     thread_local std::vector<std::int32_t> weights;
     thread_local std::vector<std::uint64_t> touched;
     const std::size_t cellsTotal =
@@ -366,59 +361,30 @@ std::size_t HistogramClassifier::tapCells(const Tap& tap, const std::uint32_t** 
         binBlock(tap.samples.data() + start, std::min(block, tap.samples.size() - start),
                  minTiled_.data(), scaleTiled_.data(), cellBaseTiled_.data(),
                  static_cast<double>(bins_ - 1), cellOf.data() + start);
-    // One cell more than can be touched, for the end marker naming the screening table's zero
-    // row, and room for a block of sixteen written whole.
-    cells.resize(std::min(cellOf.size(), cellsTotal) + 17);
+    // One cell more than can be touched: the end marker, naming the screening table's zero row.
+    cells.resize(std::min(cellOf.size(), cellsTotal) + 1);
     weights.resize(cells.size());
     std::size_t distinct = 0;
-    const auto emit = [&](std::size_t cell, std::uint32_t n) {
-        cells[distinct] = static_cast<std::uint32_t>(cell);
-        weights[distinct++] = static_cast<std::int32_t>(n);
-    };
-    if (cellsTotal <= kScanCellsPerSample * cellOf.size() && cellOf.size() <= 0xffff) {
-        // Few cells for the samples: count in 16 bits and scan the counts four to a word.
-        // Sixteen cells (four words) at a time, most of them untouched.
-        const std::size_t blocks = (cellsTotal + 15) / 16;
-        if (smallCounts.size() < 16 * blocks) smallCounts.assign(16 * blocks, 0);
-        std::uint16_t* const count = smallCounts.data();
-        for (const std::uint32_t cell : cellOf) ++count[cell];
-        // Within a touched block every cell is written and the next write moves on past the
-        // touched ones only: no branch on what a tap's counts happen to be.
-        for (std::size_t b = 0; b < blocks; ++b) {
-            std::uint64_t v[4];
-            std::memcpy(v, count + 16 * b, sizeof v);
-            if ((v[0] | v[1] | v[2] | v[3]) == 0) continue;
-            std::uint16_t n[16];
-            std::memcpy(n, v, sizeof n);
-            std::memset(count + 16 * b, 0, sizeof v);
-            for (std::size_t lane = 0; lane < 16; ++lane) {
-                cells[distinct] = static_cast<std::uint32_t>(16 * b + lane);
-                weights[distinct] = n[lane];
-                distinct += n[lane] != 0 ? 1 : 0;
-            }
-        }
-    } else {
-        // Many: count in 32 bits and mark the cells touched in a bitmap.
-        if (counts.size() < cellsTotal) {
-            counts.assign(cellsTotal, 0);
-            touched.assign((cellsTotal + 63) / 64, 0);
-        }
-        std::uint32_t* const count = counts.data();
-        std::uint64_t* const marks = touched.data();
-        for (const std::uint32_t cell : cellOf) {
-            ++count[cell];
-            marks[cell >> 6] |= std::uint64_t{1} << (cell & 63);
-        }
-        const std::size_t words = (cellsTotal + 63) / 64;
-        for (std::size_t w = 0; w < words; ++w) {
-            std::uint64_t bits = marks[w];
-            marks[w] = 0;
-            while (bits) {
-                const std::size_t cell = w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits));
-                bits &= bits - 1;
-                emit(cell, count[cell]);
-                count[cell] = 0;
-            }
+    if (counts.size() < cellsTotal) {
+        counts.assign(cellsTotal, 0);
+        touched.assign((cellsTotal + 63) / 64, 0);
+    }
+    std::uint32_t* const count = counts.data();
+    std::uint64_t* const marks = touched.data();
+    for (const std::uint32_t cell : cellOf) {
+        ++count[cell];
+        marks[cell >> 6] |= std::uint64_t{1} << (cell & 63);
+    }
+    const std::size_t words = (cellsTotal + 63) / 64;
+    for (std::size_t w = 0; w < words; ++w) {
+        std::uint64_t bits = marks[w];
+        marks[w] = 0;
+        while (bits) {
+            const std::size_t cell = w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits));
+            bits &= bits - 1;
+            cells[distinct] = static_cast<std::uint32_t>(cell);
+            weights[distinct++] = static_cast<std::int32_t>(count[cell]);
+            count[cell] = 0;
         }
     }
     cells[distinct] = static_cast<std::uint32_t>(cellsTotal);
