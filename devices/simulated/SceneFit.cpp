@@ -45,6 +45,10 @@ struct Masks {
     std::vector<std::vector<char>> pressed;
 };
 constexpr double kPressed = 20.0;
+/// A converter's range shows as at least this many readings at the highest value, and this many
+/// times as many as one count below it.
+constexpr long kPileReadings = 20;
+constexpr long kPileRatio = 4;
 constexpr int kMargin = 4;
 
 Moments momentsOf(const std::vector<TapRecord>& taps, const Masks& masks,
@@ -364,7 +368,9 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
             fit.deadReading = v[v.size() / 2];  // its reading under the noise
         }
     }
-    // The converter: every reading a whole count.
+    // The converter: every reading a whole count. Its range: a converter that saturates piles
+    // its readings at the top of its range (every reading that would lie above it), where a
+    // reading tail that does not reach it thins out to a few at its highest value.
     bool whole = true;
     double top = 0.0;
     for (const auto& r : recorded)
@@ -372,10 +378,18 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
             whole = whole && v == std::floor(v);
             top = std::max(top, v);
         }
+    long atTop = 0, belowTop = 0;
+    for (const auto& r : recorded)
+        for (double v : r.tap.samples) {
+            atTop += v == top;
+            belowTop += v < top && v >= top - 1.0;
+        }
+    const bool saturates = whole && atTop >= kPileReadings && atTop >= kPileRatio * belowTop;
     double maxCounts = 255.0;
     for (const auto& e : base.effects)
         if (e.name == "adc_quantisation" && e.parameters.contains("max_counts"))
             maxCounts = e.parameters["max_counts"].get<double>();
+    maxCounts = saturates ? top : std::max(maxCounts, top);
     const EffectSpec* driftTemplate = nullptr;
     for (const auto& e : base.effects)
         if (e.name == "baseline_drift") driftTemplate = &e;
@@ -518,7 +532,16 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
                            "of the median taxel's",
                            static_cast<double>(fit.deadTaxels.size()), 1.0, true});
     fit.choices.push_back(
-        {"adc_quantisation", whole, "every reading a whole count", whole ? 1.0 : 0.0, 1.0, true});
+        {"adc_quantisation", whole,
+         std::string("every reading a whole count; ") +
+             (saturates ? "the range read from the readings piled at its top (" +
+                              std::to_string(atTop) + " at " + numberText(top) + ", " +
+                              std::to_string(belowTop) + " one count below)"
+                        : "the range not reached (highest reading " + numberText(top) + ", " +
+                              std::to_string(atTop) + " there): max_counts " +
+                              numberText(maxCounts) + " kept from the base"),
+         whole ? 1.0 : 0.0, 1.0, true});
+    if (saturates) parameter("adc_quantisation", "max_counts", maxCounts, 0.0);
     for (const auto& e : base.effects)
         if (!estimatedHere(e.name))
             fit.choices.push_back({e.name, true,

@@ -1,7 +1,7 @@
 // Fitting a scene to recorded taps where the truth is known: the paper's training taps recorded
 // on the simulated rig with (a) the paper scene, (b) the paper scene with taxel 3 dead and noise
-// sigma 2.5, (c) the paper scene with per-taxel gains spread by 20 %, each fitted from the paper
-// scene. Every parameter comes back within its reported interval and its stated tolerance, dead
+// sigma 2.5, (c) the paper scene with per-taxel gains spread by 20 %, (d) a converter that
+// saturates, each fitted from the paper scene. Every parameter comes back within its reported interval and its stated tolerance, dead
 // taxels exactly, and the fitted scene lists exactly the truth's effects.
 #include <QtTest>
 #include <cmath>
@@ -81,6 +81,9 @@ private slots:
         QCOMPARE(effectNames(fit.fitted), effectNames(paper_));
         QVERIFY(fit.deadTaxels.empty());
         QVERIFY(!find(fit, "taxel_gain", "gain_0"));
+        // The paper's taps stay below the converter's top: its range is kept, not read.
+        QVERIFY(!find(fit, "adc_quantisation", "max_counts"));
+        QCOMPARE(parameterOf(fit.fitted, "adc_quantisation", "max_counts"), 255.0);
         // The effects taps cannot show are kept, and said so.
         int kept = 0;
         for (const auto& c : fit.choices) kept += !c.estimated;
@@ -130,6 +133,28 @@ private slots:
                                     .arg(g->high)
                                     .arg(gains[k])));
         }
+    }
+
+    void aConverterThatSaturatesHasItsRangeRead() {
+        // A converter whose top lies at three fifths of the paper's highest reading: the taps
+        // that press harder saturate there, and the fit reads the range from them exactly.
+        double highest = 0.0;
+        for (const auto& r : recordedOn(paper_))
+            for (double v : r.tap.samples) highest = std::max(highest, v);
+        const double range = std::floor(0.6 * highest);
+        SceneSpec truth = paper_;
+        for (auto& e : truth.effects)
+            if (e.name == "adc_quantisation") e.parameters["max_counts"] = range;
+        SceneFitSettings quick;
+        quick.bootstrapReplicates = 4;
+        const SceneFit fit = fitScene(paper_, recordedOn(truth), quick);
+        const FittedParameter* m = find(fit, "adc_quantisation", "max_counts");
+        QVERIFY2(m, qPrintable(QString("range %1 not read").arg(range)));
+        QCOMPARE(m->value, range);
+        QCOMPARE(parameterOf(fit.fitted, "adc_quantisation", "max_counts"), range);
+        QVERIFY(fit.lists("adc_quantisation"));
+        for (const auto& c : fit.choices)
+            if (c.effect == "adc_quantisation") qInfo("range %g: %s", range, c.test.c_str());
     }
 
     void tooFewTapsAreRefused() {
