@@ -14,8 +14,8 @@ namespace activetouch {
 namespace {
 
 /// The effects this fit estimates from taps; every other effect is kept as the base lists it.
-const char* const kEstimated[] = {"taxel_noise", "baseline_drift", "taxel_gain", "dead_taxel",
-                                  "adc_quantisation"};
+const char* const kEstimated[] = {"taxel_noise", "baseline_drift",   "taxel_gain",
+                                  "dead_taxel",  "adc_quantisation", "intermittent_taxel"};
 
 bool estimatedHere(const std::string& name) {
     for (const char* e : kEstimated)
@@ -105,7 +105,7 @@ Moments momentsOf(const std::vector<TapRecord>& taps, const Masks& masks,
 /// The scene with the fitted effects in place of the base's own of those names.
 SceneSpec sceneWith(const SceneSpec& base, const Theta& th, bool quantised, double maxCounts,
                     const std::vector<int>& dead, double deadReading,
-                    const EffectSpec* driftTemplate) {
+                    const EffectSpec* driftTemplate, const EffectSpec* blink) {
     SceneSpec s = base;
     std::vector<EffectSpec> kept;
     for (const auto& e : base.effects)
@@ -121,6 +121,7 @@ SceneSpec sceneWith(const SceneSpec& base, const Theta& th, bool quantised, doub
     for (double g : th.gains) gained = gained || g != 1.0;
     if (gained) add("taxel_gain", Json{{"gains", th.gains}});
     if (!dead.empty()) add("dead_taxel", Json{{"taxels", dead}, {"reading_counts", deadReading}});
+    if (blink) add(blink->name, blink->parameters);
     if (th.rate > 0) {
         Json p =
             driftTemplate
@@ -160,6 +161,7 @@ struct FitContext {
     std::vector<int> dead;
     double deadReading;
     const EffectSpec* driftTemplate;
+    const EffectSpec* blink;
     std::vector<char> skip;
     int iterations;
     int simulations;
@@ -173,8 +175,8 @@ Theta fitMoments(const FitContext& c, const Moments& target, std::uint64_t seed)
     th.rate = target.wander > 0 ? 0.5 : 0.0;
     th.gains.assign(static_cast<std::size_t>(K), 1.0);
     for (int round = 0; round < c.iterations; ++round) {
-        const SceneSpec s =
-            sceneWith(c.base, th, c.quantised, c.maxCounts, c.dead, c.deadReading, c.driftTemplate);
+        const SceneSpec s = sceneWith(c.base, th, c.quantised, c.maxCounts, c.dead, c.deadReading,
+                                      c.driftTemplate, c.blink);
         // The moments of a few simulations, averaged: one simulation's own drift and noise
         // would pull every round's estimate the same way.
         Moments m;
@@ -212,6 +214,169 @@ Theta fitMoments(const FitContext& c, const Moments& target, std::uint64_t seed)
         }
     }
     return th;
+}
+
+/// Readings deep inside a press (the model presses the taxel over kBlinkDeep counts from
+/// kMargin samples before to kMargin after) that fall under a quarter of the taxel's median over
+/// that stretch of the tap, where that median is over kPressed; a frame in which most of the
+/// pressed taxels fall together is a lost frame, not a blink, and is left out.
+constexpr double kBlinkDeep = 30.0;
+/// A taxel is taken to blink from this many such readings: noise on a live taxel gives none
+/// (a reading a quarter of a median over 20 counts lies over ten noise deviations below it).
+constexpr long kBlinkReadings = 5;
+
+struct BlinkStats {
+    std::vector<long> low, deep;        ///< per taxel
+    long spells = 0, spellSamples = 0;  ///< runs of low readings over the taxels asked about
+    std::vector<double> lowReadings;
+    double offFraction() const {
+        long l = 0, d = 0;
+        for (std::size_t k = 0; k < low.size(); ++k) {
+            l += low[k];
+            d += deep[k];
+        }
+        return d > 0 ? static_cast<double>(l) / static_cast<double>(d) : 0.0;
+    }
+    double meanSpell() const {
+        return spells > 0 ? static_cast<double>(spellSamples) / static_cast<double>(spells) : 0.0;
+    }
+};
+
+/// The blink statistics of `taps` against the noise-free `ideal` taps at the same poses, over
+/// `only` (every live taxel when empty).
+BlinkStats blinksOf(const std::vector<TapRecord>& taps, const std::vector<TapRecord>& ideal,
+                    const std::vector<char>& skip, const std::vector<int>& only) {
+    const int K = static_cast<int>(skip.size());
+    BlinkStats b;
+    b.low.assign(static_cast<std::size_t>(K), 0);
+    b.deep.assign(static_cast<std::size_t>(K), 0);
+    std::vector<char> asked(static_cast<std::size_t>(K), only.empty() ? 1 : 0);
+    for (int k : only) asked[static_cast<std::size_t>(k)] = 1;
+    for (std::size_t i = 0; i < taps.size() && i < ideal.size(); ++i) {
+        const Tap& tap = taps[i].tap;
+        const Tap& model = ideal[i].tap;
+        const int T = tap.sampleCount();
+        // deep[t * K + k], low[t * K + k]
+        std::vector<char> deep(static_cast<std::size_t>(T * K), 0), low(deep.size(), 0);
+        for (int k = 0; k < K; ++k) {
+            if (skip[static_cast<std::size_t>(k)] || !asked[static_cast<std::size_t>(k)]) continue;
+            std::vector<double> readings;
+            for (int t = kMargin; t + kMargin < T; ++t) {
+                bool inside = true;
+                for (int u = t - kMargin; u <= t + kMargin && inside; ++u)
+                    inside = model.at(u, k) > kBlinkDeep;
+                if (!inside) continue;
+                deep[static_cast<std::size_t>(t * K + k)] = 1;
+                readings.push_back(tap.at(t, k));
+            }
+            if (readings.size() < 5) {
+                for (int t = 0; t < T; ++t) deep[static_cast<std::size_t>(t * K + k)] = 0;
+                continue;
+            }
+            std::nth_element(readings.begin(),
+                             readings.begin() + static_cast<long>(readings.size() / 2),
+                             readings.end());
+            const double median = readings[readings.size() / 2];
+            for (int t = 0; t < T; ++t) {
+                const std::size_t at = static_cast<std::size_t>(t * K + k);
+                if (!deep[at]) continue;
+                if (!(median > kPressed)) {
+                    deep[at] = 0;  // a press this taxel does not show: nothing to read
+                    continue;
+                }
+                low[at] = tap.at(t, k) < 0.25 * median;
+            }
+        }
+        for (int t = 0; t < T; ++t) {
+            int deepHere = 0, lowHere = 0;
+            for (int k = 0; k < K; ++k) {
+                deepHere += deep[static_cast<std::size_t>(t * K + k)];
+                lowHere += low[static_cast<std::size_t>(t * K + k)];
+            }
+            const bool lostFrame = deepHere >= 2 && 2 * lowHere > deepHere;
+            for (int k = 0; k < K; ++k) {
+                const std::size_t at = static_cast<std::size_t>(t * K + k);
+                if (!deep[at] || lostFrame) continue;
+                ++b.deep[static_cast<std::size_t>(k)];
+                if (low[at]) {
+                    ++b.low[static_cast<std::size_t>(k)];
+                    b.lowReadings.push_back(tap.at(t, k));
+                    ++b.spellSamples;
+                    const bool continues = t > 0 &&
+                                           low[static_cast<std::size_t>((t - 1) * K + k)] &&
+                                           deep[static_cast<std::size_t>((t - 1) * K + k)];
+                    if (!continues) ++b.spells;
+                }
+            }
+        }
+    }
+    return b;
+}
+
+struct Blinking {
+    bool listed = false;
+    std::vector<int> taxels;
+    long mostLow = 0;
+    double offFraction = 0.0, meanOff_s = 0.0, reading = 0.0;
+};
+
+/// Which taxels blink, and how: the share of time off and the mean off spell, at which taps
+/// simulated at the recorded poses show the recorded share of low readings and mean run of
+/// them (a few rounds of the same moment matching as the other effects). One share and one
+/// spell for every blinking taxel, as the effect takes them. `taxels`, where given, are the ones
+/// read.
+Blinking readBlinking(const SceneSpec& base,
+                      const std::shared_ptr<const FingertipContactModel>& model,
+                      const std::vector<TapRecord>& recorded, const std::vector<TapRecord>& ideal,
+                      const std::vector<char>& skip, double period, std::uint64_t seed,
+                      const std::vector<int>& taxels = {}) {
+    Blinking out;
+    const BlinkStats all = blinksOf(recorded, ideal, skip, {});
+    for (std::size_t k = 0; k < all.low.size(); ++k) {
+        out.mostLow = std::max(out.mostLow, all.low[k]);
+        if (all.low[k] >= kBlinkReadings) out.taxels.push_back(static_cast<int>(k));
+    }
+    if (!taxels.empty()) out.taxels = taxels;  // a replicate: the taxels found in the recording
+    if (out.taxels.empty()) return out;
+    out.listed = true;
+    const BlinkStats target = blinksOf(recorded, ideal, skip, out.taxels);
+    std::vector<double> lows = target.lowReadings;
+    if (!lows.empty()) {
+        std::nth_element(lows.begin(), lows.begin() + static_cast<long>(lows.size() / 2),
+                         lows.end());
+        out.reading = std::max(0.0, std::round(lows[lows.size() / 2]));
+    }
+    out.offFraction = std::clamp(target.offFraction(), 1e-3, 0.95);
+    out.meanOff_s = std::clamp(target.meanSpell() * period, 0.001, 60.0);
+    SceneSpec scene = base;
+    std::vector<EffectSpec> kept;
+    for (const auto& e : base.effects)
+        if (e.name != "intermittent_taxel") kept.push_back(e);
+    for (int round = 0; round < 4; ++round) {
+        EffectSpec e;
+        e.name = "intermittent_taxel";
+        e.place = "/effects/" + std::to_string(kept.size());
+        e.parameters = Json{{"taxels", out.taxels},
+                            {"off_fraction", out.offFraction},
+                            {"mean_off_s", out.meanOff_s},
+                            {"reading_counts", out.reading}};
+        scene.effects = kept;
+        scene.effects.push_back(e);
+        double share = 0.0, spell = 0.0;
+        for (int r = 0; r < 2; ++r) {
+            const BlinkStats sim = blinksOf(
+                simulateAt(scene, model, recorded, seed + 7919 * static_cast<std::uint64_t>(r)),
+                ideal, skip, out.taxels);
+            share += 0.5 * sim.offFraction();
+            spell += 0.5 * sim.meanSpell();
+        }
+        if (share > 0)
+            out.offFraction =
+                std::clamp(out.offFraction * target.offFraction() / share, 1e-3, 0.95);
+        if (spell > 0)
+            out.meanOff_s = std::clamp(out.meanOff_s * target.meanSpell() / spell, 0.001, 60.0);
+    }
+    return out;
 }
 
 double ksDistance(std::vector<double> a, std::vector<double> b) {
@@ -394,6 +559,18 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
     for (const auto& e : base.effects)
         if (e.name == "baseline_drift") driftTemplate = &e;
 
+    // Blinking taxels, read before the gains so that every simulation the gains are fitted to
+    // blinks alike.
+    const double period = 1.0 / base.tap.sampleRate_hz;
+    const Blinking blinking =
+        readBlinking(base, model, recorded, idealTaps, skip, period, settings.seed + 30000);
+    EffectSpec blinkEffect;
+    blinkEffect.name = "intermittent_taxel";
+    blinkEffect.parameters = Json{{"taxels", blinking.taxels},
+                                  {"off_fraction", blinking.offFraction},
+                                  {"mean_off_s", blinking.meanOff_s},
+                                  {"reading_counts", blinking.reading}};
+
     const Moments target = momentsOf(recorded, masks, skip);
     fit.nothingSamples = target.nothing;
     if (target.nothing < 1000)
@@ -410,23 +587,40 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
                  fit.deadTaxels,
                  fit.deadReading,
                  driftTemplate,
+                 blinking.listed ? &blinkEffect : nullptr,
                  skip,
                  settings.iterations,
                  settings.simulationsPerRound};
     const Theta raw = fitMoments(c, target, settings.seed);
-    const SceneSpec fittedAll =
-        sceneWith(base, raw, whole, maxCounts, fit.deadTaxels, fit.deadReading, driftTemplate);
+    const SceneSpec fittedAll = sceneWith(base, raw, whole, maxCounts, fit.deadTaxels,
+                                          fit.deadReading, driftTemplate, c.blink);
 
     // Uncertainty: the same fit on recordings simulated with the estimate.
-    std::vector<double> sigmas, rates;
+    std::vector<double> sigmas, rates, offFractions, offSpells;
     std::vector<std::vector<double>> logGains(static_cast<std::size_t>(K));
     for (int b = 0; b < settings.bootstrapReplicates; ++b) {
         const auto replicate = simulateAt(fittedAll, model, recorded,
                                           settings.seed + 1000 + static_cast<std::uint64_t>(b));
-        const Theta th = fitMoments(c, momentsOf(replicate, masks, skip),
+        // A replicate's blinks are read again, so that the gains' spread carries theirs.
+        FitContext rc = c;
+        Blinking again;
+        EffectSpec againEffect = blinkEffect;
+        if (blinking.listed) {
+            again = readBlinking(base, model, replicate, idealTaps, skip, period,
+                                 settings.seed + 40000 + 100 * static_cast<std::uint64_t>(b),
+                                 blinking.taxels);
+            againEffect.parameters["off_fraction"] = again.offFraction;
+            againEffect.parameters["mean_off_s"] = again.meanOff_s;
+            rc.blink = &againEffect;
+        }
+        const Theta th = fitMoments(rc, momentsOf(replicate, masks, skip),
                                     settings.seed + 5000 + static_cast<std::uint64_t>(b));
         sigmas.push_back(th.sigma);
         rates.push_back(th.rate);
+        if (blinking.listed) {
+            offFractions.push_back(again.offFraction);
+            offSpells.push_back(again.meanOff_s);
+        }
         for (int k = 0; k < K; ++k)
             logGains[static_cast<std::size_t>(k)].push_back(
                 std::log(th.gains[static_cast<std::size_t>(k)]));
@@ -471,8 +665,8 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
     if (!aboveZero("baseline_drift", "rate_counts_per_sqrt_s", "drift rate", est.rate, rates))
         chosen.rate = 0.0;
     {
-        // Gains: a Wald test of the log gains' spread about their mean (chi-square with one
-        // degree of freedom fewer than the live taxels). Their common level is the tapper's as
+        // Gains: a Wald test of the log gains' spread about their common value (chi-square with
+        // one degree of freedom fewer than the live taxels). Their common level is the tapper's as
         // much as the skin's (a deeper stop presses every taxel harder), so it is reported apart.
         std::vector<double> ses(static_cast<std::size_t>(K), 0.0);
         double meanLog = 0.0, meanLogVar = 0.0;
@@ -489,19 +683,29 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
             meanLog /= df;
             meanLogVar /= static_cast<double>(df) * df;
         }
+        // About their inverse-variance weighted mean (Cochran's Q): a gain read from few
+        // presses, and so loosely, then moves the centre the others are measured from little.
+        double weightSum = 0.0, weightedLog = 0.0;
+        for (int k = 0; k < K; ++k) {
+            const std::size_t kk = static_cast<std::size_t>(k);
+            if (skip[kk] || ses[kk] <= 0) continue;
+            weightSum += 1.0 / (ses[kk] * ses[kk]);
+            weightedLog += std::log(est.gains[kk]) / (ses[kk] * ses[kk]);
+        }
+        const double centre = weightSum > 0 ? weightedLog / weightSum : meanLog;
         double wald = 0.0;
         for (int k = 0; k < K; ++k) {
             const std::size_t kk = static_cast<std::size_t>(k);
             if (skip[kk] || ses[kk] <= 0) continue;
-            const double d = (std::log(est.gains[kk]) - meanLog) / ses[kk];
+            const double d = (std::log(est.gains[kk]) - centre) / ses[kk];
             wald += d * d;
         }
         const double threshold = df > 1 ? chiSquareQuantile(df - 1, z) : 0.0;
         const bool listed = df > 1 && wald > threshold;
         fit.choices.push_back({"taxel_gain", listed,
-                               "Wald statistic of the log gains about their mean, against "
-                               "chi-square with one degree of freedom fewer than the live taxels "
-                               "at the level",
+                               "Wald statistic of the log gains about their inverse-variance "
+                               "weighted mean (Cochran's Q), against chi-square with one degree "
+                               "of freedom fewer than the live taxels at the level",
                                wald, threshold, true});
         const double seCommon = std::sqrt(meanLogVar);
         fit.pressureScale = std::exp(meanLog);
@@ -542,6 +746,26 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
                               numberText(maxCounts) + " kept from the base"),
          whole ? 1.0 : 0.0, 1.0, true});
     if (saturates) parameter("adc_quantisation", "max_counts", maxCounts, 0.0);
+    fit.choices.push_back(
+        {"intermittent_taxel", blinking.listed,
+         "the most readings of one taxel, deep inside a press, under a quarter of its median over "
+         "that press while most of the frame's pressed taxels are not (a live taxel's noise "
+         "gives none)",
+         static_cast<double>(blinking.mostLow), static_cast<double>(kBlinkReadings), true});
+    if (blinking.listed) {
+        // Both positive and read from few spells: intervals on the log scale.
+        auto positive = [&](const char* name, double value, const std::vector<double>& reps) {
+            std::vector<double> logs;
+            for (double r : reps) logs.push_back(std::log(std::max(r, 1e-6)));
+            const double seLog = sd(logs);
+            fit.parameters.push_back({"intermittent_taxel", name, value, value * seLog,
+                                      value * std::exp(-1.96 * seLog),
+                                      value * std::exp(1.96 * seLog)});
+        };
+        positive("off_fraction", blinking.offFraction, offFractions);
+        positive("mean_off_s", blinking.meanOff_s, offSpells);
+        fit.intermittentTaxels = blinking.taxels;
+    }
     for (const auto& e : base.effects)
         if (!estimatedHere(e.name))
             fit.choices.push_back({e.name, true,
@@ -549,8 +773,8 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
                                    "lists it",
                                    0.0, 0.0, false});
 
-    fit.fitted =
-        sceneWith(base, chosen, whole, maxCounts, fit.deadTaxels, fit.deadReading, driftTemplate);
+    fit.fitted = sceneWith(base, chosen, whole, maxCounts, fit.deadTaxels, fit.deadReading,
+                           driftTemplate, c.blink);
 
     // Goodness of fit, per taxel: recorded against simulated with the fitted scene, beside what
     // two simulations of it show.

@@ -67,6 +67,7 @@ struct SceneFit {
     bool pressureScaleDiffers = false;
     std::vector<int> deadTaxels;
     double deadReading = 0.0;
+    std::vector<int> intermittentTaxels;  ///< taxels that blink, where the taps show it
     int taps = 0;
     long nothingSamples = 0;  ///< samples over nothing the noise and drift were read from
     /// Twenty recordings simulated with the fitted scene at the recorded poses (the first is

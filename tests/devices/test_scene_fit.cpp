@@ -1,7 +1,7 @@
 // Fitting a scene to recorded taps where the truth is known: the paper's training taps recorded
 // on the simulated rig with (a) the paper scene, (b) the paper scene with taxel 3 dead and noise
 // sigma 2.5, (c) the paper scene with per-taxel gains spread by 20 %, (d) a converter that
-// saturates, each fitted from the paper scene. Every parameter comes back within its reported interval and its stated tolerance, dead
+// saturates, (e) a blinking taxel, each fitted from the paper scene. Every parameter comes back within its reported interval and its stated tolerance, dead
 // taxels exactly, and the fitted scene lists exactly the truth's effects.
 #include <QtTest>
 #include <cmath>
@@ -68,6 +68,9 @@ class TestSceneFit : public QObject {
         QVERIFY2(std::abs(d->value - rate) <= 0.25 * rate, qPrintable(QString::number(d->value)));
         QVERIFY(s->standardError > 0 && d->standardError > 0);
         QCOMPARE(parameterOf(fit.fitted, "taxel_noise", "sigma_counts"), s->value);
+        for (const auto& c : fit.choices)
+            if (c.effect == "taxel_gain" || c.effect == "intermittent_taxel")
+                qInfo("%s: %g against %g", c.effect.c_str(), c.statistic, c.threshold);
     }
 
 private slots:
@@ -155,6 +158,29 @@ private slots:
         QVERIFY(fit.lists("adc_quantisation"));
         for (const auto& c : fit.choices)
             if (c.effect == "adc_quantisation") qInfo("range %g: %s", range, c.test.c_str());
+    }
+
+    void aBlinkingTaxelIsFoundAndItsBlinksRead() {
+        // Taxel 5 off a tenth of the time, in spells of 0.1 s on average, reading nothing.
+        SceneSpec truth = paper_;
+        EffectSpec blink;
+        blink.name = "intermittent_taxel";
+        blink.parameters = Json{
+            {"taxels", {5}}, {"off_fraction", 0.1}, {"mean_off_s", 0.1}, {"reading_counts", 0}};
+        truth.effects.push_back(blink);
+        SceneFitSettings quick;
+        quick.bootstrapReplicates = 8;
+        const SceneFit fit = fitScene(paper_, recordedOn(truth), quick);
+        QCOMPARE(fit.intermittentTaxels, std::vector<int>{5});
+        QCOMPARE(effectNames(fit.fitted), effectNames(truth));
+        const FittedParameter* share = find(fit, "intermittent_taxel", "off_fraction");
+        const FittedParameter* spell = find(fit, "intermittent_taxel", "mean_off_s");
+        QVERIFY(share && spell);
+        qInfo("off fraction %.3f (%.3f-%.3f), mean spell %.3f s (%.3f-%.3f)", share->value,
+              share->low, share->high, spell->value, spell->low, spell->high);
+        QVERIFY(share->standardError > 0 && spell->standardError > 0);
+        QVERIFY2(share->low <= 0.1 && 0.1 <= share->high, "off fraction outside its interval");
+        QVERIFY2(spell->low <= 0.1 && 0.1 <= spell->high, "mean spell outside its interval");
     }
 
     void tooFewTapsAreRefused() {
