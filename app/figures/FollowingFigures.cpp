@@ -219,7 +219,9 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
         // longest bars, which are the ones a reader compares.
         const auto [dr, barLegend] =
             addPanelWithLegendBelow(grid, row, 1 + maxTrials, /*perLine=*/0);
-        setPanelTitle(dr, "distances (paper's rule)");
+        // On two lines: the title is centred over the bars, which the templates' names push
+        // right in a narrow panel.
+        setPanelTitle(dr, "distances\n(paper's rule)");
         QCPAxis* templateAxis = dr->axis(QCPAxis::atLeft);
         QCPAxis* distanceAxis = dr->axis(QCPAxis::atBottom);
         distanceAxis->setLabel("Euclidean distance");
