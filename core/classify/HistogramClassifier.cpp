@@ -409,13 +409,12 @@ void HistogramClassifier::logLikelihoods(const Tap& tap, double* out) const {
     accumulateRows(rows.data(), weights.data(), distinct, C, out);
 }
 
-HistogramClassifier::Screen HistogramClassifier::screenedScores(const Tap& tap, double marginNats,
-                                                                bool exactIfAlone,
-                                                                double* out) const {
+int HistogramClassifier::screenedScores(const Tap& tap, double marginNats, bool exactIfAlone,
+                                        double* out) const {
     const std::size_t C = static_cast<std::size_t>(classes_);
     if (tap.samples.size() > kMaxScreenSamples) {
         logLikelihoods(tap, out);
-        return {C, -1};
+        return -1;
     }
     const std::uint32_t* cells = nullptr;
     const std::int32_t* counts = nullptr;
@@ -443,13 +442,12 @@ HistogramClassifier::Screen HistogramClassifier::screenedScores(const Tap& tap, 
         best - 2.0 * bound - marginNats - 2.0 * kTieTolerance * (std::abs(best) + bound + 1.0);
     if (!std::isfinite(floor)) {
         logLikelihoods(tap, out);
-        return {C, -1};
+        return -1;
     }
     std::size_t within = 0;
     for (std::size_t c = 0; c < C; ++c) within += out[c] >= floor ? 1 : 0;
     // One class alone within the margin is the maximum, and no other ties with it.
-    if (within == 1 && !exactIfAlone)
-        return {0, static_cast<int>(std::find(out, out + C, best) - out)};
+    if (within == 1 && !exactIfAlone) return static_cast<int>(std::find(out, out + C, best) - out);
     const std::size_t cellsTotal =
         static_cast<std::size_t>(taxels_) * static_cast<std::size_t>(bins_);
     for (std::size_t c = 0; c < C; ++c) {
@@ -460,7 +458,7 @@ HistogramClassifier::Screen HistogramClassifier::screenedScores(const Tap& tap, 
             acc += static_cast<double>(counts[i]) * row[cells[i]];
         out[c] = acc;
     }
-    return {within, -1};
+    return -1;
 }
 
 int argmaxLowestIndex(const double* v, int n) {
@@ -491,8 +489,8 @@ int HistogramClassifier::classify(const Tap& tap) const {
     thread_local std::vector<double> scores;
     scores.resize(static_cast<std::size_t>(classes_));
     // Every possible winner exact, or the one possible winner known: the same argmax.
-    const Screen screen = screenedScores(tap, 0.0, false, scores.data());
-    return screen.alone >= 0 ? screen.alone : argmaxLowestIndex(scores.data(), classes_);
+    const int alone = screenedScores(tap, 0.0, false, scores.data());
+    return alone >= 0 ? alone : argmaxLowestIndex(scores.data(), classes_);
 }
 
 HistogramClassifier::Decision HistogramClassifier::decide(const Tap& tap) const {

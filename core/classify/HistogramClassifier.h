@@ -117,12 +117,8 @@ private:
                          const std::int32_t** counts) const;
     /// Exact scores (as logLikelihoods gives them) of the classes that can decide the tap, and
     /// screening scores of the rest, which cannot: see classify(). With `exactIfAlone` false, a
-    /// class alone within the margin keeps its screening score and is named.
-    struct Screen {
-        std::size_t exact = 0;  ///< classes summed exactly
-        int alone = -1;         ///< the one class within the margin, or -1
-    };
-    Screen screenedScores(const Tap& tap, double marginNats, bool exactIfAlone, double* out) const;
+    /// class alone within the margin keeps its screening score and is returned; otherwise -1.
+    int screenedScores(const Tap& tap, double marginNats, bool exactIfAlone, double* out) const;
 
     int classes_ = 0, taxels_ = 0, bins_ = 0;
     std::vector<double> min_, max_,

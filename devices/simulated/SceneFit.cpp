@@ -331,12 +331,14 @@ Blinking readBlinking(const SceneSpec& base,
                       const std::vector<char>& skip, double period, std::uint64_t seed,
                       const std::vector<int>& taxels = {}) {
     Blinking out;
-    const BlinkStats all = blinksOf(recorded, ideal, skip, {});
-    for (std::size_t k = 0; k < all.low.size(); ++k) {
-        out.mostLow = std::max(out.mostLow, all.low[k]);
-        if (all.low[k] >= kBlinkReadings) out.taxels.push_back(static_cast<int>(k));
+    out.taxels = taxels;  // a replicate: the taxels found in the recording
+    if (taxels.empty()) {
+        const BlinkStats all = blinksOf(recorded, ideal, skip, {});
+        for (std::size_t k = 0; k < all.low.size(); ++k) {
+            out.mostLow = std::max(out.mostLow, all.low[k]);
+            if (all.low[k] >= kBlinkReadings) out.taxels.push_back(static_cast<int>(k));
+        }
     }
-    if (!taxels.empty()) out.taxels = taxels;  // a replicate: the taxels found in the recording
     if (out.taxels.empty()) return out;
     out.listed = true;
     const BlinkStats target = blinksOf(recorded, ideal, skip, out.taxels);
