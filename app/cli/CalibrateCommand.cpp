@@ -41,6 +41,20 @@ Json validationJson(const ValidationResult& v) {
             {"by_position", byPosition}};
 }
 
+/// The gains test's readings: null for a taxel not read.
+Json holdGainsJson(const SceneFit& fit) {
+    Json gains = Json::array(), errors = Json::array();
+    for (std::size_t k = 0; k < fit.holdGains.size(); ++k) {
+        const bool read = std::isfinite(fit.holdGains[k]) && fit.holdGainLogSe[k] > 0;
+        gains.push_back(read ? Json(fit.holdGains[k]) : Json());
+        errors.push_back(read ? Json(fit.holdGainLogSe[k]) : Json());
+    }
+    return {{"touching_taps", fit.holdTaps},
+            {"relative_gains", gains},
+            {"log_standard_errors", errors},
+            {"moment_fit_statistic", fit.momentGainsQ}};
+}
+
 }  // namespace
 
 /// calibrate: a scene fitted to recorded training and test taps (docs/calibration.md).
@@ -144,6 +158,7 @@ int commandCalibrate(const std::vector<std::string>& args, int argc, char** argv
               {"ci95", {fit.pressureScaleLow, fit.pressureScaleHigh}},
               {"differs", fit.pressureScaleDiffers}}},
             {"choices", choices},
+            {"gains_from_holds", holdGainsJson(fit)},
             {"goodness_of_fit", taxels},
             {"figure6",
              {{"recorded", validationJson(figure6.recorded)},
@@ -188,6 +203,21 @@ int commandCalibrate(const std::vector<std::string>& args, int argc, char** argv
                           "stop depth, latency or stroke, or a skin uniformly more or less "
                           "sensitive); not fitted"
                         : "");
+        std::printf(
+            "  gains from the %d touching taps' holds, relative to one another "
+            "(x/ one standard error):",
+            fit.holdTaps);
+        for (std::size_t k = 0; k < fit.holdGains.size(); ++k) {
+            if (std::isfinite(fit.holdGains[k]) && fit.holdGainLogSe[k] > 0)
+                std::printf(" %zu: %.3f x/ %.3f", k, fit.holdGains[k],
+                            std::exp(fit.holdGainLogSe[k]));
+            else
+                std::printf(" %zu: not read", k);
+        }
+        std::printf(
+            "\n  the same test on the moment fit's gains: %.3g (a stroke on another "
+            "schedule than the scene's moves these)\n",
+            fit.momentGainsQ);
         int matching = 0;
         for (const auto& tf : fit.taxels) matching += tf.matches;
         std::printf(

@@ -43,7 +43,31 @@ struct Masks {
     std::vector<std::vector<char>> nothing;  ///< [tap][sample]
     /// [tap][sample * K + taxel]: the model presses the taxel over kPressed counts in the tap
     std::vector<std::vector<char>> pressed;
+    /// A sample the model takes over nothing is read as such only where its frame's total lies
+    /// within this many counts above the tap's quiet level (see quietFrames()).
+    double quietMargin = 0.0;
 };
+
+/// Per frame of `tap`, whether its total over the live taxels lies within `margin` counts above
+/// the tap's quiet level (the tenth percentile of its frames' totals). A stroke on another
+/// schedule than the model's (a real tapper's, or one the host held up) presses where the model
+/// does not; this keeps such frames out of what is read as over nothing, alike in recorded and
+/// simulated taps, and noise alone does not reach it.
+std::vector<char> quietFrames(const Tap& tap, const std::vector<char>& skip, double margin) {
+    const int T = tap.sampleCount();
+    std::vector<double> total(static_cast<std::size_t>(T), 0.0);
+    for (int t = 0; t < T; ++t)
+        for (int k = 0; k < tap.taxels; ++k)
+            if (!skip[static_cast<std::size_t>(k)])
+                total[static_cast<std::size_t>(t)] += tap.at(t, k);
+    std::vector<double> sorted = total;
+    const auto tenth = sorted.begin() + static_cast<long>(sorted.size() / 10);
+    std::nth_element(sorted.begin(), tenth, sorted.end());
+    std::vector<char> quiet(static_cast<std::size_t>(T), 0);
+    for (int t = 0; t < T; ++t)
+        quiet[static_cast<std::size_t>(t)] = total[static_cast<std::size_t>(t)] <= *tenth + margin;
+    return quiet;
+}
 constexpr double kPressed = 20.0;
 /// A converter's range shows as at least this many readings at the highest value, and this many
 /// times as many as one count below it.
@@ -62,7 +86,9 @@ Moments momentsOf(const std::vector<TapRecord>& taps, const Masks& masks,
     double countSum = 0.0;
     for (std::size_t i = 0; i < taps.size(); ++i) {
         const Tap& tap = taps[i].tap;
-        const auto& nothing = masks.nothing[i];
+        std::vector<char> nothing = masks.nothing[i];
+        const std::vector<char> quiet = quietFrames(tap, skip, masks.quietMargin);
+        for (std::size_t t = 0; t < nothing.size(); ++t) nothing[t] = nothing[t] && quiet[t];
         for (int k = 0; k < K; ++k) {
             if (skip[static_cast<std::size_t>(k)]) continue;
             double s = 0.0, s2 = 0.0;
@@ -258,11 +284,32 @@ BlinkStats blinksOf(const std::vector<TapRecord>& taps, const std::vector<TapRec
         const int T = tap.sampleCount();
         // deep[t * K + k], low[t * K + k]
         std::vector<char> deep(static_cast<std::size_t>(T * K), 0), low(deep.size(), 0);
+        std::vector<double> total(static_cast<std::size_t>(T), 0.0);
+        for (int t = 0; t < T; ++t)
+            for (int k = 0; k < K; ++k)
+                if (!skip[static_cast<std::size_t>(k)])
+                    total[static_cast<std::size_t>(t)] += tap.at(t, k);
         for (int k = 0; k < K; ++k) {
             if (skip[static_cast<std::size_t>(k)] || !asked[static_cast<std::size_t>(k)]) continue;
+            // The recorded press, read from the other taxels (a blink of this one leaves them
+            // be): frames where their total lies over four fifths of its level in the hold.
+            // Where the stroke runs on another schedule than the model's, the model's press
+            // alone would take the descent or the release for a blink.
+            std::vector<double> others(static_cast<std::size_t>(T));
+            for (int t = 0; t < T; ++t)
+                others[static_cast<std::size_t>(t)] =
+                    total[static_cast<std::size_t>(t)] - tap.at(t, k);
+            const auto [least, most] = std::minmax_element(others.begin(), others.end());
+            std::vector<double> upper;
+            for (double v : others)
+                if (v >= *least + 0.5 * (*most - *least)) upper.push_back(v);
+            std::nth_element(upper.begin(), upper.begin() + static_cast<long>(upper.size() / 2),
+                             upper.end());
+            const double level = upper[upper.size() / 2];
             std::vector<double> readings;
             for (int t = kMargin; t + kMargin < T; ++t) {
-                bool inside = true;
+                bool inside =
+                    others[static_cast<std::size_t>(t)] >= *least + 0.8 * (level - *least);
                 for (int u = t - kMargin; u <= t + kMargin && inside; ++u)
                     inside = model.at(u, k) > kBlinkDeep;
                 if (!inside) continue;
@@ -441,6 +488,249 @@ double sd(const std::vector<double>& v) {
     return std::sqrt(s / (v.size() - 1));
 }
 
+/// The taxels' sensitivities relative to one another, read from the holds alone so that a stroke
+/// on another schedule or to another depth than the scene's reads the same (see fitScene()).
+struct HoldGains {
+    std::vector<double> logGain, se;  ///< per taxel, about their plain mean; se 0 = not read
+    int taps = 0;                     ///< touching taps whose hold was read
+    double q = 0.0;                   ///< Cochran's Q of the log gains
+    int df = 0;                       ///< taxels read
+};
+
+/// A touching tap's hold: each taxel's median over the frames of the hold, less its baseline
+/// before contact, and the model's pressures at the tap's pose over a grid of depths to the
+/// stroke's limit.
+struct Hold {
+    std::vector<double> reading;        ///< per taxel; NaN where unusable (saturated)
+    std::vector<double> modelAtDepths;  ///< [depth][taxel]
+};
+constexpr int kHoldDepths = 120;
+constexpr double kHoldShare = 0.95;
+
+std::vector<Hold> holdsOf(const SceneSpec& base, const FingertipContactModel& model,
+                          const std::vector<TapRecord>& recorded, const std::vector<char>& skip,
+                          double maxCounts) {
+    const int K = model.taxelCount();
+    const Polygon object = base.object.outline();
+    const double stroke = base.strokeLimitDepth();
+    // The coupling the base scene lists acts on every frame before the gains: the model's
+    // pressures carry it too.
+    double coupling = 0.0, radius = 0.0;
+    for (const auto& e : base.effects)
+        if (e.name == "crosstalk") {
+            coupling = e.parameters.value("coupling", 0.0);
+            radius = e.parameters.value("radius_mm", 0.0);
+        }
+    std::vector<std::pair<int, int>> pairs;
+    const auto& at = model.projectedTaxels();
+    for (int i = 0; i < K && coupling > 0; ++i)
+        for (int j = 0; j < K; ++j)
+            if (i != j && distance(at[static_cast<std::size_t>(i)],
+                                   at[static_cast<std::size_t>(j)]) <= radius)
+                pairs.push_back({i, j});
+    std::vector<double> depths(kHoldDepths);
+    for (int d = 0; d < kHoldDepths; ++d)
+        depths[static_cast<std::size_t>(d)] = stroke * (d + 1) / kHoldDepths;
+    std::vector<Hold> holds;
+    for (std::size_t i = 0; i < recorded.size(); ++i) {
+        const Tap& tap = recorded[i].tap;
+        // The hold: the frames whose total lies within 5 % of the hold's level (above the
+        // tap's lowest total). The baseline: each taxel's median over the frames before the hold
+        // whose total lies within 3 % of the range above the lowest, before contact. (After
+        // release a pad with memory, or a baseline compensation that followed the press, reads
+        // otherwise.)
+        std::vector<double> raw(static_cast<std::size_t>(tap.sampleCount()), 0.0);
+        for (int t = 0; t < tap.sampleCount(); ++t)
+            for (int k = 0; k < K; ++k)
+                if (!skip[static_cast<std::size_t>(k)])
+                    raw[static_cast<std::size_t>(t)] += tap.at(t, k);
+        const auto [lowest, highest] = std::minmax_element(raw.begin(), raw.end());
+        const double range = *highest - *lowest;
+        // A tap that touched: its hold presses the skin well past the reflex's half.
+        if (range < 0.5 * base.tap.contactThreshold) continue;
+        // The hold's level: the median total of the frames above half the range, most of which
+        // are the hold's (a pad with memory reads above it for a frame after release).
+        std::vector<double> upper;
+        for (double v : raw)
+            if (v >= *lowest + 0.5 * range) upper.push_back(v);
+        std::nth_element(upper.begin(), upper.begin() + static_cast<long>(upper.size() / 2),
+                         upper.end());
+        const double level = upper[upper.size() / 2];
+        const auto inHold = [&](double v) {
+            return std::abs(v - level) <= (1.0 - kHoldShare) * (level - *lowest);
+        };
+        const auto holdStart =
+            static_cast<int>(std::find_if(raw.begin(), raw.end(), inHold) - raw.begin());
+        std::vector<int> quiet;
+        for (int t = 0; t < holdStart; ++t)
+            if (raw[static_cast<std::size_t>(t)] <= *lowest + 0.03 * range) quiet.push_back(t);
+        if (quiet.size() < 2) continue;
+        std::vector<double> baseline(static_cast<std::size_t>(K), 0.0);
+        for (int k = 0; k < K; ++k) {
+            std::vector<double> v;
+            for (int t : quiet) v.push_back(tap.at(t, k));
+            std::sort(v.begin(), v.end());
+            baseline[static_cast<std::size_t>(k)] = 0.5 * (v[(v.size() - 1) / 2] + v[v.size() / 2]);
+        }
+        Hold h;
+        h.reading.assign(static_cast<std::size_t>(K), NAN);
+        for (int k = 0; k < K; ++k) {
+            if (skip[static_cast<std::size_t>(k)]) continue;
+            std::vector<double> v;
+            bool saturated = false;
+            for (int t = holdStart; t < tap.sampleCount(); ++t)
+                if (inHold(raw[static_cast<std::size_t>(t)])) {
+                    v.push_back(tap.at(t, k) - baseline[static_cast<std::size_t>(k)]);
+                    saturated = saturated || tap.at(t, k) >= maxCounts;
+                }
+            std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+            if (!saturated) h.reading[static_cast<std::size_t>(k)] = v[v.size() / 2];
+        }
+        auto contact = model.contactAt(object, recorded[i].pose);
+        h.modelAtDepths.resize(depths.size() * static_cast<std::size_t>(K));
+        contact.taxelPressuresAtDepths(depths.data(), depths.size(), h.modelAtDepths.data());
+        for (std::size_t d = 0; d < depths.size() && !pairs.empty(); ++d) {
+            double* p = h.modelAtDepths.data() + d * static_cast<std::size_t>(K);
+            const std::vector<double> own(p, p + K);
+            for (const auto& [to, from] : pairs)
+                p[to] += coupling * own[static_cast<std::size_t>(from)];
+        }
+        holds.push_back(std::move(h));
+    }
+    return holds;
+}
+
+/// Log gains (about their plain mean) from the holds picked by `which`: alternately each hold's
+/// depth (the grid point, refined by a parabola, that fits its readings best with the taxels'
+/// lines so far) and each taxel's line, reading = offset + gain x model, by least squares over
+/// the holds that press it over kPressed counts at their depth. The offset takes what a baseline
+/// under zero hides: a skin that clamps its readings at zero reads nothing over nothing whether
+/// its baseline lies a little below or at zero, but a press shows the difference. NaN for a
+/// taxel fewer than five holds press so.
+std::vector<double> holdLogGains(const std::vector<Hold>& holds, const std::vector<int>& which,
+                                 int K) {
+    const auto KK = static_cast<std::size_t>(K);
+    std::vector<double> gain(KK, 1.0), offset(KK, 0.0), logGain(KK, NAN);
+    std::vector<double> model(which.size() * KK);
+    for (int round = 0; round < 4; ++round) {
+        for (std::size_t n = 0; n < which.size(); ++n) {
+            const Hold& h = holds[static_cast<std::size_t>(which[n])];
+            const std::size_t D = h.modelAtDepths.size() / KK;
+            std::vector<double> e(D, 0.0);
+            std::size_t best = 0;
+            for (std::size_t d = 0; d < D; ++d) {
+                const double* p = h.modelAtDepths.data() + d * KK;
+                for (std::size_t k = 0; k < KK; ++k) {
+                    const double r = h.reading[k];
+                    if (!std::isfinite(r)) continue;
+                    const double x = r - offset[k] - gain[k] * p[k];
+                    e[d] += x * x;
+                }
+                if (e[d] < e[best]) best = d;
+            }
+            // Between grid points: the parabola through the best and its neighbours.
+            double shift = 0.0;
+            if (best > 0 && best + 1 < D) {
+                const double curve = e[best - 1] - 2.0 * e[best] + e[best + 1];
+                if (curve > 0)
+                    shift = std::clamp(0.5 * (e[best - 1] - e[best + 1]) / curve, -0.5, 0.5);
+            }
+            const std::size_t other = shift < 0 ? best - 1 : std::min(best + 1, D - 1);
+            const double w = std::abs(shift);
+            for (std::size_t k = 0; k < KK; ++k)
+                model[n * KK + k] = (1.0 - w) * h.modelAtDepths[best * KK + k] +
+                                    w * h.modelAtDepths[other * KK + k];
+        }
+        double meanLog = 0.0;
+        int read = 0;
+        for (std::size_t k = 0; k < KK; ++k) {
+            double n = 0.0, sp = 0.0, sr = 0.0, spp = 0.0, spr = 0.0;
+            for (std::size_t i = 0; i < which.size(); ++i) {
+                const double r = holds[static_cast<std::size_t>(which[i])].reading[k];
+                const double p = model[i * KK + k];
+                if (!std::isfinite(r) || p <= kPressed) continue;
+                n += 1.0;
+                sp += p;
+                sr += r;
+                spp += p * p;
+                spr += p * r;
+            }
+            const double spread = spp - sp * sp / std::max(n, 1.0);
+            const double g = n >= 5 && spread > 0 ? (spr - sp * sr / n) / spread : 0.0;
+            logGain[k] = g > 0 ? std::log(g) : NAN;
+            offset[k] = g > 0 ? (sr - g * sp) / n : 0.0;
+            if (std::isfinite(logGain[k])) {
+                meanLog += logGain[k];
+                ++read;
+            }
+        }
+        if (read == 0) return logGain;
+        meanLog /= read;
+        for (std::size_t k = 0; k < KK; ++k) {
+            double& l = logGain[k];
+            if (std::isfinite(l)) l -= meanLog;
+            gain[k] = std::isfinite(l) ? std::exp(l) : 1.0;
+            offset[k] = std::isfinite(l) ? offset[k] : 0.0;
+        }
+    }
+    return logGain;
+}
+
+/// The hold gains with their errors from resampling the touching taps, and Cochran's Q of
+/// their logs about the inverse-variance weighted mean.
+HoldGains holdGains(const std::vector<Hold>& holds, int K, int replicates, std::uint64_t seed) {
+    HoldGains g;
+    g.taps = static_cast<int>(holds.size());
+    g.se.assign(static_cast<std::size_t>(K), 0.0);
+    if (holds.size() < 10) {
+        g.logGain.assign(static_cast<std::size_t>(K), NAN);
+        return g;
+    }
+    std::vector<int> all(holds.size());
+    std::iota(all.begin(), all.end(), 0);
+    g.logGain = holdLogGains(holds, all, K);
+    std::vector<std::vector<double>> reps(static_cast<std::size_t>(K));
+    RandomStream rng(seed);
+    std::vector<int> pick(holds.size());
+    // Whole runs of consecutive holds are resampled: a drifting baseline ties neighbours.
+    const std::size_t block = 10;
+    for (int b = 0; b < replicates; ++b) {
+        for (std::size_t at = 0; at < pick.size(); at += block) {
+            const auto start = std::min(
+                static_cast<std::size_t>(rng.uniform() * static_cast<double>(holds.size())),
+                holds.size() - 1);
+            for (std::size_t j = at; j < std::min(at + block, pick.size()); ++j)
+                pick[j] = static_cast<int>((start + j - at) % holds.size());
+        }
+        const auto l = holdLogGains(holds, pick, K);
+        for (int k = 0; k < K; ++k)
+            if (std::isfinite(l[static_cast<std::size_t>(k)]))
+                reps[static_cast<std::size_t>(k)].push_back(l[static_cast<std::size_t>(k)]);
+    }
+    double weightSum = 0.0, weighted = 0.0;
+    for (int k = 0; k < K; ++k) {
+        const std::size_t kk = static_cast<std::size_t>(k);
+        // A taxel read in most replicates; one pressed in too few holds is left out.
+        if (!std::isfinite(g.logGain[kk]) ||
+            reps[kk].size() < static_cast<std::size_t>(0.9 * replicates))
+            continue;
+        g.se[kk] = sd(reps[kk]);
+        if (g.se[kk] <= 0) continue;
+        weightSum += 1.0 / (g.se[kk] * g.se[kk]);
+        weighted += g.logGain[kk] / (g.se[kk] * g.se[kk]);
+        ++g.df;
+    }
+    if (weightSum <= 0) return g;
+    const double centre = weighted / weightSum;
+    for (int k = 0; k < K; ++k) {
+        const std::size_t kk = static_cast<std::size_t>(k);
+        if (g.se[kk] <= 0) continue;
+        const double d = (g.logGain[kk] - centre) / g.se[kk];
+        g.q += d * d;
+    }
+    return g;
+}
+
 }  // namespace
 
 SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
@@ -464,6 +754,7 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
     ideal.effects.clear();
     const std::vector<TapRecord> idealTaps = simulateAt(ideal, model, recorded, 1);
     Masks masks;
+    masks.quietMargin = 0.1 * base.tap.contactThreshold;
     // Read so that a tapper whose stroke runs on another schedule than the simulated one (a real
     // rig's) is read the same: a taxel is pressed in a tap where the model presses it over
     // kPressed counts at some sample, and its pressure is the whole tap's.
@@ -664,8 +955,40 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
         return listed;
     };
     if (!aboveZero("taxel_noise", "sigma_counts", "sigma", est.sigma, sigmas)) chosen.sigma = 0.0;
-    if (!aboveZero("baseline_drift", "rate_counts_per_sqrt_s", "drift rate", est.rate, rates))
-        chosen.rate = 0.0;
+    {
+        // Drift: whether the taps' means over nothing wander more than recordings simulated
+        // with the fitted scene but no drift do. (A rate over its standard error would test at
+        // the boundary: replicates simulated at a small rate read it back as small or as none,
+        // and their spread is then no measure of how far from none it lies.)
+        Theta none = est;
+        none.rate = 0.0;
+        const SceneSpec noDrift = sceneWith(base, none, whole, maxCounts, fit.deadTaxels,
+                                            fit.deadReading, driftTemplate, c.blink);
+        std::vector<double> wanders;
+        for (int b = 0; b < std::max(settings.bootstrapReplicates, 10); ++b)
+            wanders.push_back(
+                momentsOf(simulateAt(noDrift, model, recorded,
+                                     settings.seed + 70000 + static_cast<std::uint64_t>(b)),
+                          masks, skip)
+                    .wander);
+        const double spread = sd(wanders);
+        const double expected = std::accumulate(wanders.begin(), wanders.end(), 0.0) /
+                                static_cast<double>(wanders.size());
+        const double stat = spread > 0 ? (target.wander - expected) / spread
+                                       : (target.wander > expected ? 1e9 : 0.0);
+        const bool listed = est.rate > 0 && stat > z;
+        fit.choices.push_back(
+            {"baseline_drift", listed,
+             "the wander of the taps' means over nothing, less its mean over " +
+                 std::to_string(wanders.size()) +
+                 " recordings simulated with the fitted scene without drift, over their standard "
+                 "deviation, against the one-sided normal quantile at the level",
+             stat, z, true});
+        if (listed)
+            parameter("baseline_drift", "rate_counts_per_sqrt_s", est.rate, sd(rates));
+        else
+            chosen.rate = 0.0;
+    }
     {
         // Gains: a Wald test of the log gains' spread about their common value (chi-square with
         // one degree of freedom fewer than the live taxels). Their common level is the tapper's as
@@ -702,13 +1025,28 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
             const double d = (std::log(est.gains[kk]) - centre) / ses[kk];
             wald += d * d;
         }
-        const double threshold = df > 1 ? chiSquareQuantile(df - 1, z) : 0.0;
-        const bool listed = df > 1 && wald > threshold;
-        fit.choices.push_back({"taxel_gain", listed,
-                               "Wald statistic of the log gains about their inverse-variance "
-                               "weighted mean (Cochran's Q), against chi-square with one degree "
-                               "of freedom fewer than the live taxels at the level",
-                               wald, threshold, true});
+        // Whether the taxels differ is read from the holds (holdGains()): the moment fit above
+        // compares whole taps with the scene's stroke, so a stroke that stops deeper or on
+        // another schedule would look like gains there. The values and their intervals are the
+        // moment fit's.
+        const HoldGains held = holdGains(holdsOf(base, *model, recorded, skip, maxCounts), K,
+                                         settings.holdReplicates, settings.seed + 60000);
+        fit.holdTaps = held.taps;
+        fit.momentGainsQ = wald;
+        for (std::size_t k = 0; k < held.logGain.size(); ++k) {
+            fit.holdGains.push_back(std::exp(held.logGain[k]));
+            fit.holdGainLogSe.push_back(held.se[k]);
+        }
+        const double threshold = held.df > 1 ? chiSquareQuantile(held.df - 1, z) : 0.0;
+        const bool listed = held.df > 1 && held.q > threshold;
+        fit.choices.push_back(
+            {"taxel_gain", listed,
+             "Cochran's Q of the log gains read from the taps' holds (each hold's "
+             "depth fitted to the model at its pose) about their "
+             "inverse-variance weighted mean, errors from resampling the taps, "
+             "against chi-square with one degree of freedom fewer than the "
+             "taxels read, at the level",
+             held.q, threshold, true});
         const double seCommon = std::sqrt(meanLogVar);
         fit.pressureScale = std::exp(meanLog);
         fit.pressureScaleLow = std::exp(meanLog - 1.96 * seCommon);

@@ -19,6 +19,7 @@ struct SceneFitSettings {
     int bootstrapReplicates = 20;  ///< recordings simulated at the estimate, for its uncertainty
     int iterations = 12;           ///< moment-matching rounds per fit
     int simulationsPerRound = 3;   ///< simulated recordings whose moments each round matches
+    int holdReplicates = 200;      ///< resamplings of the taps' holds, for the gains test
     /// An effect is listed when its test statistic's p-value under "absent" is below this.
     double alpha = 0.001;
     std::uint64_t seed = 1;  ///< of the simulations the fit runs (common to every round)
@@ -65,6 +66,14 @@ struct SceneFit {
     /// said when it differs at the level.
     double pressureScale = 1.0, pressureScaleLow = 1.0, pressureScaleHigh = 1.0;
     bool pressureScaleDiffers = false;
+    /// What the gains test read (taxel_gain's choice): each taxel's gain relative to the others
+    /// as the taps' holds show it (NaN where too few holds press it or it is dead), its standard
+    /// error on the log scale (0 where not tested), the touching taps whose hold was read, and
+    /// the same statistic on the moment fit's gains, which a stroke on another schedule or to
+    /// another depth than the scene's moves.
+    std::vector<double> holdGains, holdGainLogSe;
+    int holdTaps = 0;
+    double momentGainsQ = 0.0;
     std::vector<int> deadTaxels;
     double deadReading = 0.0;
     std::vector<int> intermittentTaxels;  ///< taxels that blink, where the taps show it

@@ -446,8 +446,9 @@ private slots:
         // One data set of the paper's training taps recorded on the bench through the real
         // drivers, fitted from the paper scene. The bench puts taxel_noise (sigma 1.5) and
         // adc_quantisation on its frames and nothing else of the scene's: both are listed, and no
-        // taxel is taken for dead. (Its NXT stroke presses on another schedule than the
-        // simulated tapper's; docs/calibration.md says what that does to drift and gains.)
+        // taxel is taken for dead, blinking or of its own gain, and no drift is listed. (Its NXT
+        // stroke presses on another schedule than the simulated tapper's and deeper, which the
+        // fit reports as the pressure level.)
         Emulated e;
         e.assemble();
         TrainingProtocolSettings one = e.spec.training;
@@ -476,8 +477,17 @@ private slots:
             if (p.parameter == "sigma_counts") sigma = &p;
         }
         QVERIFY(listed["taxel_noise"] && listed["adc_quantisation"] && !listed["dead_taxel"]);
-        // The bench's stroke runs on its own schedule: nothing in it looks like a blink.
+        // The bench's stroke runs on its own schedule and stops deeper than the simulated
+        // tapper: nothing in it looks like a blink, and its taxels, equally sensitive, are not
+        // taken for gains (the test reads the holds, whatever the stroke).
         QVERIFY(!listed["intermittent_taxel"]);
+        qInfo("gains from %d holds; the moment fit's gains would give %.3g; pressure level %.3f",
+              fit.holdTaps, fit.momentGainsQ, fit.pressureScale);
+        QVERIFY(!listed["taxel_gain"]);
+        QVERIFY(fit.holdTaps >= 20);
+        // Its baseline does not drift, and its means over nothing wander no more than noise
+        // makes them.
+        QVERIFY(!listed["baseline_drift"]);
         QVERIFY(fit.deadTaxels.empty());
         QVERIFY(sigma);
         // The bench runs its devices in real time, so how closely sigma comes back depends on the
