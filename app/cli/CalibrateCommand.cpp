@@ -208,11 +208,12 @@ int commandCalibrate(const std::vector<std::string>& args, int argc, char** argv
             "(x/ one standard error):",
             fit.holdTaps);
         for (std::size_t k = 0; k < fit.holdGains.size(); ++k) {
+            std::printf("%s", k % 4 == 0 ? "\n   " : "");
             if (std::isfinite(fit.holdGains[k]) && fit.holdGainLogSe[k] > 0)
-                std::printf(" %zu: %.3f x/ %.3f", k, fit.holdGains[k],
+                std::printf("  taxel %2zu: %.3f x/ %.3f", k, fit.holdGains[k],
                             std::exp(fit.holdGainLogSe[k]));
             else
-                std::printf(" %zu: not read", k);
+                std::printf("  taxel %2zu: not read       ", k);
         }
         std::printf(
             "\n  the same test on the moment fit's gains: %.3g (a stroke on another "

@@ -1088,9 +1088,9 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
     if (saturates) parameter("adc_quantisation", "max_counts", maxCounts, 0.0);
     fit.choices.push_back(
         {"intermittent_taxel", blinking.listed,
-         "the most readings of one taxel, deep inside a press, under a quarter of its median over "
-         "that press while most of the frame's pressed taxels are not (a live taxel's noise "
-         "gives none)",
+         "the most readings of one taxel, deep inside a press that the model and the other "
+         "taxels both hold, under a quarter of its median over that press while most of the "
+         "frame's pressed taxels are not (a live taxel's noise gives none)",
          static_cast<double>(blinking.mostLow), static_cast<double>(kBlinkReadings), true});
     if (blinking.listed) {
         // Both positive and read from few spells: intervals on the log scale.
