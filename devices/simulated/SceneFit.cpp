@@ -678,6 +678,127 @@ std::vector<double> holdLogGains(const std::vector<Hold>& holds, const std::vect
 
 /// The hold gains with their errors from resampling the touching taps, and Cochran's Q of
 /// their logs about the inverse-variance weighted mean.
+/// The pad's memory as the taps show it: after each touching tap's press falls, what its total
+/// still reads over its baseline before contact, as a share of the press's level, early (the
+/// first three frames after the fall) and late (the seventh to tenth), averaged over the taps
+/// whose window holds ten frames after the fall. The fall ends at the first frame after the
+/// hold that lies below half the level and drops by less than a twentieth of it from the frame
+/// before. Read from the taps alone, so that a stroke on another schedule reads alike.
+struct Tail {
+    double early = 0.0, late = 0.0;
+    int taps = 0;
+};
+constexpr int kTailFrames = 10;
+
+Tail tailOf(const std::vector<TapRecord>& taps, const std::vector<char>& skip,
+            double contactThreshold) {
+    Tail tail;
+    for (const auto& r : taps) {
+        const Tap& tap = r.tap;
+        const int T = tap.sampleCount();
+        std::vector<double> raw(static_cast<std::size_t>(T), 0.0);
+        for (int t = 0; t < T; ++t)
+            for (int k = 0; k < tap.taxels; ++k)
+                if (!skip[static_cast<std::size_t>(k)])
+                    raw[static_cast<std::size_t>(t)] += tap.at(t, k);
+        const auto [lowest, highest] = std::minmax_element(raw.begin(), raw.end());
+        if (*highest - *lowest < 0.5 * contactThreshold) continue;
+        std::vector<double> upper;
+        for (double v : raw)
+            if (v >= *lowest + 0.5 * (*highest - *lowest)) upper.push_back(v);
+        std::nth_element(upper.begin(), upper.begin() + static_cast<long>(upper.size() / 2),
+                         upper.end());
+        const double level = upper[upper.size() / 2];
+        const double band = (1.0 - kHoldShare) * (level - *lowest);
+        int first = -1, last = -1;
+        for (int t = 0; t < T; ++t)
+            if (std::abs(raw[static_cast<std::size_t>(t)] - level) <= band) {
+                if (first < 0) first = t;
+                last = t;
+            }
+        std::vector<double> quiet;
+        for (int t = 0; t < first; ++t)
+            if (raw[static_cast<std::size_t>(t)] <= *lowest + 0.03 * (*highest - *lowest))
+                quiet.push_back(raw[static_cast<std::size_t>(t)]);
+        if (quiet.size() < 2) continue;
+        std::sort(quiet.begin(), quiet.end());
+        const double base = 0.5 * (quiet[(quiet.size() - 1) / 2] + quiet[quiet.size() / 2]);
+        const double pressed = level - base;
+        if (pressed <= 0) continue;
+        int end = -1;
+        for (int t = last + 1; t < T && end < 0; ++t) {
+            const double v = raw[static_cast<std::size_t>(t)] - base;
+            const double drop =
+                raw[static_cast<std::size_t>(t - 1)] - raw[static_cast<std::size_t>(t)];
+            if (v < 0.5 * pressed && drop < 0.05 * pressed) end = t;
+        }
+        if (end < 0 || end + kTailFrames > T) continue;
+        double early = 0.0, late = 0.0;
+        for (int j = 0; j < 3; ++j)
+            early += (raw[static_cast<std::size_t>(end + j)] - base) / pressed;
+        for (int j = 6; j < kTailFrames; ++j)
+            late += (raw[static_cast<std::size_t>(end + j)] - base) / pressed;
+        tail.early += early / 3.0;
+        tail.late += late / (kTailFrames - 6);
+        ++tail.taps;
+    }
+    if (tail.taps > 0) {
+        tail.early /= tail.taps;
+        tail.late /= tail.taps;
+    }
+    return tail;
+}
+
+/// `scene` with the pad's memory at (fraction, time constant), or without it at fraction 0.
+SceneSpec withMemory(const SceneSpec& scene, double fraction, double tau) {
+    SceneSpec s = scene;
+    std::vector<EffectSpec> effects;
+    for (const auto& e : scene.effects)
+        if (e.name != "viscoelastic_memory") effects.push_back(e);
+    if (fraction > 0) {
+        EffectSpec e;
+        e.name = "viscoelastic_memory";
+        e.parameters = Json{{"fraction", fraction}, {"time_constant_s", tau}};
+        e.place = "/effects/" + std::to_string(effects.size());
+        effects.push_back(std::move(e));
+    }
+    s.effects = std::move(effects);
+    return s;
+}
+
+struct Memory {
+    double fraction = 0.0, tau = 0.0;
+};
+
+/// The memory at which taps simulated at the recorded poses with `scene` show the recorded
+/// tail: the fraction scaled by the early shares' ratio, the time constant by the ratio of
+/// their early-to-late logs, over `rounds` rounds from `start`, each round's tail the mean of
+/// `sims` simulations with the same seeds every round (so that one simulation's noise does not
+/// move the estimate from round to round).
+Memory fitMemory(const SceneSpec& scene, const std::shared_ptr<const FingertipContactModel>& model,
+                 const std::vector<TapRecord>& at, const Tail& target,
+                 const std::vector<char>& skip, Memory start, int rounds, int sims,
+                 std::uint64_t seed) {
+    Memory m = start;
+    for (int round = 0; round < rounds; ++round) {
+        Tail sim;
+        for (int r = 0; r < sims; ++r) {
+            const Tail one = tailOf(simulateAt(withMemory(scene, m.fraction, m.tau), model, at,
+                                               seed + 131 * static_cast<std::uint64_t>(r)),
+                                    skip, scene.tap.contactThreshold);
+            sim.early += one.early / sims;
+            sim.late += one.late / sims;
+        }
+        if (sim.early > 0 && target.early > 0)
+            m.fraction = std::clamp(m.fraction * target.early / sim.early, 1e-3, 1.0);
+        if (target.early > target.late && target.late > 0 && sim.early > sim.late && sim.late > 0)
+            m.tau = std::clamp(
+                m.tau * std::log(sim.early / sim.late) / std::log(target.early / target.late), 0.01,
+                60.0);
+    }
+    return m;
+}
+
 HoldGains holdGains(const std::vector<Hold>& holds, int K, int replicates, std::uint64_t seed) {
     HoldGains g;
     g.taps = static_cast<int>(holds.size());
@@ -1070,6 +1191,63 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
             std::fill(chosen.gains.begin(), chosen.gains.end(), 1.0);
         }
     }
+    // The pad's memory: listed where the taps' early tail after a press lies above what
+    // recordings simulated with the fitted scene without memory show (the drift test's form),
+    // then fitted by simulation, with standard errors from recordings simulated at the estimate.
+    Memory memory;
+    bool memoryListed = false;
+    {
+        const Tail target = tailOf(recorded, skip, base.tap.contactThreshold);
+        const SceneSpec noMemory = withMemory(fittedAll, 0.0, 0.0);
+        std::vector<double> nulls;
+        for (int b = 0; b < std::max(settings.bootstrapReplicates, 10); ++b)
+            nulls.push_back(
+                tailOf(simulateAt(noMemory, model, recorded,
+                                  settings.seed + 80000 + static_cast<std::uint64_t>(b)),
+                       skip, base.tap.contactThreshold)
+                    .early);
+        const double spread = sd(nulls);
+        const double expected =
+            std::accumulate(nulls.begin(), nulls.end(), 0.0) / static_cast<double>(nulls.size());
+        const double stat =
+            spread > 0 ? (target.early - expected) / spread : (target.early > expected ? 1e9 : 0.0);
+        memoryListed = target.taps >= 10 && stat > z;
+        fit.choices.push_back(
+            {"viscoelastic_memory", memoryListed,
+             "what the touching taps' totals still read over their baseline in the three frames "
+             "after the press falls, as a share of the press, less its mean over " +
+                 std::to_string(nulls.size()) +
+                 " recordings simulated with the fitted scene without memory, over their standard "
+                 "deviation (" +
+                 std::to_string(target.taps) +
+                 " taps with ten frames after the fall), against the one-sided normal quantile "
+                 "at the level",
+             stat, z, true});
+        if (memoryListed) {
+            Memory start{0.1, 0.5};
+            for (const auto& e : base.effects)
+                if (e.name == "viscoelastic_memory") {
+                    start.fraction = e.parameters.value("fraction", 0.1);
+                    start.tau = e.parameters.value("time_constant_s", 0.5);
+                }
+            memory = fitMemory(fittedAll, model, recorded, target, skip, start, 6, 3,
+                               settings.seed + 81000);
+            const SceneSpec atEstimate = withMemory(fittedAll, memory.fraction, memory.tau);
+            std::vector<double> fractions, taus;
+            for (int b = 0; b < settings.bootstrapReplicates; ++b) {
+                const auto replicate =
+                    simulateAt(atEstimate, model, recorded,
+                               settings.seed + 82000 + static_cast<std::uint64_t>(b));
+                const Memory again = fitMemory(
+                    fittedAll, model, recorded, tailOf(replicate, skip, base.tap.contactThreshold),
+                    skip, memory, 3, 2, settings.seed + 83000 + 10 * static_cast<std::uint64_t>(b));
+                fractions.push_back(again.fraction);
+                taus.push_back(again.tau);
+            }
+            parameter("viscoelastic_memory", "fraction", memory.fraction, sd(fractions));
+            parameter("viscoelastic_memory", "time_constant_s", memory.tau, sd(taus));
+        }
+    }
     fit.choices.push_back({"dead_taxel", !fit.deadTaxels.empty(),
                            "a taxel whose readings in taps where the model presses it over 20 "
                            "counts exceed its readings in taps over nothing by under a twentieth "
@@ -1107,14 +1285,15 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
         fit.intermittentTaxels = blinking.taxels;
     }
     for (const auto& e : base.effects)
-        if (!estimatedHere(e.name))
+        if (!estimatedHere(e.name) && e.name != "viscoelastic_memory")
             fit.choices.push_back({e.name, true,
                                    "not identifiable from taps by this fit: kept as the base scene "
                                    "lists it",
                                    0.0, 0.0, false});
 
-    fit.fitted = sceneWith(base, chosen, whole, maxCounts, fit.deadTaxels, fit.deadReading,
-                           driftTemplate, c.blink);
+    fit.fitted = withMemory(sceneWith(base, chosen, whole, maxCounts, fit.deadTaxels,
+                                      fit.deadReading, driftTemplate, c.blink),
+                            memoryListed ? memory.fraction : 0.0, memory.tau);
 
     // Goodness of fit, per taxel: recorded against simulated with the fitted scene, beside what
     // two simulations of it show.

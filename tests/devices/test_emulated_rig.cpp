@@ -488,6 +488,8 @@ private slots:
         // Its baseline does not drift, and its means over nothing wander no more than noise
         // makes them.
         QVERIFY(!listed["baseline_drift"]);
+        // Nor does its pad remember a press.
+        QVERIFY(!listed["viscoelastic_memory"]);
         QVERIFY(fit.deadTaxels.empty());
         QVERIFY(sigma);
         // The bench runs its devices in real time, so how closely sigma comes back depends on the

@@ -91,10 +91,18 @@ private slots:
         // The paper's taps stay below the converter's top: its range is kept, not read.
         QVERIFY(!find(fit, "adc_quantisation", "max_counts"));
         QCOMPARE(parameterOf(fit.fitted, "adc_quantisation", "max_counts"), 255.0);
+        // The pad's memory comes back within its intervals.
+        const FittedParameter* fraction = find(fit, "viscoelastic_memory", "fraction");
+        const FittedParameter* tau = find(fit, "viscoelastic_memory", "time_constant_s");
+        QVERIFY(fraction && tau);
+        qInfo("memory fraction %.4f [%.4f, %.4f], time constant %.3f [%.3f, %.3f] s",
+              fraction->value, fraction->low, fraction->high, tau->value, tau->low, tau->high);
+        QVERIFY(fraction->low <= 0.1 && 0.1 <= fraction->high);
+        QVERIFY(tau->low <= 0.5 && 0.5 <= tau->high);
         // The effects taps cannot show are kept, and said so.
         int kept = 0;
         for (const auto& c : fit.choices) kept += !c.estimated;
-        QCOMPARE(kept, 3);  // contact_latency, stage_error, viscoelastic_memory
+        QCOMPARE(kept, 2);  // contact_latency, stage_error
         QCOMPARE(fit.taxels.size(), std::size_t(12));
         int matching = 0;
         for (const auto& t : fit.taxels) matching += t.matches;
