@@ -299,7 +299,9 @@ BlinkStats blinksOf(const std::vector<TapRecord>& taps, const std::vector<TapRec
             for (int t = 0; t < T; ++t)
                 others[static_cast<std::size_t>(t)] =
                     total[static_cast<std::size_t>(t)] - tap.at(t, k);
-            const auto [least, most] = std::minmax_element(others.begin(), others.end());
+            const auto spread = std::minmax_element(others.begin(), others.end());
+            const double* least = &*spread.first;
+            const double* most = &*spread.second;
             std::vector<double> upper;
             for (double v : others)
                 if (v >= *least + 0.5 * (*most - *least)) upper.push_back(v);
@@ -544,7 +546,9 @@ std::vector<Hold> holdsOf(const SceneSpec& base, const FingertipContactModel& mo
             for (int k = 0; k < K; ++k)
                 if (!skip[static_cast<std::size_t>(k)])
                     raw[static_cast<std::size_t>(t)] += tap.at(t, k);
-        const auto [lowest, highest] = std::minmax_element(raw.begin(), raw.end());
+        const auto extremes = std::minmax_element(raw.begin(), raw.end());
+        const double* lowest = &*extremes.first;
+        const double* highest = &*extremes.second;
         const double range = *highest - *lowest;
         // A tap that touched: its hold presses the skin well past the reflex's half.
         if (range < 0.5 * base.tap.contactThreshold) continue;
@@ -701,7 +705,9 @@ Tail tailOf(const std::vector<TapRecord>& taps, const std::vector<char>& skip,
             for (int k = 0; k < tap.taxels; ++k)
                 if (!skip[static_cast<std::size_t>(k)])
                     raw[static_cast<std::size_t>(t)] += tap.at(t, k);
-        const auto [lowest, highest] = std::minmax_element(raw.begin(), raw.end());
+        const auto extremes = std::minmax_element(raw.begin(), raw.end());
+        const double* lowest = &*extremes.first;
+        const double* highest = &*extremes.second;
         if (*highest - *lowest < 0.5 * contactThreshold) continue;
         std::vector<double> upper;
         for (double v : raw)

@@ -166,7 +166,8 @@ private slots:
         QCOMPARE(listed["taxel_noise"], "yes");
         QCOMPARE(listed["adc_quantisation"], "yes");
         QCOMPARE(listed["taxel_gain"], "no");
-        QCOMPARE(listed["viscoelastic_memory"], "kept");
+        QCOMPARE(listed["viscoelastic_memory"], "yes");  // the paper scene's pad remembers
+        QCOMPARE(listed["contact_latency"], "kept");
         bool sigma = false;
         QTableWidget* estimates = dialog->estimatesTable();
         for (int r = 0; r < estimates->rowCount(); ++r)
