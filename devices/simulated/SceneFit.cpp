@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
+#include <optional>
 
 #include "core/common/InputError.h"
 #include "core/common/NumberText.h"
@@ -499,6 +500,65 @@ struct HoldGains {
     int df = 0;                       ///< taxels read
 };
 
+constexpr double kHoldShare = 0.95;
+
+/// A touching tap's press as its own frames show it, whatever the stroke's schedule: the totals
+/// over the live taxels; the press's level, the median total of the frames above half the range
+/// (most of which are the hold's: a pad with memory reads above it for a frame after release);
+/// the hold, the frames from the first within 5 % of that level (above the lowest total); and
+/// the quiet frames before the hold, within 3 % of the range above the lowest, where a baseline
+/// is read before contact (after release a pad with memory, or a baseline compensation that
+/// followed the press, reads otherwise).
+struct Press {
+    std::vector<double> total;
+    double lowest = 0.0, level = 0.0;
+    int first = 0, last = 0;  ///< the hold's first and last frame
+    std::vector<int> quiet;
+    bool inHold(int t) const {
+        return std::abs(total[static_cast<std::size_t>(t)] - level) <=
+               (1.0 - kHoldShare) * (level - lowest);
+    }
+};
+
+/// The press of `tap`, or nothing for a tap that did not touch (its range of totals under half
+/// the reflex's threshold) or has fewer than two quiet frames before its hold.
+std::optional<Press> pressOf(const Tap& tap, const std::vector<char>& skip,
+                             double contactThreshold) {
+    Press p;
+    const int T = tap.sampleCount();
+    p.total.assign(static_cast<std::size_t>(T), 0.0);
+    for (int t = 0; t < T; ++t)
+        for (int k = 0; k < tap.taxels; ++k)
+            if (!skip[static_cast<std::size_t>(k)])
+                p.total[static_cast<std::size_t>(t)] += tap.at(t, k);
+    const auto extremes = std::minmax_element(p.total.begin(), p.total.end());
+    p.lowest = *extremes.first;
+    const double range = *extremes.second - p.lowest;
+    if (range < 0.5 * contactThreshold) return std::nullopt;
+    std::vector<double> upper;
+    for (double v : p.total)
+        if (v >= p.lowest + 0.5 * range) upper.push_back(v);
+    std::nth_element(upper.begin(), upper.begin() + static_cast<long>(upper.size() / 2),
+                     upper.end());
+    p.level = upper[upper.size() / 2];
+    p.first = -1;
+    for (int t = 0; t < T; ++t)
+        if (p.inHold(t)) {
+            if (p.first < 0) p.first = t;
+            p.last = t;
+        }
+    for (int t = 0; t < p.first; ++t)
+        if (p.total[static_cast<std::size_t>(t)] <= p.lowest + 0.03 * range) p.quiet.push_back(t);
+    if (p.first < 0 || p.quiet.size() < 2) return std::nullopt;
+    return p;
+}
+
+/// The median of `v` (the mean of the middle two for an even count).
+double medianOf(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return 0.5 * (v[(v.size() - 1) / 2] + v[v.size() / 2]);
+}
+
 /// A touching tap's hold: each taxel's median over the frames of the hold, less its baseline
 /// before contact, and the model's pressures at the tap's pose over a grid of depths to the
 /// stroke's limit.
@@ -507,7 +567,6 @@ struct Hold {
     std::vector<double> modelAtDepths;  ///< [depth][taxel]
 };
 constexpr int kHoldDepths = 120;
-constexpr double kHoldShare = 0.95;
 
 std::vector<Hold> holdsOf(const SceneSpec& base, const FingertipContactModel& model,
                           const std::vector<TapRecord>& recorded, const std::vector<char>& skip,
@@ -536,45 +595,13 @@ std::vector<Hold> holdsOf(const SceneSpec& base, const FingertipContactModel& mo
     std::vector<Hold> holds;
     for (std::size_t i = 0; i < recorded.size(); ++i) {
         const Tap& tap = recorded[i].tap;
-        // The hold: the frames whose total lies within 5 % of the hold's level (above the
-        // tap's lowest total). The baseline: each taxel's median over the frames before the hold
-        // whose total lies within 3 % of the range above the lowest, before contact. (After
-        // release a pad with memory, or a baseline compensation that followed the press, reads
-        // otherwise.)
-        std::vector<double> raw(static_cast<std::size_t>(tap.sampleCount()), 0.0);
-        for (int t = 0; t < tap.sampleCount(); ++t)
-            for (int k = 0; k < K; ++k)
-                if (!skip[static_cast<std::size_t>(k)])
-                    raw[static_cast<std::size_t>(t)] += tap.at(t, k);
-        const auto extremes = std::minmax_element(raw.begin(), raw.end());
-        const double* lowest = &*extremes.first;
-        const double* highest = &*extremes.second;
-        const double range = *highest - *lowest;
-        // A tap that touched: its hold presses the skin well past the reflex's half.
-        if (range < 0.5 * base.tap.contactThreshold) continue;
-        // The hold's level: the median total of the frames above half the range, most of which
-        // are the hold's (a pad with memory reads above it for a frame after release).
-        std::vector<double> upper;
-        for (double v : raw)
-            if (v >= *lowest + 0.5 * range) upper.push_back(v);
-        std::nth_element(upper.begin(), upper.begin() + static_cast<long>(upper.size() / 2),
-                         upper.end());
-        const double level = upper[upper.size() / 2];
-        const auto inHold = [&](double v) {
-            return std::abs(v - level) <= (1.0 - kHoldShare) * (level - *lowest);
-        };
-        const auto holdStart =
-            static_cast<int>(std::find_if(raw.begin(), raw.end(), inHold) - raw.begin());
-        std::vector<int> quiet;
-        for (int t = 0; t < holdStart; ++t)
-            if (raw[static_cast<std::size_t>(t)] <= *lowest + 0.03 * range) quiet.push_back(t);
-        if (quiet.size() < 2) continue;
+        const auto press = pressOf(tap, skip, base.tap.contactThreshold);
+        if (!press) continue;
         std::vector<double> baseline(static_cast<std::size_t>(K), 0.0);
         for (int k = 0; k < K; ++k) {
             std::vector<double> v;
-            for (int t : quiet) v.push_back(tap.at(t, k));
-            std::sort(v.begin(), v.end());
-            baseline[static_cast<std::size_t>(k)] = 0.5 * (v[(v.size() - 1) / 2] + v[v.size() / 2]);
+            for (int t : press->quiet) v.push_back(tap.at(t, k));
+            baseline[static_cast<std::size_t>(k)] = medianOf(std::move(v));
         }
         Hold h;
         h.reading.assign(static_cast<std::size_t>(K), NAN);
@@ -582,8 +609,8 @@ std::vector<Hold> holdsOf(const SceneSpec& base, const FingertipContactModel& mo
             if (skip[static_cast<std::size_t>(k)]) continue;
             std::vector<double> v;
             bool saturated = false;
-            for (int t = holdStart; t < tap.sampleCount(); ++t)
-                if (inHold(raw[static_cast<std::size_t>(t)])) {
+            for (int t = press->first; t <= press->last; ++t)
+                if (press->inHold(t)) {
                     v.push_back(tap.at(t, k) - baseline[static_cast<std::size_t>(k)]);
                     saturated = saturated || tap.at(t, k) >= maxCounts;
                 }
@@ -698,41 +725,17 @@ Tail tailOf(const std::vector<TapRecord>& taps, const std::vector<char>& skip,
             double contactThreshold) {
     Tail tail;
     for (const auto& r : taps) {
-        const Tap& tap = r.tap;
-        const int T = tap.sampleCount();
-        std::vector<double> raw(static_cast<std::size_t>(T), 0.0);
-        for (int t = 0; t < T; ++t)
-            for (int k = 0; k < tap.taxels; ++k)
-                if (!skip[static_cast<std::size_t>(k)])
-                    raw[static_cast<std::size_t>(t)] += tap.at(t, k);
-        const auto extremes = std::minmax_element(raw.begin(), raw.end());
-        const double* lowest = &*extremes.first;
-        const double* highest = &*extremes.second;
-        if (*highest - *lowest < 0.5 * contactThreshold) continue;
-        std::vector<double> upper;
-        for (double v : raw)
-            if (v >= *lowest + 0.5 * (*highest - *lowest)) upper.push_back(v);
-        std::nth_element(upper.begin(), upper.begin() + static_cast<long>(upper.size() / 2),
-                         upper.end());
-        const double level = upper[upper.size() / 2];
-        const double band = (1.0 - kHoldShare) * (level - *lowest);
-        int first = -1, last = -1;
-        for (int t = 0; t < T; ++t)
-            if (std::abs(raw[static_cast<std::size_t>(t)] - level) <= band) {
-                if (first < 0) first = t;
-                last = t;
-            }
+        const int T = r.tap.sampleCount();
+        const auto press = pressOf(r.tap, skip, contactThreshold);
+        if (!press) continue;
+        const auto& raw = press->total;
         std::vector<double> quiet;
-        for (int t = 0; t < first; ++t)
-            if (raw[static_cast<std::size_t>(t)] <= *lowest + 0.03 * (*highest - *lowest))
-                quiet.push_back(raw[static_cast<std::size_t>(t)]);
-        if (quiet.size() < 2) continue;
-        std::sort(quiet.begin(), quiet.end());
-        const double base = 0.5 * (quiet[(quiet.size() - 1) / 2] + quiet[quiet.size() / 2]);
-        const double pressed = level - base;
+        for (int t : press->quiet) quiet.push_back(raw[static_cast<std::size_t>(t)]);
+        const double base = medianOf(std::move(quiet));
+        const double pressed = press->level - base;
         if (pressed <= 0) continue;
         int end = -1;
-        for (int t = last + 1; t < T && end < 0; ++t) {
+        for (int t = press->last + 1; t < T && end < 0; ++t) {
             const double v = raw[static_cast<std::size_t>(t)] - base;
             const double drop =
                 raw[static_cast<std::size_t>(t - 1)] - raw[static_cast<std::size_t>(t)];
