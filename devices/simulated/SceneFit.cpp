@@ -49,6 +49,28 @@ struct Masks {
     double quietMargin = 0.0;
 };
 
+/// Each frame's total over the live taxels of `tap`.
+std::vector<double> frameTotals(const Tap& tap, const std::vector<char>& skip) {
+    std::vector<double> total(static_cast<std::size_t>(tap.sampleCount()), 0.0);
+    for (int t = 0; t < tap.sampleCount(); ++t)
+        for (int k = 0; k < tap.taxels; ++k)
+            if (!skip[static_cast<std::size_t>(k)])
+                total[static_cast<std::size_t>(t)] += tap.at(t, k);
+    return total;
+}
+
+/// The level of a press in frame totals `total` whose least and most are `lowest` and `highest`:
+/// the median of the totals above half the range, most of which are the hold's (a pad with
+/// memory reads above it for a frame after release).
+double pressLevel(const std::vector<double>& total, double lowest, double highest) {
+    std::vector<double> upper;
+    for (double v : total)
+        if (v >= lowest + 0.5 * (highest - lowest)) upper.push_back(v);
+    std::nth_element(upper.begin(), upper.begin() + static_cast<long>(upper.size() / 2),
+                     upper.end());
+    return upper[upper.size() / 2];
+}
+
 /// Per frame of `tap`, whether its total over the live taxels lies within `margin` counts above
 /// the tap's quiet level (the tenth percentile of its frames' totals). A stroke on another
 /// schedule than the model's (a real tapper's, or one the host held up) presses where the model
@@ -56,11 +78,7 @@ struct Masks {
 /// simulated taps, and noise alone does not reach it.
 std::vector<char> quietFrames(const Tap& tap, const std::vector<char>& skip, double margin) {
     const int T = tap.sampleCount();
-    std::vector<double> total(static_cast<std::size_t>(T), 0.0);
-    for (int t = 0; t < T; ++t)
-        for (int k = 0; k < tap.taxels; ++k)
-            if (!skip[static_cast<std::size_t>(k)])
-                total[static_cast<std::size_t>(t)] += tap.at(t, k);
+    const std::vector<double> total = frameTotals(tap, skip);
     std::vector<double> sorted = total;
     const auto tenth = sorted.begin() + static_cast<long>(sorted.size() / 10);
     std::nth_element(sorted.begin(), tenth, sorted.end());
@@ -285,11 +303,7 @@ BlinkStats blinksOf(const std::vector<TapRecord>& taps, const std::vector<TapRec
         const int T = tap.sampleCount();
         // deep[t * K + k], low[t * K + k]
         std::vector<char> deep(static_cast<std::size_t>(T * K), 0), low(deep.size(), 0);
-        std::vector<double> total(static_cast<std::size_t>(T), 0.0);
-        for (int t = 0; t < T; ++t)
-            for (int k = 0; k < K; ++k)
-                if (!skip[static_cast<std::size_t>(k)])
-                    total[static_cast<std::size_t>(t)] += tap.at(t, k);
+        const std::vector<double> total = frameTotals(tap, skip);
         for (int k = 0; k < K; ++k) {
             if (skip[static_cast<std::size_t>(k)] || !asked[static_cast<std::size_t>(k)]) continue;
             // The recorded press, read from the other taxels (a blink of this one leaves them
@@ -302,13 +316,7 @@ BlinkStats blinksOf(const std::vector<TapRecord>& taps, const std::vector<TapRec
                     total[static_cast<std::size_t>(t)] - tap.at(t, k);
             const auto spread = std::minmax_element(others.begin(), others.end());
             const double* least = &*spread.first;
-            const double* most = &*spread.second;
-            std::vector<double> upper;
-            for (double v : others)
-                if (v >= *least + 0.5 * (*most - *least)) upper.push_back(v);
-            std::nth_element(upper.begin(), upper.begin() + static_cast<long>(upper.size() / 2),
-                             upper.end());
-            const double level = upper[upper.size() / 2];
+            const double level = pressLevel(others, *least, *spread.second);
             std::vector<double> readings;
             for (int t = kMargin; t + kMargin < T; ++t) {
                 bool inside =
@@ -526,21 +534,12 @@ std::optional<Press> pressOf(const Tap& tap, const std::vector<char>& skip,
                              double contactThreshold) {
     Press p;
     const int T = tap.sampleCount();
-    p.total.assign(static_cast<std::size_t>(T), 0.0);
-    for (int t = 0; t < T; ++t)
-        for (int k = 0; k < tap.taxels; ++k)
-            if (!skip[static_cast<std::size_t>(k)])
-                p.total[static_cast<std::size_t>(t)] += tap.at(t, k);
+    p.total = frameTotals(tap, skip);
     const auto extremes = std::minmax_element(p.total.begin(), p.total.end());
     p.lowest = *extremes.first;
     const double range = *extremes.second - p.lowest;
     if (range < 0.5 * contactThreshold) return std::nullopt;
-    std::vector<double> upper;
-    for (double v : p.total)
-        if (v >= p.lowest + 0.5 * range) upper.push_back(v);
-    std::nth_element(upper.begin(), upper.begin() + static_cast<long>(upper.size() / 2),
-                     upper.end());
-    p.level = upper[upper.size() / 2];
+    p.level = pressLevel(p.total, p.lowest, *extremes.second);
     p.first = -1;
     for (int t = 0; t < T; ++t)
         if (p.inHold(t)) {
