@@ -499,6 +499,36 @@ double sd(const std::vector<double>& v) {
     return std::sqrt(s / (v.size() - 1));
 }
 
+/// How far `value` lies above the mean of `nulls` (recordings simulated without an effect), in
+/// their standard deviations; 1e9 above a mean they do not spread about, 0 at or below it.
+double zAbove(double value, const std::vector<double>& nulls) {
+    const double spread = sd(nulls);
+    const double expected =
+        std::accumulate(nulls.begin(), nulls.end(), 0.0) / static_cast<double>(nulls.size());
+    return spread > 0 ? (value - expected) / spread : (value > expected ? 1e9 : 0.0);
+}
+
+/// Cochran's Q of `logs` about their inverse-variance weighted mean, over the entries whose
+/// standard error `se` is positive (so that one read loosely moves the centre little); 0 for
+/// none.
+double cochranQ(const std::vector<double>& logs, const std::vector<double>& se) {
+    double weightSum = 0.0, weighted = 0.0;
+    for (std::size_t k = 0; k < logs.size(); ++k)
+        if (se[k] > 0) {
+            weightSum += 1.0 / (se[k] * se[k]);
+            weighted += logs[k] / (se[k] * se[k]);
+        }
+    if (weightSum <= 0) return 0.0;
+    const double centre = weighted / weightSum;
+    double q = 0.0;
+    for (std::size_t k = 0; k < logs.size(); ++k)
+        if (se[k] > 0) {
+            const double d = (logs[k] - centre) / se[k];
+            q += d * d;
+        }
+    return q;
+}
+
 /// The taxels' sensitivities relative to one another, read from the holds alone so that a stroke
 /// on another schedule or to another depth than the scene's reads the same (see fitScene()).
 struct HoldGains {
@@ -574,20 +604,12 @@ std::vector<Hold> holdsOf(const SceneSpec& base, const FingertipContactModel& mo
     const Polygon object = base.object.outline();
     const double stroke = base.strokeLimitDepth();
     // The coupling the base scene lists acts on every frame before the gains: the model's
-    // pressures carry it too.
-    double coupling = 0.0, radius = 0.0;
+    // pressures carry it too, through the scene's own effect (the depths taken as frames).
+    std::unique_ptr<Effect> crosstalk;
     for (const auto& e : base.effects)
-        if (e.name == "crosstalk") {
-            coupling = e.parameters.value("coupling", 0.0);
-            radius = e.parameters.value("radius_mm", 0.0);
-        }
-    std::vector<std::pair<int, int>> pairs;
-    const auto& at = model.projectedTaxels();
-    for (int i = 0; i < K && coupling > 0; ++i)
-        for (int j = 0; j < K; ++j)
-            if (i != j && distance(at[static_cast<std::size_t>(i)],
-                                   at[static_cast<std::size_t>(j)]) <= radius)
-                pairs.push_back({i, j});
+        if (e.name == "crosstalk")
+            crosstalk = findEffect(e.name)->make(JsonFields(e.parameters, base.source, e.place),
+                                                 model, RandomStream());
     std::vector<double> depths(kHoldDepths);
     for (int d = 0; d < kHoldDepths; ++d)
         depths[static_cast<std::size_t>(d)] = stroke * (d + 1) / kHoldDepths;
@@ -617,14 +639,10 @@ std::vector<Hold> holdsOf(const SceneSpec& base, const FingertipContactModel& mo
             if (!saturated) h.reading[static_cast<std::size_t>(k)] = v[v.size() / 2];
         }
         auto contact = model.contactAt(object, recorded[i].pose);
-        h.modelAtDepths.resize(depths.size() * static_cast<std::size_t>(K));
-        contact.taxelPressuresAtDepths(depths.data(), depths.size(), h.modelAtDepths.data());
-        for (std::size_t d = 0; d < depths.size() && !pairs.empty(); ++d) {
-            double* p = h.modelAtDepths.data() + d * static_cast<std::size_t>(K);
-            const std::vector<double> own(p, p + K);
-            for (const auto& [to, from] : pairs)
-                p[to] += coupling * own[static_cast<std::size_t>(from)];
-        }
+        Tap grid(kHoldDepths, K);
+        contact.taxelPressuresAtDepths(depths.data(), depths.size(), grid.samples.data());
+        if (crosstalk) crosstalk->shapeSignal(grid, SignalContext{});
+        h.modelAtDepths = std::move(grid.samples);
         holds.push_back(std::move(h));
     }
     return holds;
@@ -836,7 +854,6 @@ HoldGains holdGains(const std::vector<Hold>& holds, int K, int replicates, std::
             if (std::isfinite(l[static_cast<std::size_t>(k)]))
                 reps[static_cast<std::size_t>(k)].push_back(l[static_cast<std::size_t>(k)]);
     }
-    double weightSum = 0.0, weighted = 0.0;
     for (int k = 0; k < K; ++k) {
         const std::size_t kk = static_cast<std::size_t>(k);
         // A taxel read in most replicates; one pressed in too few holds is left out.
@@ -844,19 +861,9 @@ HoldGains holdGains(const std::vector<Hold>& holds, int K, int replicates, std::
             reps[kk].size() < static_cast<std::size_t>(0.9 * replicates))
             continue;
         g.se[kk] = sd(reps[kk]);
-        if (g.se[kk] <= 0) continue;
-        weightSum += 1.0 / (g.se[kk] * g.se[kk]);
-        weighted += g.logGain[kk] / (g.se[kk] * g.se[kk]);
-        ++g.df;
+        g.df += g.se[kk] > 0 ? 1 : 0;
     }
-    if (weightSum <= 0) return g;
-    const double centre = weighted / weightSum;
-    for (int k = 0; k < K; ++k) {
-        const std::size_t kk = static_cast<std::size_t>(k);
-        if (g.se[kk] <= 0) continue;
-        const double d = (g.logGain[kk] - centre) / g.se[kk];
-        g.q += d * d;
-    }
+    g.q = cochranQ(g.logGain, g.se);
     return g;
 }
 
@@ -1100,11 +1107,7 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
                                      settings.seed + 70000 + static_cast<std::uint64_t>(b)),
                           masks, skip)
                     .wander);
-        const double spread = sd(wanders);
-        const double expected = std::accumulate(wanders.begin(), wanders.end(), 0.0) /
-                                static_cast<double>(wanders.size());
-        const double stat = spread > 0 ? (target.wander - expected) / spread
-                                       : (target.wander > expected ? 1e9 : 0.0);
+        const double stat = zAbove(target.wander, wanders);
         const bool listed = est.rate > 0 && stat > z;
         fit.choices.push_back(
             {"baseline_drift", listed,
@@ -1137,23 +1140,11 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
             meanLog /= df;
             meanLogVar /= static_cast<double>(df) * df;
         }
-        // About their inverse-variance weighted mean (Cochran's Q): a gain read from few
-        // presses, and so loosely, then moves the centre the others are measured from little.
-        double weightSum = 0.0, weightedLog = 0.0;
-        for (int k = 0; k < K; ++k) {
-            const std::size_t kk = static_cast<std::size_t>(k);
-            if (skip[kk] || ses[kk] <= 0) continue;
-            weightSum += 1.0 / (ses[kk] * ses[kk]);
-            weightedLog += std::log(est.gains[kk]) / (ses[kk] * ses[kk]);
-        }
-        const double centre = weightSum > 0 ? weightedLog / weightSum : meanLog;
-        double wald = 0.0;
-        for (int k = 0; k < K; ++k) {
-            const std::size_t kk = static_cast<std::size_t>(k);
-            if (skip[kk] || ses[kk] <= 0) continue;
-            const double d = (std::log(est.gains[kk]) - centre) / ses[kk];
-            wald += d * d;
-        }
+        // The same statistic on these gains, for the report (skipped taxels have no error).
+        std::vector<double> logs(static_cast<std::size_t>(K), 0.0);
+        for (int k = 0; k < K; ++k)
+            logs[static_cast<std::size_t>(k)] = std::log(est.gains[static_cast<std::size_t>(k)]);
+        const double wald = cochranQ(logs, ses);
         // Whether the taxels differ is read from the holds (holdGains()): the moment fit above
         // compares whole taps with the scene's stroke, so a stroke that stops deeper or on
         // another schedule would look like gains there. The values and their intervals are the
@@ -1214,11 +1205,7 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
                                   settings.seed + 80000 + static_cast<std::uint64_t>(b)),
                        skip, base.tap.contactThreshold)
                     .early);
-        const double spread = sd(nulls);
-        const double expected =
-            std::accumulate(nulls.begin(), nulls.end(), 0.0) / static_cast<double>(nulls.size());
-        const double stat =
-            spread > 0 ? (target.early - expected) / spread : (target.early > expected ? 1e9 : 0.0);
+        const double stat = zAbove(target.early, nulls);
         memoryListed = target.taps >= 10 && stat > z;
         fit.choices.push_back(
             {"viscoelastic_memory", memoryListed,
