@@ -12,10 +12,14 @@ namespace activetouch {
 namespace {
 
 const char* kFixedColumns[] = {
+    "set",       "class",        "orientation_deg", "position",      "true_offset_mm", "pose_x_mm",
+    "pose_y_mm", "robot_time_s", "ending",          "stop_depth_mm", "sample"};
+constexpr int kFixed = 11;  // set .. stop_depth_mm the same on every row of a tap, then sample
+// Recordings written before the stop depth was kept have every column but that one.
+const char* kEarlierColumns[] = {
     "set",       "class",     "orientation_deg", "position", "true_offset_mm",
     "pose_x_mm", "pose_y_mm", "robot_time_s",    "ending",   "sample"};
-constexpr int kFixed = 10;
-constexpr int kPerTap = 9;  // set .. ending: the same on every row of a tap
+constexpr int kEarlierFixed = 10;
 
 }  // namespace
 
@@ -27,9 +31,9 @@ void TapCsvWriter::append(const CollectedTap& c, const ClassSet& classes) {
     const TapRecord& r = c.record;
     const char* ending = r.ending == TapEnding::ContactReflex ? "reflex" : "stroke_limit";
     for (int t = 0; t < r.tap.sampleCount(); ++t) {
-        file_.print("%d,%d,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%s,%d", c.dataSet, c.cls,
+        file_.print("%d,%d,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%s,%.17g,%d", c.dataSet, c.cls,
                     classes.orientationDegOf(c.cls), classes.positionOf(c.cls), c.trueOffset_mm,
-                    r.pose.x, r.pose.y, r.startTime_s, ending, t);
+                    r.pose.x, r.pose.y, r.startTime_s, ending, r.stopDepth_mm, t);
         for (int k = 0; k < taxels_; ++k) file_.print(",%.17g", r.tap.at(t, k));
         file_.put('\n');
     }
@@ -41,12 +45,17 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     std::ifstream in = openRecording(path);
     RecordingRows rows(in, path);
     const auto& header = rows.header();
-    int taxels = static_cast<int>(header.size()) - kFixed;
+    // The present layout, or the earlier one without the stop depth (read as not recorded, 0).
+    const bool earlier = header.size() > 9 && header[9] == "sample";
+    const char* const* columns = earlier ? kEarlierColumns : kFixedColumns;
+    const int fixed = earlier ? kEarlierFixed : kFixed;
+    const int perTap = fixed - 1;
+    const auto sampleColumn = static_cast<std::size_t>(fixed - 1);
+    int taxels = static_cast<int>(header.size()) - fixed;
     bool ok = taxels >= 1;
-    for (int i = 0; ok && i < kFixed; ++i)
-        ok = header[static_cast<std::size_t>(i)] == kFixedColumns[i];
+    for (int i = 0; ok && i < fixed; ++i) ok = header[static_cast<std::size_t>(i)] == columns[i];
     for (int k = 0; ok && k < taxels; ++k)
-        ok = header[static_cast<std::size_t>(kFixed + k)] == "taxel_" + std::to_string(k);
+        ok = header[static_cast<std::size_t>(fixed + k)] == "taxel_" + std::to_string(k);
     if (!ok) {
         std::string expected;
         for (const char* c : kFixedColumns) expected += std::string(c) + ",";
@@ -109,7 +118,7 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
                                  " deg, position " + f[3] +
                                  "; the taps were recorded with other classes: give the "
                                  "experiment they were recorded with");
-        const int sample = integer(f[9], "sample");
+        const int sample = integer(f[sampleColumn], "sample");
         if (sample == 0) {
             finishTap();
             CollectedTap c;
@@ -124,21 +133,30 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
             c.record.startTime_s = number(f[7], "robot_time_s");
             checkTime(c.record.startTime_s, lastTime, path, lineNo, f[7]);
             lastTime = c.record.startTime_s;
-            first.assign(f.begin(), f.begin() + kPerTap);
+            first.assign(f.begin(), f.begin() + perTap);
             firstLine = lineNo;
             if (f[8] != "reflex" && f[8] != "stroke_limit")
                 throw InputError(path, "line " + std::to_string(lineNo) + ", column ending",
                                  "'" + f[8] + "' is neither reflex nor stroke_limit");
             c.record.ending = f[8] == "reflex" ? TapEnding::ContactReflex : TapEnding::StrokeLimit;
+            if (!earlier) {
+                c.record.stopDepth_mm = number(f[9], "stop_depth_mm");
+                if (c.record.stopDepth_mm < 0.0 || c.record.stopDepth_mm > 100.0)
+                    throw InputError(path,
+                                     "line " + std::to_string(lineNo) + ", column stop_depth_mm",
+                                     "a stop depth of " + f[9] +
+                                         " mm is not an indentation (0 for none, up to the "
+                                         "stroke, never over 100 mm)");
+            }
             taps.push_back(c);
         } else if (taps.empty() || sample != static_cast<int>(samples.size()) ||
                    taps.back().cls != cls || taps.back().dataSet != set) {
             throw InputError(path, "line " + std::to_string(lineNo) + ", column sample",
-                             "sample " + f[9] +
+                             "sample " + f[sampleColumn] +
                                  " does not continue the tap above it; each tap's samples run 0, "
                                  "1, 2, ... in order");
         } else {
-            sameAsFirstRow(f, first, kFixedColumns, kPerTap, path, lineNo, firstLine);
+            sameAsFirstRow(f, first, columns, perTap, path, lineNo, firstLine);
         }
         if (bounds.samplesPerTap > 0 && static_cast<int>(samples.size()) >= samplesPerTap)
             throw InputError(path, "line " + std::to_string(lineNo) + ", column sample",
@@ -146,11 +164,11 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
                                  " samples, as many as the run's run.json gives");
         std::vector<double> frame(static_cast<std::size_t>(taxels));
         for (int k = 0; k < taxels; ++k) {
-            const std::string& column = header[static_cast<std::size_t>(kFixed + k)];
-            const double v = number(f[static_cast<std::size_t>(kFixed + k)], column);
+            const std::string& column = header[static_cast<std::size_t>(fixed + k)];
+            const double v = number(f[static_cast<std::size_t>(fixed + k)], column);
             if (v < 0.0 || v > 255.0)
                 throw InputError(path, "line " + std::to_string(lineNo) + ", column " + column,
-                                 "pressure " + f[static_cast<std::size_t>(kFixed + k)] +
+                                 "pressure " + f[static_cast<std::size_t>(fixed + k)] +
                                      " is outside the fingertip's 0..255 counts");
             frame[static_cast<std::size_t>(k)] = v;
         }

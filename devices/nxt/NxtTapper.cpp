@@ -207,8 +207,11 @@ TapRecord NxtTapper::tap() {
                 setPhase(Phase::Retracted);
             }
         }
-        record.stopDepth_mm =
-            contactTacho ? std::max(0, stopTacho - *contactTacho) / s_.degreesPerMm : 0.0;
+        if (clearance_mm_)
+            record.stopDepth_mm = std::max(0.0, stopTacho / s_.degreesPerMm - *clearance_mm_);
+        else
+            record.stopDepth_mm =
+                contactTacho ? std::max(0, stopTacho - *contactTacho) / s_.degreesPerMm : 0.0;
     } catch (const RigError& e) {
         const std::string after = safeStop();
         throw RigError(std::string(e.what()) + "; " + after);

@@ -1,13 +1,14 @@
 #pragma once
-// The LEGO NXT tapper (docs/protocols.md §1): motor A lowers the fingertip at a regulated speed with the
-// stroke as tacho limit; the fingertip's total pressure crossing the contact threshold is the
-// reflex that brakes it; after the contact time the motor returns to the retract angle (tacho 0,
-// set when the tapper connects). The tap records the fingertip stream's frames from the start of
+// The LEGO NXT tapper (docs/protocols.md §1): motor A lowers the fingertip at a regulated speed
+// with the stroke as tacho limit; the fingertip's total pressure crossing the contact threshold is
+// the reflex that brakes it; after the contact time the motor returns to the retract angle (tacho
+// 0, set when the tapper connects). The tap records the fingertip stream's frames from the start of
 // the stroke. On any fault the motor is braked and, if the brick still answers, sent back.
 #include <atomic>
 #include <chrono>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "core/rig/Rig.h"
@@ -47,6 +48,10 @@ public:
     std::string safeStop() noexcept;
 
     void setContactThreshold(double counts) { tap_.contactThreshold = counts; }
+    /// The object's top lies `clearance_mm` below the retract angle (the retract height less the
+    /// object's height): each tap's stop depth is then read below the top, as the simulated rig
+    /// gives it. Without it, from the frame where contact began (a tenth of the threshold).
+    void setSurface(double clearance_mm) { clearance_mm_ = clearance_mm; }
     const TapSpec& tapSpec() const { return tap_; }
     /// Motor state for panels ("retracted", "descending", ...); read from any thread.
     std::string state() const;
@@ -71,6 +76,7 @@ private:
     std::atomic<Phase> phase_{Phase::Retracted};
     std::atomic<bool> abort_{false};
     std::timed_mutex inTap_;  ///< held while a tap runs
+    std::optional<double> clearance_mm_;
     double lastKeepAlive_s_ = 0.0;
     std::uint32_t sleepMs_ = 0;
 };

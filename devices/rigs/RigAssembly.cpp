@@ -90,6 +90,7 @@ AssembledRig::AssembledRig(const SceneSpec& scene,
             brick_->setRawLog(logFor("tapper"));
             nxtTapper_ = std::make_unique<nxt::NxtTapper>(*brick_, *yarpTip_, *parts_->clock,
                                                           scene.tap, config.nxt);
+            nxtTapper_->setSurface(scene.tap.retractHeight_mm - scene.object.height_mm);
             battery_ = nxtTapper_->connect();
         } else if (yamaha_) {
             parts_->simTapper = std::make_unique<TapperOnStage>(*parts_->world, stage);

@@ -60,6 +60,7 @@ class TestTapCsv : public QObject {
             c.record.pose = {100.125 + i, 50.5};
             c.record.startTime_s = 2.5 * i;
             c.record.ending = i == 1 ? TapEnding::StrokeLimit : TapEnding::ContactReflex;
+            c.record.stopDepth_mm = 0.3125 + 0.25 * i;
             c.record.tap = Tap(50, 12);
             for (int s = 0; s < 50; ++s)
                 for (int k = 0; k < 12; ++k)
@@ -129,6 +130,30 @@ private slots:
             QCOMPARE(read[i].trueOffset_mm, original[i].trueOffset_mm);
             QCOMPARE(read[i].record.pose.x, original[i].record.pose.x);
             QVERIFY(read[i].record.ending == original[i].record.ending);
+            QCOMPARE(read[i].record.stopDepth_mm, original[i].record.stopDepth_mm);
+            QVERIFY(read[i].record.tap.samples == original[i].record.tap.samples);
+        }
+    }
+
+    void recordingsWithoutStopDepthsStillRead() {
+        // A recording in the layout without the stop_depth_mm column reads with every stop depth
+        // 0 (not recorded) and everything else as written.
+        std::ifstream in(writeTaps());
+        std::stringstream out;
+        std::string line;
+        while (std::getline(in, line)) {
+            auto fields = QString::fromStdString(line).split(',');
+            fields.removeAt(9);
+            out << fields.join(',').toStdString() << '\n';
+        }
+        const std::string earlier = dir_.filePath("earlier.csv").toStdString();
+        std::ofstream(earlier) << out.str();
+        const auto original = someTaps();
+        const auto read = readTapCsv(earlier, classes_);
+        QCOMPARE(read.size(), original.size());
+        for (std::size_t i = 0; i < read.size(); ++i) {
+            QCOMPARE(read[i].record.stopDepth_mm, 0.0);
+            QCOMPARE(read[i].record.pose.x, original[i].record.pose.x);
             QVERIFY(read[i].record.tap.samples == original[i].record.tap.samples);
         }
     }
@@ -142,37 +167,41 @@ private slots:
         QTest::newRow("too few fields") << 3 << "1,3,270,4,-1.25"
                                         << "has 5 fields";
         QTest::newRow("not a number")
-            << 3 << "1,3,270,4,-1.25,100.125,50.5,0,reflex,1,a,0,0,0,0,0,0,0,0,0,0,0"
+            << 3 << "1,3,270,4,-1.25,100.125,50.5,0,reflex,0.3125,1,a,0,0,0,0,0,0,0,0,0,0,0"
             << "'a' is not a number";
-        QTest::newRow("NaN") << 3 << "1,3,270,4,-1.25,100.125,50.5,0,reflex,1,nan,0,0,0,0,0,0,0,0,0,0,0"
-                             << "not a finite number";
+        QTest::newRow("NaN")
+            << 3 << "1,3,270,4,-1.25,100.125,50.5,0,reflex,0.3125,1,nan,0,0,0,0,0,0,0,0,0,0,0"
+            << "not a finite number";
         QTest::newRow("above 255")
-            << 3 << "1,3,270,4,-1.25,100.125,50.5,0,reflex,1,300,0,0,0,0,0,0,0,0,0,0,0"
+            << 3 << "1,3,270,4,-1.25,100.125,50.5,0,reflex,0.3125,1,300,0,0,0,0,0,0,0,0,0,0,0"
             << "outside the fingertip's 0..255";
-        QTest::newRow("negative") << 3
-                                  << "1,3,270,4,-1.25,100.125,50.5,0,reflex,1,-2,0,0,0,0,0,0,0,0,0,0,0"
-                                  << "outside the fingertip's 0..255";
+        QTest::newRow("negative")
+            << 3 << "1,3,270,4,-1.25,100.125,50.5,0,reflex,0.3125,1,-2,0,0,0,0,0,0,0,0,0,0,0"
+            << "outside the fingertip's 0..255";
         QTest::newRow("class out of range")
-            << 2 << "1,999,270,4,-1.25,100,50,0,reflex,0,0,0,0,0,0,0,0,0,0,0,0,0"
+            << 2 << "1,999,270,4,-1.25,100,50,0,reflex,0.3125,0,0,0,0,0,0,0,0,0,0,0,0,0"
             << "class 999 is outside";
         QTest::newRow("sample out of order")
-            << 4 << "1,3,270,4,-1.25,100,50,0,reflex,7,0,0,0,0,0,0,0,0,0,0,0,0"
+            << 4 << "1,3,270,4,-1.25,100,50,0,reflex,0.3125,7,0,0,0,0,0,0,0,0,0,0,0,0"
             << "does not continue the tap";
         QTest::newRow("bad ending")
-            << 2 << "1,3,270,4,-1.25,100,50,0,bounced,0,0,0,0,0,0,0,0,0,0,0,0,0"
+            << 2 << "1,3,270,4,-1.25,100,50,0,bounced,0.3125,0,0,0,0,0,0,0,0,0,0,0,0,0"
             << "neither reflex nor stroke_limit";
         QTest::newRow("other classes")
-            << 2 << "1,3,0,4,-1.25,100,50,0,reflex,0,0,0,0,0,0,0,0,0,0,0,0,0"
+            << 2 << "1,3,0,4,-1.25,100,50,0,reflex,0.3125,0,0,0,0,0,0,0,0,0,0,0,0,0"
             << "recorded with other classes";
         QTest::newRow("set beyond any count")
-            << 2 << "99999999999,3,270,4,-1.25,100,50,0,reflex,0,0,0,0,0,0,0,0,0,0,0,0,0"
+            << 2 << "99999999999,3,270,4,-1.25,100,50,0,reflex,0.3125,0,0,0,0,0,0,0,0,0,0,0,0,0"
             << "'99999999999' is not a whole number";
         QTest::newRow("position between classes")
-            << 2 << "1,3,270,4.5,-1.25,100,50,0,reflex,0,0,0,0,0,0,0,0,0,0,0,0,0"
+            << 2 << "1,3,270,4.5,-1.25,100,50,0,reflex,0.3125,0,0,0,0,0,0,0,0,0,0,0,0,0"
             << "'4.5' is not a whole number";
         QTest::newRow("fractional sample")
-            << 3 << "1,3,270,4,-1.25,100,50,0,reflex,1.5,0,0,0,0,0,0,0,0,0,0,0,0"
+            << 3 << "1,3,270,4,-1.25,100,50,0,reflex,0.3125,1.5,0,0,0,0,0,0,0,0,0,0,0,0"
             << "'1.5' is not a whole number";
+        QTest::newRow("negative stop depth")
+            << 2 << "1,3,270,4,-1.25,100,50,0,reflex,-0.5,0,0,0,0,0,0,0,0,0,0,0,0,0"
+            << "is not an indentation";
         QTest::newRow("a short line inside") << 30 << "1,3,270"
                                              << "only the file's last line may be cut short";
     }
