@@ -38,17 +38,20 @@ EmulatedBench::EmulatedBench(const SceneSpec& scene,
       brick_(brickSettings(settings)),
       rcx_(rcxSettings(scene, settings)),
       yarp_(yarpSettings(settings), [this] { return fingertip(); }),
-      noise_(RandomStream::derived(scene.seed, "bench:taxel_noise")) {
+      noise_(RandomStream::derived(scene.seed, "bench:taxel_noise")),
+      stageRandom_(RandomStream::derived(scene.seed, "bench:stage_error")) {
     for (const EffectSpec& e : scene.effects) {
         if (e.name == "taxel_noise") noiseSigma_ = e.parameters.at("sigma_counts").get<double>();
         if (e.name == "adc_quantisation") adcMax_ = e.parameters.at("max_counts").get<double>();
+        if (e.name == "stage_error") stageSigma_ = e.parameters.at("sigma_mm").get<double>();
     }
 }
 
-std::vector<std::string> EmulatedBench::frameEffects() const {
+std::vector<std::string> EmulatedBench::effects() const {
     std::vector<std::string> names;
     if (noiseSigma_ > 0.0) names.push_back("taxel_noise");
     if (adcMax_) names.push_back("adc_quantisation");
+    if (stageSigma_ > 0.0) names.push_back("stage_error");
     return names;
 }
 
@@ -68,7 +71,21 @@ std::vector<double> EmulatedBench::fingertip() {
     const double depth = brick_.rotationDegrees(0) / s_.degreesPerMm - clearance;
     std::lock_guard lock(frameMutex_);
     if (depth > 0.0) {
-        const Vec2 pose = rcx_.position();
+        deepest_ = std::max(deepest_, depth);
+    } else if (deepest_ > 0.0) {
+        pressDepths_.push_back(deepest_);
+        deepest_ = 0.0;
+    }
+    if (depth > 0.0) {
+        // Each place the stage comes to, it misses by its own error (drawn when it arrives).
+        const Vec2 reported = rcx_.position();
+        if (!target_ || distance(reported, *target_) > 1e-9) {
+            target_ = reported;
+            miss_ = stageSigma_ > 0.0 ? Vec2{stageSigma_ * stageRandom_.normal(),
+                                             stageSigma_ * stageRandom_.normal()}
+                                      : Vec2{};
+        }
+        const Vec2 pose = reported + miss_;
         if (!contact_ || distance(pose, contactPose_) > 1e-6) {
             contact_.emplace(model_->contactAt(object_, pose));
             contactPose_ = pose;
@@ -81,6 +98,11 @@ std::vector<double> EmulatedBench::fingertip() {
     if (adcMax_)
         for (double& v : out) v = std::clamp(std::round(v), 0.0, *adcMax_);
     return out;
+}
+
+std::vector<double> EmulatedBench::pressDepths() {
+    std::lock_guard lock(frameMutex_);
+    return pressDepths_;
 }
 
 nxt::NxtTapperSettings EmulatedBench::tapperSettings() const {

@@ -3,9 +3,11 @@
 // NXT brick's motor A lowers it, and a YARP publisher streams what the contact physics says the
 // taxels feel at that pose and depth. The real drivers connect to it exactly as to the real rig.
 // Of the scene's effects, those a frame carries are applied to every frame published when the
-// scene lists them: taxel_noise and adc_quantisation; the rest (drift, the pad's memory, stage
-// error, ...) belong to the simulated rig. It can run faster than real time (timeScale), and the
-// drivers are told so.
+// scene lists them (taxel_noise and adc_quantisation), and the stage misses each target as
+// stage_error says, reporting the target as a real stage does; the rest (drift, the pad's memory,
+// ...) belong to the simulated rig. The reflex's latency is the bench's own: the tapper's driver
+// stops the motor at the first frame over the threshold. It can run faster than real time
+// (timeScale), and the drivers are told so.
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -43,8 +45,12 @@ public:
 
     /// What the taxels read now, counts (with the scene's frame effects).
     std::vector<double> fingertip();
-    /// The scene's effects this bench applies to its frames.
-    std::vector<std::string> frameEffects() const;
+    /// The deepest indentation of each press its frames have shown so far, mm below the object's
+    /// top, in order (a press ends when the fingertip leaves the object): where the motor really
+    /// stopped, beside what the tapper's driver records.
+    std::vector<double> pressDepths();
+    /// The scene's effects this bench applies (to its frames and its stage).
+    std::vector<std::string> effects() const;
 
     /// Driver settings that match this bench (ports, gearing, time scale).
     nxt::NxtTapperSettings tapperSettings() const;
@@ -63,9 +69,15 @@ private:
     std::optional<FingertipContactModel::Contact> contact_;
     Vec2 contactPose_;
     std::mutex frameMutex_;
+    std::vector<double> pressDepths_;
+    double deepest_ = 0.0;          ///< of the press under way
     double noiseSigma_ = 0.0;       ///< taxel_noise, counts (0: not listed)
     std::optional<double> adcMax_;  ///< adc_quantisation's top of range
     RandomStream noise_;
+    double stageSigma_ = 0.0;  ///< stage_error, mm per axis (0: not listed)
+    RandomStream stageRandom_;
+    std::optional<Vec2> target_;  ///< where the stage was last seen, and how far it missed it
+    Vec2 miss_;
 };
 
 }  // namespace activetouch::emu

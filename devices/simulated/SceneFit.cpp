@@ -181,9 +181,12 @@ SceneSpec sceneWith(const SceneSpec& base, const Theta& th, bool quantised, doub
     return s;
 }
 
+/// Taps simulated with `scene` at the poses of `at`; with `strokes`, each stopping where its
+/// recorded namesake did where that was recorded (a tap the reflex ended, with its stop depth).
 std::vector<TapRecord> simulateAt(const SceneSpec& scene,
                                   const std::shared_ptr<const FingertipContactModel>& model,
-                                  const std::vector<TapRecord>& at, std::uint64_t seed) {
+                                  const std::vector<TapRecord>& at, std::uint64_t seed,
+                                  bool strokes = false) {
     SceneSpec s = scene;
     s.seed = seed;
     SimulatedWorld world(s, model);
@@ -191,6 +194,8 @@ std::vector<TapRecord> simulateAt(const SceneSpec& scene,
     out.reserve(at.size());
     for (const auto& r : at) {
         world.moveStage(r.pose);
+        if (strokes && r.ending == TapEnding::ContactReflex && r.stopDepth_mm > 0.0)
+            world.stopNextTapAt(r.stopDepth_mm);
         out.push_back(world.tap());
     }
     return out;
@@ -597,55 +602,205 @@ struct Hold {
 };
 constexpr int kHoldDepths = 120;
 
+/// The hold's readings of `tap` (see Hold), or nothing for a tap without a press.
+std::optional<std::vector<double>> holdReadingOf(const Tap& tap, const std::vector<char>& skip,
+                                                 double contactThreshold, double maxCounts) {
+    const int K = tap.taxels;
+    const auto press = pressOf(tap, skip, contactThreshold);
+    if (!press) return std::nullopt;
+    std::vector<double> reading(static_cast<std::size_t>(K), NAN);
+    for (int k = 0; k < K; ++k) {
+        if (skip[static_cast<std::size_t>(k)]) continue;
+        std::vector<double> quiet;
+        for (int t : press->quiet) quiet.push_back(tap.at(t, k));
+        const double baseline = medianOf(std::move(quiet));
+        std::vector<double> v;
+        bool saturated = false;
+        for (int t = press->first; t <= press->last; ++t)
+            if (press->inHold(t)) {
+                v.push_back(tap.at(t, k) - baseline);
+                saturated = saturated || tap.at(t, k) >= maxCounts;
+            }
+        std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+        if (!saturated) reading[static_cast<std::size_t>(k)] = v[v.size() / 2];
+    }
+    return reading;
+}
+
+/// The noise-free model's pressures for holds: at a pose, over the grid of depths to the stroke's
+/// limit, with the coupling the base scene lists (it acts on every frame before the gains, so the
+/// model's pressures carry it too, through the scene's own effect, the depths taken as frames).
+class HoldModel {
+public:
+    HoldModel(const SceneSpec& base, const FingertipContactModel& model)
+        : model_(model), object_(base.object.outline()), depths_(kHoldDepths) {
+        for (const auto& e : base.effects)
+            if (e.name == "crosstalk")
+                crosstalk_ = findEffect(e.name)->make(
+                    JsonFields(e.parameters, base.source, e.place), model, RandomStream());
+        const double stroke = base.strokeLimitDepth();
+        for (int d = 0; d < kHoldDepths; ++d)
+            depths_[static_cast<std::size_t>(d)] = stroke * (d + 1) / kHoldDepths;
+    }
+    /// [depth][taxel]
+    std::vector<double> at(Vec2 pose) const {
+        auto contact = model_.contactAt(object_, pose);
+        Tap grid(kHoldDepths, model_.taxelCount());
+        contact.taxelPressuresAtDepths(depths_.data(), depths_.size(), grid.samples.data());
+        if (crosstalk_) crosstalk_->shapeSignal(grid, SignalContext{});
+        return std::move(grid.samples);
+    }
+    const Polygon& object() const { return object_; }
+
+private:
+    const FingertipContactModel& model_;
+    Polygon object_;
+    std::vector<double> depths_;
+    std::unique_ptr<Effect> crosstalk_;
+};
+
 std::vector<Hold> holdsOf(const SceneSpec& base, const FingertipContactModel& model,
                           const std::vector<TapRecord>& recorded, const std::vector<char>& skip,
                           double maxCounts) {
-    const int K = model.taxelCount();
-    const Polygon object = base.object.outline();
-    const double stroke = base.strokeLimitDepth();
-    // The coupling the base scene lists acts on every frame before the gains: the model's
-    // pressures carry it too, through the scene's own effect (the depths taken as frames).
-    std::unique_ptr<Effect> crosstalk;
-    for (const auto& e : base.effects)
-        if (e.name == "crosstalk")
-            crosstalk = findEffect(e.name)->make(JsonFields(e.parameters, base.source, e.place),
-                                                 model, RandomStream());
-    std::vector<double> depths(kHoldDepths);
-    for (int d = 0; d < kHoldDepths; ++d)
-        depths[static_cast<std::size_t>(d)] = stroke * (d + 1) / kHoldDepths;
+    const HoldModel grid(base, model);
     std::vector<Hold> holds;
-    for (std::size_t i = 0; i < recorded.size(); ++i) {
-        const Tap& tap = recorded[i].tap;
-        const auto press = pressOf(tap, skip, base.tap.contactThreshold);
-        if (!press) continue;
-        std::vector<double> baseline(static_cast<std::size_t>(K), 0.0);
-        for (int k = 0; k < K; ++k) {
-            std::vector<double> v;
-            for (int t : press->quiet) v.push_back(tap.at(t, k));
-            baseline[static_cast<std::size_t>(k)] = medianOf(std::move(v));
-        }
-        Hold h;
-        h.reading.assign(static_cast<std::size_t>(K), NAN);
-        for (int k = 0; k < K; ++k) {
-            if (skip[static_cast<std::size_t>(k)]) continue;
-            std::vector<double> v;
-            bool saturated = false;
-            for (int t = press->first; t <= press->last; ++t)
-                if (press->inHold(t)) {
-                    v.push_back(tap.at(t, k) - baseline[static_cast<std::size_t>(k)]);
-                    saturated = saturated || tap.at(t, k) >= maxCounts;
-                }
-            std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-            if (!saturated) h.reading[static_cast<std::size_t>(k)] = v[v.size() / 2];
-        }
-        auto contact = model.contactAt(object, recorded[i].pose);
-        Tap grid(kHoldDepths, K);
-        contact.taxelPressuresAtDepths(depths.data(), depths.size(), grid.samples.data());
-        if (crosstalk) crosstalk->shapeSignal(grid, SignalContext{});
-        h.modelAtDepths = std::move(grid.samples);
-        holds.push_back(std::move(h));
+    for (const auto& r : recorded) {
+        auto reading = holdReadingOf(r.tap, skip, base.tap.contactThreshold, maxCounts);
+        if (!reading) continue;
+        holds.push_back({std::move(*reading), grid.at(r.pose)});
     }
     return holds;
+}
+
+/// The depth at which the model's pressures (`modelAtDepths`, [depth][taxel]) fit a hold's
+/// readings best with the taxels' lines (reading = offset + gain x model): the grid point, the
+/// shift towards a neighbour (-0.5..0.5 grid steps) of the parabola through it and its
+/// neighbours, and the squared error there.
+struct DepthFit {
+    std::size_t best = 0, depths = 0;
+    double shift = 0.0, error = 0.0;
+};
+DepthFit fitDepth(const std::vector<double>& reading, const std::vector<double>& modelAtDepths,
+                  const std::vector<double>& gain, const std::vector<double>& offset) {
+    const std::size_t KK = reading.size();
+    DepthFit f;
+    f.depths = modelAtDepths.size() / KK;
+    std::vector<double> e(f.depths, 0.0);
+    for (std::size_t d = 0; d < f.depths; ++d) {
+        const double* p = modelAtDepths.data() + d * KK;
+        for (std::size_t k = 0; k < KK; ++k) {
+            const double r = reading[k];
+            if (!std::isfinite(r)) continue;
+            const double x = r - offset[k] - gain[k] * p[k];
+            e[d] += x * x;
+        }
+        if (e[d] < e[f.best]) f.best = d;
+    }
+    f.error = e[f.best];
+    if (f.best > 0 && f.best + 1 < f.depths) {
+        const double curve = e[f.best - 1] - 2.0 * e[f.best] + e[f.best + 1];
+        if (curve > 0) {
+            f.shift = std::clamp(0.5 * (e[f.best - 1] - e[f.best + 1]) / curve, -0.5, 0.5);
+            f.error -= 0.5 * curve * f.shift * f.shift;
+        }
+    }
+    return f;
+}
+
+/// The grid the hold offsets are read on: this many steps each way of kOffsetStep_mm, then
+/// kOffsetSteps each way of a fifth of that about the best.
+constexpr int kOffsetSteps = 6;
+constexpr double kOffsetStep_mm = 0.05;
+
+/// How far each tap lies off its commanded pose across the outline, as its hold shows it: the
+/// shift along the outward normal of the outline's nearest edge at which the noise-free model,
+/// its depth fitted alongside, fits the hold's readings best (the parabola through the best of a
+/// fine grid about the best of a coarse one); NaN for a tap without a hold, one the reflex did not
+/// end short of the stroke's limit, and one whose hold the coarse grid does not bracket.
+std::vector<double> holdOffsetsOf(const HoldModel& grid, const std::vector<TapRecord>& taps,
+                                  const std::vector<char>& skip, double contactThreshold,
+                                  double maxCounts, double strokeLimit) {
+    std::vector<double> out(taps.size(), NAN);
+    for (std::size_t i = 0; i < taps.size(); ++i) {
+        // Only taps the reflex ended short of the stroke's limit: a stroke that ran to its end
+        // (and a real motor may overrun it) stops where the simulated one cannot follow.
+        if (taps[i].ending != TapEnding::ContactReflex ||
+            (taps[i].stopDepth_mm > 0.0 && taps[i].stopDepth_mm >= strokeLimit - 1e-6))
+            continue;
+        const auto reading = holdReadingOf(taps[i].tap, skip, contactThreshold, maxCounts);
+        if (!reading) continue;
+        const std::vector<double> ones(reading->size(), 1.0), zeros(reading->size(), 0.0);
+        const Vec2 pose = taps[i].pose;
+        const Vec2 normal =
+            grid.object().outwardNormal(grid.object().nearestOutlinePoint(pose).edge);
+        auto errorAt = [&](double shift) {
+            return fitDepth(*reading, grid.at(pose + normal * shift), ones, zeros).error;
+        };
+        double centre = 0.0;
+        bool placed = true;
+        for (const double step : {kOffsetStep_mm, kOffsetStep_mm / 5.0}) {
+            std::vector<double> e;
+            std::size_t best = 0;
+            for (int j = -kOffsetSteps; j <= kOffsetSteps; ++j) {
+                e.push_back(errorAt(centre + j * step));
+                if (e.back() < e[best]) best = e.size() - 1;
+            }
+            // Best at the coarse grid's end: the hold does not place the tap within it.
+            if (step == kOffsetStep_mm && (best == 0 || best + 1 == e.size())) placed = false;
+            double shift = 0.0;
+            if (step < kOffsetStep_mm && best > 0 && best + 1 < e.size()) {
+                const double curve = e[best - 1] - 2.0 * e[best] + e[best + 1];
+                if (curve > 0)
+                    shift = std::clamp(0.5 * (e[best - 1] - e[best + 1]) / curve, -0.5, 0.5);
+            }
+            centre += (static_cast<double>(best) - kOffsetSteps + shift) * step;
+        }
+        if (placed) out[i] = centre;
+    }
+    return out;
+}
+
+/// A tap whose offset varies less than this (mm squared) over recordings at its pose is not read:
+/// its hold does not place it (the fit sits at the grid's end, or the model does not change).
+constexpr double kLeastOffsetVariance = 1e-8;
+/// The largest stage error the effect takes, mm.
+constexpr double kMaxStageSigma_mm = 2.0;
+
+/// The spread of `offsets` about their means over `nulls` (recordings simulated at the same
+/// poses with an exact stage; `leaveOut` of them left out), over the taps every one of them read
+/// and places: the mean over taps of the squared offset about its mean there over its variance
+/// there, and what that mean is under an exact stage (1 + 1/their count).
+struct OffsetSpread {
+    double meanSquare = 0.0, expected = 0.0;
+    int taps = 0;
+    double excess() const { return meanSquare - expected; }
+};
+OffsetSpread offsetSpread(const std::vector<double>& offsets,
+                          const std::vector<std::vector<double>>& nulls,
+                          std::size_t leaveOut = static_cast<std::size_t>(-1)) {
+    OffsetSpread o;
+    for (std::size_t i = 0; i < offsets.size(); ++i) {
+        if (!std::isfinite(offsets[i])) continue;
+        std::vector<double> v;
+        for (std::size_t j = 0; j < nulls.size(); ++j)
+            if (j != leaveOut) v.push_back(nulls[j][i]);
+        bool all = v.size() >= 2;
+        for (double x : v) all = all && std::isfinite(x);
+        if (!all) continue;
+        const double m = std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+        double var = 0.0;
+        for (double x : v) var += (x - m) * (x - m);
+        var /= static_cast<double>(v.size() - 1);
+        if (var < kLeastOffsetVariance) continue;
+        o.meanSquare += (offsets[i] - m) * (offsets[i] - m) / var;
+        o.expected += (1.0 + 1.0 / static_cast<double>(v.size()));
+        ++o.taps;
+    }
+    if (o.taps > 0) {
+        o.meanSquare /= o.taps;
+        o.expected /= o.taps;
+    }
+    return o;
 }
 
 /// Log gains (about their plain mean) from the holds picked by `which`: alternately each hold's
@@ -663,30 +818,11 @@ std::vector<double> holdLogGains(const std::vector<Hold>& holds, const std::vect
     for (int round = 0; round < 4; ++round) {
         for (std::size_t n = 0; n < which.size(); ++n) {
             const Hold& h = holds[static_cast<std::size_t>(which[n])];
-            const std::size_t D = h.modelAtDepths.size() / KK;
-            std::vector<double> e(D, 0.0);
-            std::size_t best = 0;
-            for (std::size_t d = 0; d < D; ++d) {
-                const double* p = h.modelAtDepths.data() + d * KK;
-                for (std::size_t k = 0; k < KK; ++k) {
-                    const double r = h.reading[k];
-                    if (!std::isfinite(r)) continue;
-                    const double x = r - offset[k] - gain[k] * p[k];
-                    e[d] += x * x;
-                }
-                if (e[d] < e[best]) best = d;
-            }
-            // Between grid points: the parabola through the best and its neighbours.
-            double shift = 0.0;
-            if (best > 0 && best + 1 < D) {
-                const double curve = e[best - 1] - 2.0 * e[best] + e[best + 1];
-                if (curve > 0)
-                    shift = std::clamp(0.5 * (e[best - 1] - e[best + 1]) / curve, -0.5, 0.5);
-            }
-            const std::size_t other = shift < 0 ? best - 1 : std::min(best + 1, D - 1);
-            const double w = std::abs(shift);
+            const DepthFit f = fitDepth(h.reading, h.modelAtDepths, gain, offset);
+            const std::size_t other = f.shift < 0 ? f.best - 1 : std::min(f.best + 1, f.depths - 1);
+            const double w = std::abs(f.shift);
             for (std::size_t k = 0; k < KK; ++k)
-                model[n * KK + k] = (1.0 - w) * h.modelAtDepths[best * KK + k] +
+                model[n * KK + k] = (1.0 - w) * h.modelAtDepths[f.best * KK + k] +
                                     w * h.modelAtDepths[other * KK + k];
         }
         double meanLog = 0.0;
@@ -775,21 +911,87 @@ Tail tailOf(const std::vector<TapRecord>& taps, const std::vector<char>& skip,
     return tail;
 }
 
-/// `scene` with the pad's memory at (fraction, time constant), or without it at fraction 0.
-SceneSpec withMemory(const SceneSpec& scene, double fraction, double tau) {
+/// `scene` with effect `name` at `parameters` in place of its own, or without it where
+/// `parameters` is null.
+SceneSpec withEffect(const SceneSpec& scene, const std::string& name, const Json& parameters) {
     SceneSpec s = scene;
     std::vector<EffectSpec> effects;
     for (const auto& e : scene.effects)
-        if (e.name != "viscoelastic_memory") effects.push_back(e);
-    if (fraction > 0) {
+        if (e.name != name) effects.push_back(e);
+    if (!parameters.is_null()) {
         EffectSpec e;
-        e.name = "viscoelastic_memory";
-        e.parameters = Json{{"fraction", fraction}, {"time_constant_s", tau}};
+        e.name = name;
+        e.parameters = parameters;
         e.place = "/effects/" + std::to_string(effects.size());
         effects.push_back(std::move(e));
     }
     s.effects = std::move(effects);
     return s;
+}
+
+/// `scene` with the pad's memory at (fraction, time constant), or without it at fraction 0.
+SceneSpec withMemory(const SceneSpec& scene, double fraction, double tau) {
+    return withEffect(
+        scene, "viscoelastic_memory",
+        fraction > 0 ? Json{{"fraction", fraction}, {"time_constant_s", tau}} : Json());
+}
+
+/// `scene` with the reflex's latency at `latency_s`, or without one at 0.
+SceneSpec withLatency(const SceneSpec& scene, double latency_s) {
+    return withEffect(scene, "contact_latency",
+                      latency_s > 0 ? Json{{"latency_s", latency_s}} : Json());
+}
+
+/// A latency is read from this many taps the reflex ended with their stop depths recorded.
+constexpr int kLagTaps = 10;
+/// Recordings simulated per round of the latency's correction.
+constexpr int kLagSimulations = 10;
+/// The longest latency the effect takes.
+constexpr double kMaxLatency_s = 0.5;
+
+/// Where the noise-free model at each tap's pose reaches the reflex's threshold within the
+/// stroke, mm below the object's top (NaN where it does not).
+std::vector<double> crossingsOf(const SceneSpec& scene, const FingertipContactModel& model,
+                                const std::vector<TapRecord>& taps) {
+    const Polygon object = scene.object.outline();
+    std::vector<double> out;
+    for (const auto& r : taps) {
+        auto contact = model.contactAt(object, r.pose);
+        const auto d = contact.depthReaching(scene.tap.contactThreshold, scene.strokeLimitDepth());
+        out.push_back(d ? *d : NAN);
+    }
+    return out;
+}
+
+/// The reflex's lag as the recorded stop depths show it, over the taps the reflex ended with a
+/// stop depth recorded short of the stroke's limit where the model at the pose reaches the
+/// threshold (`crossing`): each tap's stop depth less that depth, over the descent speed. Its
+/// mean, the mean's standard error, and the taps read. The stroke's own travel says it, not the
+/// skin: a skin less sensitive throughout does not move it.
+struct StopLag {
+    double mean = 0.0, se = 0.0;
+    int taps = 0;
+};
+StopLag stopLagOf(const std::vector<TapRecord>& taps, const std::vector<double>& crossing,
+                  const SceneSpec& scene) {
+    const double limit = scene.strokeLimitDepth();
+    std::vector<double> lags;
+    for (std::size_t i = 0; i < taps.size() && i < crossing.size(); ++i) {
+        const TapRecord& r = taps[i];
+        if (r.ending != TapEnding::ContactReflex || !(r.stopDepth_mm > 0.0) ||
+            r.stopDepth_mm >= limit - 1e-6 || !std::isfinite(crossing[i]))
+            continue;
+        lags.push_back((r.stopDepth_mm - crossing[i]) / scene.tap.descentSpeed_mm_s);
+    }
+    StopLag lag;
+    lag.taps = static_cast<int>(lags.size());
+    if (lags.size() < 2) return lag;
+    lag.mean = std::accumulate(lags.begin(), lags.end(), 0.0) / static_cast<double>(lags.size());
+    double ss = 0.0;
+    for (double l : lags) ss += (l - lag.mean) * (l - lag.mean);
+    lag.se =
+        std::sqrt(ss / static_cast<double>(lags.size() - 1) / static_cast<double>(lags.size()));
+    return lag;
 }
 
 struct Memory {
@@ -869,21 +1071,71 @@ HoldGains holdGains(const std::vector<Hold>& holds, int K, int replicates, std::
 
 }  // namespace
 
-SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
+SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded,
                   const SceneFitSettings& settings) {
     if (recorded.size() < 20)
-        throw InputError(base.source, "",
+        throw InputError(given.source, "",
                          "a fit needs at least 20 recorded taps; the recording has " +
                              std::to_string(recorded.size()));
-    auto model = std::make_shared<const FingertipContactModel>(base.fingertip);
+    auto model = std::make_shared<const FingertipContactModel>(given.fingertip);
     const int K = model->taxelCount();
     for (const auto& r : recorded)
-        if (r.tap.taxels != K || r.tap.sampleCount() != base.tap.samples)
-            throw InputError(base.source, "/tap/samples",
+        if (r.tap.taxels != K || r.tap.sampleCount() != given.tap.samples)
+            throw InputError(given.source, "/tap/samples",
                              "the recording's taps have " + std::to_string(r.tap.sampleCount()) +
                                  " samples of " + std::to_string(r.tap.taxels) +
                                  " taxels; the scene's fingertip and tap say " +
-                                 std::to_string(base.tap.samples) + " of " + std::to_string(K));
+                                 std::to_string(given.tap.samples) + " of " + std::to_string(K));
+    SceneFit fit;
+    const double z = upperNormalQuantile(settings.alpha);
+
+    // The reflex's latency first, from the stroke's own travel: every simulation below then
+    // presses as deep as the recorded taps did. The lag the model shows at a latency differs from
+    // it by what the pose effects do to the crossing, so it is corrected by simulation (two
+    // rounds of kLagSimulations recordings at the recorded poses; the mean's error adds theirs).
+    const std::vector<double> crossing = crossingsOf(given, *model, recorded);
+    const StopLag lag = stopLagOf(recorded, crossing, given);
+    SceneSpec base = given;
+    if (lag.taps >= kLagTaps) {
+        double latency = std::clamp(lag.mean, 0.0, kMaxLatency_s);
+        std::vector<double> simulated;
+        for (int round = 0; round < 2; ++round) {
+            simulated.clear();
+            for (int r = 0; r < kLagSimulations; ++r)
+                simulated.push_back(
+                    stopLagOf(simulateAt(withLatency(given, latency), model, recorded,
+                                         settings.seed + 90000 + static_cast<std::uint64_t>(r)),
+                              crossing, given)
+                        .mean);
+            const double shown =
+                std::accumulate(simulated.begin(), simulated.end(), 0.0) / kLagSimulations;
+            latency = std::clamp(latency + lag.mean - shown, 0.0, kMaxLatency_s);
+        }
+        const double spread = sd(simulated);
+        const double se = std::sqrt(lag.se * lag.se + spread * spread / kLagSimulations);
+        const double stat = se > 0 ? latency / se : (latency > 0 ? 1e9 : 0.0);
+        const bool listed = stat > z;
+        fit.choices.push_back(
+            {"contact_latency", listed,
+             "the mean over the " + std::to_string(lag.taps) +
+                 " taps the reflex ended of the recorded stop depth less where the model at the "
+                 "tap's pose reaches the threshold, over the descent speed (corrected by "
+                 "simulation), over its standard error, against the one-sided normal quantile at "
+                 "the level",
+             stat, z, true});
+        if (listed)
+            fit.parameters.push_back({"contact_latency", "latency_s", latency, se,
+                                      latency - 1.96 * se, latency + 1.96 * se});
+        base = withLatency(given, listed ? latency : 0.0);
+    } else if (given.lists("contact_latency")) {
+        fit.choices.push_back({"contact_latency", true,
+                               "the recording holds stop depths for " + std::to_string(lag.taps) +
+                                   " taps the reflex ended (" + std::to_string(kLagTaps) +
+                                   " are needed to read the latency; recordings written before "
+                                   "stop depths were kept hold none): kept as the base scene "
+                                   "lists it",
+                               0.0, 0.0, false});
+    }
 
     // Samples over nothing: the noise-free model at each recorded pose touches nothing there.
     SceneSpec ideal = base;
@@ -921,7 +1173,6 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
         masks.pressed.push_back(std::move(pressed));
     }
 
-    SceneFit fit;
     fit.taps = static_cast<int>(recorded.size());
     // Dead or stuck taxels: where the model presses a taxel hard, it reads no more than over
     // nothing (under a twentieth of the median taxel's response).
@@ -1074,7 +1325,6 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
                          double se) {
         fit.parameters.push_back({effect, name, value, se, value - 1.96 * se, value + 1.96 * se});
     };
-    const double z = upperNormalQuantile(settings.alpha);
     Theta chosen = est;
     // Noise and drift: listed when the estimate lies more than z standard errors above zero.
     auto aboveZero = [&](const char* effect, const char* name, const char* what, double value,
@@ -1280,7 +1530,8 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
         fit.intermittentTaxels = blinking.taxels;
     }
     for (const auto& e : base.effects)
-        if (!estimatedHere(e.name) && e.name != "viscoelastic_memory")
+        if (!estimatedHere(e.name) && e.name != "viscoelastic_memory" &&
+            e.name != "contact_latency" && e.name != "stage_error")
             fit.choices.push_back({e.name, true,
                                    "not identifiable from taps by this fit: kept as the base scene "
                                    "lists it",
@@ -1289,6 +1540,106 @@ SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
     fit.fitted = withMemory(sceneWith(base, chosen, whole, maxCounts, fit.deadTaxels,
                                       fit.deadReading, driftTemplate, c.blink),
                             memoryListed ? memory.fraction : 0.0, memory.tau);
+    // The stage's error: listed where the taps' holds lie off their commanded poses across the
+    // outline by more than in recordings simulated with the fitted scene and an exact stage (the
+    // drift test's form, on each tap's squared offset about its mean over those recordings, over
+    // their variance there); its size then fitted by simulation, with standard errors from
+    // recordings simulated at the estimate. Where the taps do not show it, the base's is kept:
+    // a stage error much under the holds' own spread cannot be told from none.
+    std::optional<double> stageSigma;
+    {
+        const HoldModel grid(base, *model);
+        const double threshold = base.tap.contactThreshold;
+        const double limit = base.strokeLimitDepth();
+        auto offsetsIn = [&](const SceneSpec& scene, std::uint64_t seed) {
+            return holdOffsetsOf(grid, simulateAt(scene, model, recorded, seed, true), skip,
+                                 threshold, maxCounts, limit);
+        };
+        const auto offsets = holdOffsetsOf(grid, recorded, skip, threshold, maxCounts, limit);
+        // The scene as fitted: only the effects listed, at their estimates.
+        const SceneSpec& fitted = fit.fitted;
+        const SceneSpec exact = withEffect(fitted, "stage_error", Json());
+        std::vector<std::vector<double>> nulls;
+        for (int b = 0; b < std::max(settings.bootstrapReplicates, 10); ++b)
+            nulls.push_back(
+                offsetsIn(exact, settings.seed + 95000 + static_cast<std::uint64_t>(b)));
+        const OffsetSpread spread = offsetSpread(offsets, nulls);
+        std::vector<double> nullExcess;
+        for (std::size_t j = 0; j < nulls.size(); ++j)
+            nullExcess.push_back(offsetSpread(nulls[j], nulls, j).excess());
+        const double stat = zAbove(spread.excess(), nullExcess);
+        const bool listed = spread.taps >= 10 && stat > z;
+        const std::string test =
+            "the squared offsets across the outline of " + std::to_string(spread.taps) +
+            " taps' holds (each the shift of the model's pose, its depth fitted alongside, that "
+            "fits the hold best) about their means over " +
+            std::to_string(nulls.size()) +
+            " recordings simulated with the fitted scene and an exact stage, over their variance "
+            "there, averaged, less its mean over those recordings, over its standard deviation, "
+            "against the one-sided normal quantile at the level";
+        // How small a stage error the test can see: one whose excess reaches the quantile (the
+        // excess grows as the error's square over each tap's variance).
+        double precision = 0.0;
+        {
+            int n = 0;
+            for (std::size_t i = 0; i < offsets.size(); ++i) {
+                std::vector<double> v;
+                for (const auto& null : nulls) v.push_back(null[i]);
+                const double var = sd(v) * sd(v);
+                if (std::isfinite(offsets[i]) && std::isfinite(var) &&
+                    var >= kLeastOffsetVariance) {
+                    precision += 1.0 / var;
+                    ++n;
+                }
+            }
+            precision = n > 0 ? precision / n : 0.0;
+        }
+        const double smallest = precision > 0 ? std::sqrt(z * sd(nullExcess) / precision) : NAN;
+        if (listed) {
+            // The excess grows as the error's square: scaled until recordings simulated at the
+            // estimate show the recorded one (three rounds of three).
+            double sigma = std::clamp(std::sqrt(std::max(spread.excess(), 0.0) / precision), 1e-3,
+                                      kMaxStageSigma_mm);
+            auto excessAt = [&](double at, int count, std::uint64_t seed) {
+                std::vector<double> out;
+                for (int r = 0; r < count; ++r)
+                    out.push_back(offsetSpread(offsetsIn(withEffect(fitted, "stage_error",
+                                                                    Json{{"sigma_mm", at}}),
+                                                         seed + 7 * static_cast<std::uint64_t>(r)),
+                                               nulls)
+                                      .excess());
+                return out;
+            };
+            for (int round = 0; round < 3; ++round) {
+                const auto shown = excessAt(sigma, 3, settings.seed + 96000);
+                const double mean = std::accumulate(shown.begin(), shown.end(), 0.0) / 3.0;
+                if (mean > 0)
+                    sigma = std::clamp(sigma * std::sqrt(std::max(spread.excess(), 0.0) / mean),
+                                       1e-3, kMaxStageSigma_mm);
+            }
+            const auto again =
+                excessAt(sigma, std::max(settings.bootstrapReplicates, 5), settings.seed + 97000);
+            const double mean = std::accumulate(again.begin(), again.end(), 0.0) /
+                                static_cast<double>(again.size());
+            std::vector<double> sigmas;
+            for (double e : again) sigmas.push_back(sigma * std::sqrt(std::max(e, 0.0) / mean));
+            stageSigma = sigma;
+            fit.choices.push_back({"stage_error", true, test, stat, z, true});
+            fit.parameters.push_back({"stage_error", "sigma_mm", sigma, sd(sigmas),
+                                      sigma - 1.96 * sd(sigmas), sigma + 1.96 * sd(sigmas)});
+        } else {
+            fit.choices.push_back(
+                {"stage_error", given.lists("stage_error"),
+                 test + "; under it, so " +
+                     (given.lists("stage_error") ? "kept as the base scene lists it"
+                                                 : std::string("not listed")) +
+                     " (these taps would show a stage error of about " +
+                     numberText(std::round(smallest * 1000.0) / 1000.0) + " mm and more)",
+                 stat, z, false});
+        }
+    }
+    if (stageSigma)
+        fit.fitted = withEffect(fit.fitted, "stage_error", Json{{"sigma_mm", *stageSigma}});
 
     // Goodness of fit, per taxel: recorded against simulated with the fitted scene, beside what
     // two simulations of it show.

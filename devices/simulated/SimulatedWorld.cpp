@@ -126,6 +126,10 @@ TapRecord SimulatedWorld::tap() {
         stopDepth = std::min(*crossing + v * latency, strokeDepth);
         record.ending = TapEnding::ContactReflex;
     }
+    if (forcedStop_mm_) {
+        stopDepth = std::clamp(*forcedStop_mm_, 0.0, strokeDepth);
+        forcedStop_mm_.reset();
+    }
     record.stopDepth_mm = stopDepth;
     const double stopTime = (clearance + stopDepth) / v;
     const double release = stopTime + ts.contactTime_s;

@@ -4,6 +4,7 @@
 // pressures, instant reflex) is always there; every other effect runs only if the scene lists it.
 // With a fixed seed the world is bit-for-bit reproducible.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,10 @@ public:
 
     /// Tapper: one tap at the current pose.
     TapRecord tap();
+    /// The next tap's stroke stops `depth_mm` below the object's top (or at the stroke's limit)
+    /// wherever the reflex would stop it, as a recorded stroke did: for replaying recorded
+    /// strokes in simulation (the scene fit).
+    void stopNextTapAt(double depth_mm) { forcedStop_mm_ = depth_mm; }
 
     /// The most recent frame the fingertip produced (the last sample of the last tap).
     void latestFrame(double* out) const;
@@ -55,6 +60,7 @@ private:
     std::vector<double> lastFrame_;
     std::vector<double> sampleDepths_, distinctDepths_, depthPressures_;  // reused tap to tap
     std::uint64_t taps_ = 0;
+    std::optional<double> forcedStop_mm_;
 };
 
 /// The three devices of a simulated rig, sharing one world.

@@ -143,7 +143,7 @@ private slots:
         QVERIFY2(o.exitCode == 0, qPrintable(o.err));
         QVERIFY2(o.out.contains("taxel_noise          yes") &&
                      o.out.contains("adc_quantisation     yes") &&
-                     o.out.contains("contact_latency      kept") &&
+                     o.out.contains("contact_latency      yes") &&
                      o.out.contains("Figure 6 recorded"),
                  qPrintable(o.out));
         const QJsonObject report = readJson(dir_.filePath("fitted/paper_fitted.calibration.json"));

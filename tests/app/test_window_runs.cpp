@@ -167,7 +167,8 @@ private slots:
         QCOMPARE(listed["adc_quantisation"], "yes");
         QCOMPARE(listed["taxel_gain"], "no");
         QCOMPARE(listed["viscoelastic_memory"], "yes");  // the paper scene's pad remembers
-        QCOMPARE(listed["contact_latency"], "kept");
+        QCOMPARE(listed["contact_latency"], "yes");  // read from the stop depths
+        QCOMPARE(listed["stage_error"], "kept");
         bool sigma = false;
         QTableWidget* estimates = dialog->estimatesTable();
         for (int r = 0; r < estimates->rowCount(); ++r)

@@ -73,8 +73,15 @@ class TestSceneFit : public QObject {
         QCOMPARE(parameterOf(fit.fitted, "taxel_noise", "sigma_counts"), s->value);
         for (const auto& c : fit.choices)
             if (c.effect == "taxel_gain" || c.effect == "intermittent_taxel" ||
-                c.effect == "baseline_drift")
+                c.effect == "baseline_drift" || c.effect == "stage_error")
                 qInfo("%s: %g against %g", c.effect.c_str(), c.statistic, c.threshold);
+        // The reflex's latency comes back from the stop depths within its interval.
+        const double latency = parameterOf(truth, "contact_latency", "latency_s");
+        const FittedParameter* l = find(fit, "contact_latency", "latency_s");
+        QVERIFY(l);
+        qInfo("latency %.6f [%.6f, %.6f] s", l->value, l->low, l->high);
+        QVERIFY2(l->low <= latency && latency <= l->high, qPrintable(QString::number(l->value)));
+        QCOMPARE(parameterOf(fit.fitted, "contact_latency", "latency_s"), l->value);
     }
 
 private slots:
@@ -99,10 +106,20 @@ private slots:
               fraction->value, fraction->low, fraction->high, tau->value, tau->low, tau->high);
         QVERIFY(fraction->low <= 0.1 && 0.1 <= fraction->high);
         QVERIFY(tau->low <= 0.5 && 0.5 <= tau->high);
-        // The effects taps cannot show are kept, and said so.
+        // The stage's 0.02 mm lies under what these taps can show: kept from the base, and said
+        // so with the least error they would show.
+        const EffectChoice* stage = nullptr;
         int kept = 0;
-        for (const auto& c : fit.choices) kept += !c.estimated;
-        QCOMPARE(kept, 2);  // contact_latency, stage_error
+        for (const auto& c : fit.choices) {
+            kept += !c.estimated;
+            if (c.effect == "stage_error") stage = &c;
+        }
+        QCOMPARE(kept, 1);
+        QVERIFY(stage && !stage->estimated && stage->listed);
+        qInfo("stage error: %.3g against %.3g; %s", stage->statistic, stage->threshold,
+              stage->test.c_str());
+        QVERIFY(stage->statistic < stage->threshold);
+        QCOMPARE(parameterOf(fit.fitted, "stage_error", "sigma_mm"), 0.02);
         QCOMPARE(fit.taxels.size(), std::size_t(12));
         int matching = 0;
         for (const auto& t : fit.taxels) matching += t.matches;
@@ -171,29 +188,51 @@ private slots:
         }
     }
 
-    void aTapperThatStopsDeeperIsNotTakenForGains() {
+    void aTapperThatStopsDeeperIsReadFromItsStopDepths() {
         // (f) The reflex stops half a millimetre deeper than the base scene's (latency 0.04 s
         // against 0.02 s at 25 mm/s), as a real tapper on its own schedule may: every taxel is
-        // pressed harder, and unevenly, since a deeper press widens the contact. The taxels' own
-        // sensitivities are equal, and the gains test, read from the holds, says so.
+        // pressed harder, and unevenly, since a deeper press widens the contact. The recorded
+        // stop depths say so, and the latency comes back; the taxels' own sensitivities are equal,
+        // and neither gains nor another pressure level are read.
         SceneSpec truth = paper_;
         for (auto& e : truth.effects)
             if (e.name == "contact_latency") e.parameters["latency_s"] = 0.04;
-        const SceneFit fit = fitScene(paper_, recordedOn(truth));
-        QCOMPARE(effectNames(fit.fitted), effectNames(paper_));
+        const auto taps = recordedOn(truth);
+        const SceneFit fit = fitScene(paper_, taps);
+        QCOMPARE(effectNames(fit.fitted), effectNames(truth));
+        const FittedParameter* latency = find(fit, "contact_latency", "latency_s");
+        QVERIFY(latency);
+        qInfo("latency %.6f [%.6f, %.6f] s; pressure level %.3f", latency->value, latency->low,
+              latency->high, fit.pressureScale);
+        QVERIFY(latency->low <= 0.04 && 0.04 <= latency->high);
+        QCOMPARE(parameterOf(fit.fitted, "contact_latency", "latency_s"), latency->value);
+        QVERIFY(!fit.lists("taxel_gain"));
+        QVERIFY(!fit.pressureScaleDiffers);
+
+        // Without the stop depths (a skin log, or a recording written before they were kept) the
+        // latency is kept from the base, and the deeper press is told from gains by the holds.
+        std::vector<TapRecord> without = taps;
+        for (auto& r : without) r.stopDepth_mm = 0.0;
+        const SceneFit blind = fitScene(paper_, without);
+        QCOMPARE(effectNames(blind.fitted), effectNames(paper_));
+        QCOMPARE(parameterOf(blind.fitted, "contact_latency", "latency_s"), 0.02);
         const EffectChoice* gains = nullptr;
-        for (const auto& c : fit.choices)
+        const EffectChoice* kept = nullptr;
+        for (const auto& c : blind.choices) {
             if (c.effect == "taxel_gain") gains = &c;
+            if (c.effect == "contact_latency") kept = &c;
+        }
+        QVERIFY(kept && !kept->estimated);
         QVERIFY(gains && !gains->listed);
         qInfo("gains test %g against %g; on the moment fit's gains %g; pressure level %.3f",
-              gains->statistic, gains->threshold, fit.momentGainsQ, fit.pressureScale);
-        // Where the whole taps are compared with the scene's stroke, the deeper press does look
+              gains->statistic, gains->threshold, blind.momentGainsQ, blind.pressureScale);
+        // Where the whole taps are compared with the base's stroke, the deeper press does look
         // like gains: the case needs the holds.
-        QVERIFY2(fit.momentGainsQ > gains->threshold,
-                 qPrintable(QString::number(fit.momentGainsQ)));
+        QVERIFY2(blind.momentGainsQ > gains->threshold,
+                 qPrintable(QString::number(blind.momentGainsQ)));
         // It is said as the pressure level instead.
-        QVERIFY(fit.pressureScaleDiffers && fit.pressureScale > 1.0);
-        QVERIFY(fit.holdTaps >= 100);
+        QVERIFY(blind.pressureScaleDiffers && blind.pressureScale > 1.0);
+        QVERIFY(blind.holdTaps >= 100);
     }
 
     void aConverterThatSaturatesHasItsRangeRead() {
@@ -239,6 +278,26 @@ private slots:
         QVERIFY(share->standardError > 0 && spell->standardError > 0);
         QVERIFY2(share->low <= 0.1 && 0.1 <= share->high, "off fraction outside its interval");
         QVERIFY2(spell->low <= 0.1 && 0.1 <= spell->high, "mean spell outside its interval");
+    }
+
+    void aStageThatMissesItsPosesHasItsErrorRead() {
+        // (g) A stage that misses each commanded pose by 0.1 mm per axis (five times the paper's):
+        // the taps' holds lie off their poses across the edge by more than the holds' own spread,
+        // so the error is listed and its size comes back within its interval. The paper's own
+        // 0.02 mm lies under what these taps can show, and is kept from the base, said so.
+        SceneSpec truth = paper_;
+        for (auto& e : truth.effects)
+            if (e.name == "stage_error") e.parameters["sigma_mm"] = 0.1;
+        SceneFitSettings quick;
+        quick.bootstrapReplicates = 10;
+        const SceneFit fit = fitScene(paper_, recordedOn(truth), quick);
+        QCOMPARE(effectNames(fit.fitted), effectNames(truth));
+        const FittedParameter* sigma = find(fit, "stage_error", "sigma_mm");
+        QVERIFY(sigma);
+        qInfo("stage error %.4f [%.4f, %.4f] mm", sigma->value, sigma->low, sigma->high);
+        QVERIFY(sigma->low <= 0.1 && 0.1 <= sigma->high);
+        QCOMPARE(parameterOf(fit.fitted, "stage_error", "sigma_mm"), sigma->value);
+        QVERIFY(!fit.lists("taxel_gain"));
     }
 
     void tooFewTapsAreRefused() {
