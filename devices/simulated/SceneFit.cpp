@@ -1623,10 +1623,15 @@ SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded
                                 static_cast<double>(again.size());
             std::vector<double> sigmas;
             for (double e : again) sigmas.push_back(sigma * std::sqrt(std::max(e, 0.0) / mean));
+            // Every replicate is set against the same simulated recordings of an exact stage, so
+            // their spread misses what those recordings' own finite number adds to the recorded
+            // excess: the spread of the excess among them, through dσ = σ dE / 2E.
+            const double viaNulls = mean > 0 ? sigma * sd(nullExcess) / (2.0 * mean) : 0.0;
+            const double se = std::hypot(sd(sigmas), viaNulls);
             stageSigma = sigma;
             fit.choices.push_back({"stage_error", true, test, stat, z, true});
-            fit.parameters.push_back({"stage_error", "sigma_mm", sigma, sd(sigmas),
-                                      sigma - 1.96 * sd(sigmas), sigma + 1.96 * sd(sigmas)});
+            fit.parameters.push_back(
+                {"stage_error", "sigma_mm", sigma, se, sigma - 1.96 * se, sigma + 1.96 * se});
         } else {
             fit.choices.push_back(
                 {"stage_error", given.lists("stage_error"),

@@ -483,18 +483,21 @@ private slots:
         for (const auto& name : e.bench->effects()) truth.insert(name);
         for (const auto& effect : fit.fitted.effects) fitted.insert(effect.name);
         QCOMPARE(fitted, truth);
-        // Its stage's 0.02 mm lies about at the least these 72 taps can show: it is kept from the
-        // base (the same 0.02 mm), said so, or read; read, it leans high on the bench (its
-        // frame-timed strokes leave the holds a little more spread than the simulated taps
-        // stopped at the same depths show: docs/calibration.md), and is held under 0.05 mm.
+        // Its stage's 0.02 mm lies about at the least these 72 taps can show: it is read, within
+        // its interval, or kept from the base (the same 0.02 mm), and said so.
         for (const auto& c : fit.choices)
             if (c.effect == "stage_error") qInfo("%s", c.test.c_str());
-        for (const auto& effect : fit.fitted.effects)
-            if (effect.name == "stage_error") {
-                const double sigma = effect.parameters.at("sigma_mm").get<double>();
-                qInfo("stage error in the fitted scene: %.4f mm (the bench's 0.02)", sigma);
-                QVERIFY2(sigma >= 0.01 && sigma < 0.05, qPrintable(QString::number(sigma)));
+        bool stageRead = false;
+        for (const auto& p : fit.parameters)
+            if (p.effect == "stage_error") {
+                stageRead = true;
+                QVERIFY2(p.low <= 0.02 && 0.02 <= p.high,
+                         qPrintable(QString("%1 [%2, %3]").arg(p.value).arg(p.low).arg(p.high)));
             }
+        if (!stageRead)
+            for (const auto& effect : fit.fitted.effects)
+                if (effect.name == "stage_error")
+                    QCOMPARE(effect.parameters.at("sigma_mm").get<double>(), 0.02);
         // The reflex's latency, from the stop depths the NXT driver recorded: the bench's own,
         // where its motor really stopped (the deepest indentation its frames showed in each press)
         // less where the model at the pose reaches the threshold, over the descent speed, averaged
