@@ -88,6 +88,10 @@ std::vector<char> quietFrames(const Tap& tap, const std::vector<char>& skip, dou
     return quiet;
 }
 constexpr double kPressed = 20.0;
+/// The widest coupling the crosstalk effect takes, either way (read values may fall below zero).
+constexpr double kMaxCoupling = 0.5;
+/// The crosstalk's neighbourhood where the base scene gives none (the effect's default), mm.
+constexpr double kDefaultCouplingRadius_mm = 4.5;
 /// A converter's range shows as at least this many readings at the highest value, and this many
 /// times as many as one count below it.
 constexpr long kPileReadings = 20;
@@ -632,10 +636,11 @@ std::optional<std::vector<double>> holdReadingOf(const Tap& tap, const std::vect
 /// model's pressures carry it too, through the scene's own effect, the depths taken as frames).
 class HoldModel {
 public:
-    HoldModel(const SceneSpec& base, const FingertipContactModel& model)
+    /// With `coupled` false, the bare contact's pressures (the base's crosstalk left out).
+    HoldModel(const SceneSpec& base, const FingertipContactModel& model, bool coupled = true)
         : model_(model), object_(base.object.outline()), depths_(kHoldDepths) {
         for (const auto& e : base.effects)
-            if (e.name == "crosstalk")
+            if (coupled && e.name == "crosstalk")
                 crosstalk_ = findEffect(e.name)->make(
                     JsonFields(e.parameters, base.source, e.place), model, RandomStream());
         const double stroke = base.strokeLimitDepth();
@@ -661,8 +666,8 @@ private:
 
 std::vector<Hold> holdsOf(const SceneSpec& base, const FingertipContactModel& model,
                           const std::vector<TapRecord>& recorded, const std::vector<char>& skip,
-                          double maxCounts) {
-    const HoldModel grid(base, model);
+                          double maxCounts, bool coupled = true) {
+    const HoldModel grid(base, model, coupled);
     std::vector<Hold> holds;
     for (const auto& r : recorded) {
         auto reading = holdReadingOf(r.tap, skip, base.tap.contactThreshold, maxCounts);
@@ -858,6 +863,121 @@ std::vector<double> holdLogGains(const std::vector<Hold>& holds, const std::vect
         }
     }
     return logGain;
+}
+
+/// The pairs (reader, neighbour) the crosstalk effect couples at `radius_mm`, as it takes them.
+std::vector<std::pair<int, int>> couplingPairs(const FingertipContactModel& model,
+                                               double radius_mm) {
+    const auto& p = model.projectedTaxels();
+    std::vector<std::pair<int, int>> pairs;
+    for (int i = 0; i < model.taxelCount(); ++i)
+        for (int j = 0; j < model.taxelCount(); ++j)
+            if (i != j && distance(p[static_cast<std::size_t>(i)],
+                                   p[static_cast<std::size_t>(j)]) <= radius_mm)
+                pairs.push_back({i, j});
+    return pairs;
+}
+
+/// The crosstalk's coupling as the holds picked by `which` show it (holds of the bare contact):
+/// each taxel reads offset + gain x (its own pressure + c x its neighbours'), alternately each
+/// hold's depth (fitDepth() on those pressures), each taxel's line by least squares over the
+/// holds that press it or its neighbours over kPressed counts at their depth, and the common c,
+/// four rounds from c = 0.
+double holdCoupling(const std::vector<Hold>& holds, const std::vector<int>& which, int K,
+                    const std::vector<std::pair<int, int>>& pairs) {
+    const auto KK = static_cast<std::size_t>(K);
+    std::vector<double> gain(KK, 1.0), offset(KK, 0.0);
+    double c = 0.0;
+    std::vector<double> own(which.size() * KK), near(which.size() * KK);
+    std::vector<double> coupled;
+    for (int round = 0; round < 4; ++round) {
+        for (std::size_t n = 0; n < which.size(); ++n) {
+            const Hold& h = holds[static_cast<std::size_t>(which[n])];
+            const std::size_t D = h.modelAtDepths.size() / KK;
+            std::vector<double> neighbours(h.modelAtDepths.size(), 0.0);
+            for (std::size_t d = 0; d < D; ++d)
+                for (const auto& [to, from] : pairs)
+                    neighbours[d * KK + static_cast<std::size_t>(to)] +=
+                        h.modelAtDepths[d * KK + static_cast<std::size_t>(from)];
+            coupled.resize(h.modelAtDepths.size());
+            for (std::size_t i = 0; i < coupled.size(); ++i)
+                coupled[i] = h.modelAtDepths[i] + c * neighbours[i];
+            const DepthFit f = fitDepth(h.reading, coupled, gain, offset);
+            const std::size_t other = f.shift < 0 ? f.best - 1 : std::min(f.best + 1, D - 1);
+            const double w = std::abs(f.shift);
+            for (std::size_t k = 0; k < KK; ++k) {
+                own[n * KK + k] = (1.0 - w) * h.modelAtDepths[f.best * KK + k] +
+                                  w * h.modelAtDepths[other * KK + k];
+                near[n * KK + k] =
+                    (1.0 - w) * neighbours[f.best * KK + k] + w * neighbours[other * KK + k];
+            }
+        }
+        auto used = [&](std::size_t n, std::size_t k) {
+            const double r = holds[static_cast<std::size_t>(which[n])].reading[k];
+            return std::isfinite(r) && (own[n * KK + k] > kPressed || near[n * KK + k] > kPressed);
+        };
+        for (std::size_t k = 0; k < KK; ++k) {
+            double m = 0.0, sx = 0.0, sr = 0.0, sxx = 0.0, sxr = 0.0;
+            for (std::size_t n = 0; n < which.size(); ++n) {
+                if (!used(n, k)) continue;
+                const double x = own[n * KK + k] + c * near[n * KK + k];
+                const double r = holds[static_cast<std::size_t>(which[n])].reading[k];
+                m += 1.0;
+                sx += x;
+                sr += r;
+                sxx += x * x;
+                sxr += x * r;
+            }
+            const double spread = sxx - sx * sx / std::max(m, 1.0);
+            const double g = m >= 5 && spread > 0 ? (sxr - sx * sr / m) / spread : 0.0;
+            gain[k] = g > 0 ? g : 1.0;
+            offset[k] = g > 0 ? (sr - g * sx) / m : 0.0;
+        }
+        double num = 0.0, den = 0.0;
+        for (std::size_t n = 0; n < which.size(); ++n)
+            for (std::size_t k = 0; k < KK; ++k) {
+                if (!used(n, k)) continue;
+                const double r = holds[static_cast<std::size_t>(which[n])].reading[k];
+                const double y = r - offset[k] - gain[k] * own[n * KK + k];
+                const double x = gain[k] * near[n * KK + k];
+                num += x * y;
+                den += x * x;
+            }
+        c = den > 0 ? std::clamp(num / den, -kMaxCoupling, kMaxCoupling) : 0.0;
+    }
+    return c;
+}
+
+/// The coupling with its standard error from resampling runs of ten consecutive holds.
+struct Coupling {
+    double value = 0.0, se = 0.0;
+    int holds = 0;
+};
+Coupling couplingOf(const std::vector<Hold>& holds, int K,
+                    const std::vector<std::pair<int, int>>& pairs, int replicates,
+                    std::uint64_t seed) {
+    Coupling c;
+    c.holds = static_cast<int>(holds.size());
+    if (holds.size() < 10 || pairs.empty()) return c;
+    std::vector<int> all(holds.size());
+    std::iota(all.begin(), all.end(), 0);
+    c.value = holdCoupling(holds, all, K, pairs);
+    RandomStream rng(seed);
+    std::vector<int> pick(holds.size());
+    std::vector<double> reps;
+    const std::size_t block = 10;
+    for (int b = 0; b < replicates; ++b) {
+        for (std::size_t at = 0; at < pick.size(); at += block) {
+            const auto start = std::min(
+                static_cast<std::size_t>(rng.uniform() * static_cast<double>(holds.size())),
+                holds.size() - 1);
+            for (std::size_t j = at; j < std::min(at + block, pick.size()); ++j)
+                pick[j] = static_cast<int>((start + j - at) % holds.size());
+        }
+        reps.push_back(holdCoupling(holds, pick, K, pairs));
+    }
+    c.se = sd(reps);
+    return c;
 }
 
 /// The hold gains with their errors from resampling the touching taps, and Cochran's Q of
@@ -1235,9 +1355,6 @@ SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded
         if (e.name == "adc_quantisation" && e.parameters.contains("max_counts"))
             maxCounts = e.parameters["max_counts"].get<double>();
     maxCounts = saturates ? top : std::max(maxCounts, top);
-    const EffectSpec* driftTemplate = nullptr;
-    for (const auto& e : base.effects)
-        if (e.name == "baseline_drift") driftTemplate = &e;
 
     // Blinking taxels, read before the gains so that every simulation the gains are fitted to
     // blinks alike.
@@ -1250,6 +1367,74 @@ SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded
                                   {"off_fraction", blinking.offFraction},
                                   {"mean_off_s", blinking.meanOff_s},
                                   {"reading_counts", blinking.reading}};
+
+    // Crosstalk, from the holds of the bare contact (the base's own coupling left out): listed
+    // where the common coupling lies more than the quantile of its standard errors above zero,
+    // and then put in the scene every simulation below takes, at the base's radius (or the
+    // effect's default).
+    {
+        double radius = kDefaultCouplingRadius_mm;
+        for (const auto& e : given.effects)
+            if (e.name == "crosstalk") radius = e.parameters.value("radius_mm", radius);
+        const auto pairs = couplingPairs(*model, radius);
+        const Coupling coupling =
+            couplingOf(holdsOf(base, *model, recorded, skip, maxCounts, false), K, pairs,
+                       settings.holdReplicates, settings.seed + 98000);
+        const double stat = coupling.se > 0 ? coupling.value / coupling.se : 0.0;
+        const bool listed = coupling.holds >= 10 && stat > z;
+        // The taxels' own lines take much of a coupling (a taxel with more neighbours reads
+        // more throughout), so the holds read it low, and lower still for a small one: the
+        // coupling is the one at which taps simulated at the recorded poses read as the recorded
+        // ones do (by the secant from 0.02 and 0.1, three steps, two simulations each, the same
+        // seeds throughout), and its error goes through the same slope.
+        double value = coupling.value, se = coupling.se;
+        if (listed) {
+            auto shownAt = [&](double c) {
+                double shown = 0.0;
+                for (int r = 0; r < 2; ++r) {
+                    const auto taps = simulateAt(
+                        withEffect(base, "crosstalk", Json{{"coupling", c}, {"radius_mm", radius}}),
+                        model, recorded, settings.seed + 99000 + static_cast<std::uint64_t>(r));
+                    const auto holds = holdsOf(base, *model, taps, skip, maxCounts, false);
+                    std::vector<int> all(holds.size());
+                    std::iota(all.begin(), all.end(), 0);
+                    shown += holdCoupling(holds, all, K, pairs) / 2.0;
+                }
+                return shown;
+            };
+            double c0 = 0.02, c1 = 0.1, s0 = shownAt(c0), s1 = shownAt(c1);
+            for (int step = 0; step < 3 && s1 != s0; ++step) {
+                const double c2 = std::clamp(c1 + (coupling.value - s1) * (c1 - c0) / (s1 - s0),
+                                             1e-4, kMaxCoupling);
+                c0 = c1;
+                s0 = s1;
+                c1 = c2;
+                s1 = shownAt(c1);
+            }
+            const double slope = c1 != c0 ? (s1 - s0) / (c1 - c0) : 0.0;
+            value = c1;
+            se = slope > 0 ? coupling.se / slope : coupling.se;
+        }
+        fit.choices.push_back(
+            {"crosstalk", listed,
+             "the coupling read from " + std::to_string(coupling.holds) +
+                 " taps' holds (each taxel's reading a line in its own pressure plus the coupling "
+                 "times its neighbours' within " +
+                 numberText(radius) +
+                 " mm, each hold's depth fitted) over its standard error from resampling the taps, "
+                 "against the one-sided normal quantile at the level",
+             stat, z, true});
+        if (listed)
+            fit.parameters.push_back(
+                {"crosstalk", "coupling", value, se, value - 1.96 * se, value + 1.96 * se});
+        base = withEffect(base, "crosstalk",
+                          listed ? Json{{"coupling", value}, {"radius_mm", radius}} : Json());
+    }
+
+    // Into `base`, which stays as it is from here on.
+    const EffectSpec* driftTemplate = nullptr;
+    for (const auto& e : base.effects)
+        if (e.name == "baseline_drift") driftTemplate = &e;
 
     const Moments target = momentsOf(recorded, masks, skip);
     fit.nothingSamples = target.nothing;
@@ -1531,7 +1716,7 @@ SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded
     }
     for (const auto& e : base.effects)
         if (!estimatedHere(e.name) && e.name != "viscoelastic_memory" &&
-            e.name != "contact_latency" && e.name != "stage_error")
+            e.name != "contact_latency" && e.name != "stage_error" && e.name != "crosstalk")
             fit.choices.push_back({e.name, true,
                                    "not identifiable from taps by this fit: kept as the base scene "
                                    "lists it",

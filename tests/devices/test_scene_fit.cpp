@@ -73,7 +73,8 @@ class TestSceneFit : public QObject {
         QCOMPARE(parameterOf(fit.fitted, "taxel_noise", "sigma_counts"), s->value);
         for (const auto& c : fit.choices)
             if (c.effect == "taxel_gain" || c.effect == "intermittent_taxel" ||
-                c.effect == "baseline_drift" || c.effect == "stage_error")
+                c.effect == "baseline_drift" || c.effect == "stage_error" ||
+                c.effect == "crosstalk")
                 qInfo("%s: %g against %g", c.effect.c_str(), c.statistic, c.threshold);
         // The reflex's latency comes back from the stop depths within its interval.
         const double latency = parameterOf(truth, "contact_latency", "latency_s");
@@ -297,6 +298,28 @@ private slots:
         qInfo("stage error %.4f [%.4f, %.4f] mm", sigma->value, sigma->low, sigma->high);
         QVERIFY(sigma->low <= 0.1 && 0.1 <= sigma->high);
         QCOMPARE(parameterOf(fit.fitted, "stage_error", "sigma_mm"), sigma->value);
+        QVERIFY(!fit.lists("taxel_gain"));
+    }
+
+    void neighboursThatCoupleAreReadAsCrosstalk() {
+        // (h) Each taxel also reads 5 % of its neighbours' pressure (within 4.5 mm): a taxel with
+        // more neighbours reads more throughout, which the taxels' own lines would take as gains.
+        // The coupling is listed and comes back within its interval, and no gains are listed.
+        SceneSpec truth = paper_;
+        EffectSpec coupling;
+        coupling.name = "crosstalk";
+        coupling.parameters = Json{{"coupling", 0.05}, {"radius_mm", 4.5}};
+        truth.effects.push_back(coupling);
+        SceneFitSettings quick;
+        quick.bootstrapReplicates = 4;
+        const SceneFit fit = fitScene(paper_, recordedOn(truth), quick);
+        QCOMPARE(effectNames(fit.fitted), effectNames(truth));
+        const FittedParameter* c = find(fit, "crosstalk", "coupling");
+        QVERIFY(c);
+        qInfo("coupling %.4f [%.4f, %.4f]", c->value, c->low, c->high);
+        QVERIFY(c->low <= 0.05 && 0.05 <= c->high);
+        QCOMPARE(parameterOf(fit.fitted, "crosstalk", "coupling"), c->value);
+        QCOMPARE(parameterOf(fit.fitted, "crosstalk", "radius_mm"), 4.5);
         QVERIFY(!fit.lists("taxel_gain"));
     }
 
