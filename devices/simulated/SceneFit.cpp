@@ -1189,26 +1189,13 @@ HoldGains holdGains(const std::vector<Hold>& holds, int K, int replicates, std::
     return g;
 }
 
-}  // namespace
-
-SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded,
-                  const SceneFitSettings& settings) {
-    if (recorded.size() < 20)
-        throw InputError(given.source, "",
-                         "a fit needs at least 20 recorded taps; the recording has " +
-                             std::to_string(recorded.size()));
-    auto model = std::make_shared<const FingertipContactModel>(given.fingertip);
-    const int K = model->taxelCount();
-    for (const auto& r : recorded)
-        if (r.tap.taxels != K || r.tap.sampleCount() != given.tap.samples)
-            throw InputError(given.source, "/tap/samples",
-                             "the recording's taps have " + std::to_string(r.tap.sampleCount()) +
-                                 " samples of " + std::to_string(r.tap.taxels) +
-                                 " taxels; the scene's fingertip and tap say " +
-                                 std::to_string(given.tap.samples) + " of " + std::to_string(K));
-    SceneFit fit;
-    const double z = upperNormalQuantile(settings.alpha);
-
+/// The reflex's latency, read first, from the stroke's own travel (see the comment inside): its
+/// choice and estimate into `fit`, and the scene every later simulation takes (`given` with the
+/// latency read, or as it is where the recording holds too few stop depths).
+SceneSpec readLatency(const SceneSpec& given,
+                      const std::shared_ptr<const FingertipContactModel>& model,
+                      const std::vector<TapRecord>& recorded, const SceneFitSettings& settings,
+                      double z, SceneFit& fit) {
     // The reflex's latency first, from the stroke's own travel: every simulation below then
     // presses as deep as the recorded taps did. The lag the model shows at a latency differs from
     // it by what the pose effects do to the crossing, so it is corrected by simulation (two
@@ -1256,6 +1243,220 @@ SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded
                                    "lists it",
                                0.0, 0.0, false});
     }
+
+    return base;
+}
+
+/// Crosstalk (see the comment inside): its choice and estimate into `fit`, and `base` with the
+/// coupling read (or without one).
+SceneSpec readCrosstalk(const SceneSpec& given, SceneSpec base,
+                        const std::shared_ptr<const FingertipContactModel>& model,
+                        const std::vector<TapRecord>& recorded, const std::vector<char>& skip,
+                        double maxCounts, const SceneFitSettings& settings, double z,
+                        SceneFit& fit) {
+    const int K = model->taxelCount();
+    // Crosstalk, from the holds of the bare contact (the base's own coupling left out): listed
+    // where the common coupling lies more than the quantile of its standard errors above zero,
+    // and then put in the scene every simulation below takes, at the base's radius (or the
+    // effect's default).
+    {
+        double radius = kDefaultCouplingRadius_mm;
+        for (const auto& e : given.effects)
+            if (e.name == "crosstalk") radius = e.parameters.value("radius_mm", radius);
+        const auto pairs = couplingPairs(*model, radius);
+        const Coupling coupling =
+            couplingOf(holdsOf(base, *model, recorded, skip, maxCounts, false), K, pairs,
+                       settings.holdReplicates, settings.seed + 98000);
+        const double stat = coupling.se > 0 ? coupling.value / coupling.se : 0.0;
+        const bool listed = coupling.holds >= 10 && stat > z;
+        // The taxels' own lines take much of a coupling (a taxel with more neighbours reads
+        // more throughout), so the holds read it low, and lower still for a small one: the
+        // coupling is the one at which taps simulated at the recorded poses read as the recorded
+        // ones do (by the secant from 0.02 and 0.1, three steps, two simulations each, the same
+        // seeds throughout), and its error goes through the same slope.
+        double value = coupling.value, se = coupling.se;
+        if (listed) {
+            auto shownAt = [&](double c) {
+                double shown = 0.0;
+                for (int r = 0; r < 2; ++r) {
+                    const auto taps = simulateAt(
+                        withEffect(base, "crosstalk", Json{{"coupling", c}, {"radius_mm", radius}}),
+                        model, recorded, settings.seed + 99000 + static_cast<std::uint64_t>(r));
+                    const auto holds = holdsOf(base, *model, taps, skip, maxCounts, false);
+                    std::vector<int> all(holds.size());
+                    std::iota(all.begin(), all.end(), 0);
+                    shown += holdCoupling(holds, all, K, pairs) / 2.0;
+                }
+                return shown;
+            };
+            double c0 = 0.02, c1 = 0.1, s0 = shownAt(c0), s1 = shownAt(c1);
+            for (int step = 0; step < 3 && s1 != s0; ++step) {
+                const double c2 = std::clamp(c1 + (coupling.value - s1) * (c1 - c0) / (s1 - s0),
+                                             1e-4, kMaxCoupling);
+                c0 = c1;
+                s0 = s1;
+                c1 = c2;
+                s1 = shownAt(c1);
+            }
+            const double slope = c1 != c0 ? (s1 - s0) / (c1 - c0) : 0.0;
+            value = c1;
+            se = slope > 0 ? coupling.se / slope : coupling.se;
+        }
+        fit.choices.push_back(
+            {"crosstalk", listed,
+             "the coupling read from " + std::to_string(coupling.holds) +
+                 " taps' holds (each taxel's reading a line in its own pressure plus the coupling "
+                 "times its neighbours' within " +
+                 numberText(radius) +
+                 " mm, each hold's depth fitted) over its standard error from resampling the taps, "
+                 "against the one-sided normal quantile at the level",
+             stat, z, true});
+        if (listed)
+            fit.parameters.push_back(
+                {"crosstalk", "coupling", value, se, value - 1.96 * se, value + 1.96 * se});
+        base = withEffect(base, "crosstalk",
+                          listed ? Json{{"coupling", value}, {"radius_mm", radius}} : Json());
+    }
+
+    return base;
+}
+
+/// The stage's error (see the comment inside), against `fit.fitted` as fitted so far: its
+/// choice and estimate into `fit`, and the error read, where the taps show one.
+std::optional<double> readStageError(const SceneSpec& given, const SceneSpec& base,
+                                     const std::shared_ptr<const FingertipContactModel>& model,
+                                     const std::vector<TapRecord>& recorded,
+                                     const std::vector<char>& skip, double maxCounts,
+                                     const SceneFitSettings& settings, double z, SceneFit& fit) {
+    // The stage's error: listed where the taps' holds lie off their commanded poses across the
+    // outline by more than in recordings simulated with the fitted scene and an exact stage (the
+    // drift test's form, on each tap's squared offset about its mean over those recordings, over
+    // their variance there); its size then fitted by simulation, with standard errors from
+    // recordings simulated at the estimate. Where the taps do not show it, the base's is kept:
+    // a stage error much under the holds' own spread cannot be told from none.
+    std::optional<double> stageSigma;
+    {
+        const HoldModel grid(base, *model);
+        const double threshold = base.tap.contactThreshold;
+        const double limit = base.strokeLimitDepth();
+        auto offsetsIn = [&](const SceneSpec& scene, std::uint64_t seed) {
+            return holdOffsetsOf(grid, simulateAt(scene, model, recorded, seed, true), skip,
+                                 threshold, maxCounts, limit);
+        };
+        const auto offsets = holdOffsetsOf(grid, recorded, skip, threshold, maxCounts, limit);
+        // The scene as fitted: only the effects listed, at their estimates.
+        const SceneSpec& fitted = fit.fitted;
+        const SceneSpec exact = withEffect(fitted, "stage_error", Json());
+        std::vector<std::vector<double>> nulls;
+        for (int b = 0; b < std::max(settings.bootstrapReplicates, 10); ++b)
+            nulls.push_back(
+                offsetsIn(exact, settings.seed + 95000 + static_cast<std::uint64_t>(b)));
+        const OffsetSpread spread = offsetSpread(offsets, nulls);
+        std::vector<double> nullExcess;
+        for (std::size_t j = 0; j < nulls.size(); ++j)
+            nullExcess.push_back(offsetSpread(nulls[j], nulls, j).excess());
+        const double stat = zAbove(spread.excess(), nullExcess);
+        const bool listed = spread.taps >= 10 && stat > z;
+        const std::string test =
+            "the squared offsets across the outline of " + std::to_string(spread.taps) +
+            " taps' holds (each the shift of the model's pose, its depth fitted alongside, that "
+            "fits the hold best) about their means over " +
+            std::to_string(nulls.size()) +
+            " recordings simulated with the fitted scene and an exact stage, over their variance "
+            "there, averaged, less its mean over those recordings, over its standard deviation, "
+            "against the one-sided normal quantile at the level";
+        // How small a stage error the test can see: one whose excess reaches the quantile (the
+        // excess grows as the error's square over each tap's variance).
+        double precision = 0.0;
+        {
+            int n = 0;
+            for (std::size_t i = 0; i < offsets.size(); ++i) {
+                std::vector<double> v;
+                for (const auto& null : nulls) v.push_back(null[i]);
+                const double var = sd(v) * sd(v);
+                if (std::isfinite(offsets[i]) && std::isfinite(var) &&
+                    var >= kLeastOffsetVariance) {
+                    precision += 1.0 / var;
+                    ++n;
+                }
+            }
+            precision = n > 0 ? precision / n : 0.0;
+        }
+        const double smallest = precision > 0 ? std::sqrt(z * sd(nullExcess) / precision) : NAN;
+        if (listed) {
+            // The excess grows as the error's square: scaled until recordings simulated at the
+            // estimate show the recorded one (three rounds of three).
+            double sigma = std::clamp(std::sqrt(std::max(spread.excess(), 0.0) / precision), 1e-3,
+                                      kMaxStageSigma_mm);
+            auto excessAt = [&](double at, int count, std::uint64_t seed) {
+                std::vector<double> out;
+                for (int r = 0; r < count; ++r)
+                    out.push_back(offsetSpread(offsetsIn(withEffect(fitted, "stage_error",
+                                                                    Json{{"sigma_mm", at}}),
+                                                         seed + 7 * static_cast<std::uint64_t>(r)),
+                                               nulls)
+                                      .excess());
+                return out;
+            };
+            for (int round = 0; round < 3; ++round) {
+                const auto shown = excessAt(sigma, 3, settings.seed + 96000);
+                const double mean = std::accumulate(shown.begin(), shown.end(), 0.0) / 3.0;
+                if (mean > 0)
+                    sigma = std::clamp(sigma * std::sqrt(std::max(spread.excess(), 0.0) / mean),
+                                       1e-3, kMaxStageSigma_mm);
+            }
+            const auto again =
+                excessAt(sigma, std::max(settings.bootstrapReplicates, 5), settings.seed + 97000);
+            const double mean = std::accumulate(again.begin(), again.end(), 0.0) /
+                                static_cast<double>(again.size());
+            std::vector<double> sigmas;
+            for (double e : again) sigmas.push_back(sigma * std::sqrt(std::max(e, 0.0) / mean));
+            // Every replicate is set against the same simulated recordings of an exact stage, so
+            // their spread misses what those recordings' own finite number adds to the recorded
+            // excess: the spread of the excess among them, through dσ = σ dE / 2E.
+            const double viaNulls = mean > 0 ? sigma * sd(nullExcess) / (2.0 * mean) : 0.0;
+            const double se = std::hypot(sd(sigmas), viaNulls);
+            stageSigma = sigma;
+            fit.choices.push_back({"stage_error", true, test, stat, z, true});
+            fit.parameters.push_back(
+                {"stage_error", "sigma_mm", sigma, se, sigma - 1.96 * se, sigma + 1.96 * se});
+        } else {
+            fit.choices.push_back(
+                {"stage_error", given.lists("stage_error"),
+                 test + "; under it, so " +
+                     (given.lists("stage_error") ? "kept as the base scene lists it"
+                                                 : std::string("not listed")) +
+                     " (these taps would show a stage error of about " +
+                     numberText(std::round(smallest * 1000.0) / 1000.0) + " mm and more)",
+                 stat, z, false});
+        }
+    }
+    return stageSigma;
+}
+
+}  // namespace
+
+SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded,
+                  const SceneFitSettings& settings) {
+    if (recorded.size() < 20)
+        throw InputError(given.source, "",
+                         "a fit needs at least 20 recorded taps; the recording has " +
+                             std::to_string(recorded.size()));
+    auto model = std::make_shared<const FingertipContactModel>(given.fingertip);
+    const int K = model->taxelCount();
+    for (const auto& r : recorded)
+        if (r.tap.taxels != K || r.tap.sampleCount() != given.tap.samples)
+            throw InputError(given.source, "/tap/samples",
+                             "the recording's taps have " + std::to_string(r.tap.sampleCount()) +
+                                 " samples of " + std::to_string(r.tap.taxels) +
+                                 " taxels; the scene's fingertip and tap say " +
+                                 std::to_string(given.tap.samples) + " of " + std::to_string(K));
+    SceneFit fit;
+    const double z = upperNormalQuantile(settings.alpha);
+
+    // The reflex's latency first: every simulation below then presses, on average, as deep as
+    // the recorded taps did.
+    SceneSpec base = readLatency(given, model, recorded, settings, z, fit);
 
     // Samples over nothing: the noise-free model at each recorded pose touches nothing there.
     SceneSpec ideal = base;
@@ -1368,68 +1569,8 @@ SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded
                                   {"mean_off_s", blinking.meanOff_s},
                                   {"reading_counts", blinking.reading}};
 
-    // Crosstalk, from the holds of the bare contact (the base's own coupling left out): listed
-    // where the common coupling lies more than the quantile of its standard errors above zero,
-    // and then put in the scene every simulation below takes, at the base's radius (or the
-    // effect's default).
-    {
-        double radius = kDefaultCouplingRadius_mm;
-        for (const auto& e : given.effects)
-            if (e.name == "crosstalk") radius = e.parameters.value("radius_mm", radius);
-        const auto pairs = couplingPairs(*model, radius);
-        const Coupling coupling =
-            couplingOf(holdsOf(base, *model, recorded, skip, maxCounts, false), K, pairs,
-                       settings.holdReplicates, settings.seed + 98000);
-        const double stat = coupling.se > 0 ? coupling.value / coupling.se : 0.0;
-        const bool listed = coupling.holds >= 10 && stat > z;
-        // The taxels' own lines take much of a coupling (a taxel with more neighbours reads
-        // more throughout), so the holds read it low, and lower still for a small one: the
-        // coupling is the one at which taps simulated at the recorded poses read as the recorded
-        // ones do (by the secant from 0.02 and 0.1, three steps, two simulations each, the same
-        // seeds throughout), and its error goes through the same slope.
-        double value = coupling.value, se = coupling.se;
-        if (listed) {
-            auto shownAt = [&](double c) {
-                double shown = 0.0;
-                for (int r = 0; r < 2; ++r) {
-                    const auto taps = simulateAt(
-                        withEffect(base, "crosstalk", Json{{"coupling", c}, {"radius_mm", radius}}),
-                        model, recorded, settings.seed + 99000 + static_cast<std::uint64_t>(r));
-                    const auto holds = holdsOf(base, *model, taps, skip, maxCounts, false);
-                    std::vector<int> all(holds.size());
-                    std::iota(all.begin(), all.end(), 0);
-                    shown += holdCoupling(holds, all, K, pairs) / 2.0;
-                }
-                return shown;
-            };
-            double c0 = 0.02, c1 = 0.1, s0 = shownAt(c0), s1 = shownAt(c1);
-            for (int step = 0; step < 3 && s1 != s0; ++step) {
-                const double c2 = std::clamp(c1 + (coupling.value - s1) * (c1 - c0) / (s1 - s0),
-                                             1e-4, kMaxCoupling);
-                c0 = c1;
-                s0 = s1;
-                c1 = c2;
-                s1 = shownAt(c1);
-            }
-            const double slope = c1 != c0 ? (s1 - s0) / (c1 - c0) : 0.0;
-            value = c1;
-            se = slope > 0 ? coupling.se / slope : coupling.se;
-        }
-        fit.choices.push_back(
-            {"crosstalk", listed,
-             "the coupling read from " + std::to_string(coupling.holds) +
-                 " taps' holds (each taxel's reading a line in its own pressure plus the coupling "
-                 "times its neighbours' within " +
-                 numberText(radius) +
-                 " mm, each hold's depth fitted) over its standard error from resampling the taps, "
-                 "against the one-sided normal quantile at the level",
-             stat, z, true});
-        if (listed)
-            fit.parameters.push_back(
-                {"crosstalk", "coupling", value, se, value - 1.96 * se, value + 1.96 * se});
-        base = withEffect(base, "crosstalk",
-                          listed ? Json{{"coupling", value}, {"radius_mm", radius}} : Json());
-    }
+    // Crosstalk, before the noise, drift and gains: a coupling left out is taken for gains.
+    base = readCrosstalk(given, base, model, recorded, skip, maxCounts, settings, z, fit);
 
     // Into `base`, which stays as it is from here on.
     const EffectSpec* driftTemplate = nullptr;
@@ -1725,110 +1866,9 @@ SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded
     fit.fitted = withMemory(sceneWith(base, chosen, whole, maxCounts, fit.deadTaxels,
                                       fit.deadReading, driftTemplate, c.blink),
                             memoryListed ? memory.fraction : 0.0, memory.tau);
-    // The stage's error: listed where the taps' holds lie off their commanded poses across the
-    // outline by more than in recordings simulated with the fitted scene and an exact stage (the
-    // drift test's form, on each tap's squared offset about its mean over those recordings, over
-    // their variance there); its size then fitted by simulation, with standard errors from
-    // recordings simulated at the estimate. Where the taps do not show it, the base's is kept:
-    // a stage error much under the holds' own spread cannot be told from none.
-    std::optional<double> stageSigma;
-    {
-        const HoldModel grid(base, *model);
-        const double threshold = base.tap.contactThreshold;
-        const double limit = base.strokeLimitDepth();
-        auto offsetsIn = [&](const SceneSpec& scene, std::uint64_t seed) {
-            return holdOffsetsOf(grid, simulateAt(scene, model, recorded, seed, true), skip,
-                                 threshold, maxCounts, limit);
-        };
-        const auto offsets = holdOffsetsOf(grid, recorded, skip, threshold, maxCounts, limit);
-        // The scene as fitted: only the effects listed, at their estimates.
-        const SceneSpec& fitted = fit.fitted;
-        const SceneSpec exact = withEffect(fitted, "stage_error", Json());
-        std::vector<std::vector<double>> nulls;
-        for (int b = 0; b < std::max(settings.bootstrapReplicates, 10); ++b)
-            nulls.push_back(
-                offsetsIn(exact, settings.seed + 95000 + static_cast<std::uint64_t>(b)));
-        const OffsetSpread spread = offsetSpread(offsets, nulls);
-        std::vector<double> nullExcess;
-        for (std::size_t j = 0; j < nulls.size(); ++j)
-            nullExcess.push_back(offsetSpread(nulls[j], nulls, j).excess());
-        const double stat = zAbove(spread.excess(), nullExcess);
-        const bool listed = spread.taps >= 10 && stat > z;
-        const std::string test =
-            "the squared offsets across the outline of " + std::to_string(spread.taps) +
-            " taps' holds (each the shift of the model's pose, its depth fitted alongside, that "
-            "fits the hold best) about their means over " +
-            std::to_string(nulls.size()) +
-            " recordings simulated with the fitted scene and an exact stage, over their variance "
-            "there, averaged, less its mean over those recordings, over its standard deviation, "
-            "against the one-sided normal quantile at the level";
-        // How small a stage error the test can see: one whose excess reaches the quantile (the
-        // excess grows as the error's square over each tap's variance).
-        double precision = 0.0;
-        {
-            int n = 0;
-            for (std::size_t i = 0; i < offsets.size(); ++i) {
-                std::vector<double> v;
-                for (const auto& null : nulls) v.push_back(null[i]);
-                const double var = sd(v) * sd(v);
-                if (std::isfinite(offsets[i]) && std::isfinite(var) &&
-                    var >= kLeastOffsetVariance) {
-                    precision += 1.0 / var;
-                    ++n;
-                }
-            }
-            precision = n > 0 ? precision / n : 0.0;
-        }
-        const double smallest = precision > 0 ? std::sqrt(z * sd(nullExcess) / precision) : NAN;
-        if (listed) {
-            // The excess grows as the error's square: scaled until recordings simulated at the
-            // estimate show the recorded one (three rounds of three).
-            double sigma = std::clamp(std::sqrt(std::max(spread.excess(), 0.0) / precision), 1e-3,
-                                      kMaxStageSigma_mm);
-            auto excessAt = [&](double at, int count, std::uint64_t seed) {
-                std::vector<double> out;
-                for (int r = 0; r < count; ++r)
-                    out.push_back(offsetSpread(offsetsIn(withEffect(fitted, "stage_error",
-                                                                    Json{{"sigma_mm", at}}),
-                                                         seed + 7 * static_cast<std::uint64_t>(r)),
-                                               nulls)
-                                      .excess());
-                return out;
-            };
-            for (int round = 0; round < 3; ++round) {
-                const auto shown = excessAt(sigma, 3, settings.seed + 96000);
-                const double mean = std::accumulate(shown.begin(), shown.end(), 0.0) / 3.0;
-                if (mean > 0)
-                    sigma = std::clamp(sigma * std::sqrt(std::max(spread.excess(), 0.0) / mean),
-                                       1e-3, kMaxStageSigma_mm);
-            }
-            const auto again =
-                excessAt(sigma, std::max(settings.bootstrapReplicates, 5), settings.seed + 97000);
-            const double mean = std::accumulate(again.begin(), again.end(), 0.0) /
-                                static_cast<double>(again.size());
-            std::vector<double> sigmas;
-            for (double e : again) sigmas.push_back(sigma * std::sqrt(std::max(e, 0.0) / mean));
-            // Every replicate is set against the same simulated recordings of an exact stage, so
-            // their spread misses what those recordings' own finite number adds to the recorded
-            // excess: the spread of the excess among them, through dσ = σ dE / 2E.
-            const double viaNulls = mean > 0 ? sigma * sd(nullExcess) / (2.0 * mean) : 0.0;
-            const double se = std::hypot(sd(sigmas), viaNulls);
-            stageSigma = sigma;
-            fit.choices.push_back({"stage_error", true, test, stat, z, true});
-            fit.parameters.push_back(
-                {"stage_error", "sigma_mm", sigma, se, sigma - 1.96 * se, sigma + 1.96 * se});
-        } else {
-            fit.choices.push_back(
-                {"stage_error", given.lists("stage_error"),
-                 test + "; under it, so " +
-                     (given.lists("stage_error") ? "kept as the base scene lists it"
-                                                 : std::string("not listed")) +
-                     " (these taps would show a stage error of about " +
-                     numberText(std::round(smallest * 1000.0) / 1000.0) + " mm and more)",
-                 stat, z, false});
-        }
-    }
-    if (stageSigma)
+    // The stage's error last, against the scene as fitted.
+    if (const auto stageSigma =
+            readStageError(given, base, model, recorded, skip, maxCounts, settings, z, fit))
         fit.fitted = withEffect(fit.fitted, "stage_error", Json{{"sigma_mm", *stageSigma}});
 
     // Goodness of fit, per taxel: recorded against simulated with the fitted scene, beside what
