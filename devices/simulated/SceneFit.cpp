@@ -500,9 +500,14 @@ double upperNormalQuantile(double alpha) {
     return 0.5 * (lo + hi);
 }
 
+/// The mean of `v` (non-empty).
+double meanOf(const std::vector<double>& v) {
+    return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+}
+
 double sd(const std::vector<double>& v) {
     if (v.size() < 2) return 0.0;
-    const double m = std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+    const double m = meanOf(v);
     double s = 0.0;
     for (double x : v) s += (x - m) * (x - m);
     return std::sqrt(s / (v.size() - 1));
@@ -512,8 +517,7 @@ double sd(const std::vector<double>& v) {
 /// their standard deviations; 1e9 above a mean they do not spread about, 0 at or below it.
 double zAbove(double value, const std::vector<double>& nulls) {
     const double spread = sd(nulls);
-    const double expected =
-        std::accumulate(nulls.begin(), nulls.end(), 0.0) / static_cast<double>(nulls.size());
+    const double expected = meanOf(nulls);
     return spread > 0 ? (value - expected) / spread : (value > expected ? 1e9 : 0.0);
 }
 
@@ -684,7 +688,53 @@ std::vector<Hold> holdsOf(const SceneSpec& base, const FingertipContactModel& mo
 struct DepthFit {
     std::size_t best = 0, depths = 0;
     double shift = 0.0, error = 0.0;
+    /// `grid` ([depth][taxel], `taxels` wide) for `taxel` at the fitted depth, between the grid
+    /// point and its neighbour towards the shift.
+    double at(const std::vector<double>& grid, std::size_t taxels, std::size_t taxel) const {
+        const std::size_t other = shift < 0 ? best - 1 : std::min(best + 1, depths - 1);
+        const double w = std::abs(shift);
+        return (1.0 - w) * grid[best * taxels + taxel] + w * grid[other * taxels + taxel];
+    }
 };
+
+/// A taxel's line, reading = offset + gain x model, by least squares over the points added; no
+/// line (gain 0) from fewer than five points or a model that does not vary.
+struct LineFit {
+    double n = 0.0, sx = 0.0, sr = 0.0, sxx = 0.0, sxr = 0.0;
+    void add(double x, double r) {
+        n += 1.0;
+        sx += x;
+        sr += r;
+        sxx += x * x;
+        sxr += x * r;
+    }
+    double gain() const {
+        const double spread = sxx - sx * sx / std::max(n, 1.0);
+        return n >= 5 && spread > 0 ? (sxr - sx * sr / n) / spread : 0.0;
+    }
+    double offset(double g) const { return (sr - g * sx) / n; }
+};
+
+/// 0, 1, ..., count - 1: every entry, in order.
+std::vector<int> everyIndex(std::size_t count) {
+    std::vector<int> all(count);
+    std::iota(all.begin(), all.end(), 0);
+    return all;
+}
+
+/// Runs of ten consecutive entries of `count`, each starting where `rng` says, into `pick` (as
+/// many as `count`): a resampling that keeps neighbours together (a drifting baseline ties
+/// consecutive taps).
+void resampleRuns(RandomStream& rng, std::size_t count, std::vector<int>& pick) {
+    const std::size_t block = 10;
+    pick.resize(count);
+    for (std::size_t at = 0; at < count; at += block) {
+        const auto start = std::min(
+            static_cast<std::size_t>(rng.uniform() * static_cast<double>(count)), count - 1);
+        for (std::size_t j = at; j < std::min(at + block, count); ++j)
+            pick[j] = static_cast<int>((start + j - at) % count);
+    }
+}
 DepthFit fitDepth(const std::vector<double>& reading, const std::vector<double>& modelAtDepths,
                   const std::vector<double>& gain, const std::vector<double>& offset) {
     const std::size_t KK = reading.size();
@@ -777,6 +827,7 @@ constexpr double kMaxStageSigma_mm = 2.0;
 /// there, and what that mean is under an exact stage (1 + 1/their count).
 struct OffsetSpread {
     double meanSquare = 0.0, expected = 0.0;
+    double precision = 0.0;  ///< the taps' inverse variance there, averaged
     int taps = 0;
     double excess() const { return meanSquare - expected; }
 };
@@ -792,18 +843,18 @@ OffsetSpread offsetSpread(const std::vector<double>& offsets,
         bool all = v.size() >= 2;
         for (double x : v) all = all && std::isfinite(x);
         if (!all) continue;
-        const double m = std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
-        double var = 0.0;
-        for (double x : v) var += (x - m) * (x - m);
-        var /= static_cast<double>(v.size() - 1);
+        const double m = meanOf(v);
+        const double var = sd(v) * sd(v);
         if (var < kLeastOffsetVariance) continue;
         o.meanSquare += (offsets[i] - m) * (offsets[i] - m) / var;
         o.expected += (1.0 + 1.0 / static_cast<double>(v.size()));
+        o.precision += 1.0 / var;
         ++o.taps;
     }
     if (o.taps > 0) {
         o.meanSquare /= o.taps;
         o.expected /= o.taps;
+        o.precision /= o.taps;
     }
     return o;
 }
@@ -824,30 +875,20 @@ std::vector<double> holdLogGains(const std::vector<Hold>& holds, const std::vect
         for (std::size_t n = 0; n < which.size(); ++n) {
             const Hold& h = holds[static_cast<std::size_t>(which[n])];
             const DepthFit f = fitDepth(h.reading, h.modelAtDepths, gain, offset);
-            const std::size_t other = f.shift < 0 ? f.best - 1 : std::min(f.best + 1, f.depths - 1);
-            const double w = std::abs(f.shift);
-            for (std::size_t k = 0; k < KK; ++k)
-                model[n * KK + k] = (1.0 - w) * h.modelAtDepths[f.best * KK + k] +
-                                    w * h.modelAtDepths[other * KK + k];
+            for (std::size_t k = 0; k < KK; ++k) model[n * KK + k] = f.at(h.modelAtDepths, KK, k);
         }
         double meanLog = 0.0;
         int read = 0;
         for (std::size_t k = 0; k < KK; ++k) {
-            double n = 0.0, sp = 0.0, sr = 0.0, spp = 0.0, spr = 0.0;
+            LineFit line;
             for (std::size_t i = 0; i < which.size(); ++i) {
                 const double r = holds[static_cast<std::size_t>(which[i])].reading[k];
                 const double p = model[i * KK + k];
-                if (!std::isfinite(r) || p <= kPressed) continue;
-                n += 1.0;
-                sp += p;
-                sr += r;
-                spp += p * p;
-                spr += p * r;
+                if (std::isfinite(r) && p > kPressed) line.add(p, r);
             }
-            const double spread = spp - sp * sp / std::max(n, 1.0);
-            const double g = n >= 5 && spread > 0 ? (spr - sp * sr / n) / spread : 0.0;
+            const double g = line.gain();
             logGain[k] = g > 0 ? std::log(g) : NAN;
-            offset[k] = g > 0 ? (sr - g * sp) / n : 0.0;
+            offset[k] = g > 0 ? line.offset(g) : 0.0;
             if (std::isfinite(logGain[k])) {
                 meanLog += logGain[k];
                 ++read;
@@ -903,13 +944,9 @@ double holdCoupling(const std::vector<Hold>& holds, const std::vector<int>& whic
             for (std::size_t i = 0; i < coupled.size(); ++i)
                 coupled[i] = h.modelAtDepths[i] + c * neighbours[i];
             const DepthFit f = fitDepth(h.reading, coupled, gain, offset);
-            const std::size_t other = f.shift < 0 ? f.best - 1 : std::min(f.best + 1, D - 1);
-            const double w = std::abs(f.shift);
             for (std::size_t k = 0; k < KK; ++k) {
-                own[n * KK + k] = (1.0 - w) * h.modelAtDepths[f.best * KK + k] +
-                                  w * h.modelAtDepths[other * KK + k];
-                near[n * KK + k] =
-                    (1.0 - w) * neighbours[f.best * KK + k] + w * neighbours[other * KK + k];
+                own[n * KK + k] = f.at(h.modelAtDepths, KK, k);
+                near[n * KK + k] = f.at(neighbours, KK, k);
             }
         }
         auto used = [&](std::size_t n, std::size_t k) {
@@ -917,21 +954,14 @@ double holdCoupling(const std::vector<Hold>& holds, const std::vector<int>& whic
             return std::isfinite(r) && (own[n * KK + k] > kPressed || near[n * KK + k] > kPressed);
         };
         for (std::size_t k = 0; k < KK; ++k) {
-            double m = 0.0, sx = 0.0, sr = 0.0, sxx = 0.0, sxr = 0.0;
-            for (std::size_t n = 0; n < which.size(); ++n) {
-                if (!used(n, k)) continue;
-                const double x = own[n * KK + k] + c * near[n * KK + k];
-                const double r = holds[static_cast<std::size_t>(which[n])].reading[k];
-                m += 1.0;
-                sx += x;
-                sr += r;
-                sxx += x * x;
-                sxr += x * r;
-            }
-            const double spread = sxx - sx * sx / std::max(m, 1.0);
-            const double g = m >= 5 && spread > 0 ? (sxr - sx * sr / m) / spread : 0.0;
+            LineFit line;
+            for (std::size_t n = 0; n < which.size(); ++n)
+                if (used(n, k))
+                    line.add(own[n * KK + k] + c * near[n * KK + k],
+                             holds[static_cast<std::size_t>(which[n])].reading[k]);
+            const double g = line.gain();
             gain[k] = g > 0 ? g : 1.0;
-            offset[k] = g > 0 ? (sr - g * sx) / m : 0.0;
+            offset[k] = g > 0 ? line.offset(g) : 0.0;
         }
         double num = 0.0, den = 0.0;
         for (std::size_t n = 0; n < which.size(); ++n)
@@ -959,21 +989,13 @@ Coupling couplingOf(const std::vector<Hold>& holds, int K,
     Coupling c;
     c.holds = static_cast<int>(holds.size());
     if (holds.size() < 10 || pairs.empty()) return c;
-    std::vector<int> all(holds.size());
-    std::iota(all.begin(), all.end(), 0);
+    const std::vector<int> all = everyIndex(holds.size());
     c.value = holdCoupling(holds, all, K, pairs);
     RandomStream rng(seed);
-    std::vector<int> pick(holds.size());
+    std::vector<int> pick;
     std::vector<double> reps;
-    const std::size_t block = 10;
     for (int b = 0; b < replicates; ++b) {
-        for (std::size_t at = 0; at < pick.size(); at += block) {
-            const auto start = std::min(
-                static_cast<std::size_t>(rng.uniform() * static_cast<double>(holds.size())),
-                holds.size() - 1);
-            for (std::size_t j = at; j < std::min(at + block, pick.size()); ++j)
-                pick[j] = static_cast<int>((start + j - at) % holds.size());
-        }
+        resampleRuns(rng, holds.size(), pick);
         reps.push_back(holdCoupling(holds, pick, K, pairs));
     }
     c.se = sd(reps);
@@ -1106,7 +1128,7 @@ StopLag stopLagOf(const std::vector<TapRecord>& taps, const std::vector<double>&
     StopLag lag;
     lag.taps = static_cast<int>(lags.size());
     if (lags.size() < 2) return lag;
-    lag.mean = std::accumulate(lags.begin(), lags.end(), 0.0) / static_cast<double>(lags.size());
+    lag.mean = meanOf(lags);
     double ss = 0.0;
     for (double l : lags) ss += (l - lag.mean) * (l - lag.mean);
     lag.se =
@@ -1155,22 +1177,13 @@ HoldGains holdGains(const std::vector<Hold>& holds, int K, int replicates, std::
         g.logGain.assign(static_cast<std::size_t>(K), NAN);
         return g;
     }
-    std::vector<int> all(holds.size());
-    std::iota(all.begin(), all.end(), 0);
+    const std::vector<int> all = everyIndex(holds.size());
     g.logGain = holdLogGains(holds, all, K);
     std::vector<std::vector<double>> reps(static_cast<std::size_t>(K));
     RandomStream rng(seed);
-    std::vector<int> pick(holds.size());
-    // Whole runs of consecutive holds are resampled: a drifting baseline ties neighbours.
-    const std::size_t block = 10;
+    std::vector<int> pick;
     for (int b = 0; b < replicates; ++b) {
-        for (std::size_t at = 0; at < pick.size(); at += block) {
-            const auto start = std::min(
-                static_cast<std::size_t>(rng.uniform() * static_cast<double>(holds.size())),
-                holds.size() - 1);
-            for (std::size_t j = at; j < std::min(at + block, pick.size()); ++j)
-                pick[j] = static_cast<int>((start + j - at) % holds.size());
-        }
+        resampleRuns(rng, holds.size(), pick);
         const auto l = holdLogGains(holds, pick, K);
         for (int k = 0; k < K; ++k)
             if (std::isfinite(l[static_cast<std::size_t>(k)]))
@@ -1214,8 +1227,7 @@ SceneSpec readLatency(const SceneSpec& given,
                                          settings.seed + 90000 + static_cast<std::uint64_t>(r)),
                               crossing, given)
                         .mean);
-            const double shown =
-                std::accumulate(simulated.begin(), simulated.end(), 0.0) / kLagSimulations;
+            const double shown = meanOf(simulated);
             latency = std::clamp(latency + lag.mean - shown, 0.0, kMaxLatency_s);
         }
         const double spread = sd(simulated);
@@ -1283,8 +1295,7 @@ SceneSpec readCrosstalk(const SceneSpec& given, SceneSpec base,
                         withEffect(base, "crosstalk", Json{{"coupling", c}, {"radius_mm", radius}}),
                         model, recorded, settings.seed + 99000 + static_cast<std::uint64_t>(r));
                     const auto holds = holdsOf(base, *model, taps, skip, maxCounts, false);
-                    std::vector<int> all(holds.size());
-                    std::iota(all.begin(), all.end(), 0);
+                    const std::vector<int> all = everyIndex(holds.size());
                     shown += holdCoupling(holds, all, K, pairs) / 2.0;
                 }
                 return shown;
@@ -1367,21 +1378,7 @@ std::optional<double> readStageError(const SceneSpec& given, const SceneSpec& ba
             "against the one-sided normal quantile at the level";
         // How small a stage error the test can see: one whose excess reaches the quantile (the
         // excess grows as the error's square over each tap's variance).
-        double precision = 0.0;
-        {
-            int n = 0;
-            for (std::size_t i = 0; i < offsets.size(); ++i) {
-                std::vector<double> v;
-                for (const auto& null : nulls) v.push_back(null[i]);
-                const double var = sd(v) * sd(v);
-                if (std::isfinite(offsets[i]) && std::isfinite(var) &&
-                    var >= kLeastOffsetVariance) {
-                    precision += 1.0 / var;
-                    ++n;
-                }
-            }
-            precision = n > 0 ? precision / n : 0.0;
-        }
+        const double precision = spread.precision;
         const double smallest = precision > 0 ? std::sqrt(z * sd(nullExcess) / precision) : NAN;
         if (listed) {
             // The excess grows as the error's square: scaled until recordings simulated at the
@@ -1400,15 +1397,14 @@ std::optional<double> readStageError(const SceneSpec& given, const SceneSpec& ba
             };
             for (int round = 0; round < 3; ++round) {
                 const auto shown = excessAt(sigma, 3, settings.seed + 96000);
-                const double mean = std::accumulate(shown.begin(), shown.end(), 0.0) / 3.0;
+                const double mean = meanOf(shown);
                 if (mean > 0)
                     sigma = std::clamp(sigma * std::sqrt(std::max(spread.excess(), 0.0) / mean),
                                        1e-3, kMaxStageSigma_mm);
             }
             const auto again =
                 excessAt(sigma, std::max(settings.bootstrapReplicates, 5), settings.seed + 97000);
-            const double mean = std::accumulate(again.begin(), again.end(), 0.0) /
-                                static_cast<double>(again.size());
+            const double mean = meanOf(again);
             std::vector<double> sigmas;
             for (double e : again) sigmas.push_back(sigma * std::sqrt(std::max(e, 0.0) / mean));
             // Every replicate is set against the same simulated recordings of an exact stage, so
@@ -1635,16 +1631,13 @@ SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded
     // corrected by the lean the replicates show about it (the bootstrap's bias correction).
     Theta est = raw;
     if (!sigmas.empty()) {
-        auto mean = [](const std::vector<double>& v) {
-            return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
-        };
-        est.sigma = std::max(0.0, 2.0 * raw.sigma - mean(sigmas));
-        est.rate = raw.rate > 0 ? std::max(0.0, 2.0 * raw.rate - mean(rates)) : 0.0;
+        est.sigma = std::max(0.0, 2.0 * raw.sigma - meanOf(sigmas));
+        est.rate = raw.rate > 0 ? std::max(0.0, 2.0 * raw.rate - meanOf(rates)) : 0.0;
         for (int k = 0; k < K; ++k) {
             const std::size_t kk = static_cast<std::size_t>(k);
             if (!skip[kk])
                 est.gains[kk] = std::clamp(
-                    std::exp(2.0 * std::log(raw.gains[kk]) - mean(logGains[kk])), 0.05, 20.0);
+                    std::exp(2.0 * std::log(raw.gains[kk]) - meanOf(logGains[kk])), 0.05, 20.0);
         }
     }
     auto parameter = [&](const std::string& effect, const std::string& name, double value,

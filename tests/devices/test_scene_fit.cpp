@@ -54,6 +54,18 @@ class TestSceneFit : public QObject {
 
     SceneSpec paper_;
 
+    /// `fit` reads `parameter` of `effect` with `truth` within its interval, and the fitted scene
+    /// takes the value read.
+    static void checkRead(const SceneFit& fit, const std::string& effect,
+                          const std::string& parameter, double truth) {
+        const FittedParameter* p = find(fit, effect, parameter);
+        QVERIFY2(p, qPrintable(QString::fromStdString(effect + "." + parameter + " not read")));
+        qInfo("%s.%s %.6g [%.6g, %.6g], truth %g", effect.c_str(), parameter.c_str(), p->value,
+              p->low, p->high, truth);
+        QVERIFY2(p->low <= truth && truth <= p->high, qPrintable(QString::number(p->value)));
+        QCOMPARE(parameterOf(fit.fitted, effect, parameter), p->value);
+    }
+
     /// The truth's noise and drift, each within its interval and tolerance.
     static void checkNoiseAndDrift(const SceneFit& fit, const SceneSpec& truth) {
         const double sigma = parameterOf(truth, "taxel_noise", "sigma_counts");
@@ -78,11 +90,7 @@ class TestSceneFit : public QObject {
                 qInfo("%s: %g against %g", c.effect.c_str(), c.statistic, c.threshold);
         // The reflex's latency comes back from the stop depths within its interval.
         const double latency = parameterOf(truth, "contact_latency", "latency_s");
-        const FittedParameter* l = find(fit, "contact_latency", "latency_s");
-        QVERIFY(l);
-        qInfo("latency %.6f [%.6f, %.6f] s", l->value, l->low, l->high);
-        QVERIFY2(l->low <= latency && latency <= l->high, qPrintable(QString::number(l->value)));
-        QCOMPARE(parameterOf(fit.fitted, "contact_latency", "latency_s"), l->value);
+        checkRead(fit, "contact_latency", "latency_s", latency);
     }
 
 private slots:
@@ -201,12 +209,8 @@ private slots:
         const auto taps = recordedOn(truth);
         const SceneFit fit = fitScene(paper_, taps);
         QCOMPARE(effectNames(fit.fitted), effectNames(truth));
-        const FittedParameter* latency = find(fit, "contact_latency", "latency_s");
-        QVERIFY(latency);
-        qInfo("latency %.6f [%.6f, %.6f] s; pressure level %.3f", latency->value, latency->low,
-              latency->high, fit.pressureScale);
-        QVERIFY(latency->low <= 0.04 && 0.04 <= latency->high);
-        QCOMPARE(parameterOf(fit.fitted, "contact_latency", "latency_s"), latency->value);
+        checkRead(fit, "contact_latency", "latency_s", 0.04);
+        qInfo("pressure level %.3f", fit.pressureScale);
         QVERIFY(!fit.lists("taxel_gain"));
         QVERIFY(!fit.pressureScaleDiffers);
 
@@ -293,11 +297,7 @@ private slots:
         quick.bootstrapReplicates = 10;
         const SceneFit fit = fitScene(paper_, recordedOn(truth), quick);
         QCOMPARE(effectNames(fit.fitted), effectNames(truth));
-        const FittedParameter* sigma = find(fit, "stage_error", "sigma_mm");
-        QVERIFY(sigma);
-        qInfo("stage error %.4f [%.4f, %.4f] mm", sigma->value, sigma->low, sigma->high);
-        QVERIFY(sigma->low <= 0.1 && 0.1 <= sigma->high);
-        QCOMPARE(parameterOf(fit.fitted, "stage_error", "sigma_mm"), sigma->value);
+        checkRead(fit, "stage_error", "sigma_mm", 0.1);
         QVERIFY(!fit.lists("taxel_gain"));
     }
 
@@ -314,11 +314,7 @@ private slots:
         quick.bootstrapReplicates = 4;
         const SceneFit fit = fitScene(paper_, recordedOn(truth), quick);
         QCOMPARE(effectNames(fit.fitted), effectNames(truth));
-        const FittedParameter* c = find(fit, "crosstalk", "coupling");
-        QVERIFY(c);
-        qInfo("coupling %.4f [%.4f, %.4f]", c->value, c->low, c->high);
-        QVERIFY(c->low <= 0.05 && 0.05 <= c->high);
-        QCOMPARE(parameterOf(fit.fitted, "crosstalk", "coupling"), c->value);
+        checkRead(fit, "crosstalk", "coupling", 0.05);
         QCOMPARE(parameterOf(fit.fitted, "crosstalk", "radius_mm"), 4.5);
         QVERIFY(!fit.lists("taxel_gain"));
     }
