@@ -257,7 +257,7 @@ void screenSumsPortable(const std::int16_t* table, std::size_t stride, const std
 // Two rows at a time: their levels interleaved 16 bits apart, multiplied by the two counts and
 // added pairwise (vpmaddwd), for `Blocks` blocks of 16 classes held in registers over all rows.
 // Within each 128-bit lane, the low unpack holds classes 0-3 (8-11), the high one 4-7 (12-15).
-template <std::size_t Blocks>
+template <std::size_t Blocks, bool Prefetch>
 __attribute__((target("avx2"), always_inline)) inline void screenChunkAvx2(
     const std::int16_t* table, std::size_t stride, const std::uint32_t* cells,
     const std::int32_t* counts, std::size_t rows, std::size_t c0, std::int32_t* out) {
@@ -268,10 +268,10 @@ __attribute__((target("avx2"), always_inline)) inline void screenChunkAvx2(
     const auto rowAt = [&](std::size_t i) {
         return table + static_cast<std::size_t>(cells[i]) * stride + c0;
     };
-    // The rows are scattered over the table: fetch ahead of use.
+    // The rows are scattered over the table: where it outgrows the cache, fetch ahead of use.
     constexpr std::size_t kAhead = 8;
     for (std::size_t i = 0; i < rows; i += 2) {
-        if (i + kAhead + 1 < rows)
+        if (Prefetch && i + kAhead + 1 < rows)
             for (std::size_t j = 0; j < Blocks; j += 2) {
                 __builtin_prefetch(rowAt(i + kAhead) + 16 * j);
                 __builtin_prefetch(rowAt(i + kAhead + 1) + 16 * j);
@@ -299,14 +299,30 @@ __attribute__((target("avx2"), always_inline)) inline void screenChunkAvx2(
     }
 }
 
+template <bool Prefetch>
+__attribute__((target("avx2"))) void screenSumsAvx2Rows(const std::int16_t* table,
+                                                        std::size_t stride,
+                                                        const std::uint32_t* cells,
+                                                        const std::int32_t* counts,
+                                                        std::size_t rows, std::int32_t* out) {
+    std::size_t c0 = 0;
+    for (; c0 + 80 <= stride; c0 += 80)
+        screenChunkAvx2<5, Prefetch>(table, stride, cells, counts, rows, c0, out);
+    for (; c0 < stride; c0 += 16)
+        screenChunkAvx2<1, Prefetch>(table, stride, cells, counts, rows, c0, out);
+}
+
 __attribute__((target("avx2"))) void screenSumsAvx2(const std::int16_t* table, std::size_t stride,
                                                     const std::uint32_t* cells,
                                                     const std::int32_t* counts, std::size_t rows,
                                                     std::int32_t* out) {
-    std::size_t c0 = 0;
-    for (; c0 + 80 <= stride; c0 += 80)
-        screenChunkAvx2<5>(table, stride, cells, counts, rows, c0, out);
-    for (; c0 < stride; c0 += 16) screenChunkAvx2<1>(table, stride, cells, counts, rows, c0, out);
+    // A table this small stays in a core's L2 from one tap to the next (the paper's 72 classes
+    // take 192 KB); fetching ahead would only add instructions.
+    constexpr std::size_t kResidentBytes = 256 * 1024;
+    if (stride * sizeof(std::int16_t) * cells[rows] <= kResidentBytes)
+        screenSumsAvx2Rows<false>(table, stride, cells, counts, rows, out);
+    else
+        screenSumsAvx2Rows<true>(table, stride, cells, counts, rows, out);
 }
 #endif
 
@@ -322,9 +338,70 @@ ACTIVETOUCH_AVX2_CLONES void binBlock(const double* __restrict samples, std::siz
         double x = (samples[i] - min[i]) * scale[i];
         x = x > 0.0 ? x : 0.0;
         x = x < lastBin ? x : lastBin;
-        cells[i] = cellBase[i] + static_cast<std::uint32_t>(x);
+        // x is in [0, B - 1]: the signed conversion, which the vector units have, is exact.
+        cells[i] = cellBase[i] + static_cast<std::uint32_t>(static_cast<std::int32_t>(x));
     }
 }
+
+// A tap's count vector over (taxel, bin) cells: a 32-bit counter per cell (narrower counters
+// were measured slower: byte and 16-bit stores cost several times a 32-bit one on the machines
+// of docs/benchmarks.md), read back in ascending cell order (so that every sum over the cells
+// does not depend on sample order), sixteen at a time where SSE2 is there, skipping untouched
+// groups and clearing the touched ones as it goes.
+class CellCounter {
+public:
+    /// Counts `samples` cells, writes the distinct ones ascending into `cells` and their counts
+    /// into `counts`; returns how many.
+    std::size_t count(const std::uint32_t* cellOf, std::size_t samples, std::size_t cellsTotal,
+                      std::uint32_t* cells, std::int32_t* counts) {
+        const std::size_t padded = (cellsTotal + kGroup - 1) / kGroup * kGroup;
+        if (counters_.size() < padded) counters_.assign(padded, 0);
+        std::uint32_t* const n = counters_.data();
+        std::size_t i = 0;
+        for (; i + 4 <= samples; i += 4) {
+            ++n[cellOf[i]];
+            ++n[cellOf[i + 1]];
+            ++n[cellOf[i + 2]];
+            ++n[cellOf[i + 3]];
+        }
+        for (; i < samples; ++i) ++n[cellOf[i]];
+        std::size_t distinct = 0;
+        for (std::size_t g = 0; g < padded; g += kGroup) {
+            auto touched = touchedIn(n + g);
+            if (touched == 0) continue;
+            while (touched) {
+                const std::size_t cell = g + static_cast<std::size_t>(__builtin_ctz(touched));
+                touched &= touched - 1;
+                cells[distinct] = static_cast<std::uint32_t>(cell);
+                counts[distinct++] = static_cast<std::int32_t>(n[cell]);
+            }
+            std::fill(n + g, n + g + kGroup, 0u);
+        }
+        return distinct;
+    }
+
+private:
+    static constexpr std::size_t kGroup = 16;
+    // Bit j set where counter j of the group is not zero.
+    static unsigned touchedIn(const std::uint32_t* group) {
+#if defined(__x86_64__)
+        // Saturating packs keep a nonzero count nonzero, down to one byte per counter.
+        const auto at = [&](std::size_t j) {
+            return _mm_loadu_si128(reinterpret_cast<const __m128i*>(group + j));
+        };
+        const __m128i bytes =
+            _mm_packs_epi16(_mm_packs_epi32(at(0), at(4)), _mm_packs_epi32(at(8), at(12)));
+        return static_cast<unsigned>(
+                   _mm_movemask_epi8(_mm_cmpeq_epi8(bytes, _mm_setzero_si128()))) ^
+               0xffffu;
+#else
+        unsigned touched = 0;
+        for (std::size_t j = 0; j < kGroup; ++j) touched |= (group[j] != 0 ? 1u : 0u) << j;
+        return touched;
+#endif
+    }
+    std::vector<std::uint32_t> counters_;
+};
 
 }  // namespace
 
@@ -347,12 +424,8 @@ std::size_t HistogramClassifier::tapCells(const Tap& tap, const std::uint32_t** 
         throw std::invalid_argument("tap has " + std::to_string(tap.taxels) +
                                     " taxels, the classifier was trained on " +
                                     std::to_string(taxels_));
-    // The tap's count vector over (taxel, bin) cells: count samples per cell and mark the cells
-    // touched in a bitmap, then visit the marked cells in ascending order (so every sum over
-    // them does not depend on sample order) and clear as we go.
-    thread_local std::vector<std::uint32_t> counts, cellOf, cells;
+    thread_local std::vector<std::uint32_t> cellOf, cells;
     thread_local std::vector<std::int32_t> weights;
-    thread_local std::vector<std::uint64_t> touched;
     const std::size_t cellsTotal =
         static_cast<std::size_t>(taxels_) * static_cast<std::size_t>(bins_);
     cellOf.resize(tap.samples.size());
@@ -364,29 +437,9 @@ std::size_t HistogramClassifier::tapCells(const Tap& tap, const std::uint32_t** 
     // One cell more than can be touched: the end marker, naming the screening table's zero row.
     cells.resize(std::min(cellOf.size(), cellsTotal) + 1);
     weights.resize(cells.size());
-    std::size_t distinct = 0;
-    if (counts.size() < cellsTotal) {
-        counts.assign(cellsTotal, 0);
-        touched.assign((cellsTotal + 63) / 64, 0);
-    }
-    std::uint32_t* const count = counts.data();
-    std::uint64_t* const marks = touched.data();
-    for (const std::uint32_t cell : cellOf) {
-        ++count[cell];
-        marks[cell >> 6] |= std::uint64_t{1} << (cell & 63);
-    }
-    const std::size_t words = (cellsTotal + 63) / 64;
-    for (std::size_t w = 0; w < words; ++w) {
-        std::uint64_t bits = marks[w];
-        marks[w] = 0;
-        while (bits) {
-            const std::size_t cell = w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits));
-            bits &= bits - 1;
-            cells[distinct] = static_cast<std::uint32_t>(cell);
-            weights[distinct++] = static_cast<std::int32_t>(count[cell]);
-            count[cell] = 0;
-        }
-    }
+    thread_local CellCounter counter;
+    const std::size_t distinct =
+        counter.count(cellOf.data(), cellOf.size(), cellsTotal, cells.data(), weights.data());
     cells[distinct] = static_cast<std::uint32_t>(cellsTotal);
     *cellsOut = cells.data();
     *countsOut = weights.data();
@@ -409,7 +462,7 @@ void HistogramClassifier::logLikelihoods(const Tap& tap, double* out) const {
     accumulateRows(rows.data(), weights.data(), distinct, C, out);
 }
 
-int HistogramClassifier::screenedScores(const Tap& tap, double marginNats, bool exactIfAlone,
+int HistogramClassifier::screenedScores(const Tap& tap, double marginNats, bool posterior,
                                         double* out) const {
     const std::size_t C = static_cast<std::size_t>(classes_);
     if (tap.samples.size() > kMaxScreenSamples) {
@@ -423,35 +476,50 @@ int HistogramClassifier::screenedScores(const Tap& tap, double marginNats, bool 
     sums.resize(screenStride_);
     detail::screenSums(screenTable_.data(), screenStride_, cells, counts, distinct, sums.data(),
                        false);
-    // A screening score is offset + step * sum. Each level is within half a step of its entry,
-    // so a score is within step/2 per sample of the exact one, plus the rounding of the double
-    // sums (far below 1e-12 of the terms' magnitudes, at most samples * max |log P|); the bound
-    // takes twice both.
-    double base = 0.0;
-    for (std::size_t i = 0; i < distinct; ++i)
-        base += static_cast<double>(counts[i]) * screenOffset_[cells[i]];
+    // A screening score is base + step * sum, the base (the counts times the cells' offsets)
+    // common to every class. Each level is within half a step of its entry, so a score is within
+    // step/2 per sample of the exact one, plus the rounding of the double sums (far below 1e-12
+    // of the terms' magnitudes, at most samples * max |log P|); the bound takes twice both.
     const auto samples = static_cast<double>(tap.samples.size());
     const double bound = screenStep_ * samples + 2e-12 * samples * maxAbsLog_;
-    for (std::size_t c = 0; c < C; ++c) out[c] = base + screenStep_ * static_cast<double>(sums[c]);
-    double best = -std::numeric_limits<double>::infinity();
-    for (std::size_t c = 0; c < C; ++c) best = out[c] > best ? out[c] : best;
-    // Classes that could be within `marginNats` of the exact maximum (or of a tie with it) are
-    // summed exactly, in the same order and operations as logLikelihoods(); the rest keep their
-    // screening score, which cannot decide anything.
-    const double floor =
-        best - 2.0 * bound - marginNats - 2.0 * kTieTolerance * (std::abs(best) + bound + 1.0);
-    if (!std::isfinite(floor)) {
+    // Classes that could be within `marginNats` of the exact maximum, or of a tie with it, are
+    // those whose screening score is within twice the bound, the margin and a tie's width (of
+    // the largest magnitude a score can have) of the best: counted in levels, rounded up.
+    const double magnitude = samples * maxAbsLog_ + bound;
+    const double reach = std::ceil(
+        (2.0 * bound + marginNats + 2.0 * kTieTolerance * (magnitude + bound + 1.0)) / screenStep_ +
+        1.0);
+    if (!(reach < 1e9)) {
         logLikelihoods(tap, out);
         return -1;
     }
-    std::size_t within = 0;
-    for (std::size_t c = 0; c < C; ++c) within += out[c] >= floor ? 1 : 0;
+    std::int32_t best = std::numeric_limits<std::int32_t>::min();
+    for (std::size_t c = 0; c < C; ++c) best = std::max(best, sums[c]);
+    const auto floor = static_cast<std::int32_t>(
+        std::max<std::int64_t>(static_cast<std::int64_t>(best) - static_cast<std::int64_t>(reach),
+                               std::numeric_limits<std::int32_t>::min()));
+    std::int32_t within = 0;
+    for (std::size_t c = 0; c < C; ++c) within += sums[c] >= floor ? 1 : 0;
     // One class alone within the margin is the maximum, and no other ties with it.
-    if (within == 1 && !exactIfAlone) return static_cast<int>(std::find(out, out + C, best) - out);
+    if (within == 1 && !posterior)
+        return static_cast<int>(std::find(sums.begin(), sums.end(), best) - sums.begin());
+    // The rest cannot decide anything: for a posterior they keep their screening scores (each
+    // adds at most e^-margin to its normaliser), otherwise they are out.
+    if (posterior) {
+        double base = 0.0;
+        for (std::size_t i = 0; i < distinct; ++i)
+            base += static_cast<double>(counts[i]) * screenOffset_[cells[i]];
+        for (std::size_t c = 0; c < C; ++c)
+            out[c] = base + screenStep_ * static_cast<double>(sums[c]);
+    } else {
+        std::fill(out, out + C, -std::numeric_limits<double>::infinity());
+    }
+    // The classes within are summed exactly, in the same order and operations as
+    // logLikelihoods().
     const std::size_t cellsTotal =
         static_cast<std::size_t>(taxels_) * static_cast<std::size_t>(bins_);
     for (std::size_t c = 0; c < C; ++c) {
-        if (!(out[c] >= floor)) continue;
+        if (sums[c] < floor) continue;
         const double* row = logTableByClass_.data() + c * cellsTotal;
         double acc = 0.0;
         for (std::size_t i = 0; i < distinct; ++i)

@@ -115,10 +115,11 @@ private:
     /// table's zero row.
     std::size_t tapCells(const Tap& tap, const std::uint32_t** cells,
                          const std::int32_t** counts) const;
-    /// Exact scores (as logLikelihoods gives them) of the classes that can decide the tap, and
-    /// screening scores of the rest, which cannot: see classify(). With `exactIfAlone` false, a
-    /// class alone within the margin keeps its screening score and is returned; otherwise -1.
-    int screenedScores(const Tap& tap, double marginNats, bool exactIfAlone, double* out) const;
+    /// Exact scores (as logLikelihoods gives them) of the classes that could be within
+    /// `marginNats` of the best (see classify()). For a `posterior`, the rest keep their
+    /// screening scores and -1 is returned. Otherwise the rest are -inf, and a class alone within
+    /// the margin is returned without any exact sum (-1 when there are several).
+    int screenedScores(const Tap& tap, double marginNats, bool posterior, double* out) const;
 
     int classes_ = 0, taxels_ = 0, bins_ = 0;
     std::vector<double> min_, max_,
