@@ -263,8 +263,7 @@ __attribute__((target("avx2"), always_inline)) inline void screenChunkAvx2(
     const std::int32_t* counts, std::size_t rows, std::size_t c0, std::int32_t* out) {
     __m256i lo[Blocks], hi[Blocks];
     for (std::size_t j = 0; j < Blocks; ++j) lo[j] = hi[j] = _mm256_setzero_si256();
-    // The zero row after the table partners an odd last row.
-    const std::int16_t* zero = table + static_cast<std::size_t>(cells[rows]) * stride + c0;
+    // The zero row after the table, named by cells[rows], partners an odd last row.
     const auto rowAt = [&](std::size_t i) {
         return table + static_cast<std::size_t>(cells[i]) * stride + c0;
     };
@@ -276,11 +275,10 @@ __attribute__((target("avx2"), always_inline)) inline void screenChunkAvx2(
                 __builtin_prefetch(rowAt(i + kAhead) + 16 * j);
                 __builtin_prefetch(rowAt(i + kAhead + 1) + 16 * j);
             }
-        const bool pair = i + 1 < rows;
         const std::int16_t* a = rowAt(i);
-        const std::int16_t* b = pair ? rowAt(i + 1) : zero;
+        const std::int16_t* b = rowAt(i + 1);
         const auto w = static_cast<std::uint32_t>(static_cast<std::uint16_t>(counts[i])) |
-                       (pair ? static_cast<std::uint32_t>(counts[i + 1]) << 16 : 0u);
+                       static_cast<std::uint32_t>(counts[i + 1]) << 16;
         const __m256i weights = _mm256_set1_epi32(static_cast<int>(w));
         for (std::size_t j = 0; j < Blocks; ++j) {
             const __m256i va = _mm256_load_si256(reinterpret_cast<const __m256i*>(a + 16 * j));
@@ -343,64 +341,99 @@ ACTIVETOUCH_AVX2_CLONES void binBlock(const double* __restrict samples, std::siz
     }
 }
 
-// A tap's count vector over (taxel, bin) cells: a 32-bit counter per cell (narrower counters
-// were measured slower: byte and 16-bit stores cost several times a 32-bit one on the machines
-// of docs/benchmarks.md), read back in ascending cell order (so that every sum over the cells
-// does not depend on sample order), sixteen at a time where SSE2 is there, skipping untouched
-// groups and clearing the touched ones as it goes.
+// Bit j of masks[g] set where counter j of group g (of 16) is not zero: by SSE2, which every
+// x86-64 has (saturating packs keep a nonzero count nonzero, down to one byte per counter), or
+// one at a time elsewhere.
+void touchedGroups16(const std::uint32_t* n, std::size_t groups, std::uint32_t* masks) {
+    for (std::size_t g = 0; g < groups; ++g) {
+        const std::uint32_t* group = n + 16 * g;
+#if defined(__x86_64__)
+        const auto* at = reinterpret_cast<const __m128i*>(group);
+        const __m128i bytes =
+            _mm_packs_epi16(_mm_packs_epi32(_mm_loadu_si128(at), _mm_loadu_si128(at + 1)),
+                            _mm_packs_epi32(_mm_loadu_si128(at + 2), _mm_loadu_si128(at + 3)));
+        masks[g] = static_cast<std::uint32_t>(
+                       _mm_movemask_epi8(_mm_cmpeq_epi8(bytes, _mm_setzero_si128()))) ^
+                   0xffffu;
+#else
+        std::uint32_t touched = 0;
+        for (std::size_t j = 0; j < 16; ++j) touched |= (group[j] != 0 ? 1u : 0u) << j;
+        masks[g] = touched;
+#endif
+    }
+}
+
+#if defined(__x86_64__)
+// The same for groups of 32: the packs work within each 128-bit half, and a permutation puts the
+// bytes back in counter order.
+__attribute__((target("avx2"))) void touchedGroups32(const std::uint32_t* n, std::size_t groups,
+                                                     std::uint32_t* masks) {
+    const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
+    for (std::size_t g = 0; g < groups; ++g) {
+        const auto* at = reinterpret_cast<const __m256i*>(n + 32 * g);
+        const __m256i mixed = _mm256_packs_epi16(
+            _mm256_packs_epi32(_mm256_loadu_si256(at), _mm256_loadu_si256(at + 1)),
+            _mm256_packs_epi32(_mm256_loadu_si256(at + 2), _mm256_loadu_si256(at + 3)));
+        const __m256i bytes = _mm256_permutevar8x32_epi32(mixed, order);
+        masks[g] = ~static_cast<std::uint32_t>(
+            _mm256_movemask_epi8(_mm256_cmpeq_epi8(bytes, _mm256_setzero_si256())));
+    }
+}
+#endif
+
+// A tap's count vector over (taxel, bin) cells: a 32-bit counter per cell (byte counters were
+// measured several times slower on the machines of docs/benchmarks.md, their stores being
+// slow).
 class CellCounter {
 public:
     /// Counts `samples` cells, writes the distinct ones ascending into `cells` and their counts
     /// into `counts`; returns how many.
     std::size_t count(const std::uint32_t* cellOf, std::size_t samples, std::size_t cellsTotal,
                       std::uint32_t* cells, std::int32_t* counts) {
-        const std::size_t padded = (cellsTotal + kGroup - 1) / kGroup * kGroup;
+        constexpr std::size_t kGroups = 32;  // a multiple of every group size
+        const std::size_t padded = (cellsTotal + kGroups - 1) / kGroups * kGroups;
         if (counters_.size() < padded) counters_.assign(padded, 0);
         std::uint32_t* const n = counters_.data();
         std::size_t i = 0;
-        for (; i + 4 <= samples; i += 4) {
-            ++n[cellOf[i]];
-            ++n[cellOf[i + 1]];
-            ++n[cellOf[i + 2]];
-            ++n[cellOf[i + 3]];
-        }
+        for (; i + 8 <= samples; i += 8)
+            for (std::size_t j = 0; j < 8; ++j) ++n[cellOf[i + j]];
         for (; i < samples; ++i) ++n[cellOf[i]];
+        // Read back the touched counters, a group at a time: the distinct cells ascending (so
+        // that every sum over them does not depend on sample order) with their counts. Touched
+        // groups are cleared for the next tap.
+        unsigned groupBits = 4;  // groups of 16 counters
+#if defined(__x86_64__)
+        static const bool avx2 = __builtin_cpu_supports("avx2");
+        if (avx2) groupBits = 5;  // of 32
+#endif
+        const std::size_t group = std::size_t{1} << groupBits, groups = padded >> groupBits;
+        masks_.resize(groups);
+#if defined(__x86_64__)
+        if (avx2)
+            touchedGroups32(n, groups, masks_.data());
+        else
+#endif
+            touchedGroups16(n, groups, masks_.data());
         std::size_t distinct = 0;
-        for (std::size_t g = 0; g < padded; g += kGroup) {
-            auto touched = touchedIn(n + g);
+        for (std::size_t g = 0; g < groups; ++g) {
+            std::uint32_t touched = masks_[g];
             if (touched == 0) continue;
+            std::uint32_t* const first = n + g * group;
             while (touched) {
-                const std::size_t cell = g + static_cast<std::size_t>(__builtin_ctz(touched));
+                const auto j = static_cast<std::size_t>(__builtin_ctz(touched));
                 touched &= touched - 1;
-                cells[distinct] = static_cast<std::uint32_t>(cell);
-                counts[distinct++] = static_cast<std::int32_t>(n[cell]);
+                cells[distinct] = static_cast<std::uint32_t>(g * group + j);
+                counts[distinct++] = static_cast<std::int32_t>(first[j]);
             }
-            std::fill(n + g, n + g + kGroup, 0u);
+            // Sixteen at a time, a size known here, so that no general fill is called.
+            for (std::size_t j = 0; j < group; j += 16)
+                std::memset(first + j, 0, 16 * sizeof(std::uint32_t));
         }
         return distinct;
     }
 
 private:
-    static constexpr std::size_t kGroup = 16;
-    // Bit j set where counter j of the group is not zero.
-    static unsigned touchedIn(const std::uint32_t* group) {
-#if defined(__x86_64__)
-        // Saturating packs keep a nonzero count nonzero, down to one byte per counter.
-        const auto at = [&](std::size_t j) {
-            return _mm_loadu_si128(reinterpret_cast<const __m128i*>(group + j));
-        };
-        const __m128i bytes =
-            _mm_packs_epi16(_mm_packs_epi32(at(0), at(4)), _mm_packs_epi32(at(8), at(12)));
-        return static_cast<unsigned>(
-                   _mm_movemask_epi8(_mm_cmpeq_epi8(bytes, _mm_setzero_si128()))) ^
-               0xffffu;
-#else
-        unsigned touched = 0;
-        for (std::size_t j = 0; j < kGroup; ++j) touched |= (group[j] != 0 ? 1u : 0u) << j;
-        return touched;
-#endif
-    }
-    std::vector<std::uint32_t> counters_;
+    std::vector<std::uint32_t> counters_, masks_;
 };
 
 }  // namespace
@@ -441,6 +474,7 @@ std::size_t HistogramClassifier::tapCells(const Tap& tap, const std::uint32_t** 
     const std::size_t distinct =
         counter.count(cellOf.data(), cellOf.size(), cellsTotal, cells.data(), weights.data());
     cells[distinct] = static_cast<std::uint32_t>(cellsTotal);
+    weights[distinct] = 0;
     *cellsOut = cells.data();
     *countsOut = weights.data();
     return distinct;

@@ -141,7 +141,8 @@ private:
 namespace detail {
 /// The screening sums of classify(): out[c] = sum over i < rows of counts[i] *
 /// table[cells[i] * stride + c] for c < stride (a multiple of 16), exact in 32-bit integers.
-/// `cells[rows]` must name an all-zero row. By the portable loop, or where the CPU has AVX2 and
+/// `cells[rows]` must name an all-zero row, and `counts[rows]` be readable (any value: it only
+/// ever multiplies that row). By the portable loop, or where the CPU has AVX2 and
 /// `portable` is false, by the vector kernel; the two give the same sums.
 void screenSums(const std::int16_t* table, std::size_t stride, const std::uint32_t* cells,
                 const std::int32_t* counts, std::size_t rows, std::int32_t* out, bool portable);

@@ -351,7 +351,8 @@ private slots:
                             : static_cast<std::int16_t>(std::lround(r.uniform(-32767, 32767)));
             const std::size_t rows = 1 + static_cast<std::size_t>(classes) % 37;
             std::vector<std::uint32_t> cells(rows + 1);
-            std::vector<std::int32_t> counts(rows);
+            // The count past the last row partners the zero row: any value must do.
+            std::vector<std::int32_t> counts(rows + 1, 31000);
             for (std::size_t i = 0; i < rows; ++i) {
                 cells[i] = static_cast<std::uint32_t>(i);
                 // At most 32,767 samples in all, as in a tap the screen takes.
