@@ -389,7 +389,7 @@ public:
     /// Counts `samples` cells, writes the distinct ones ascending into `cells` and their counts
     /// into `counts`; returns how many.
     std::size_t count(const std::uint32_t* cellOf, std::size_t samples, std::size_t cellsTotal,
-                      std::uint32_t* cells, std::int32_t* counts) {
+                      std::uint32_t* cells, std::int32_t* counts, bool portable) {
         constexpr std::size_t kGroups = 32;  // a multiple of every group size
         const std::size_t padded = (cellsTotal + kGroups - 1) / kGroups * kGroups;
         if (counters_.size() < padded) counters_.assign(padded, 0);
@@ -403,7 +403,8 @@ public:
         // groups are cleared for the next tap.
         unsigned groupBits = 4;  // groups of 16 counters
 #if defined(__x86_64__)
-        static const bool avx2 = __builtin_cpu_supports("avx2");
+        static const bool hasAvx2 = __builtin_cpu_supports("avx2");
+        const bool avx2 = hasAvx2 && !portable;
         if (avx2) groupBits = 5;  // of 32
 #endif
         const std::size_t group = std::size_t{1} << groupBits, groups = padded >> groupBits;
@@ -440,6 +441,12 @@ private:
 
 namespace detail {
 
+std::size_t countCells(const std::uint32_t* cellOf, std::size_t samples, std::size_t cellsTotal,
+                       std::uint32_t* cells, std::int32_t* counts, bool portable) {
+    thread_local CellCounter counter;
+    return counter.count(cellOf, samples, cellsTotal, cells, counts, portable);
+}
+
 void screenSums(const std::int16_t* table, std::size_t stride, const std::uint32_t* cells,
                 const std::int32_t* counts, std::size_t rows, std::int32_t* out, bool portable) {
 #if defined(__x86_64__)
@@ -470,9 +477,8 @@ std::size_t HistogramClassifier::tapCells(const Tap& tap, const std::uint32_t** 
     // One cell more than can be touched: the end marker, naming the screening table's zero row.
     cells.resize(std::min(cellOf.size(), cellsTotal) + 1);
     weights.resize(cells.size());
-    thread_local CellCounter counter;
-    const std::size_t distinct =
-        counter.count(cellOf.data(), cellOf.size(), cellsTotal, cells.data(), weights.data());
+    const std::size_t distinct = detail::countCells(cellOf.data(), cellOf.size(), cellsTotal,
+                                                    cells.data(), weights.data(), false);
     cells[distinct] = static_cast<std::uint32_t>(cellsTotal);
     weights[distinct] = 0;
     *cellsOut = cells.data();

@@ -139,6 +139,13 @@ private:
 };
 
 namespace detail {
+/// A tap's count vector: the distinct cells among cellOf[0, samples) (each below `cellsTotal`),
+/// ascending, into `cells` and their counts into `counts`; returns how many. Counters are read
+/// back sixteen at a time (SSE2; one at a time off x86-64), or where the CPU has AVX2 and
+/// `portable` is false, thirty-two at a time; the two give the same. `cells` and `counts` hold
+/// min(samples, cellsTotal) values.
+std::size_t countCells(const std::uint32_t* cellOf, std::size_t samples, std::size_t cellsTotal,
+                       std::uint32_t* cells, std::int32_t* counts, bool portable);
 /// The screening sums of classify(): out[c] = sum over i < rows of counts[i] *
 /// table[cells[i] * stride + c] for c < stride (a multiple of 16), exact in 32-bit integers.
 /// `cells[rows]` must name an all-zero row, and `counts[rows]` be readable (any value: it only

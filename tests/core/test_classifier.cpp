@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 
 #include "core/classify/HistogramClassifier.h"
 #include "core/common/Random.h"
@@ -370,6 +371,48 @@ private slots:
                     exact += std::int64_t{counts[i]} * table[cells[i] * stride + c];
                 QCOMPARE(static_cast<std::int64_t>(portableSums[c]), exact);
                 QCOMPARE(vectorSums[c], portableSums[c]);
+            }
+        }
+    }
+
+    void countCellsAgreeBetweenTheVectorAndPortableReadings() {
+        // Tables of every size around the counters' groups, sparse and dense taps, the last cell,
+        // and counts whose low 8 or 16 bits are zero (65,536 and 256 samples in one cell): both
+        // readings give every touched cell once, ascending, with its count, and leave nothing
+        // behind for the next tap.
+        RandomStream r(67);
+        for (const std::size_t cellsTotal :
+             {std::size_t{1}, std::size_t{15}, std::size_t{16}, std::size_t{17}, std::size_t{31},
+              std::size_t{32}, std::size_t{33}, std::size_t{1200}, std::size_t{5000}}) {
+            for (const bool portable : {false, true}) {
+                for (int round = 0; round < 3; ++round) {
+                    std::vector<std::uint32_t> cellOf;
+                    const auto draws = static_cast<std::size_t>(r.uniform(1, 800));
+                    for (std::size_t i = 0; i < draws; ++i)
+                        cellOf.push_back(static_cast<std::uint32_t>(
+                            std::min(cellsTotal - 1,
+                                     static_cast<std::size_t>(r.uniform(0, double(cellsTotal))))));
+                    cellOf.push_back(static_cast<std::uint32_t>(cellsTotal - 1));
+                    if (round == 1) cellOf.insert(cellOf.end(), 65536, 0u);
+                    if (round == 2)
+                        cellOf.insert(cellOf.end(), 256,
+                                      static_cast<std::uint32_t>(cellsTotal / 2));
+                    std::map<std::uint32_t, std::int32_t> expected;
+                    for (const std::uint32_t cell : cellOf) ++expected[cell];
+                    const std::size_t room = std::min(cellOf.size(), cellsTotal);
+                    std::vector<std::uint32_t> cells(room);
+                    std::vector<std::int32_t> counts(room);
+                    const std::size_t distinct =
+                        detail::countCells(cellOf.data(), cellOf.size(), cellsTotal, cells.data(),
+                                           counts.data(), portable);
+                    QCOMPARE(distinct, expected.size());
+                    std::size_t i = 0;
+                    for (const auto& [cell, count] : expected) {
+                        QCOMPARE(cells[i], cell);
+                        QCOMPARE(counts[i], count);
+                        ++i;
+                    }
+                }
             }
         }
     }
