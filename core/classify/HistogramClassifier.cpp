@@ -381,6 +381,33 @@ __attribute__((target("avx2"))) void touchedGroups32(const std::uint32_t* n, std
 }
 #endif
 
+// Whether the CPU this runs on has AVX2 (always false off x86-64).
+[[maybe_unused]] bool cpuHasAvx2() {
+#if defined(__x86_64__)
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    return avx2;
+#else
+    return false;
+#endif
+}
+
+// Marks the touched counters of every group in masks, 32 to a group where the CPU has AVX2 and
+// `portable` is false, 16 otherwise; returns log2 of the group's size. `padded` is a multiple of
+// 32.
+unsigned touchedGroups(const std::uint32_t* n, std::size_t padded, bool portable,
+                       std::vector<std::uint32_t>& masks) {
+#if defined(__x86_64__)
+    if (!portable && cpuHasAvx2()) {
+        masks.resize(padded / 32);
+        touchedGroups32(n, masks.size(), masks.data());
+        return 5;
+    }
+#endif
+    masks.resize(padded / 16);
+    touchedGroups16(n, masks.size(), masks.data());
+    return 4;
+}
+
 // A tap's count vector over (taxel, bin) cells: a 32-bit counter per cell (byte counters were
 // measured several times slower on the machines of docs/benchmarks.md, their stores being
 // slow).
@@ -401,20 +428,8 @@ public:
         // Read back the touched counters, a group at a time: the distinct cells ascending (so
         // that every sum over them does not depend on sample order) with their counts. Touched
         // groups are cleared for the next tap.
-        unsigned groupBits = 4;  // groups of 16 counters
-#if defined(__x86_64__)
-        static const bool hasAvx2 = __builtin_cpu_supports("avx2");
-        const bool avx2 = hasAvx2 && !portable;
-        if (avx2) groupBits = 5;  // of 32
-#endif
-        const std::size_t group = std::size_t{1} << groupBits, groups = padded >> groupBits;
-        masks_.resize(groups);
-#if defined(__x86_64__)
-        if (avx2)
-            touchedGroups32(n, groups, masks_.data());
-        else
-#endif
-            touchedGroups16(n, groups, masks_.data());
+        const unsigned groupBits = touchedGroups(n, padded, portable, masks_);
+        const std::size_t group = std::size_t{1} << groupBits, groups = masks_.size();
         std::size_t distinct = 0;
         for (std::size_t g = 0; g < groups; ++g) {
             std::uint32_t touched = masks_[g];
@@ -450,8 +465,7 @@ std::size_t countCells(const std::uint32_t* cellOf, std::size_t samples, std::si
 void screenSums(const std::int16_t* table, std::size_t stride, const std::uint32_t* cells,
                 const std::int32_t* counts, std::size_t rows, std::int32_t* out, bool portable) {
 #if defined(__x86_64__)
-    static const bool avx2 = __builtin_cpu_supports("avx2");
-    if (avx2 && !portable) return screenSumsAvx2(table, stride, cells, counts, rows, out);
+    if (!portable && cpuHasAvx2()) return screenSumsAvx2(table, stride, cells, counts, rows, out);
 #endif
     screenSumsPortable(table, stride, cells, counts, rows, out);
 }

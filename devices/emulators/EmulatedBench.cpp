@@ -70,13 +70,12 @@ std::vector<double> EmulatedBench::fingertip() {
     const double clearance = scene_.tap.retractHeight_mm - scene_.object.height_mm;
     const double depth = brick_.rotationDegrees(0) / s_.degreesPerMm - clearance;
     std::lock_guard lock(frameMutex_);
-    if (depth > 0.0) {
-        deepest_ = std::max(deepest_, depth);
-    } else if (deepest_ > 0.0) {
+    if (depth <= 0.0 && deepest_ > 0.0) {  // a press has ended
         pressDepths_.push_back(deepest_);
         deepest_ = 0.0;
     }
     if (depth > 0.0) {
+        deepest_ = std::max(deepest_, depth);
         // Each place the stage comes to, it misses by its own error (drawn when it arrives).
         const Vec2 reported = rcx_.position();
         if (!target_ || distance(reported, *target_) > 1e-9) {
