@@ -381,32 +381,69 @@ __attribute__((target("avx2"))) void touchedGroups32(const std::uint32_t* n, std
 }
 #endif
 
-// Whether the CPU this runs on has AVX2 (always false off x86-64).
+// Whether the CPU this runs on has AVX2, and POPCNT, which every AVX2 CPU has (always false off
+// x86-64).
 [[maybe_unused]] bool cpuHasAvx2() {
 #if defined(__x86_64__)
-    static const bool avx2 = __builtin_cpu_supports("avx2");
+    static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
     return avx2;
 #else
     return false;
 #endif
 }
 
-// Marks the touched counters of every group in masks, 32 to a group where the CPU has AVX2 and
-// `portable` is false, 16 otherwise; returns log2 of the group's size. `padded` is a multiple of
-// 32.
-unsigned touchedGroups(const std::uint32_t* n, std::size_t padded, bool portable,
-                       std::vector<std::uint32_t>& masks) {
 #if defined(__x86_64__)
-    if (!portable && cpuHasAvx2()) {
-        masks.resize(padded / 32);
-        touchedGroups32(n, masks.size(), masks.data());
-        return 5;
+// For each byte value, the positions of its set bits in ascending order (padded with zeros), one
+// byte each: the permutation that gathers a group of eight counters' touched ones to its front.
+struct GatherOrders {
+    std::uint64_t order[256];
+};
+constexpr GatherOrders makeGatherOrders() {
+    GatherOrders t{};
+    for (unsigned bits = 0; bits < 256; ++bits) {
+        unsigned at = 0;
+        for (unsigned j = 0; j < 8; ++j)
+            if (bits & (1u << j)) t.order[bits] |= std::uint64_t{j} << (8 * at++);
     }
-#endif
-    masks.resize(padded / 16);
-    touchedGroups16(n, masks.size(), masks.data());
-    return 4;
+    return t;
 }
+constexpr GatherOrders kGatherOrders = makeGatherOrders();
+
+// The touched counters of n, read back without a branch per cell: `marks` holds one byte per
+// eight counters (bit j set where counter j is touched), `markBytes` of them, a multiple of 32.
+// Each nonzero byte's counters are gathered to the front by one permutation and stored whole
+// (up to seven values past the last are overwritten), then cleared.
+__attribute__((target("avx2,popcnt"))) std::size_t gatherTouched(std::uint32_t* n,
+                                                                 const std::uint8_t* marks,
+                                                                 std::size_t markBytes,
+                                                                 std::uint32_t* cells,
+                                                                 std::int32_t* counts) {
+    std::size_t distinct = 0;
+    const __m256i zero = _mm256_setzero_si256();
+    for (std::size_t w = 0; w < markBytes; w += 32) {
+        const __m256i word = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(marks + w));
+        auto nonzero =
+            ~static_cast<std::uint32_t>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(word, zero)));
+        while (nonzero) {
+            const std::size_t b = w + static_cast<std::size_t>(__builtin_ctz(nonzero));
+            nonzero &= nonzero - 1;
+            const unsigned bits = marks[b];
+            const __m256i order = _mm256_cvtepu8_epi32(
+                _mm_loadl_epi64(reinterpret_cast<const __m128i*>(&kGatherOrders.order[bits])));
+            auto* group = reinterpret_cast<__m256i*>(n + 8 * b);
+            const __m256i values = _mm256_loadu_si256(group);
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(counts + distinct),
+                                _mm256_permutevar8x32_epi32(values, order));
+            _mm256_storeu_si256(
+                reinterpret_cast<__m256i*>(cells + distinct),
+                _mm256_add_epi32(order, _mm256_set1_epi32(static_cast<int>(8 * b))));
+            _mm256_storeu_si256(group, zero);
+            distinct += static_cast<std::size_t>(__builtin_popcount(bits));
+        }
+    }
+    return distinct;
+}
+#endif
 
 // A tap's count vector over (taxel, bin) cells: a 32-bit counter per cell (byte counters were
 // measured several times slower on the machines of docs/benchmarks.md, their stores being
@@ -425,31 +462,41 @@ public:
         for (; i + 8 <= samples; i += 8)
             for (std::size_t j = 0; j < 8; ++j) ++n[cellOf[i + j]];
         for (; i < samples; ++i) ++n[cellOf[i]];
-        // Read back the touched counters, a group at a time: the distinct cells ascending (so
-        // that every sum over them does not depend on sample order) with their counts. Touched
-        // groups are cleared for the next tap.
-        const unsigned groupBits = touchedGroups(n, padded, portable, masks_);
-        const std::size_t group = std::size_t{1} << groupBits, groups = masks_.size();
+            // Read back the touched counters: the distinct cells ascending (so that every sum over
+            // them does not depend on sample order) with their counts, clearing them for the next
+            // tap.
+#if defined(__x86_64__)
+        if (!portable && cpuHasAvx2()) {
+            // Marks for the groups of 32, one byte per eight counters (x86-64 is little-endian:
+            // byte b of a group's mark covers its counters 8b to 8b + 7), padded with unmarked
+            // bytes to whole words of 32.
+            if (const std::size_t words = (padded / 32 + 7) / 8 * 8; marks_.size() != words)
+                marks_.assign(words, 0);
+            touchedGroups32(n, padded / 32, marks_.data());
+            return gatherTouched(n, reinterpret_cast<const std::uint8_t*>(marks_.data()),
+                                 marks_.size() * 4, cells, counts);
+        }
+#endif
+        masks_.resize(padded / 16);
+        touchedGroups16(n, masks_.size(), masks_.data());
         std::size_t distinct = 0;
-        for (std::size_t g = 0; g < groups; ++g) {
+        for (std::size_t g = 0; g < masks_.size(); ++g) {
             std::uint32_t touched = masks_[g];
             if (touched == 0) continue;
-            std::uint32_t* const first = n + g * group;
+            std::uint32_t* const first = n + g * 16;
             while (touched) {
                 const auto j = static_cast<std::size_t>(__builtin_ctz(touched));
                 touched &= touched - 1;
-                cells[distinct] = static_cast<std::uint32_t>(g * group + j);
+                cells[distinct] = static_cast<std::uint32_t>(g * 16 + j);
                 counts[distinct++] = static_cast<std::int32_t>(first[j]);
             }
-            // Sixteen at a time, a size known here, so that no general fill is called.
-            for (std::size_t j = 0; j < group; j += 16)
-                std::memset(first + j, 0, 16 * sizeof(std::uint32_t));
+            std::memset(first, 0, 16 * sizeof(std::uint32_t));
         }
         return distinct;
     }
 
 private:
-    std::vector<std::uint32_t> counters_, masks_;
+    std::vector<std::uint32_t> counters_, masks_, marks_;
 };
 
 }  // namespace
@@ -472,6 +519,37 @@ void screenSums(const std::int16_t* table, std::size_t stride, const std::uint32
 
 }  // namespace detail
 
+namespace {
+
+// The lead among a tap's screening sums: the first class with the largest, the floor `reach`
+// levels below it, and how many classes lie at or above that floor.
+struct ScreenLead {
+    int first = 0;
+    std::int32_t floor = 0;
+    int within = 0;
+};
+
+ACTIVETOUCH_AVX2_CLONES ScreenLead screenLead(const std::int32_t* sums, std::size_t count,
+                                              std::int64_t reach) {
+    std::int32_t best = std::numeric_limits<std::int32_t>::min();
+    for (std::size_t c = 0; c < count; ++c) best = std::max(best, sums[c]);
+    ScreenLead lead;
+    lead.floor = static_cast<std::int32_t>(std::max<std::int64_t>(
+        std::int64_t{best} - reach, std::numeric_limits<std::int32_t>::min()));
+    const auto noClass = static_cast<std::int32_t>(count);
+    std::int32_t first = noClass;
+    std::int32_t within = 0;
+    for (std::size_t c = 0; c < count; ++c) {
+        within += sums[c] >= lead.floor ? 1 : 0;
+        first = std::min(first, sums[c] == best ? static_cast<std::int32_t>(c) : noClass);
+    }
+    lead.first = first;
+    lead.within = within;
+    return lead;
+}
+
+}  // namespace
+
 std::size_t HistogramClassifier::tapCells(const Tap& tap, const std::uint32_t** cellsOut,
                                           const std::int32_t** countsOut) const {
     if (tap.taxels != taxels_)
@@ -489,7 +567,7 @@ std::size_t HistogramClassifier::tapCells(const Tap& tap, const std::uint32_t** 
                  minTiled_.data(), scaleTiled_.data(), cellBaseTiled_.data(),
                  static_cast<double>(bins_ - 1), cellOf.data() + start);
     // One cell more than can be touched: the end marker, naming the screening table's zero row.
-    cells.resize(std::min(cellOf.size(), cellsTotal) + 1);
+    cells.resize(std::min(cellOf.size(), cellsTotal) + detail::kCountCellsSlack);
     weights.resize(cells.size());
     const std::size_t distinct = detail::countCells(cellOf.data(), cellOf.size(), cellsTotal,
                                                     cells.data(), weights.data(), false);
@@ -547,16 +625,10 @@ int HistogramClassifier::screenedScores(const Tap& tap, double marginNats, bool 
         logLikelihoods(tap, out);
         return -1;
     }
-    std::int32_t best = std::numeric_limits<std::int32_t>::min();
-    for (std::size_t c = 0; c < C; ++c) best = std::max(best, sums[c]);
-    const auto floor = static_cast<std::int32_t>(
-        std::max<std::int64_t>(static_cast<std::int64_t>(best) - static_cast<std::int64_t>(reach),
-                               std::numeric_limits<std::int32_t>::min()));
-    std::int32_t within = 0;
-    for (std::size_t c = 0; c < C; ++c) within += sums[c] >= floor ? 1 : 0;
+    const ScreenLead lead = screenLead(sums.data(), C, static_cast<std::int64_t>(reach));
+    const std::int32_t floor = lead.floor;
     // One class alone within the margin is the maximum, and no other ties with it.
-    if (within == 1 && !posterior)
-        return static_cast<int>(std::find(sums.begin(), sums.end(), best) - sums.begin());
+    if (lead.within == 1 && !posterior) return lead.first;
     // The rest cannot decide anything: for a posterior they keep their screening scores (each
     // adds at most e^-margin to its normaliser), otherwise they are out.
     if (posterior) {

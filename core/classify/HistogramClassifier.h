@@ -142,8 +142,10 @@ namespace detail {
 /// A tap's count vector: the distinct cells among cellOf[0, samples) (each below `cellsTotal`),
 /// ascending, into `cells` and their counts into `counts`; returns how many. Counters are read
 /// back sixteen at a time (SSE2; one at a time off x86-64), or where the CPU has AVX2 and
-/// `portable` is false, thirty-two at a time; the two give the same. `cells` and `counts` hold
-/// min(samples, cellsTotal) values.
+/// `portable` is false, eight at a time by a permutation without a branch per cell; the two give
+/// the same. `cells` and `counts` hold min(samples, cellsTotal) + kCountCellsSlack values (the
+/// permutations store eight at a time).
+inline constexpr std::size_t kCountCellsSlack = 8;
 std::size_t countCells(const std::uint32_t* cellOf, std::size_t samples, std::size_t cellsTotal,
                        std::uint32_t* cells, std::int32_t* counts, bool portable);
 /// The screening sums of classify(): out[c] = sum over i < rows of counts[i] *

@@ -399,7 +399,8 @@ private slots:
                                       static_cast<std::uint32_t>(cellsTotal / 2));
                     std::map<std::uint32_t, std::int32_t> expected;
                     for (const std::uint32_t cell : cellOf) ++expected[cell];
-                    const std::size_t room = std::min(cellOf.size(), cellsTotal);
+                    const std::size_t room =
+                        std::min(cellOf.size(), cellsTotal) + detail::kCountCellsSlack;
                     std::vector<std::uint32_t> cells(room);
                     std::vector<std::int32_t> counts(room);
                     const std::size_t distinct =
