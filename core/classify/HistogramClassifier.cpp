@@ -381,17 +381,6 @@ __attribute__((target("avx2"))) void touchedGroups32(const std::uint32_t* n, std
 }
 #endif
 
-// Whether the CPU this runs on has AVX2, and POPCNT, which every AVX2 CPU has (always false off
-// x86-64).
-[[maybe_unused]] bool cpuHasAvx2() {
-#if defined(__x86_64__)
-    static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
-    return avx2;
-#else
-    return false;
-#endif
-}
-
 #if defined(__x86_64__)
 // For each byte value, the positions of its set bits in ascending order (padded with zeros), one
 // byte each: the permutation that gathers a group of eight counters' touched ones to its front.

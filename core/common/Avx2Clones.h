@@ -7,3 +7,18 @@
 #else
 #define ACTIVETOUCH_AVX2_CLONES
 #endif
+
+namespace activetouch {
+
+/// Whether the CPU this runs on has AVX2 and the POPCNT every AVX2 CPU has, for the kernels
+/// written with AVX2 intrinsics beside a portable reading (always false off x86-64).
+inline bool cpuHasAvx2() {
+#if defined(__x86_64__)
+    static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
+    return avx2;
+#else
+    return false;
+#endif
+}
+
+}  // namespace activetouch
