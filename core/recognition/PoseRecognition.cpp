@@ -4,6 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "core/common/Avx2Clones.h"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 namespace activetouch {
 
 namespace {
@@ -69,6 +75,64 @@ double segmentDistance(Vec2 p, Vec2 a, Vec2 b) {
     return distance(p, a + t * ab);
 }
 
+/// One cell of nearerAlongRow(): segmentDistance() spelled out, for the vector reading to follow.
+inline void nearerCell(float* row, int x, double ox, double y, double cell, Vec2 a, double abx,
+                       double aby, double len2) {
+    const double px = ox + x * cell;
+    const double t =
+        len2 > 0.0 ? std::clamp(((px - a.x) * abx + (y - a.y) * aby) / len2, 0.0, 1.0) : 0.0;
+    const double dx = px - (a.x + t * abx), dy = y - (a.y + t * aby);
+    row[x] = std::min(row[x], static_cast<float>(std::sqrt(dx * dx + dy * dy)));
+}
+
+/// row[x] = min(row[x], distance from (ox + x * cell, y) to segment ab) for x0 <= x <= x1, each
+/// cell as segmentDistance() gives it: four cells at a time where the CPU has AVX2, by the same
+/// operations (no fused multiply-adds), so that the grid is bit for bit the same.
+#if defined(__x86_64__)
+__attribute__((target("avx2"))) void nearerAlongRowAvx2(float* row, int x0, int x1, double ox,
+                                                        double y, double cell, Vec2 a, Vec2 b) {
+    const double abx = b.x - a.x, aby = b.y - a.y;
+    const double len2 = abx * abx + aby * aby;
+    const __m256d vox = _mm256_set1_pd(ox), vcell = _mm256_set1_pd(cell);
+    const __m256d ax = _mm256_set1_pd(a.x), ay = _mm256_set1_pd(a.y), vy = _mm256_set1_pd(y);
+    const __m256d vabx = _mm256_set1_pd(abx), vaby = _mm256_set1_pd(aby);
+    const __m256d alongY = _mm256_set1_pd((y - a.y) * aby), vlen2 = _mm256_set1_pd(len2);
+    const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+    int x = x0;
+    for (; x + 3 <= x1; x += 4) {
+        const __m256d px =
+            _mm256_add_pd(vox, _mm256_mul_pd(_mm256_cvtepi32_pd(_mm_add_epi32(
+                                                 _mm_set1_epi32(x), _mm_setr_epi32(0, 1, 2, 3))),
+                                             vcell));
+        __m256d t = zero;
+        if (len2 > 0.0) {
+            t = _mm256_div_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_sub_pd(px, ax), vabx), alongY),
+                              vlen2);
+            // std::clamp: below 0 gives 0, above 1 gives 1, anything else itself.
+            t = _mm256_blendv_pd(t, zero, _mm256_cmp_pd(t, zero, _CMP_LT_OQ));
+            t = _mm256_blendv_pd(t, one, _mm256_cmp_pd(one, t, _CMP_LT_OQ));
+        }
+        const __m256d dx = _mm256_sub_pd(px, _mm256_add_pd(ax, _mm256_mul_pd(t, vabx)));
+        const __m256d dy = _mm256_sub_pd(vy, _mm256_add_pd(ay, _mm256_mul_pd(t, vaby)));
+        const __m128 dist = _mm256_cvtpd_ps(
+            _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy))));
+        // std::min(row, dist): dist where it is smaller, else row.
+        _mm_storeu_ps(row + x, _mm_min_ps(dist, _mm_loadu_ps(row + x)));
+    }
+    for (; x <= x1; ++x) nearerCell(row, x, ox, y, cell, a, abx, aby, len2);
+}
+#endif
+
+void nearerAlongRow(float* row, int x0, int x1, double ox, double y, double cell, Vec2 a, Vec2 b,
+                    bool portable) {
+#if defined(__x86_64__)
+    if (!portable && cpuHasAvx2()) return nearerAlongRowAvx2(row, x0, x1, ox, y, cell, a, b);
+#endif
+    const double abx = b.x - a.x, aby = b.y - a.y;
+    const double len2 = abx * abx + aby * aby;
+    for (int x = x0; x <= x1; ++x) nearerCell(row, x, ox, y, cell, a, abx, aby, len2);
+}
+
 /// A capped distance grid of a polyline: each segment updates only the cells within the cap.
 struct Grid {
     Vec2 origin;
@@ -76,6 +140,7 @@ struct Grid {
     int nx = 0, ny = 0;
     std::vector<float> d;        ///< owned cells (a path's grid)
     const float* ptr = nullptr;  ///< the cells looked up: d's, or a template's
+    bool portable = false;       ///< built and read without the vector units (a test's reference)
 
     void build(const std::vector<Vec2>& line, bool closed) {
         Vec2 lo = line.front(), hi = lo;
@@ -101,12 +166,9 @@ struct Grid {
             const int y1 =
                 std::min(ny - 1, static_cast<int>((std::max(a.y, b.y) - origin.y) / cell) + reach);
             for (int y = y0; y <= y1; ++y)
-                for (int x = x0; x <= x1; ++x) {
-                    const Vec2 p = origin + Vec2{x * cell, y * cell};
-                    float& v = d[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +
-                                 static_cast<std::size_t>(x)];
-                    v = std::min(v, static_cast<float>(segmentDistance(p, a, b)));
-                }
+                nearerAlongRow(
+                    d.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(nx), x0, x1,
+                    origin.x, origin.y + y * cell, cell, a, b, portable);
         }
         ptr = d.data();
     }
@@ -138,29 +200,155 @@ struct Pose {
     Vec2 t;
 };
 
-/// Mean squared capped distance of `points` (world) mapped into the template frame by `pose`;
-/// `coarse` looks up the nearest cell instead of interpolating.
-double forwardCost(const Grid& grid, const std::vector<Vec2>& points, const Pose& pose,
-                   bool coarse = false) {
-    const double a = -pose.thetaDeg * kPi / 180.0, c = std::cos(a), s = std::sin(a);
+/// Points as two arrays, x and y, for the vector lookups.
+struct Coords {
+    std::vector<double> x, y;
+    Coords() = default;
+    explicit Coords(const std::vector<Vec2>& points) {
+        x.reserve(points.size());
+        y.reserve(points.size());
+        for (Vec2 p : points) {
+            x.push_back(p.x);
+            y.push_back(p.y);
+        }
+    }
+    std::size_t size() const { return x.size(); }
+};
+
+/// How a cost maps its points onto the grid it looks up: into a template's frame (q = R(p - t),
+/// R turning by -theta) or out of it onto the path (q = R p + t, R turning by +theta).
+enum class Mapping { IntoFrame, OntoPath };
+
+Vec2 mapped(Vec2 p, double c, double s, Vec2 t, Mapping m) {
+    return m == Mapping::IntoFrame ? rotated(p - t, c, s) : rotated(p, c, s) + t;
+}
+
+/// How a cost reads the grid: bilinear (Grid::at) or the nearest cell (Grid::nearest).
+enum class Lookup { Bilinear, Nearest };
+
+double lookedUp(const Grid& grid, Vec2 q, Lookup l) {
+    return l == Lookup::Bilinear ? grid.at(q) : grid.nearest(q);
+}
+
+/// Sum of the squared capped distances of the mapped points, added in their order.
+double sumSquaredPortable(const Grid& grid, const Coords& pts, double c, double s, Vec2 t,
+                          Mapping m, Lookup l) {
     double sum = 0.0;
-    for (Vec2 p : points) {
-        const Vec2 q = rotated(p - pose.t, c, s);
-        const double d = coarse ? grid.nearest(q) : grid.at(q);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        const double d = lookedUp(grid, mapped({pts.x[i], pts.y[i]}, c, s, t, m), l);
         sum += d * d;
     }
-    return points.empty() ? 0.0 : sum / static_cast<double>(points.size());
+    return sum;
+}
+
+#if defined(__x86_64__)
+/// The same, four points at a time: the same operations on each point as Grid::at and
+/// Grid::nearest (no fused multiply-adds), the cells gathered, and the squares added one by one
+/// in order, so that the sum is bit for bit the portable one.
+__attribute__((target("avx2"))) double sumSquaredAvx2(const Grid& grid, const Coords& pts, double c,
+                                                      double s, Vec2 t, Mapping m, Lookup l) {
+    const std::size_t n = pts.size(), whole = n / 4 * 4;
+    const __m256d vc = _mm256_set1_pd(c), vs = _mm256_set1_pd(s);
+    const __m256d tx = _mm256_set1_pd(t.x), ty = _mm256_set1_pd(t.y);
+    const __m256d ox = _mm256_set1_pd(grid.origin.x), oy = _mm256_set1_pd(grid.origin.y);
+    const __m256d inv = _mm256_set1_pd(1.0 / grid.cell), zero = _mm256_setzero_pd();
+    const __m256d one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
+    const __m256d cap = _mm256_set1_pd(kCap_mm);
+    // Interpolation reads the next cell too, so it stops a cell before the grid's end.
+    const int reach = l == Lookup::Bilinear ? 1 : 0;
+    const __m256d xEnd = _mm256_set1_pd(grid.nx - reach), yEnd = _mm256_set1_pd(grid.ny - reach);
+    const __m128i stride = _mm_set1_epi32(grid.nx), right = _mm_set1_epi32(1);
+    const float* cells = grid.ptr;
+    double sum = 0.0;
+    alignas(32) double squares[4];
+    for (std::size_t i = 0; i < whole; i += 4) {
+        const __m256d px = _mm256_loadu_pd(pts.x.data() + i);
+        const __m256d py = _mm256_loadu_pd(pts.y.data() + i);
+        __m256d qx, qy;
+        if (m == Mapping::IntoFrame) {
+            const __m256d vx = _mm256_sub_pd(px, tx), vy = _mm256_sub_pd(py, ty);
+            qx = _mm256_sub_pd(_mm256_mul_pd(vc, vx), _mm256_mul_pd(vs, vy));
+            qy = _mm256_add_pd(_mm256_mul_pd(vs, vx), _mm256_mul_pd(vc, vy));
+        } else {
+            qx = _mm256_add_pd(_mm256_sub_pd(_mm256_mul_pd(vc, px), _mm256_mul_pd(vs, py)), tx);
+            qy = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(vs, px), _mm256_mul_pd(vc, py)), ty);
+        }
+        __m256d fx = _mm256_mul_pd(_mm256_sub_pd(qx, ox), inv);
+        __m256d fy = _mm256_mul_pd(_mm256_sub_pd(qy, oy), inv);
+        if (l == Lookup::Nearest) {
+            fx = _mm256_add_pd(fx, half);
+            fy = _mm256_add_pd(fy, half);
+        }
+        // Inside where the lookup reads the grid (ordered compares: NaN is outside); elsewhere
+        // the cap, with the lookups moved to cell 0 so that they stay in the grid.
+        const __m256d inside = _mm256_and_pd(
+            _mm256_and_pd(_mm256_cmp_pd(fx, zero, _CMP_GE_OQ), _mm256_cmp_pd(fy, zero, _CMP_GE_OQ)),
+            _mm256_and_pd(_mm256_cmp_pd(fx, xEnd, _CMP_LT_OQ),
+                          _mm256_cmp_pd(fy, yEnd, _CMP_LT_OQ)));
+        const __m256d gx = _mm256_and_pd(inside, fx), gy = _mm256_and_pd(inside, fy);
+        const __m128i xi = _mm256_cvttpd_epi32(gx), yi = _mm256_cvttpd_epi32(gy);
+        const __m128i at = _mm_add_epi32(_mm_mullo_epi32(yi, stride), xi);
+        __m256d d;
+        if (l == Lookup::Nearest) {
+            d = _mm256_blendv_pd(cap, _mm256_cvtps_pd(_mm_i32gather_ps(cells, at, 4)), inside);
+        } else {
+            const __m256d u = _mm256_sub_pd(gx, _mm256_cvtepi32_pd(xi));
+            const __m256d v = _mm256_sub_pd(gy, _mm256_cvtepi32_pd(yi));
+            const __m128i below = _mm_add_epi32(at, stride);
+            const __m256d r0 = _mm256_cvtps_pd(_mm_i32gather_ps(cells, at, 4));
+            const __m256d r1 =
+                _mm256_cvtps_pd(_mm_i32gather_ps(cells, _mm_add_epi32(at, right), 4));
+            const __m256d r2 = _mm256_cvtps_pd(_mm_i32gather_ps(cells, below, 4));
+            const __m256d r3 =
+                _mm256_cvtps_pd(_mm_i32gather_ps(cells, _mm_add_epi32(below, right), 4));
+            const __m256d nu = _mm256_sub_pd(one, u), nv = _mm256_sub_pd(one, v);
+            const __m256d top = _mm256_add_pd(_mm256_mul_pd(nu, r0), _mm256_mul_pd(u, r1));
+            const __m256d bottom = _mm256_add_pd(_mm256_mul_pd(nu, r2), _mm256_mul_pd(u, r3));
+            const __m256d value = _mm256_add_pd(_mm256_mul_pd(nv, top), _mm256_mul_pd(v, bottom));
+            d = _mm256_blendv_pd(cap, value, inside);
+        }
+        _mm256_store_pd(squares, _mm256_mul_pd(d, d));
+        sum += squares[0];
+        sum += squares[1];
+        sum += squares[2];
+        sum += squares[3];
+    }
+    for (std::size_t i = whole; i < n; ++i) {
+        const double d = lookedUp(grid, mapped({pts.x[i], pts.y[i]}, c, s, t, m), l);
+        sum += d * d;
+    }
+    return sum;
+}
+#endif
+
+double sumSquared(const Grid& grid, const Coords& pts, double c, double s, Vec2 t, Mapping m,
+                  Lookup l) {
+#if defined(__x86_64__)
+    if (!grid.portable && cpuHasAvx2()) return sumSquaredAvx2(grid, pts, c, s, t, m, l);
+#endif
+    return sumSquaredPortable(grid, pts, c, s, t, m, l);
+}
+
+/// Mean squared capped distance of `points` (world) mapped into the template frame by `pose`.
+double forwardCost(const Grid& grid, const Coords& points, const Pose& pose) {
+    const double a = -pose.thetaDeg * kPi / 180.0, c = std::cos(a), s = std::sin(a);
+    const double sum = sumSquared(grid, points, c, s, pose.t, Mapping::IntoFrame, Lookup::Bilinear);
+    return points.size() == 0 ? 0.0 : sum / static_cast<double>(points.size());
+}
+
+/// The same by the nearest cell instead of interpolating: the coarse search's.
+double coarseCost(const Grid& grid, const Coords& points, const Pose& pose) {
+    const double a = -pose.thetaDeg * kPi / 180.0, c = std::cos(a), s = std::sin(a);
+    const double sum = sumSquared(grid, points, c, s, pose.t, Mapping::IntoFrame, Lookup::Nearest);
+    return points.size() == 0 ? 0.0 : sum / static_cast<double>(points.size());
 }
 
 /// Mean squared capped distance of the template's points, placed by `pose`, to the path.
-double reverseCost(const std::vector<Vec2>& tplPoints, const Grid& pathGrid, const Pose& pose) {
+double reverseCost(const Coords& tplPoints, const Grid& pathGrid, const Pose& pose) {
     const double a = pose.thetaDeg * kPi / 180.0, c = std::cos(a), s = std::sin(a);
-    double sum = 0.0;
-    for (Vec2 q : tplPoints) {
-        const double d = pathGrid.at(rotated(q, c, s) + pose.t);
-        sum += d * d;
-    }
-    return tplPoints.empty() ? 0.0 : sum / static_cast<double>(tplPoints.size());
+    const double sum =
+        sumSquared(pathGrid, tplPoints, c, s, pose.t, Mapping::OntoPath, Lookup::Bilinear);
+    return tplPoints.size() == 0 ? 0.0 : sum / static_cast<double>(tplPoints.size());
 }
 
 /// Every other point: the search steers by half the points, the score counts them all.
@@ -170,8 +358,9 @@ std::vector<Vec2> halved(const std::vector<Vec2>& points) {
     return out;
 }
 
-Grid gridOf(const PoseTemplate& tpl) {
+Grid gridOf(const PoseTemplate& tpl, bool portable) {
     Grid g;
+    g.portable = portable;
     g.origin = tpl.gridOrigin;
     g.cell = tpl.cell_mm;
     g.nx = tpl.nx;
@@ -187,7 +376,10 @@ double wrapDeg(double a, double period) {
 
 }  // namespace
 
-PoseTemplate poseTemplate(const std::string& shape, const Polygon& outline, double offset_mm) {
+namespace detail {
+
+PoseTemplate poseTemplate(const std::string& shape, const Polygon& outline, double offset_mm,
+                          bool portable) {
     PoseTemplate tpl;
     tpl.shape = shape;
     std::vector<Vec2> line =
@@ -199,6 +391,7 @@ PoseTemplate poseTemplate(const std::string& shape, const Polygon& outline, doub
     for (std::size_t i = 0; i < line.size(); ++i)
         tpl.perimeter_mm += distance(line[i], line[(i + 1) % line.size()]);
     Grid g;
+    g.portable = portable;
     g.build(line, true);
     tpl.gridOrigin = g.origin;
     tpl.cell_mm = g.cell;
@@ -226,6 +419,8 @@ PoseTemplate poseTemplate(const std::string& shape, const Polygon& outline, doub
     return tpl;
 }
 
+}  // namespace detail
+
 double rotationErrorDeg(double a, double b, int symmetry) {
     if (symmetry == 0) return 0.0;
     const double period = 360.0 / std::max(1, symmetry);
@@ -233,8 +428,10 @@ double rotationErrorDeg(double a, double b, int symmetry) {
     return std::min(d, period - d);
 }
 
+namespace detail {
+
 PoseRecognition recognisePose(const std::vector<Vec2>& path,
-                              const std::vector<PoseTemplate>& templates) {
+                              const std::vector<PoseTemplate>& templates, bool portable) {
     PoseRecognition out;
     std::vector<Vec2> finite;
     for (Vec2 p : path)
@@ -243,12 +440,14 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
     const std::vector<Vec2> points = resampled(finite, kSpacing_mm, false);
     if (points.size() < 3) return out;
     const Vec2 centre = lengthCentroid(finite, false);
-    std::vector<Vec2> coarse;
+    std::vector<Vec2> coarsePoints;
     const std::size_t stride = std::max<std::size_t>(1, points.size() / kCoarsePoints);
-    for (std::size_t i = 0; i < points.size(); i += stride) coarse.push_back(points[i]);
-    const std::vector<Vec2> searchPoints = halved(points);
+    for (std::size_t i = 0; i < points.size(); i += stride) coarsePoints.push_back(points[i]);
+    const Coords coarse(coarsePoints);
+    const Coords searchPoints(halved(points)), allPoints(points);
     Grid pathGrid;
     pathGrid.cell = kPathCell_mm;
+    pathGrid.portable = portable;
     pathGrid.build(finite, false);
 
     // Coarse: every template at every 6 degrees, placed on the path's centroid; the two best
@@ -262,10 +461,10 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
     std::vector<Grid> grids;
     grids.reserve(templates.size());
     for (std::size_t i = 0; i < templates.size(); ++i) {
-        grids.push_back(gridOf(templates[i]));
+        grids.push_back(gridOf(templates[i], portable));
         std::vector<std::pair<double, double>> byTurn;  // cost, turn
         for (double th = 0.0; th < 360.0; th += kCoarseStepDeg)
-            byTurn.push_back({forwardCost(grids.back(), coarse, {th, centre}, true), th});
+            byTurn.push_back({coarseCost(grids.back(), coarse, {th, centre}), th});
         std::sort(byTurn.begin(), byTurn.end());
         Candidate c{i,
                     {{byTurn[0].second, centre}, {byTurn[0].second, centre}},
@@ -302,12 +501,12 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
         const std::size_t i = order[r];
         const PoseTemplate& tpl = templates[i];
         const Grid& grid = grids[i];
-        const std::vector<Vec2> tplSearch = halved(tpl.points);
+        const Coords tplSearch(halved(tpl.points)), tplAll(tpl.points);
         auto cost = [&](const Pose& p) {
             return 0.5 * (forwardCost(grid, searchPoints, p) + reverseCost(tplSearch, pathGrid, p));
         };
         auto fullCost = [&](const Pose& p) {
-            return 0.5 * (forwardCost(grid, points, p) + reverseCost(tpl.points, pathGrid, p));
+            return 0.5 * (forwardCost(grid, allPoints, p) + reverseCost(tplAll, pathGrid, p));
         };
         double fitCost = std::numeric_limits<double>::infinity();
         Pose fitPose;
@@ -353,6 +552,17 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
     out.valid = true;
     out.predicted = out.best.shape;
     return out;
+}
+
+}  // namespace detail
+
+PoseTemplate poseTemplate(const std::string& shape, const Polygon& outline, double offset_mm) {
+    return detail::poseTemplate(shape, outline, offset_mm, false);
+}
+
+PoseRecognition recognisePose(const std::vector<Vec2>& path,
+                              const std::vector<PoseTemplate>& templates) {
+    return detail::recognisePose(path, templates, false);
 }
 
 }  // namespace activetouch

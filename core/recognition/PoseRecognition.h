@@ -57,6 +57,16 @@ struct PoseRecognition {
 PoseRecognition recognisePose(const std::vector<Vec2>& path,
                               const std::vector<PoseTemplate>& templates);
 
+namespace detail {
+/// poseTemplate() and recognisePose() with their distance grids built and read by the vector
+/// units where the CPU has AVX2 and `portable` is false, one value at a time otherwise; the two
+/// give bit for bit the same templates and fits.
+PoseTemplate poseTemplate(const std::string& shape, const Polygon& outline, double offset_mm,
+                          bool portable);
+PoseRecognition recognisePose(const std::vector<Vec2>& path,
+                              const std::vector<PoseTemplate>& templates, bool portable);
+}  // namespace detail
+
 /// The smallest difference between two turns of a shape with `symmetry` (0: none matters),
 /// degrees in [0, 180 / symmetry].
 double rotationErrorDeg(double a, double b, int symmetry);

@@ -2,7 +2,9 @@
 // random angles and moved, is named right with its turn (modulo its symmetry) and place; sizes
 // count; degenerate paths get no name and no NaN.
 #include <QtTest>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "core/geometry/ShapeLibrary.h"
@@ -142,6 +144,60 @@ private slots:
             return -1.0;
         };
         QVERIFY(scoreOf(recognisePose(half, t)) > scoreOf(recognisePose(whole, t)) + 1.0);
+    }
+
+    void vectorAndPortableReadingsGiveTheSameFits() {
+        // Templates of every library shape, on the outline and offset outward, and paths at
+        // random poses: whole, part of an outline, overshooting, of every length modulo four,
+        // and far outside every grid. Grids, names, scores, turns and places agree bit for bit.
+        const auto same = [](double a, double b) {
+            return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+        };
+        std::vector<PoseTemplate> vector, portable;
+        for (const double offset : {0.0, 3.0})
+            for (const auto& n : libraryShapeNames()) {
+                const Polygon own = libraryShape(n, defaultShapeSize(n));
+                vector.push_back(detail::poseTemplate(n, own, offset, false));
+                portable.push_back(detail::poseTemplate(n, own, offset, true));
+                const PoseTemplate &v = vector.back(), &p = portable.back();
+                QCOMPARE(v.nx, p.nx);
+                QCOMPARE(v.ny, p.ny);
+                QCOMPARE(v.symmetry, p.symmetry);
+                QVERIFY(v.distance == p.distance);
+            }
+        std::mt19937 rng(91);
+        std::uniform_real_distribution<double> turnOf(0.0, 360.0), placeOf(60.0, 240.0),
+            unit(0.0, 1.0);
+        std::vector<std::vector<Vec2>> paths;
+        for (const auto& n : libraryShapeNames()) {
+            const Polygon placed = libraryShape(n, defaultShapeSize(n))
+                                       .transformed(turnOf(rng), {placeOf(rng), placeOf(rng)});
+            auto path = tracedPath(placed, 2.0, unit(rng) * placed.perimeter(), 0.5, rng);
+            paths.push_back(path);
+            paths.emplace_back(path.begin(), path.begin() + static_cast<long>(path.size() / 3));
+            path[path.size() / 2] = path[path.size() / 2] + Vec2{8.0, -6.0};  // an overshoot
+            paths.push_back(path);
+        }
+        for (std::size_t n = 3; n <= 8; ++n) {
+            std::vector<Vec2> shortPath;
+            for (std::size_t i = 0; i < n; ++i)
+                shortPath.push_back({100.0 + 3.0 * double(i), 100.0 + double(i * i) * 0.5});
+            paths.push_back(shortPath);
+        }
+        paths.push_back({{1e6, 1e6}, {1e6 + 1, 1e6}, {1e6, 1e6 + 1}, {1e6 + 2, 1e6 + 3}, {1e6, 3}});
+        for (const auto& path : paths) {
+            const PoseRecognition v = detail::recognisePose(path, vector, false);
+            const PoseRecognition p = detail::recognisePose(path, portable, true);
+            QCOMPARE(v.valid, p.valid);
+            QCOMPARE(v.predicted, p.predicted);
+            QCOMPARE(v.fits.size(), p.fits.size());
+            for (std::size_t i = 0; i < v.fits.size(); ++i) {
+                QVERIFY(same(v.fits[i].score_mm, p.fits[i].score_mm));
+                QVERIFY(same(v.fits[i].rotationDeg, p.fits[i].rotationDeg));
+                QVERIFY(same(v.fits[i].position.x, p.fits[i].position.x));
+                QVERIFY(same(v.fits[i].position.y, p.fits[i].position.y));
+            }
+        }
     }
 
     void degeneratePathsGetNoNameAndNoNaN() {
