@@ -555,7 +555,8 @@ std::size_t HistogramClassifier::tapCells(const Tap& tap, const std::uint32_t** 
         binBlock(tap.samples.data() + start, std::min(block, tap.samples.size() - start),
                  minTiled_.data(), scaleTiled_.data(), cellBaseTiled_.data(),
                  static_cast<double>(bins_ - 1), cellOf.data() + start);
-    // One cell more than can be touched: the end marker, naming the screening table's zero row.
+    // Room past the cells that can be touched: for the counters' read-back, which stores eight at
+    // a time, and for the end marker, which names the screening table's zero row.
     cells.resize(std::min(cellOf.size(), cellsTotal) + detail::kCountCellsSlack);
     weights.resize(cells.size());
     const std::size_t distinct = detail::countCells(cellOf.data(), cellOf.size(), cellsTotal,
