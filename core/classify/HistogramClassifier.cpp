@@ -434,13 +434,34 @@ __attribute__((target("avx2,popcnt"))) std::size_t gatherTouched(std::uint32_t* 
 }
 #endif
 
+// The touched counters of n, one at a time from the masks of its groups of 16, each touched
+// group cleared.
+std::size_t readTouched(std::uint32_t* n, const std::vector<std::uint32_t>& masks,
+                        std::uint32_t* cells, std::int32_t* counts) {
+    std::size_t distinct = 0;
+    for (std::size_t g = 0; g < masks.size(); ++g) {
+        std::uint32_t touched = masks[g];
+        if (touched == 0) continue;
+        std::uint32_t* const first = n + g * 16;
+        while (touched) {
+            const auto j = static_cast<std::size_t>(__builtin_ctz(touched));
+            touched &= touched - 1;
+            cells[distinct] = static_cast<std::uint32_t>(g * 16 + j);
+            counts[distinct++] = static_cast<std::int32_t>(first[j]);
+        }
+        std::memset(first, 0, 16 * sizeof(std::uint32_t));
+    }
+    return distinct;
+}
+
 // A tap's count vector over (taxel, bin) cells: a 32-bit counter per cell (byte counters were
 // measured several times slower on the machines of docs/benchmarks.md, their stores being
 // slow).
 class CellCounter {
 public:
     /// Counts `samples` cells, writes the distinct ones ascending into `cells` and their counts
-    /// into `counts`; returns how many.
+    /// into `counts` (so that every sum over them does not depend on sample order), and clears
+    /// the counters for the next tap; returns how many.
     std::size_t count(const std::uint32_t* cellOf, std::size_t samples, std::size_t cellsTotal,
                       std::uint32_t* cells, std::int32_t* counts, bool portable) {
         constexpr std::size_t kGroups = 32;  // a multiple of every group size
@@ -451,9 +472,6 @@ public:
         for (; i + 8 <= samples; i += 8)
             for (std::size_t j = 0; j < 8; ++j) ++n[cellOf[i + j]];
         for (; i < samples; ++i) ++n[cellOf[i]];
-            // Read back the touched counters: the distinct cells ascending (so that every sum over
-            // them does not depend on sample order) with their counts, clearing them for the next
-            // tap.
 #if defined(__x86_64__)
         if (!portable && cpuHasAvx2()) {
             // Marks for the groups of 32, one byte per eight counters (x86-64 is little-endian:
@@ -468,20 +486,7 @@ public:
 #endif
         masks_.resize(padded / 16);
         touchedGroups16(n, masks_.size(), masks_.data());
-        std::size_t distinct = 0;
-        for (std::size_t g = 0; g < masks_.size(); ++g) {
-            std::uint32_t touched = masks_[g];
-            if (touched == 0) continue;
-            std::uint32_t* const first = n + g * 16;
-            while (touched) {
-                const auto j = static_cast<std::size_t>(__builtin_ctz(touched));
-                touched &= touched - 1;
-                cells[distinct] = static_cast<std::uint32_t>(g * 16 + j);
-                counts[distinct++] = static_cast<std::int32_t>(first[j]);
-            }
-            std::memset(first, 0, 16 * sizeof(std::uint32_t));
-        }
-        return distinct;
+        return readTouched(n, masks_, cells, counts);
     }
 
 private:

@@ -75,14 +75,9 @@ double segmentDistance(Vec2 p, Vec2 a, Vec2 b) {
     return distance(p, a + t * ab);
 }
 
-/// One cell of nearerAlongRow(): segmentDistance() spelled out, for the vector reading to follow.
-inline void nearerCell(float* row, int x, double ox, double y, double cell, Vec2 a, double abx,
-                       double aby, double len2) {
-    const double px = ox + x * cell;
-    const double t =
-        len2 > 0.0 ? std::clamp(((px - a.x) * abx + (y - a.y) * aby) / len2, 0.0, 1.0) : 0.0;
-    const double dx = px - (a.x + t * abx), dy = y - (a.y + t * aby);
-    row[x] = std::min(row[x], static_cast<float>(std::sqrt(dx * dx + dy * dy)));
+/// row[x] = min(row[x], segmentDistance() of the cell), one cell.
+void nearerCell(float* row, int x, double ox, double y, double cell, Vec2 a, Vec2 b) {
+    row[x] = std::min(row[x], static_cast<float>(segmentDistance({ox + x * cell, y}, a, b)));
 }
 
 /// row[x] = min(row[x], distance from (ox + x * cell, y) to segment ab) for x0 <= x <= x1, each
@@ -119,7 +114,7 @@ __attribute__((target("avx2"))) void nearerAlongRowAvx2(float* row, int x0, int 
         // std::min(row, dist): dist where it is smaller, else row.
         _mm_storeu_ps(row + x, _mm_min_ps(dist, _mm_loadu_ps(row + x)));
     }
-    for (; x <= x1; ++x) nearerCell(row, x, ox, y, cell, a, abx, aby, len2);
+    for (; x <= x1; ++x) nearerCell(row, x, ox, y, cell, a, b);
 }
 #endif
 
@@ -128,9 +123,7 @@ void nearerAlongRow(float* row, int x0, int x1, double ox, double y, double cell
 #if defined(__x86_64__)
     if (!portable && cpuHasAvx2()) return nearerAlongRowAvx2(row, x0, x1, ox, y, cell, a, b);
 #endif
-    const double abx = b.x - a.x, aby = b.y - a.y;
-    const double len2 = abx * abx + aby * aby;
-    for (int x = x0; x <= x1; ++x) nearerCell(row, x, ox, y, cell, a, abx, aby, len2);
+    for (int x = x0; x <= x1; ++x) nearerCell(row, x, ox, y, cell, a, b);
 }
 
 /// A capped distance grid of a polyline: each segment updates only the cells within the cap.
@@ -203,7 +196,6 @@ struct Pose {
 /// Points as two arrays, x and y, for the vector lookups.
 struct Coords {
     std::vector<double> x, y;
-    Coords() = default;
     explicit Coords(const std::vector<Vec2>& points) {
         x.reserve(points.size());
         y.reserve(points.size());
@@ -329,26 +321,14 @@ double sumSquared(const Grid& grid, const Coords& pts, double c, double s, Vec2 
     return sumSquaredPortable(grid, pts, c, s, t, m, l);
 }
 
-/// Mean squared capped distance of `points` (world) mapped into the template frame by `pose`.
-double forwardCost(const Grid& grid, const Coords& points, const Pose& pose) {
-    const double a = -pose.thetaDeg * kPi / 180.0, c = std::cos(a), s = std::sin(a);
-    const double sum = sumSquared(grid, points, c, s, pose.t, Mapping::IntoFrame, Lookup::Bilinear);
+/// Mean squared capped distance of `points` mapped by `pose`: world points into a template's
+/// frame (IntoFrame, turning by -theta), or a template's points onto the path (OntoPath, by
+/// +theta).
+double meanCost(const Grid& grid, const Coords& points, const Pose& pose, Mapping m, Lookup l) {
+    const double turn = m == Mapping::IntoFrame ? -pose.thetaDeg : pose.thetaDeg;
+    const double a = turn * kPi / 180.0, c = std::cos(a), s = std::sin(a);
+    const double sum = sumSquared(grid, points, c, s, pose.t, m, l);
     return points.size() == 0 ? 0.0 : sum / static_cast<double>(points.size());
-}
-
-/// The same by the nearest cell instead of interpolating: the coarse search's.
-double coarseCost(const Grid& grid, const Coords& points, const Pose& pose) {
-    const double a = -pose.thetaDeg * kPi / 180.0, c = std::cos(a), s = std::sin(a);
-    const double sum = sumSquared(grid, points, c, s, pose.t, Mapping::IntoFrame, Lookup::Nearest);
-    return points.size() == 0 ? 0.0 : sum / static_cast<double>(points.size());
-}
-
-/// Mean squared capped distance of the template's points, placed by `pose`, to the path.
-double reverseCost(const Coords& tplPoints, const Grid& pathGrid, const Pose& pose) {
-    const double a = pose.thetaDeg * kPi / 180.0, c = std::cos(a), s = std::sin(a);
-    const double sum =
-        sumSquared(pathGrid, tplPoints, c, s, pose.t, Mapping::OntoPath, Lookup::Bilinear);
-    return tplPoints.size() == 0 ? 0.0 : sum / static_cast<double>(tplPoints.size());
 }
 
 /// Every other point: the search steers by half the points, the score counts them all.
@@ -464,7 +444,9 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
         grids.push_back(gridOf(templates[i], portable));
         std::vector<std::pair<double, double>> byTurn;  // cost, turn
         for (double th = 0.0; th < 360.0; th += kCoarseStepDeg)
-            byTurn.push_back({coarseCost(grids.back(), coarse, {th, centre}), th});
+            byTurn.push_back(
+                {meanCost(grids.back(), coarse, {th, centre}, Mapping::IntoFrame, Lookup::Nearest),
+                 th});
         std::sort(byTurn.begin(), byTurn.end());
         Candidate c{i,
                     {{byTurn[0].second, centre}, {byTurn[0].second, centre}},
@@ -503,10 +485,12 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
         const Grid& grid = grids[i];
         const Coords tplSearch(halved(tpl.points)), tplAll(tpl.points);
         auto cost = [&](const Pose& p) {
-            return 0.5 * (forwardCost(grid, searchPoints, p) + reverseCost(tplSearch, pathGrid, p));
+            return 0.5 * (meanCost(grid, searchPoints, p, Mapping::IntoFrame, Lookup::Bilinear) +
+                          meanCost(pathGrid, tplSearch, p, Mapping::OntoPath, Lookup::Bilinear));
         };
         auto fullCost = [&](const Pose& p) {
-            return 0.5 * (forwardCost(grid, allPoints, p) + reverseCost(tplAll, pathGrid, p));
+            return 0.5 * (meanCost(grid, allPoints, p, Mapping::IntoFrame, Lookup::Bilinear) +
+                          meanCost(pathGrid, tplAll, p, Mapping::OntoPath, Lookup::Bilinear));
         };
         double fitCost = std::numeric_limits<double>::infinity();
         Pose fitPose;
