@@ -28,6 +28,18 @@ void pointLabel(QCPAxisRect* rect, double x, double y, const QString& text) {
     label->setText(text);
 }
 
+/// A panel at `column` of the figure's row, titled, with axis labels and its legend under it: the
+/// sweeps' points are measured, so they may fall in any corner, where a legend inside would hide
+/// some.
+PanelWithLegend sweepPanel(QCPLayoutGrid* grid, int column, const QString& title,
+                           const QString& xLabel, const QString& yLabel, int perLine) {
+    const PanelWithLegend panel = addPanelWithLegendBelow(grid, 0, column, perLine);
+    setPanelTitle(panel.rect, title);
+    panel.rect->axis(QCPAxis::atBottom)->setLabel(xLabel);
+    panel.rect->axis(QCPAxis::atLeft)->setLabel(yLabel);
+    return panel;
+}
+
 void fit(QCPAxisRect* rect) {
     bool found = false;
     QCPRange x, y;
@@ -71,12 +83,10 @@ bool buildPerceptionSweepFigure(QCustomPlot& plot, const RunResult& r) {
         positionBelow << row.positionError_mm - row.position_mm.low;
         positionAbove << row.position_mm.high - row.positionError_mm;
     }
-    auto* a = addTitledPanel(grid, 0, "edge angle error (edge classes)", "mean taps per decision",
-                             "angle error (°)");
-    auto* p =
-        addTitledPanel(grid, 1, "position error", "mean taps per decision", "position error (mm)");
-    auto* la = addLegend(a);
-    auto* lp = addLegend(p);
+    const auto [a, la] = sweepPanel(grid, 0, "edge angle error (edge classes)",
+                                    "mean taps per decision", "angle error (°)", /*perLine=*/1);
+    const auto [p, lp] = sweepPanel(grid, 1, "position error", "mean taps per decision",
+                                    "position error (mm)", /*perLine=*/1);
     const QString name = r.sweeps.perceptionCalibration.calibrated
                              ? "belief thresholds (calibrated belief), 95 % intervals"
                              : "belief thresholds, 95 % intervals";
@@ -115,19 +125,15 @@ bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& r) {
         "Accuracy costs time (b): contour following against step lengths and belief threshold");
     if (rows.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    // Completion may sit anywhere from 0 to 100 %: these legends go under their panels.
-    const auto [completion, lc] = addPanelWithLegendBelow(grid, 0, 0, /*perLine=*/1);
-    setPanelTitle(completion, "completion (single-tap decisions)");
-    completion->axis(QCPAxis::atBottom)->setLabel("follow step (mm)");
-    completion->axis(QCPAxis::atLeft)->setLabel("trials completed (%)");
-    const auto [time, lt] = addPanelWithLegendBelow(grid, 0, 1, /*perLine=*/1);
-    setPanelTitle(time, "robot time (single-tap decisions)");
-    time->axis(QCPAxis::atBottom)->setLabel("follow step (mm)");
-    time->axis(QCPAxis::atLeft)->setLabel("robot time per completion (s)");
-    const auto [trade, lx] = addPanelWithLegendBelow(grid, 0, 2, /*perLine=*/1);
-    setPanelTitle(trade, "time against path error");
-    trade->axis(QCPAxis::atBottom)->setLabel("mean distance of taps to the contour (mm)");
-    trade->axis(QCPAxis::atLeft)->setLabel("robot time per completion (s)");
+    const auto [completion, lc] =
+        sweepPanel(grid, 0, "completion (single-tap decisions)", "follow step (mm)",
+                   "trials completed (%)", /*perLine=*/1);
+    const auto [time, lt] = sweepPanel(grid, 1, "robot time (single-tap decisions)",
+                                       "follow step (mm)", "robot time per completion (s)",
+                                       /*perLine=*/1);
+    const auto [trade, lx] =
+        sweepPanel(grid, 2, "time against path error", "mean distance of taps to the contour (mm)",
+                   "robot time per completion (s)", /*perLine=*/1);
     struct Line {
         QVector<double> x, completion, time;
         QVariantList rows;
@@ -182,7 +188,7 @@ bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& r) {
             }
         }
     fit(completion);
-    // Room above 100 % for the legend, but no share is ever labelled above 100 %.
+    // Room above 100 % for the points drawn at it, but no share is ever labelled above 100 %.
     completion->axis(QCPAxis::atLeft)->setRange(0, 130);
     QSharedPointer<QCPAxisTickerText> percent(new QCPAxisTickerText);
     for (int v = 0; v <= 100; v += 25) percent->addTick(v, QString::number(v));
@@ -199,12 +205,10 @@ bool buildComputeSweepFigure(QCustomPlot& plot, const RunResult& r) {
                 "(labels: histogram bins)");
     if (rows.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    auto* a =
-        addTitledPanel(grid, 0, "angle error", "microseconds per decision", "angle error (°)");
-    auto* p = addTitledPanel(grid, 1, "position error", "microseconds per decision",
-                             "position error (mm)");
-    auto* la = addLegend(a);
-    auto* lp = addLegend(p);
+    const auto [a, la] = sweepPanel(grid, 0, "angle error", "microseconds per decision",
+                                    "angle error (°)", /*perLine=*/2);
+    const auto [p, lp] = sweepPanel(grid, 1, "position error", "microseconds per decision",
+                                    "position error (mm)", /*perLine=*/2);
     std::map<int, std::vector<const ComputeSweepRow*>> bySamples;
     for (const auto& row : rows) bySamples[row.samples].push_back(&row);
     int i = 0;
