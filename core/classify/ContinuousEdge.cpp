@@ -30,15 +30,22 @@ ContinuousEdge continuousEdge(const ClassSet& classes, const double* logLikeliho
         weight[std::size_t(c)] = x < -50.0 ? 0.0 : std::exp(x);
         total += weight[std::size_t(c)];
     }
+    // Each orientation's unit normal, once: many classes share it.
+    std::vector<double> normalX(classes.orientationsDeg.size()), normalY(normalX.size());
+    for (std::size_t o = 0; o < normalX.size(); ++o) {
+        const double a = classes.orientationsDeg[o] * M_PI / 180.0;
+        normalX[o] = std::cos(a);
+        normalY[o] = std::sin(a);
+    }
     // The winner's term is exp(0) = 1, so total >= 1: no division by zero.
     double edge = 0.0, sx = 0.0, sy = 0.0, sp = 0.0;
     for (int c = 0; c < n; ++c) {
         const double w = weight[std::size_t(c)] / total;
         if (classes.regionOf(c) != Region::Edge || w <= 0.0) continue;
-        const double a = classes.orientationDegOf(c) * M_PI / 180.0;
+        const auto o = static_cast<std::size_t>(classes.orientationIndexOf(c));
         edge += w;
-        sx += w * std::cos(a);
-        sy += w * std::sin(a);
+        sx += w * normalX[o];
+        sy += w * normalY[o];
         sp += w * classes.positionOf(c);
     }
     percept.edgeWeight = std::clamp(edge, 0.0, 1.0);
