@@ -23,6 +23,34 @@ inline double medianMicroseconds(const std::function<void()>& work, int iteratio
     return perCall[perCall.size() / 2];
 }
 
+/// The clock this process gets, in GHz: a chain of dependent additions, one a cycle on the
+/// machines of docs/benchmarks.md, timed over 0.2 s. On a shared machine it falls when others
+/// take the core, and every figure rises with it: printed beside the figures, it tells the code's
+/// cost from the machine's state.
+inline double effectiveGigahertz() {
+    constexpr long kAdds = 400'000'000;
+    unsigned long x = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (long i = 0; i < kAdds; i += 4) {
+        // The empty asm keeps each addition a separate step the compiler cannot fold.
+        x += 1;
+        asm volatile("" : "+r"(x));
+        x += 1;
+        asm volatile("" : "+r"(x));
+        x += 1;
+        asm volatile("" : "+r"(x));
+        x += 1;
+        asm volatile("" : "+r"(x));
+    }
+    const auto t1 = std::chrono::steady_clock::now();
+    return static_cast<double>(x) / std::chrono::duration<double, std::nano>(t1 - t0).count();
+}
+
+inline void reportClock(const char* when) {
+    std::printf("%-52s %10.2f GHz  (dependent additions; figures scale with it)\n", when,
+                effectiveGigahertz());
+}
+
 inline void report(const char* what, double value, const char* unit, double budget) {
     std::printf("%-52s %10.3f %-3s  (budget <= %g %s)  %s\n", what, value, unit, budget, unit,
                 value <= budget ? "within budget" : "OVER BUDGET");

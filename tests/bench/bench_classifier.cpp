@@ -4,12 +4,12 @@
 // twelve shapes. Budgets (docs/benchmarks.md): 1 us at 72 classes, 8 us at 648, 1 ms a path.
 #include <cstdio>
 
-#include "core/run/ExperimentRun.h"
 #include "bench/BenchHarness.h"
 #include "core/classify/Percept.h"
 #include "core/classify/SequentialPerception.h"
-#include "core/recognition/PoseRecognition.h"
 #include "core/experiment/Experiment.h"
+#include "core/recognition/PoseRecognition.h"
+#include "core/run/ExperimentRun.h"
 #include "support/SimulatedRun.h"
 
 using namespace activetouch;
@@ -17,6 +17,7 @@ using namespace activetouch;
 int main(int argc, char** argv) {
     const std::string experiment =
         argc > 1 ? argv[1] : std::string(ACTIVETOUCH_SOURCE_DIR) + "/experiments/paper.json";
+    bench::reportClock("this machine's clock, at the start");
     const ExperimentSpec spec = loadExperiment(experiment);
     const RunResult run = runExperiment(spec, test::onSimulatedRig());
     std::vector<const Tap*> tests;
@@ -37,8 +38,8 @@ int main(int argc, char** argv) {
     bench::report("sequential update of the belief (72 classes)", update, "us", 2.0);
 
     // 648 classes, and recognition at any pose, on general_shapes.json's run.
-    const ExperimentSpec general = loadExperiment(std::string(ACTIVETOUCH_SOURCE_DIR) +
-                                                  "/experiments/general_shapes.json");
+    const ExperimentSpec general =
+        loadExperiment(std::string(ACTIVETOUCH_SOURCE_DIR) + "/experiments/general_shapes.json");
     const RunResult g = runExperiment(general, test::onSimulatedRig());
     std::vector<const Tap*> gTests;
     for (const auto& t : g.taps)
@@ -64,5 +65,6 @@ int main(int argc, char** argv) {
     const double recognition = bench::medianMicroseconds(
         [&] { sink += recognisePose(paths[i++ % paths.size()], g.poseTemplates).valid; }, 200);
     bench::report("recognise a path at any pose (12 shapes)", recognition / 1000.0, "ms", 1.0);
+    bench::reportClock("this machine's clock, at the end");
     return sink == -1;
 }
