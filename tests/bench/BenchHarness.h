@@ -24,9 +24,9 @@ inline double medianMicroseconds(const std::function<void()>& work, int iteratio
 }
 
 /// The clock this process gets, in GHz: a chain of dependent additions, one a cycle on the
-/// machines of docs/benchmarks.md, timed over 0.2 s. On a shared machine it falls when others
-/// take the core, and every figure rises with it: printed beside the figures, it tells the code's
-/// cost from the machine's state.
+/// machines of docs/benchmarks.md, timed over about 0.15 s. It falls when the core runs slower or
+/// others take it in turns, and every figure rises with it. It does not see another program on
+/// the core's second hardware thread, which slows work that fills the core but not this chain.
 inline double effectiveGigahertz() {
     constexpr long kAdds = 400'000'000;
     unsigned long x = 0;
