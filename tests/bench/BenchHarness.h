@@ -25,8 +25,8 @@ inline double medianMicroseconds(const std::function<void()>& work, int iteratio
 
 /// The clock this process gets, in GHz: a chain of dependent additions, one a cycle on the
 /// machines of docs/benchmarks.md, timed over about 0.15 s. It falls when the core runs slower or
-/// others take it in turns, and every figure rises with it. It does not see another program on
-/// the core's second hardware thread, which slows work that fills the core but not this chain.
+/// others take it in turns. It does not see another program on the core's second hardware thread,
+/// which slows work that fills the core but not this chain.
 inline double effectiveGigahertz() {
     constexpr long kAdds = 400'000'000;
     unsigned long x = 0;
@@ -47,8 +47,7 @@ inline double effectiveGigahertz() {
 }
 
 inline void reportClock(const char* when) {
-    std::printf("%-52s %10.2f GHz  (dependent additions; figures scale with it)\n", when,
-                effectiveGigahertz());
+    std::printf("%-52s %10.2f GHz  (a chain of dependent additions)\n", when, effectiveGigahertz());
 }
 
 inline void report(const char* what, double value, const char* unit, double budget) {
