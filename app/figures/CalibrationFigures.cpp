@@ -36,10 +36,8 @@ bool buildCalibrationFigure(QCustomPlot& plot, const SceneFit& fit,
     // Figure 6 by position: the recording, and the simulated recordings' mean and range.
     const std::size_t positions = figure6.recorded.angleMean.size();
     auto byPosition = [&](int column, const QString& title, const QString& unit, auto get) {
-        const auto [rect, legend] = addPanelWithLegendBelow(grid, 0, column, 2);
-        setPanelTitle(rect, title);
-        rect->axis(QCPAxis::atBottom)->setLabel("position across the edge (class)");
-        rect->axis(QCPAxis::atLeft)->setLabel(unit);
+        const auto [rect, legend] = addTitledPanelWithLegendBelow(
+            grid, 0, column, 2, title, "position across the edge (class)", unit);
         RunningValue simulated;
         QVector<double> x, recorded;
         for (std::size_t p = 0; p < positions; ++p) {
@@ -68,10 +66,9 @@ bool buildCalibrationFigure(QCustomPlot& plot, const SceneFit& fit,
         1, "position error", "mm",
         [](const ValidationResult& v) -> const std::vector<double>& { return v.positionMean; });
     // Each taxel's readings: the distance from the fitted scene's, and what a match is.
-    const auto [rect, legend] = addPanelWithLegendBelow(grid, 0, 2, 1);
-    setPanelTitle(rect, "each taxel, recorded against fitted");
-    rect->axis(QCPAxis::atBottom)->setLabel("taxel");
-    rect->axis(QCPAxis::atLeft)->setLabel("Kolmogorov-Smirnov distance");
+    const auto [rect, legend] =
+        addTitledPanelWithLegendBelow(grid, 0, 2, 1, "each taxel, recorded against fitted", "taxel",
+                                      "Kolmogorov-Smirnov distance");
     QVector<double> x, ks, match;
     for (const auto& t : fit.taxels) {
         x << t.taxel;

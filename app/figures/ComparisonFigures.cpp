@@ -131,10 +131,9 @@ bool buildComparisonFigure(QCustomPlot& plot, const PairedComparison& c, bool st
     if (c.soFar.empty()) return true;  // made up without its seeds: nothing to settle
 
     QCPLayoutGrid* below = stacked ? addFigureRow(plot, 1.0) : grid;
-    const auto [sofar, legend] = addPanelWithLegendBelow(below, 0, stacked ? 0 : 1, /*perLine=*/2);
-    setPanelTitle(sofar, "B - A so far, 95 % intervals");
-    sofar->axis(QCPAxis::atBottom)->setLabel("seeds compared");
-    sofar->axis(QCPAxis::atLeft)->setLabel("B - A (percentage points)");
+    const auto [sofar, legend] = addTitledPanelWithLegendBelow(
+        below, 0, stacked ? 0 : 1, /*perLine=*/2, "B - A so far, 95 % intervals", "seeds compared",
+        "B - A (percentage points)");
     addSettling(sofar, legend, c, rows);
     // Side by side, the outcomes' names take the left panel's margin: it gets the wider column.
     if (!stacked) grid->setColumnStretchFactors({1.4, 1.0});
@@ -149,10 +148,8 @@ bool buildTrialPairFigure(QCustomPlot& plot, const TrialPairRun& pair) {
                           .arg(a.trial)
                           .arg(QString::fromStdString(a.label)));
     // Two long entries: the legend goes under the panel, clear of the paths.
-    const auto [rect, legend] = addPanelWithLegendBelow(addFigureRow(plot, 1.0), 0, 0, 1);
-    setPanelTitle(rect, QString::fromStdString(a.label));
-    rect->axis(QCPAxis::atBottom)->setLabel("x (mm)");
-    rect->axis(QCPAxis::atLeft)->setLabel("y (mm)");
+    const auto [rect, legend] = addTitledPanelWithLegendBelow(
+        addFigureRow(plot, 1.0), 0, 0, 1, QString::fromStdString(a.label), "x (mm)", "y (mm)");
     PathBox box;
     addOutline(rect, legend, a.outline, box);
     if (pair.b.outline.vertices() != a.outline.vertices()) {

@@ -98,13 +98,22 @@ QColor seriesColour(int i) {
     return palette[i % 8];
 }
 
+namespace {
+
+void titleAndLabel(QCPAxisRect* rect, const QString& title, const QString& xLabel,
+                   const QString& yLabel) {
+    setPanelTitle(rect, title);
+    rect->axis(QCPAxis::atBottom)->setLabel(xLabel);
+    rect->axis(QCPAxis::atLeft)->setLabel(yLabel);
+}
+
+}  // namespace
+
 QCPAxisRect* addTitledPanel(QCPLayoutGrid* grid, int column, const QString& title,
                             const QString& xLabel, const QString& yLabel) {
     auto* rect = new QCPAxisRect(grid->parentPlot());
     grid->addElement(0, column, rect);
-    setPanelTitle(rect, title);
-    rect->axis(QCPAxis::atBottom)->setLabel(xLabel);
-    rect->axis(QCPAxis::atLeft)->setLabel(yLabel);
+    titleAndLabel(rect, title, xLabel, yLabel);
     return rect;
 }
 
@@ -134,6 +143,14 @@ PanelWithLegend addPanelWithLegendBelow(QCPLayoutGrid* grid, int row, int column
     // The legend spans its cell, out to the figure's edge, where a frame would be cut off.
     legend->setBorderPen(Qt::NoPen);
     return {rect, legend};
+}
+
+PanelWithLegend addTitledPanelWithLegendBelow(QCPLayoutGrid* grid, int row, int column, int perLine,
+                                              const QString& title, const QString& xLabel,
+                                              const QString& yLabel) {
+    const PanelWithLegend panel = addPanelWithLegendBelow(grid, row, column, perLine);
+    titleAndLabel(panel.rect, title, xLabel, yLabel);
+    return panel;
 }
 
 namespace {

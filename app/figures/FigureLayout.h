@@ -62,6 +62,10 @@ struct PanelWithLegend {
     QCPLegend* legend;
 };
 PanelWithLegend addPanelWithLegendBelow(QCPLayoutGrid* grid, int row, int column, int perLine);
+/// The same, titled, with axis labels.
+PanelWithLegend addTitledPanelWithLegendBelow(QCPLayoutGrid* grid, int row, int column, int perLine,
+                                              const QString& title, const QString& xLabel,
+                                              const QString& yLabel);
 
 /// Puts as many entries on each line of every legend made by addPanelWithLegendBelow as its share
 /// of the figure's width holds, up to the number asked for, and at least one. Returns whether any

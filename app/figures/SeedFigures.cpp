@@ -42,14 +42,11 @@ bool buildSeedRatesFigure(QCustomPlot& plot, const SeedRates& rates, const QStri
     QCPLayoutGrid* below = stacked ? addFigureRow(plot, 1.4) : grid;
     // A seed's share may be anything from 0 to 100 % and the bands may fill any corner: both
     // legends go under their panels.
-    const auto [each, le] = addPanelWithLegendBelow(grid, 0, 0, /*perLine=*/2);
-    setPanelTitle(each, "each seed");
-    each->axis(QCPAxis::atBottom)->setLabel("seed");
-    each->axis(QCPAxis::atLeft)->setLabel("share of the seed's trials (%)");
-    const auto [sofar, ls] = addPanelWithLegendBelow(below, 0, stacked ? 0 : 1, /*perLine=*/3);
-    setPanelTitle(sofar, "rates so far, 95 % intervals");
-    sofar->axis(QCPAxis::atBottom)->setLabel("seeds run");
-    sofar->axis(QCPAxis::atLeft)->setLabel("rate (%)");
+    const auto [each, le] = addTitledPanelWithLegendBelow(grid, 0, 0, /*perLine=*/2, "each seed",
+                                                          "seed", "share of the seed's trials (%)");
+    const auto [sofar, ls] =
+        addTitledPanelWithLegendBelow(below, 0, stacked ? 0 : 1, /*perLine=*/3,
+                                      "rates so far, 95 % intervals", "seeds run", "rate (%)");
     if (!stacked) {
         grid->setColumnStretchFactor(0, 1.0);
         grid->setColumnStretchFactor(1, 1.4);

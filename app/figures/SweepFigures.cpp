@@ -28,18 +28,6 @@ void pointLabel(QCPAxisRect* rect, double x, double y, const QString& text) {
     label->setText(text);
 }
 
-/// A panel at `column` of the figure's row, titled, with axis labels and its legend under it: the
-/// sweeps' points are measured, so they may fall in any corner, where a legend inside would hide
-/// some.
-PanelWithLegend sweepPanel(QCPLayoutGrid* grid, int column, const QString& title,
-                           const QString& xLabel, const QString& yLabel, int perLine) {
-    const PanelWithLegend panel = addPanelWithLegendBelow(grid, 0, column, perLine);
-    setPanelTitle(panel.rect, title);
-    panel.rect->axis(QCPAxis::atBottom)->setLabel(xLabel);
-    panel.rect->axis(QCPAxis::atLeft)->setLabel(yLabel);
-    return panel;
-}
-
 void fit(QCPAxisRect* rect) {
     bool found = false;
     QCPRange x, y;
@@ -83,10 +71,12 @@ bool buildPerceptionSweepFigure(QCustomPlot& plot, const RunResult& r) {
         positionBelow << row.positionError_mm - row.position_mm.low;
         positionAbove << row.position_mm.high - row.positionError_mm;
     }
-    const auto [a, la] = sweepPanel(grid, 0, "edge angle error (edge classes)",
-                                    "mean taps per decision", "angle error (°)", /*perLine=*/1);
-    const auto [p, lp] = sweepPanel(grid, 1, "position error", "mean taps per decision",
-                                    "position error (mm)", /*perLine=*/1);
+    const auto [a, la] =
+        addTitledPanelWithLegendBelow(grid, 0, 0, /*perLine=*/1, "edge angle error (edge classes)",
+                                      "mean taps per decision", "angle error (°)");
+    const auto [p, lp] =
+        addTitledPanelWithLegendBelow(grid, 0, 1, /*perLine=*/1, "position error",
+                                      "mean taps per decision", "position error (mm)");
     const QString name = r.sweeps.perceptionCalibration.calibrated
                              ? "belief thresholds (calibrated belief), 95 % intervals"
                              : "belief thresholds, 95 % intervals";
@@ -125,15 +115,15 @@ bool buildFollowingSweepFigure(QCustomPlot& plot, const RunResult& r) {
         "Accuracy costs time (b): contour following against step lengths and belief threshold");
     if (rows.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    const auto [completion, lc] =
-        sweepPanel(grid, 0, "completion (single-tap decisions)", "follow step (mm)",
-                   "trials completed (%)", /*perLine=*/1);
-    const auto [time, lt] = sweepPanel(grid, 1, "robot time (single-tap decisions)",
-                                       "follow step (mm)", "robot time per completion (s)",
-                                       /*perLine=*/1);
-    const auto [trade, lx] =
-        sweepPanel(grid, 2, "time against path error", "mean distance of taps to the contour (mm)",
-                   "robot time per completion (s)", /*perLine=*/1);
+    const auto [completion, lc] = addTitledPanelWithLegendBelow(
+        grid, 0, 0, /*perLine=*/1, "completion (single-tap decisions)", "follow step (mm)",
+        "trials completed (%)");
+    const auto [time, lt] = addTitledPanelWithLegendBelow(
+        grid, 0, 1, /*perLine=*/1, "robot time (single-tap decisions)", "follow step (mm)",
+        "robot time per completion (s)");
+    const auto [trade, lx] = addTitledPanelWithLegendBelow(
+        grid, 0, 2, /*perLine=*/1, "time against path error",
+        "mean distance of taps to the contour (mm)", "robot time per completion (s)");
     struct Line {
         QVector<double> x, completion, time;
         QVariantList rows;
@@ -205,10 +195,11 @@ bool buildComputeSweepFigure(QCustomPlot& plot, const RunResult& r) {
                 "(labels: histogram bins)");
     if (rows.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    const auto [a, la] = sweepPanel(grid, 0, "angle error", "microseconds per decision",
-                                    "angle error (°)", /*perLine=*/2);
-    const auto [p, lp] = sweepPanel(grid, 1, "position error", "microseconds per decision",
-                                    "position error (mm)", /*perLine=*/2);
+    const auto [a, la] = addTitledPanelWithLegendBelow(
+        grid, 0, 0, /*perLine=*/2, "angle error", "microseconds per decision", "angle error (°)");
+    const auto [p, lp] =
+        addTitledPanelWithLegendBelow(grid, 0, 1, /*perLine=*/2, "position error",
+                                      "microseconds per decision", "position error (mm)");
     std::map<int, std::vector<const ComputeSweepRow*>> bySamples;
     for (const auto& row : rows) bySamples[row.samples].push_back(&row);
     int i = 0;
@@ -280,14 +271,12 @@ bool buildPerceptionSweepOverSeedsFigure(QCustomPlot& plot, const SweepRates& r)
                           .arg(r.seeds));
     if (r.perception.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    const auto [a, la] = addPanelWithLegendBelow(grid, 0, 0, /*perLine=*/2);
-    setPanelTitle(a, "edge angle error (edge classes)");
-    a->axis(QCPAxis::atBottom)->setLabel("mean taps per decision");
-    a->axis(QCPAxis::atLeft)->setLabel("angle error (°)");
-    const auto [p, lp] = addPanelWithLegendBelow(grid, 0, 1, /*perLine=*/2);
-    setPanelTitle(p, "position error");
-    p->axis(QCPAxis::atBottom)->setLabel("mean taps per decision");
-    p->axis(QCPAxis::atLeft)->setLabel("position error (mm)");
+    const auto [a, la] =
+        addTitledPanelWithLegendBelow(grid, 0, 0, /*perLine=*/2, "edge angle error (edge classes)",
+                                      "mean taps per decision", "angle error (°)");
+    const auto [p, lp] =
+        addTitledPanelWithLegendBelow(grid, 0, 1, /*perLine=*/2, "position error",
+                                      "mean taps per decision", "position error (mm)");
     QVector<double> taps, angle, position;
     std::vector<SweepEstimate> tapsE, angleE, positionE;
     for (const auto& row : r.perception) {
@@ -328,14 +317,12 @@ bool buildFollowingParetoFigure(QCustomPlot& plot, const SweepRates& r) {
             shown.push_back(&f);
     if (shown.empty()) return false;
     QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    const auto [completion, lc] = addPanelWithLegendBelow(grid, 0, 0, /*perLine=*/2);
-    setPanelTitle(completion, "completion (front circled)");
-    completion->axis(QCPAxis::atBottom)->setLabel("robot time per completed trial (s)");
-    completion->axis(QCPAxis::atLeft)->setLabel("trials completed (%)");
-    const auto [distance, ld] = addPanelWithLegendBelow(grid, 0, 1, /*perLine=*/2);
-    setPanelTitle(distance, "path error (front circled)");
-    distance->axis(QCPAxis::atBottom)->setLabel("robot time per completed trial (s)");
-    distance->axis(QCPAxis::atLeft)->setLabel("mean distance of taps to the contour (mm)");
+    const auto [completion, lc] =
+        addTitledPanelWithLegendBelow(grid, 0, 0, /*perLine=*/2, "completion (front circled)",
+                                      "robot time per completed trial (s)", "trials completed (%)");
+    const auto [distance, ld] = addTitledPanelWithLegendBelow(
+        grid, 0, 1, /*perLine=*/2, "path error (front circled)",
+        "robot time per completed trial (s)", "mean distance of taps to the contour (mm)");
     // One series per mode and threshold; the front joined in order of time.
     std::map<std::pair<int, double>, std::vector<const FollowingOverSeeds*>> groups;
     for (const auto* f : shown) groups[{int(f->mode), f->beliefThreshold}].push_back(f);
