@@ -492,8 +492,8 @@ private slots:
         QCOMPARE(fitted, truth);
         // Its stage's 0.02 mm lies about at the least these 72 taps can show: it is read or kept
         // from the base (the same 0.02 mm), and said so. Read, it comes back at its order: the
-        // holds also carry the bench's own timing (where each stroke stops, in real time), and
-        // read 0.014-0.043 mm in 54 recordings, so its interval does not always hold the 0.02 mm
+        // holds also carry what the bench's running in real time adds, and read 0.014-0.043 mm
+        // in 54 recordings, so its interval does not always hold the 0.02 mm
         // (docs/calibration.md); a stage that missed by ten times as much would not read so.
         for (const auto& c : fit.choices)
             if (c.effect == "stage_error") qInfo("%s", c.test.c_str());
