@@ -91,6 +91,7 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
             // the tap in flight) instead of ending the process.
             const InterruptHandlers handlers;
             rigConfig->yamaha.stopOriginSearch = &gInterrupted;
+            rigConfig->yarp.stop = &gInterrupted;
             std::unique_ptr<AssembledRig> assembled;
             try {
                 assembled = std::make_unique<AssembledRig>(spec.scene, model, *rigConfig);

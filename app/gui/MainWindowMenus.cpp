@@ -28,6 +28,9 @@
 #include <QUrl>
 
 #include "app/figures/Installation.h"
+#include "core/common/InputError.h"
+#include "core/io/InputFile.h"
+#include "core/io/JsonText.h"
 #include "app/gui/ComparisonTab.h"
 #include "app/gui/DevicesPanel.h"
 #include "app/gui/LiveView.h"
@@ -371,9 +374,15 @@ MainWindow::DroppedKind MainWindow::kindOfDropped(const QString& path) {
     if (info.isDir()) return DroppedKind::RunFolder;
     if (info.suffix().compare("csv", Qt::CaseInsensitive) == 0) return DroppedKind::Recording;
     if (info.suffix().compare("json", Qt::CaseInsensitive) != 0) return DroppedKind::Unknown;
-    QFile f(path);
-    if (!f.open(QIODevice::ReadOnly)) return DroppedKind::Experiment;  // its error names it
-    const QJsonObject j = QJsonDocument::fromJson(f.read(1 << 20)).object();
+    // Read as every file is (a regular file, within its bound); one that cannot be is opened as
+    // an experiment, whose error names it.
+    std::string text;
+    try {
+        text = readBoundedFile(path.toStdString(), kMaxJsonFileBytes, "an experiment or rig file");
+    } catch (const InputError&) {
+        return DroppedKind::Experiment;
+    }
+    const QJsonObject j = QJsonDocument::fromJson(QByteArray::fromStdString(text)).object();
     const bool experiment = j.contains("training") || j.contains("following") ||
                             j.contains("extends") || j.contains("scene");
     const bool rig = j.contains("stage") || j.contains("tapper") || j.contains("fingertip");

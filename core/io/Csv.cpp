@@ -54,7 +54,8 @@ int csvInteger(const std::string& field, const std::string& path, int line,
 }
 
 void checkPose(Vec2 pose, const RecordingBounds& bounds, const std::string& path, int line,
-               const std::string& x, const std::string& y) {
+               const std::string& x, const std::string& y, const std::string& xColumn,
+               const std::string& yColumn) {
     constexpr double kSlack_mm = 1e-6;
     const auto inside = [&](double v, double travel) {
         return v >= -kSlack_mm && v <= travel + kSlack_mm;
@@ -65,15 +66,25 @@ void checkPose(Vec2 pose, const RecordingBounds& bounds, const std::string& path
                       bounds.travel_mm.y);
         throw InputError(path,
                          "line " + std::to_string(line) + ", column " +
-                             (inside(pose.x, bounds.travel_mm.x) ? "pose_y_mm" : "pose_x_mm"),
+                             (inside(pose.x, bounds.travel_mm.x) ? yColumn : xColumn),
                          "the pose (" + x + ", " + y + ") mm lies outside the stage travel (" +
                              travel + "); no tap was taken there");
     }
 }
 
+void checkTaxelCount(int taxels, const RecordingBounds& bounds, const std::string& path) {
+    if (bounds.taxels <= 0 || taxels == bounds.taxels) return;
+    throw InputError(path, "line 1",
+                     "the recording has " + std::to_string(taxels) + " taxel columns, but " +
+                         (bounds.taxelsFrom.empty() ? std::string("its fingertip")
+                                                    : bounds.taxelsFrom) +
+                         " has " + std::to_string(bounds.taxels) +
+                         " taxels; it was recorded with another fingertip, or damaged");
+}
+
 void checkTime(double time, double previous, const std::string& path, int line,
-               const std::string& field) {
-    const std::string place = "line " + std::to_string(line) + ", column robot_time_s";
+               const std::string& field, const std::string& column) {
+    const std::string place = "line " + std::to_string(line) + ", column " + column;
     if (time < 0.0)
         throw InputError(path, place, "robot time " + field + " s is negative");
     if (time < previous)
@@ -107,46 +118,22 @@ std::ifstream openRecording(const std::string& path) {
     return in;
 }
 
-bool RecordingRows::readLine(std::string& line) {
-    for (;;) {
-        const std::size_t nl = buffer_.find('\n', start_);
-        if (nl != std::string::npos && nl - start_ <= kMaxRecordingLineBytes) {
-            line.assign(buffer_, start_, nl - start_);
-            start_ = nl + 1;
-            return true;
-        }
-        if (buffer_.size() - start_ > kMaxRecordingLineBytes)
-            throw InputError(path_, "line " + std::to_string(line_ + 1),
-                             "the line is longer than " +
-                                 std::to_string(kMaxRecordingLineBytes >> 10) +
-                                 " KiB; a recording's rows are well under one, so this is not a "
-                                 "recording the workbench wrote");
-        if (!in_) {  // the end: a last line without its newline
-            if (start_ >= buffer_.size()) return false;
-            line.assign(buffer_, start_, std::string::npos);
-            start_ = buffer_.size();
-            return true;
-        }
-        buffer_.erase(0, start_);
-        start_ = 0;
-        char chunk[1 << 16];
-        in_.read(chunk, sizeof chunk);
-        buffer_.append(chunk, static_cast<std::size_t>(in_.gcount()));
-    }
-}
-
-RecordingRows::RecordingRows(std::istream& in, const std::string& path) : in_(in), path_(path) {
+RecordingRows::RecordingRows(std::istream& in, const std::string& path)
+    : lines_(in, path, kMaxRecordingLineBytes,
+             "a recording's rows are well under one, so this is not a recording the workbench "
+             "wrote"),
+      path_(path) {
     std::string line;
-    if (!readLine(line))
+    if (!lines_.next(line))
         throw InputError(path_, "line 1", "the file is empty; expected a header row");
     header_ = splitCsvLine(line);
 }
 
 bool RecordingRows::next(std::vector<std::string>& fields) {
     std::string line;
-    while (readLine(line)) {
-        ++line_;
-        if (line.empty() || line == "\r") continue;
+    while (lines_.next(line)) {
+        line_ = lines_.number();
+        if (line.empty()) continue;
         if (brokenAt_)
             throw InputError(path_, "line " + std::to_string(brokenAt_),
                              broken_ + "; only the file's last line may be cut short");

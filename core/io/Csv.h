@@ -10,6 +10,7 @@
 
 #include "core/common/Limits.h"
 #include "core/geometry/Vec2.h"
+#include "core/io/InputFile.h"
 
 namespace activetouch {
 
@@ -21,7 +22,15 @@ struct RecordingBounds {
     int samplesPerTap = 0;
     /// Poses lie within 0..travel on each axis.
     Vec2 travel_mm{kMaxStageTravel_mm, kMaxStageTravel_mm};
+    /// Taxel columns every row has; 0: as many as the header names. A run's run.json, or the
+    /// experiment the recording is checked with, gives it.
+    int taxels = 0;
+    /// Where `taxels` comes from, for the message that refuses another count.
+    std::string taxelsFrom;
 };
+
+/// Refuses (naming line 1) a recording with `taxels` columns where `bounds` asks for others.
+void checkTaxelCount(int taxels, const RecordingBounds& bounds, const std::string& path);
 
 /// A recording larger than this is refused before it is read (docs/limits.md).
 inline constexpr unsigned long long kMaxRecordingBytes = 1ull << 30;
@@ -45,13 +54,16 @@ double csvNumber(const std::string& field, const std::string& path, int line,
 int csvInteger(const std::string& field, const std::string& path, int line,
                const std::string& column);
 
-/// Refuses a tap pose outside 0..bounds.travel_mm (fields `x`, `y` as written), naming the line.
+/// Refuses a tap pose outside 0..bounds.travel_mm (`x`, `y`: the values as written), naming the
+/// line and the column.
 void checkPose(Vec2 pose, const RecordingBounds& bounds, const std::string& path, int line,
-               const std::string& x, const std::string& y);
+               const std::string& x, const std::string& y,
+               const std::string& xColumn = "pose_x_mm", const std::string& yColumn = "pose_y_mm");
 
-/// Refuses a robot time below 0 or below `previous` (the tap before it), naming the line.
+/// Refuses a robot time below 0 or below `previous` (the tap before it), naming the line and
+/// the column; `field` is the value as written.
 void checkTime(double time, double previous, const std::string& path, int line,
-               const std::string& field);
+               const std::string& field, const std::string& column = "robot_time_s");
 
 /// Refuses a row whose first `count` fields (the tap's own columns, named by `columns`) differ
 /// from those of the tap's first row `first`, at `firstLine`.
@@ -79,12 +91,7 @@ public:
     std::string cutOff() const;
 
 private:
-    /// The next line without its newline, refused past kMaxRecordingLineBytes; false at the end.
-    bool readLine(std::string& line);
-
-    std::istream& in_;
-    std::string buffer_;     ///< read ahead of the lines given so far
-    std::size_t start_ = 0;  ///< where the next line begins in buffer_
+    BoundedLines lines_;
     std::string path_;
     std::vector<std::string> header_;
     int line_ = 1, brokenAt_ = 0;

@@ -1,10 +1,13 @@
 #include "devices/yarp/YarpConf.h"
 
 #include <cstdlib>
-#include <fstream>
+#include <filesystem>
+#include <system_error>
 #include <sstream>
 #include <vector>
 
+#include "core/common/InputError.h"
+#include "core/io/InputFile.h"
 #include "devices/yarp/YarpProtocol.h"
 
 namespace activetouch::yarp {
@@ -15,12 +18,24 @@ std::string env(const char* name) {
     return v ? std::string(v) : std::string();
 }
 
+/// A YARP conf file is a line or a few groups of lines.
+constexpr std::size_t kMaxConfBytes = 64u << 10;
+
+/// The text of the conf file at `path`, or nothing if there is none. A folder, a pipe, a device,
+/// an unreadable or an oversized file in its place is an error naming it: it is read, like every
+/// file, only as a regular file and only up to its bound.
 std::optional<std::string> readText(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+    std::error_code ec;
+    if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec)) &&
+        !std::filesystem::exists(path, ec))
+        return std::nullopt;
+    try {
+        return readBoundedFile(path, kMaxConfBytes, "a YARP conf file");
+    } catch (const InputError& e) {
+        throw YarpError("the YARP conf file " + e.source() + " cannot be used: " + e.problem() +
+                        "; fix it with 'yarp conf <host> <port>' or set the name server for the "
+                        "rig");
+    }
 }
 
 std::vector<std::string> words(const std::string& line) {

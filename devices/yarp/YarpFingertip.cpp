@@ -1,18 +1,26 @@
 #include "devices/yarp/YarpFingertip.h"
 
 #include <QByteArray>
+#include <QEventLoop>
 #include <QTcpSocket>
+#include <QTimer>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
+
+#include "core/common/InputError.h"
 
 namespace activetouch::yarp {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Reads one line within `deadline`; empty optional on timeout or a closed socket.
-std::optional<std::string> readLine(QTcpSocket& s, QByteArray& buffer, Clock::time_point deadline) {
+using Stopped = std::function<bool()>;
+
+/// Reads one line within `deadline`; empty optional on timeout, a closed socket or `stopped`.
+std::optional<std::string> readLine(QTcpSocket& s, QByteArray& buffer, Clock::time_point deadline,
+                                    const Stopped& stopped) {
     for (;;) {
         const int nl = buffer.indexOf('\n');
         if (nl >= 0) {
@@ -26,7 +34,8 @@ std::optional<std::string> readLine(QTcpSocket& s, QByteArray& buffer, Clock::ti
             return std::nullopt;
         const auto left =
             std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
-        if (left <= 0 || s.state() != QAbstractSocket::ConnectedState) return std::nullopt;
+        if (left <= 0 || s.state() != QAbstractSocket::ConnectedState || stopped())
+            return std::nullopt;
         if (s.waitForReadyRead(static_cast<int>(std::min<long long>(left, 100))))
             buffer += s.readAll();
     }
@@ -36,12 +45,13 @@ std::string where(const NameServerAddress& a) {
     return a.host + ":" + std::to_string(a.port) + " (" + a.source + ")";
 }
 
-/// Reads exactly `n` bytes within `deadline`; fewer on timeout or a closed socket.
-QByteArray readExactly(QTcpSocket& s, QByteArray& buffer, int n, Clock::time_point deadline) {
+/// Reads exactly `n` bytes within `deadline`; fewer on timeout, a closed socket or `stopped`.
+QByteArray readExactly(QTcpSocket& s, QByteArray& buffer, int n, Clock::time_point deadline,
+                       const Stopped& stopped) {
     while (buffer.size() < n) {
         const auto left =
             std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
-        if (left <= 0 || s.state() != QAbstractSocket::ConnectedState) break;
+        if (left <= 0 || s.state() != QAbstractSocket::ConnectedState || stopped()) break;
         if (s.bytesAvailable() > 0 ||
             s.waitForReadyRead(static_cast<int>(std::min<long long>(left, 100))))
             buffer += s.read(n - buffer.size());
@@ -49,6 +59,48 @@ QByteArray readExactly(QTcpSocket& s, QByteArray& buffer, int n, Clock::time_poi
     QByteArray head = buffer.left(n);
     buffer.remove(0, head.size());
     return head;
+}
+
+/// Connects `s` to host:port within `ms`, looking at `stopped` between waits of at most
+/// DeviceWorker::kStepBound_ms; true once connected. On false, `why` says what happened.
+bool connectWithin(QTcpSocket& s, const std::string& host, int port, int ms,
+                   const Stopped& stopped, std::string* why) {
+    s.connectToHost(QString::fromStdString(host), static_cast<quint16>(port));
+    const auto until = Clock::now() + std::chrono::milliseconds(ms);
+    while (s.state() != QAbstractSocket::ConnectedState) {
+        if (s.state() == QAbstractSocket::UnconnectedState) {
+            *why = s.errorString().toStdString();
+            return false;
+        }
+        if (stopped()) {
+            *why = "stopped";
+            return false;
+        }
+        if (Clock::now() >= until) {
+            *why = "no answer within " + std::to_string(ms) + " ms";
+            s.abort();
+            return false;
+        }
+        QEventLoop wait;
+        QTimer::singleShot(DeviceWorker::kStepBound_ms, &wait, &QEventLoop::quit);
+        QObject::connect(&s, &QAbstractSocket::connected, &wait, &QEventLoop::quit);
+        QObject::connect(&s, &QAbstractSocket::errorOccurred, &wait, &QEventLoop::quit);
+        wait.exec();
+    }
+    return true;
+}
+
+/// Why a peer that should have greeted with a line starting "Welcome" did not: silent, closed,
+/// or something else said.
+std::string noWelcome(const QTcpSocket& s, const QByteArray& buffer,
+                      const std::optional<std::string>& line, int ms) {
+    if (line) return "answered '" + shortened(*line, 60) + "' instead of YARP's welcome";
+    if (!buffer.isEmpty())
+        return "sent '" + shortened(buffer.left(60).toStdString(), 60) +
+               "' without ending its line";
+    if (s.state() != QAbstractSocket::ConnectedState)
+        return "accepted the connection and closed it without a word";
+    return "accepted the connection but said nothing within " + std::to_string(ms) + " ms";
 }
 
 }  // namespace
@@ -84,15 +136,26 @@ void YarpFingertip::connect() {
     auto result = ready.get_future();
     thread_.start([this, &ready] { run(&ready); });
     // The thread answers within its own bounded waits (name server, data port, welcome, the
-    // first frame).
-    if (result.wait_for(std::chrono::milliseconds(3 * s_.connectTimeoutMs + s_.firstFrameTimeoutMs +
-                                                  1000)) != std::future_status::ready) {
-        thread_.stop();
-        throw RigError("YARP: connecting to " + s_.port + " did not finish in time");
+    // first frame); a stop asked for meanwhile ends them within one step.
+    const auto until = Clock::now() + std::chrono::milliseconds(3 * s_.connectTimeoutMs +
+                                                                s_.firstFrameTimeoutMs + 1000);
+    while (result.wait_for(std::chrono::milliseconds(DeviceWorker::kStepBound_ms)) !=
+           std::future_status::ready) {
+        if (s_.stop && s_.stop->load()) {
+            thread_.stop();
+            throw RigError("YARP: connecting to " + s_.port + " was stopped");
+        }
+        if (Clock::now() > until) {
+            thread_.stop();
+            throw RigError("YARP: connecting to " + s_.port + " did not finish in time");
+        }
     }
     const std::string problem = result.get();
     if (!problem.empty()) {
         thread_.stop();
+        // A wait the stop cut short reports what it saw; the stop is what happened.
+        if (s_.stop && s_.stop->load())
+            throw RigError("YARP: connecting to " + s_.port + " was stopped");
         throw RigError(problem);
     }
     running_ = true;
@@ -154,6 +217,10 @@ void YarpFingertip::say(const std::string& direction, const std::string& text) c
     if (log_) log_(direction, text);
 }
 
+std::function<bool()> YarpFingertip::stopped() const {
+    return [this] { return thread_.stopRequested() || (s_.stop && s_.stop->load()); };
+}
+
 std::chrono::steady_clock::time_point YarpFingertip::connectDeadline() const {
     return Clock::now() + std::chrono::milliseconds(s_.connectTimeoutMs);
 }
@@ -161,19 +228,19 @@ std::chrono::steady_clock::time_point YarpFingertip::connectDeadline() const {
 std::string YarpFingertip::lookUpPort(Registration* reg, QByteArray& buffer) {
     const NameServerAddress ns = nameServer();
     QTcpSocket server;
-    server.connectToHost(QString::fromStdString(ns.host), static_cast<quint16>(ns.port));
-    if (!server.waitForConnected(s_.connectTimeoutMs)) {
-        return "YARP: the name server at " + where(ns) + " does not answer (" +
-               server.errorString().toStdString() +
+    std::string why;
+    if (!connectWithin(server, ns.host, ns.port, s_.connectTimeoutMs, stopped(), &why)) {
+        return "YARP: the name server at " + where(ns) + " cannot be reached (" + why +
                "); start yarpserver there, or give the name server's address ('yarp conf' "
                "prints where YARP keeps it)";
     }
     say("->", "CONNACK extern");
     server.write(QByteArray::fromStdString(nameServerGreeting()));
-    const auto welcome = readLine(server, buffer, connectDeadline());
+    const auto welcome = readLine(server, buffer, connectDeadline(), stopped());
     if (!welcome || welcome->rfind("Welcome", 0) != 0) {
-        return "YARP: the server at " + where(ns) +
-               " did not greet like a YARP name server; check its address";
+        return "YARP: the server at " + where(ns) + " " +
+               noWelcome(server, buffer, welcome, s_.connectTimeoutMs) +
+               ", so it is no YARP name server; check its address";
     }
     say("<-", *welcome);
     say("->", "query " + s_.port);
@@ -181,7 +248,7 @@ std::string YarpFingertip::lookUpPort(Registration* reg, QByteArray& buffer) {
     std::vector<std::string> lines;
     const auto until = connectDeadline();
     for (;;) {
-        const auto line = readLine(server, buffer, until);
+        const auto line = readLine(server, buffer, until, stopped());
         if (!line) {
             return "YARP: the name server at " + where(ns) + " did not finish its answer about " +
                    s_.port;
@@ -207,17 +274,17 @@ std::string YarpFingertip::lookUpPort(Registration* reg, QByteArray& buffer) {
 
 std::string YarpFingertip::openDataPort(QTcpSocket& data, const Registration& reg,
                                         QByteArray& buffer) {
-    data.connectToHost(QString::fromStdString(reg.host), static_cast<quint16>(reg.tcpPort));
-    if (!data.waitForConnected(s_.connectTimeoutMs)) {
+    std::string why;
+    if (!connectWithin(data, reg.host, reg.tcpPort, s_.connectTimeoutMs, stopped(), &why)) {
         return "YARP: " + s_.port + " is registered at " + reg.host + ":" +
-               std::to_string(reg.tcpPort) + " but refuses connections (" +
-               data.errorString().toStdString() + "); is the skin module still running?";
+               std::to_string(reg.tcpPort) + " but cannot be reached (" + why +
+               "); is the skin module still running?";
     }
     buffer.clear();
     if (s_.binaryCarrier) {
         say("->", "binary header (fast_tcp), sender " + s_.readerName);
         data.write(QByteArray::fromStdString(binaryConnectionHeader(s_.readerName)));
-        const QByteArray reply = readExactly(data, buffer, 8, connectDeadline());
+        const QByteArray reply = readExactly(data, buffer, 8, connectDeadline(), stopped());
         try {
             const int answered = parseHeaderReply(reply.toStdString());
             say("<-", "header reply, port " + std::to_string(answered));
@@ -234,11 +301,11 @@ std::string YarpFingertip::openDataPort(QTcpSocket& data, const Registration& re
     } else {
         say("->", "CONNECT extern");
         data.write(QByteArray::fromStdString(dataGreeting()));
-        const auto welcome = readLine(data, buffer, connectDeadline());
+        const auto welcome = readLine(data, buffer, connectDeadline(), stopped());
         if (!welcome || welcome->rfind("Welcome", 0) != 0) {
-            return "YARP: " + s_.port +
-                   " did not welcome the connection; is it a "
-                   "YARP port speaking the text carrier?";
+            return "YARP: " + s_.port + " " +
+                   noWelcome(data, buffer, welcome, s_.connectTimeoutMs) +
+                   "; is it a YARP port speaking the text carrier?";
         }
         say("<-", *welcome);
         say("->", "r");

@@ -47,6 +47,8 @@ struct YarpFingertipSettings {
     int stallReportMs = 1000;
     /// Messages that cannot be read in a row before the stream counts as failed.
     int maxBadMessagesInRow = 25;
+    /// Set (by Ctrl-C, say) while connect() waits: it stops within DeviceWorker::kStepBound_ms.
+    const std::atomic<bool>* stop = nullptr;
 };
 
 class YarpFingertip final : public TactileSensor {
@@ -94,6 +96,8 @@ private:
                     bool& answered);
     void say(const std::string& direction, const std::string& text) const;
     std::chrono::steady_clock::time_point connectDeadline() const;
+    /// Whether the reader thread is asked to stop or connect() to give up.
+    std::function<bool()> stopped() const;
     /// Ends the device in a fault: sets the failure every wait then reports, and answers
     /// `ready` with it if the connect is still waiting.
     void fault(const std::string& problem, std::promise<std::string>* ready, bool& answered);

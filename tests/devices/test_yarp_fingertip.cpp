@@ -285,7 +285,7 @@ private slots:
         } catch (const RigError& e) {
             const std::string m = e.what();
             QVERIFY2(m.find("name server at 127.0.0.1:" + std::to_string(c.nameServerPort) +
-                            " (set for the rig) does not answer") != std::string::npos,
+                            " (set for the rig) cannot be reached") != std::string::npos,
                      m.c_str());
         }
     }

@@ -1,5 +1,8 @@
 // The YARP codecs: name-server replies, text and binary data (both tag versions, with and without
 // an envelope, 'd' and 'D'), a fingertip out of the hand vector, and skinManager compensation.
+#include <sys/stat.h>
+
+#include <QElapsedTimer>
 #include <QtTest>
 #include <cstring>
 
@@ -346,6 +349,57 @@ private slots:
         QVERIFY_THROWS_EXCEPTION(YarpError, resolveNameServer("", 0));
         qunsetenv("YARP_CONFIG_HOME");
         qunsetenv("YARP_NAMESPACE");
+    }
+
+    void aConfFileThatIsNoRegularFileIsRefusedAtOnce() {
+        // A pipe would block the open forever and /dev/zero never end: each is refused by name,
+        // at once and without reading it, as the conf file and as the namespace's file.
+        QTemporaryDir home;
+        const QString dir = home.path();
+        qputenv("YARP_CONFIG_HOME", dir.toUtf8());
+        qunsetenv("YARP_NAMESPACE");
+        const QString conf = dir + "/yarp.conf";
+        auto refused = [&](const char* what) {
+            QElapsedTimer t;
+            t.start();
+            try {
+                resolveNameServer("", 0);
+                QFAIL(qPrintable(QString("a conf file that is %1 was passed over").arg(what)));
+            } catch (const YarpError& e) {
+                QVERIFY2(QString(e.what()).contains(conf) && QString(e.what()).contains(what),
+                         e.what());
+            }
+            QVERIFY2(t.elapsed() < 2000, what);
+        };
+        QVERIFY(::mkfifo(QFile::encodeName(conf).constData(), 0600) == 0);
+        refused("not a regular file");
+        QFile::remove(conf);
+        QVERIFY(QFile::link("/dev/zero", conf));
+        refused("not a regular file");
+        QFile::remove(conf);
+        QVERIFY(QDir().mkpath(conf));
+        refused("folder");
+        QDir(conf).removeRecursively();
+        {
+            QFile big(conf);
+            QVERIFY(big.open(QIODevice::WriteOnly));
+            big.write(QByteArray(100 << 10, '#'));
+        }
+        refused("larger than 64 KiB");
+        QFile::remove(conf);
+        QVERIFY(QFile::link(dir + "/nowhere", conf));
+        refused("no such file");
+        QFile::remove(conf);
+        // The namespace's file is read the same way.
+        const QString space = dir + "/yarp_namespace.conf";
+        QVERIFY(::mkfifo(QFile::encodeName(space).constData(), 0600) == 0);
+        try {
+            resolveNameServer("", 0);
+            QFAIL("a namespace file that is a pipe was passed over");
+        } catch (const YarpError& e) {
+            QVERIFY2(QString(e.what()).contains(space), e.what());
+        }
+        qunsetenv("YARP_CONFIG_HOME");
     }
 
     void theStreamDecoderChecksEveryBlockLength_data() {
