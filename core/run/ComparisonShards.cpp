@@ -7,7 +7,9 @@
 
 #include "core/common/InputError.h"
 #include "core/io/JsonFields.h"
+#include "core/run/OutcomeChecks.h"
 #include "core/run/OutputFiles.h"
+#include "core/run/RunFolder.h"
 
 namespace activetouch {
 
@@ -111,6 +113,7 @@ SeedPairRecord recordFromJson(const Json& j, const std::string& path, const std:
         std::tie(out.namedRightA, out.namedRightB) = pairAt<bool>(t, "named_rightly");
         r.trials.push_back(std::move(out));
     }
+    checkSeedPairRecord(r, path, place);
     return r;
 }
 
@@ -159,6 +162,7 @@ ComparisonShardFile mergeComparisonShards(const std::vector<std::string>& dirs) 
     std::vector<ComparisonShardFile> parts;
     std::vector<ShardPart> cover;
     for (const std::string& d : dirs) {
+        checkProvenRun(d, kComparisonShardFile);
         parts.push_back(readComparisonShardFile(d));
         const ComparisonShardFile& p = parts.back();
         ShardPart c{d, "'" + p.nameA + "' against '" + p.nameB + "'", p.fingerprint, p.first,

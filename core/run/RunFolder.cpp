@@ -8,6 +8,8 @@
 #include "core/run/OutputFiles.h"
 #include "core/common/InputError.h"
 #include "core/experiment/Experiment.h"
+#include "core/io/FileDigest.h"
+#include "core/io/InputFile.h"
 #include "core/io/JsonFields.h"
 #include "core/validation/TrainingProtocol.h"
 
@@ -48,15 +50,16 @@ Json manifestJson(const RunManifest& m) {
     j["finished"] = m.finished;
     if (m.finished) {
         Json files = Json::object();
-        for (const auto& [name, size] : m.files) files[name] = size;
+        for (const auto& [name, stamp] : m.files)
+            files[name] = {{"bytes", stamp.bytes}, {"sha256", stamp.sha256}};
         j["files"] = files;
     }
     return j;
 }
 
-// Every run artefact under `dir`, relative, with its size.
-std::map<std::string, std::uintmax_t> artefactsIn(const std::string& dir) {
-    std::map<std::string, std::uintmax_t> files;
+// Every run artefact under `dir`, relative, with its size and (with `digests`) its SHA-256.
+std::map<std::string, FileStamp> artefactsIn(const std::string& dir, bool digests) {
+    std::map<std::string, FileStamp> files;
     std::error_code ec;
     for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
         const fs::path relative = it->path().lexically_relative(dir);
@@ -67,26 +70,49 @@ std::map<std::string, std::uintmax_t> artefactsIn(const std::string& dir) {
         if (!it->is_regular_file()) continue;
         const std::string name = relative.generic_string();
         if (name == kManifest) continue;
-        files[name] = it->file_size(ec);
+        FileStamp& stamp = files[name];
+        stamp.bytes = it->file_size(ec);
         ec.clear();
+        if (digests) stamp.sha256 = sha256OfFile(it->path().string());
     }
     return files;
+}
+
+bool isHexDigest(const std::string& text) {
+    return text.size() == 64 &&
+           text.find_first_not_of("0123456789abcdef") == std::string::npos;
+}
+
+// A file's entry in run.json: {"bytes": N, "sha256": "..."}.
+FileStamp stampOf(Json::const_iterator entry, const std::string& file) {
+    const Json& v = entry.value();
+    const auto bytes = v.is_object() ? v.find("bytes") : v.end();
+    const auto digest = v.is_object() ? v.find("sha256") : v.end();
+    if (bytes == v.end() || !bytes->is_number_unsigned() || digest == v.end() ||
+        !digest->is_string() || !isHexDigest(digest->get<std::string>()))
+        throw InputError(file, "/files/" + entry.key(),
+                         "expected the file's size in bytes and its SHA-256 ({\"bytes\": N, "
+                         "\"sha256\": \"64 hex digits\"}); the manifest is damaged or was "
+                         "written by an older version: rerun into an empty folder");
+    return {bytes->get<std::uintmax_t>(), digest->get<std::string>()};
 }
 
 }  // namespace
 
 bool isRunArtefact(const std::string& name) {
-    static const char* const kNames[] = {"run.json",       "summary.json",  "rates.csv",
-                                         "rates.json",     "compare.csv",   "compare_so_far.csv",
-                                         "compare.json",   "import.json",   "data",
-                                         "figures"};
+    static const char* const kNames[] = {
+        "run.json",     "summary.json",       "rates.csv",          "rates.json",
+        "compare.csv",  "compare_so_far.csv", "compare.json",       "import.json",
+        "data",         "figures",            "seed_outcomes.json", "compare_seeds.json"};
     for (const char* n : kNames)
         if (name == n) return true;
     const auto endsWith = [&](const char* tail) {
         const std::string t(tail);
         return name.size() >= t.size() && name.compare(name.size() - t.size(), t.size(), t) == 0;
     };
-    return (name.rfind("trial_pair_", 0) == 0 && endsWith(".csv")) || endsWith(".json.partial");
+    return ((name.rfind("trial_pair_", 0) == 0 || name.rfind("sweeps_", 0) == 0) &&
+            endsWith(".csv")) ||
+           endsWith(".json.partial");
 }
 
 bool holdsRun(const std::string& dir) {
@@ -116,12 +142,7 @@ std::optional<RunManifest> readRunManifest(const std::string& dir) {
         const Json& list = f.raw("files");
         if (!list.is_object())
             f.fail("files", "expected the run's files with their sizes; the manifest is damaged");
-        for (auto it = list.begin(); it != list.end(); ++it) {
-            if (!it.value().is_number_unsigned())
-                throw InputError(file, "/files/" + it.key(),
-                                 "expected the file's size in bytes; the manifest is damaged");
-            m.files[it.key()] = it.value().get<std::uintmax_t>();
-        }
+        for (auto it = list.begin(); it != list.end(); ++it) m.files[it.key()] = stampOf(it, file);
     }
     return m;
 }
@@ -201,7 +222,7 @@ void finishRunFolder(const std::string& dir) noexcept {
         auto m = readRunManifest(dir);
         if (!m) return;
         m->finished = true;
-        m->files = artefactsIn(dir);
+        m->files = artefactsIn(dir, true);
         writeJsonAtomically((fs::path(dir) / kManifest).string(), manifestJson(*m));
     } catch (...) {
         // The manifest stays unfinished: readers then check what they can.
@@ -233,27 +254,50 @@ void checkOneRun(const std::string& dir, const std::vector<std::string>& read, s
                                  "folder");
     }
     if (!m->finished) return;  // stopped before listing its files: its tables end where it did
-    const auto present = artefactsIn(dir);
-    for (const auto& [name, size] : present) {
+    const auto present = artefactsIn(dir, false);
+    for (const auto& [name, stamp] : present) {
+        const std::string path = (fs::path(dir) / name).string();
         const auto listed = m->files.find(name);
         if (listed == m->files.end())
-            throw InputError((fs::path(dir) / name).string(), "",
+            throw InputError(path, "",
                              "this file is not one of run " + m->runId + "'s (" + manifest +
                                  " lists the run's files): the folder mixes two runs' files; "
                                  "rerun into an empty folder or remove it");
-        if (listed->second != size)
-            throw InputError((fs::path(dir) / name).string(), "",
-                             "this file has " + std::to_string(size) + " bytes but run " +
-                                 m->runId + " left it with " + std::to_string(listed->second) +
-                                 " (" + manifest +
+        if (listed->second.bytes != stamp.bytes)
+            throw InputError(path, "",
+                             "this file has " + std::to_string(stamp.bytes) + " bytes but run " +
+                                 m->runId + " left it with " +
+                                 std::to_string(listed->second.bytes) + " (" + manifest +
                                  "): it was written to since, perhaps by another run; rerun into "
                                  "an empty folder");
+        if (sha256OfFile(path) != listed->second.sha256)
+            throw InputError(path, "",
+                             "this file's SHA-256 differs from the one run " + m->runId +
+                                 " recorded in " + manifest +
+                                 ": it was changed since the run wrote it; rerun into an empty "
+                                 "folder");
     }
     for (const std::string& name : read)
         if (m->files.count(name) == 0)
             throw InputError((fs::path(dir) / name).string(), "",
                              "run " + m->runId + " did not write this file (" + manifest +
                                  " lists the run's files)");
+}
+
+void checkProvenRun(const std::string& dir, const std::string& file) {
+    // The file itself first: a pipe or a device in its place is named as such.
+    openInputFile((fs::path(dir) / file).string());
+    const std::string manifest = (fs::path(dir) / kManifest).string();
+    const auto m = readRunManifest(dir);
+    if (!m)
+        throw InputError(manifest, "",
+                         "there is no run.json, so nothing proves " + file +
+                             " is the run's own; use the folder a run wrote, whole");
+    if (!m->finished)
+        throw InputError(manifest, "/finished",
+                         "the run did not finish listing its files (it was stopped or killed), "
+                         "so its " + file + " cannot be proven whole; run it again");
+    checkOneRun(dir, {file});
 }
 
 std::optional<std::string> runFolderOf(const std::string& recording) {
@@ -275,6 +319,8 @@ RecordingBounds checkedRecordingBounds(const std::string& recording, std::string
     checkOneRun(*dir, {relative}, note);
     if (const auto m = readRunManifest(*dir)) {
         bounds.samplesPerTap = m->facts.samplesPerTap;
+        bounds.taxels = m->facts.taxels;
+        bounds.taxelsFrom = "its run (" + (fs::path(*dir) / kManifest).string() + ")";
         if (m->facts.stageTravel_mm.x > 0 && m->facts.stageTravel_mm.y > 0)
             bounds.travel_mm = m->facts.stageTravel_mm;
     }

@@ -23,11 +23,18 @@ struct RunFacts {
     Vec2 stageTravel_mm{0, 0};
 };
 
+/// What a run's manifest records of one of its files.
+struct FileStamp {
+    std::uintmax_t bytes = 0;
+    std::string sha256;  ///< 64 hex digits
+    bool operator==(const FileStamp&) const = default;
+};
+
 struct RunManifest {
     std::string runId, command, experiment, started;
     RunFacts facts;
     bool finished = false;  ///< the command ended and listed its files
-    std::map<std::string, std::uintmax_t> files;  ///< relative path -> size, once finished
+    std::map<std::string, FileStamp> files;  ///< relative path -> size and digest, once finished
 };
 
 /// The names a run writes in its folder: run.json, the documents and tables at the top and the
@@ -63,7 +70,8 @@ struct CollectedTap;
 struct ExperimentSpec;
 RunFacts runFactsOf(const ExperimentSpec& spec, const std::vector<CollectedTap>* recorded = nullptr);
 
-/// Completes <dir>/run.json with every run artefact now in `dir` and its size. Throws nothing:
+/// Completes <dir>/run.json with every run artefact now in `dir`, its size and SHA-256. Throws
+/// nothing:
 /// a folder that cannot be listed keeps its unfinished manifest.
 void finishRunFolder(const std::string& dir) noexcept;
 
@@ -75,11 +83,16 @@ std::optional<RunManifest> readRunManifest(const std::string& dir);
 std::string runIdOf(const std::string& dir);
 
 /// Refuses files in `dir` that are not the run's its manifest names: with a finished manifest,
-/// a file it does not list, or one whose size differs (written to since, or by another run);
-/// a summary.json of another run id. `read` are the files (relative to `dir`) the caller is about
+/// a file it does not list, or one whose size or SHA-256 differs
+/// (written to since, by another run, or by hand); a summary.json of another run id. `read` are the files (relative to `dir`) the caller is about
 /// to read. A folder without a manifest passes (a recording from elsewhere) and `note` says so.
 void checkOneRun(const std::string& dir, const std::vector<std::string>& read,
                  std::string* note = nullptr);
+
+/// Refuses, as checkOneRun does, a folder of `command` (seeds, compare, merge) whose files are
+/// not its run's, and also one without a finished run.json that records `file`'s digest: only a
+/// run that ended and listed its files can be proven whole.
+void checkProvenRun(const std::string& dir, const std::string& file);
 
 /// The run folder a recording lies in: <dir> for <dir>/data/<file>.csv, else nothing.
 std::optional<std::string> runFolderOf(const std::string& recording);

@@ -7,7 +7,9 @@
 
 #include "core/common/InputError.h"
 #include "core/io/JsonFields.h"
+#include "core/run/OutcomeChecks.h"
 #include "core/run/OutputFiles.h"
+#include "core/run/RunFolder.h"
 #include "core/run/SweepRates.h"
 
 namespace activetouch {
@@ -98,6 +100,41 @@ std::string seedList(const std::vector<std::uint64_t>& seeds) {
     return out;
 }
 
+std::string shardName(const Shard& s) {
+    return std::to_string(s.index) + "/" + std::to_string(s.count);
+}
+
+// Each folder holds exactly the seeds of its own block, and claims its K/N alone.
+void checkShardBlocks(const std::vector<ShardPart>& parts) {
+    std::map<int, std::size_t> claimedBy;
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+        const ShardPart& p = parts[i];
+        const auto block = shardSeeds(p.first, p.last, p.shard);
+        const std::string blockText =
+            block ? "seeds " + std::to_string(block->first) + "-" + std::to_string(block->second)
+                  : std::string("no seed");
+        for (const std::uint64_t seed : p.seeds)
+            if (!block || seed < block->first || seed > block->second)
+                throw InputError(p.dir, "",
+                                 "holds seed " + std::to_string(seed) + ", but as shard " +
+                                     shardName(p.shard) + " of " + std::to_string(p.first) + "-" +
+                                     std::to_string(p.last) + " its block is " + blockText +
+                                     "; the folder is damaged: run that shard again");
+        const std::uint64_t want = block ? block->second - block->first + 1 : 0;
+        if (p.seeds.size() != want)
+            throw InputError(p.dir, "",
+                             "holds " + std::to_string(p.seeds.size()) +
+                                 " seeds' outcomes, but its block as shard " + shardName(p.shard) +
+                                 " is " + blockText + " (" + std::to_string(want) +
+                                 "); the folder is damaged or was cut short: run that shard again");
+        const auto [at, fresh] = claimedBy.emplace(p.shard.index, i);
+        if (!fresh && parts[at->second].dir != p.dir)
+            throw InputError("merge", "",
+                             parts[at->second].dir + " and " + p.dir + " both claim shard " +
+                                 shardName(p.shard) + "; give each shard's folder once");
+    }
+}
+
 }  // namespace
 
 std::optional<Shard> parseShard(const std::string& text, std::string* error) {
@@ -167,8 +204,8 @@ Json seedOutcomeJson(const SeedOutcome& o) {
 
 SeedOutcome seedOutcomeFromJson(const Json& j, const std::string& source,
                                 const std::string& place) {
+    SeedOutcome o;
     try {
-        SeedOutcome o;
         o.seed = j.at("seed").get<std::uint64_t>();
         o.passiveTrials = j.at("passive_trials").get<int>();
         o.passiveLost = j.at("passive_lost").get<int>();
@@ -199,12 +236,13 @@ SeedOutcome seedOutcomeFromJson(const Json& j, const std::string& source,
         o.passiveCorners = cornersOf(j.at("passive_corners"));
         if (const auto sweeps = j.find("sweeps"); sweeps != j.end() && !sweeps->is_null())
             o.sweeps = seedSweepsFromJson(*sweeps);
-        return o;
     } catch (const std::exception& e) {
         throw InputError(source, place,
                          std::string("a seed's outcome cannot be read (") + e.what() +
                              "); the file is damaged: run that shard again");
     }
+    checkSeedOutcome(o, source, place);
+    return o;
 }
 
 void writeSeedShardFile(const std::string& dir, const SeedShardFile& f) {
@@ -276,6 +314,7 @@ void checkShardsCover(const std::vector<ShardPart>& parts, const std::string& co
                                  std::to_string(first.first) + "-" + std::to_string(first.last) +
                                  "; merge shards of one range, split one way");
     }
+    checkShardBlocks(parts);
     // Every seed once: which folder holds it.
     std::map<std::uint64_t, std::size_t> holder;
     std::map<std::pair<std::size_t, std::size_t>, std::vector<std::uint64_t>> overlaps;
@@ -314,6 +353,7 @@ SeedShardFile mergeSeedShards(const std::vector<std::string>& dirs) {
     std::vector<SeedShardFile> parts;
     std::vector<ShardPart> cover;
     for (const std::string& d : dirs) {
+        checkProvenRun(d, kShardFile);
         parts.push_back(readSeedShardFile(d));
         const SeedShardFile& p = parts.back();
         ShardPart c{d, "'" + p.experiment + "'", p.fingerprint, p.first, p.last, p.shard, {}};
