@@ -144,33 +144,43 @@ public:
         const double phi = rotationDeg * M_PI / 180.0, cp = std::cos(phi), sp = std::sin(phi);
         const double dx = 0.5 * (p0.x - p1.x), dy = 0.5 * (p0.y - p1.y);
         const double x1 = cp * dx + sp * dy, y1 = -sp * dx + cp * dy;
-        // Radii too small for the endpoints grow until they reach.
-        const double lambda = (x1 * x1) / (rx * rx) + (y1 * y1) / (ry * ry);
-        if (lambda > 1.0) {
-            rx *= std::sqrt(lambda);
-            ry *= std::sqrt(lambda);
+        // Worked in the frame where the ellipse is a circle of radius rx (y divided by ry / rx),
+        // with ratios and hypot instead of squared radii, so that radii from 1e-300 to 1e300
+        // neither underflow nor overflow: the arc is the one SVG specifies at every scale.
+        const double aspect = ry / rx;
+        if ((aspect == 0.0 && y1 == 0.0) || (std::isinf(aspect) && x1 == 0.0)) {
+            out.push_back(p1);  // an ellipse flat beyond doubles, along the chord: the chord
+            return std::nullopt;
         }
-        if (!std::isfinite(rx) || !std::isfinite(ry) || std::max(rx, ry) > kMaxSvgCoordinate_mm)
+        const double y1c = y1 == 0.0 ? 0.0 : y1 / aspect;
+        const double half = std::hypot(x1, y1c);  // half the chord, in the circle's frame
+        // Radii too small for the endpoints grow until they reach (lambda > 1).
+        double r = std::max(rx, half);
+        if (!std::isfinite(r) || !std::isfinite(aspect) || aspect == 0.0 ||
+            std::max(r, r * aspect) > kMaxSvgCoordinate_mm)
             return "the arc's radii, grown to reach its end point as SVG prescribes, exceed " +
                    std::to_string(static_cast<int>(kMaxSvgCoordinate_mm)) +
                    " mm; give radii closer in proportion to the distance between its ends";
-        const double num = rx * rx * ry * ry - rx * rx * y1 * y1 - ry * ry * x1 * x1;
-        const double den = rx * rx * y1 * y1 + ry * ry * x1 * x1;
-        double k = den > 0.0 ? std::sqrt(std::max(0.0, num / den)) : 0.0;
+        // The centre lies k * half from the chord's middle, across it: k = sqrt((r/half)^2 - 1).
+        const double over = half > 0.0 ? r / half : 1.0;
+        double k = std::sqrt(std::max(0.0, (over - 1.0) * (over + 1.0)));
         if (large == sweep) k = -k;
-        const double cx1 = k * rx * y1 / ry, cy1 = -k * ry * x1 / rx;
+        const double cxc = k * y1c, cyc = -k * x1;
+        const double cx1 = cxc, cy1 = cyc * aspect;
         const Vec2 centre{cp * cx1 - sp * cy1 + 0.5 * (p0.x + p1.x),
                           sp * cx1 + cp * cy1 + 0.5 * (p0.y + p1.y)};
         auto angle = [](double ux, double uy, double vx, double vy) {
             return std::atan2(ux * vy - uy * vx, ux * vx + uy * vy);
         };
-        const double theta = angle(1, 0, (x1 - cx1) / rx, (y1 - cy1) / ry);
-        double delta = angle((x1 - cx1) / rx, (y1 - cy1) / ry, (-x1 - cx1) / rx, (-y1 - cy1) / ry);
+        const double theta = angle(1, 0, (x1 - cxc) / r, (y1c - cyc) / r);
+        double delta = angle((x1 - cxc) / r, (y1c - cyc) / r, (-x1 - cxc) / r, (-y1c - cyc) / r);
         if (!sweep && delta > 0) delta -= 2 * M_PI;
         if (sweep && delta < 0) delta += 2 * M_PI;
+        rx = r;
+        ry = r * aspect;
         // Steps whose sagitta on the larger radius stays within the tolerance.
         // 1 - cos(step / 2) = tolerance / r, written so that it stays above zero for large r.
-        const double r = std::max(rx, ry);
+        r = std::max(rx, ry);
         const double step =
             r > 0.5 * tolerance_ ? 4.0 * std::asin(std::sqrt(0.5 * tolerance_ / r)) : M_PI / 2;
         const double steps = std::ceil(std::abs(delta) / std::min(step, M_PI / 2));

@@ -147,6 +147,40 @@ private slots:
         QVERIFY(parse("M0 0A10 10 0 0120 0Z").area() > 100);
     }
 
+    void arcsOfExtremeRadiiAreTheArcsSvgSpecifies() {
+        // Radii far below or above the endpoints' distance are scaled (or kept) as SVG says at
+        // every scale: never a chord where an arc is specified. From (0,40) to (40,40), sweep 1,
+        // radii too small to reach: the half circle of radius 20 about (20,40), below the chord
+        // (y down in SVG's sense of sweep: the positive-angle direction).
+        for (const double r : {1e-12, 1e-154, 1e-155, 1e-200, 1e-300, 4.9e-324}) {
+            const std::string d = "M 0,40 A " + QByteArray::number(r, 'g', 17).toStdString() +
+                                  " " + QByteArray::number(r, 'g', 17).toStdString() +
+                                  " 0 0 1 40 40 Z";
+            const Polygon half = parse(d);
+            QVERIFY2(half.size() > 20, d.c_str());
+            for (const Vec2& v : half.vertices())
+                QVERIFY2(std::abs(std::hypot(v.x - 20, v.y - 40) - 20) < 1e-9, d.c_str());
+            QVERIFY2(std::abs(half.area() - 0.5 * M_PI * 400) < M_PI * 20 * 0.05, d.c_str());
+            QVERIFY2(deviation(half, [](double t) {
+                         return Vec2{20 - 20 * std::cos(M_PI * t), 40 - 20 * std::sin(M_PI * t)};
+                     }) <= 0.05 + 1e-9,
+                     d.c_str());
+        }
+        // An ellipse of aspect 2 at a tiny scale grows with its aspect kept: half an ellipse of
+        // radii 20 and 40 through both ends.
+        const Polygon tall = parse("M 0,0 A 1e-250 2e-250 0 0 1 40 0 Z");
+        QVERIFY(tall.size() > 20);
+        for (const Vec2& v : tall.vertices())
+            QVERIFY(std::abs(std::pow((v.x - 20) / 20, 2) + std::pow(v.y / 40, 2) - 1) < 1e-9);
+        QVERIFY(std::abs(tall.area() - 0.5 * M_PI * 20 * 40) < M_PI * 40 * 0.05);
+        // Huge radii that already reach are kept: beyond the coordinate bound they are refused,
+        // not silently drawn as a chord.
+        QVERIFY_THROWS_EXCEPTION(InputError, parse("M 0,40 A 1e300 1e300 0 0 1 40 40 Z"));
+        // A flatness past doubles along the chord is the chord, as the flat ellipse is.
+        const Polygon flat = parse("M 0,0 A 1000 4.9e-324 0 0 1 40 0 L 20 20 Z");
+        QCOMPARE(flat.size(), std::size_t(3));
+    }
+
     void badPathDataIsRefusedByPlace() {
         struct Case {
             std::string d;
