@@ -1,6 +1,8 @@
 #include "core/run/SweepRates.h"
 
 #include <algorithm>
+#include <cstdarg>
+#include <string_view>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -67,7 +69,13 @@ double ratio(const SettingSums& s) {
 }
 
 std::string estimateText(const SweepEstimate& e, const char* format) {
+    // No value is a dash, never a NaN or an infinity (the report's note says when).
+    if (!std::isfinite(e.mean)) return "-";
     char buf[96];
+    if (!std::isfinite(e.low) || !std::isfinite(e.high)) {
+        std::snprintf(buf, sizeof buf, format, e.mean);
+        return std::string(buf) + " (-)";
+    }
     const std::string f = std::string(format) + " (" + format + " to " + format + ")";
     std::snprintf(buf, sizeof buf, f.c_str(), e.mean, e.low, e.high);
     return buf;
@@ -151,10 +159,38 @@ SweepEstimate overSeeds(const std::vector<double>& perSeed, double least, double
     }
     double ss = 0.0;
     for (double v : perSeed) ss += (v - e.mean) * (v - e.mean);
-    const double half = tQuantile975(int(n) - 1) * std::sqrt(ss / double(n - 1) / double(n));
-    e.low = std::max(least, e.mean - half);
-    e.high = std::min(most, e.mean + half);
+    const double t = tQuantile975(int(n) - 1), se = std::sqrt(ss / double(n - 1) / double(n));
+    const bool below = std::isfinite(least), above = std::isfinite(most);
+    if (below && above && e.mean > least && e.mean < most) {
+        // A bounded quantity: the interval on the logit scale of where the mean lies in its
+        // range (delta method), mapped back, so that it stays inside without being cut.
+        const double width = most - least, u = (e.mean - least) / width;
+        const double centre = std::log(u / (1.0 - u)), half = t * se / (width * u * (1.0 - u));
+        const auto back = [&](double x) { return least + width / (1.0 + std::exp(-x)); };
+        e.low = back(centre - half);
+        e.high = back(centre + half);
+    } else if (below && !above && e.mean > least) {
+        // Bounded below (an error, a time): the interval on the log scale of the distance from
+        // the bound (delta method), so that it never reaches past the bound.
+        const double d = e.mean - least, factor = std::exp(t * se / d);
+        e.low = least + d / factor;
+        e.high = least + d * factor;
+    } else {
+        // Unbounded, or every seed at its bound (then se is 0 and so is the width).
+        e.low = std::max(least, e.mean - t * se);
+        e.high = std::min(most, e.mean + t * se);
+    }
     return e;
+}
+
+PaperVerdict paperVerdict(const FollowingOverSeeds& f) {
+    const SweepEstimate &c = f.completionDifference_points, &r = f.timeRatio;
+    const bool informative = f.pairedSeeds >= kMinVerdictSeeds && std::isfinite(r.low) &&
+                             std::isfinite(r.high) && r.high > r.low && std::isfinite(c.low) &&
+                             std::isfinite(c.high) && c.high > c.low;
+    if (!informative) return PaperVerdict::NotEnoughSeeds;
+    return r.high < 1.0 && c.low > -kCompletionMargin_points ? PaperVerdict::Beats
+                                                            : PaperVerdict::DoesNotBeat;
 }
 
 SweepRates sweepRates(const std::vector<SeedOutcome>& all) {
@@ -297,6 +333,26 @@ SweepRates sweepRates(const std::vector<SeedOutcome>& all) {
             distance.push_back(rows[i].meanContourDistance_mm - rows[paper].meanContourDistance_mm);
         }
         f.completionDifference_points = overSeeds(completion);
+        if (completion.size() > 1 &&
+            f.completionDifference_points.high == f.completionDifference_points.low) {
+            // Every seed gave the same difference (each setting completed all its trials, say):
+            // the seeds show no spread, which is no evidence of none. The interval is then the
+            // score interval of a paired difference with no discordant pairs beyond those the
+            // difference needs: +/- z^2 / (N + z^2) over the N paired trials (Tango's for a
+            // difference of 0), so that it narrows only as trials accumulate.
+            int pairedTrials = 0;
+            for (std::size_t k = 0; k < n; ++k) {
+                const auto& rows = runs[k]->following;
+                if (std::max(i, paper) < rows.size() && rows[i].trials > 0 &&
+                    rows[paper].trials > 0)
+                    pairedTrials += std::min(rows[i].trials, rows[paper].trials);
+            }
+            const double z2 = 1.959964 * 1.959964;
+            SweepEstimate& c = f.completionDifference_points;
+            const double half = 100.0 * z2 / (pairedTrials + z2);
+            c.low = std::max(-100.0, c.mean - half);
+            c.high = std::min(100.0, c.mean + half);
+        }
         f.distanceDifference_mm = overSeeds(distance);
         std::vector<double> ratios;
         for (const auto& d : draws)
@@ -308,8 +364,9 @@ SweepRates sweepRates(const std::vector<SeedOutcome>& all) {
         }
         f.timeRatio.mean = ratio(mine) / ratio(theirs);
         std::tie(f.timeRatio.low, f.timeRatio.high) = percentiles95(ratios);
-        f.beatsPaper =
-            f.timeRatio.high < 1.0 && f.completionDifference_points.low > -kCompletionMargin_points;
+        f.pairedSeeds = static_cast<int>(completion.size());
+        f.verdict = paperVerdict(f);
+        f.beatsPaper = f.verdict == PaperVerdict::Beats;
     }
     // The front: no other setting at most as slow per completion, at least as complete and at
     // most as far from the contour, and better in one of them.
@@ -455,7 +512,11 @@ Json sweepRatesJson(const SweepRates& r) {
                 {"completion_difference_points", estimateJson(f.completionDifference_points)},
                 {"robot_time_per_completion_ratio", estimateJson(f.timeRatio)},
                 {"contour_distance_difference_mm", estimateJson(f.distanceDifference_mm)},
-                {"beats_paper", f.beatsPaper}};
+                {"beats_paper", f.beatsPaper},
+                {"paired_seeds", f.pairedSeeds},
+                {"verdict", f.verdict == PaperVerdict::Beats         ? "beats"
+                            : f.verdict == PaperVerdict::DoesNotBeat ? "does not beat"
+                                                                     : "not enough seeds yet"}};
         following.push_back(row);
     }
     for (const auto& c : r.compute)
@@ -525,11 +586,38 @@ Json sweepRatesJson(const SweepRates& r) {
     return out;
 }
 
+namespace {
+
+/// Prints `format` into `file` as print does, but with every field that came out as a
+/// non-finite number ("nan", "-nan", "inf", "-inf") left empty: a table holds no value there,
+/// never a NaN (docs/accuracy-vs-time.md says when a value is missing).
+void cells(OutputFile& file, const char* format, ...) {
+    char buf[2048];
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(buf, sizeof buf, format, args);
+    va_end(args);
+    std::string out;
+    std::string_view text(buf);
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        std::size_t end = text.find_first_of(",\n", start);
+        if (end == std::string_view::npos) end = text.size();
+        const std::string_view field = text.substr(start, end - start);
+        if (field != "nan" && field != "-nan" && field != "inf" && field != "-inf") out += field;
+        if (end < text.size()) out += text[end];
+        start = end + 1;
+    }
+    file.print("%s", out.c_str());
+}
+
+}  // namespace
+
 void writeSweepRateTables(const SweepRates& r, const std::string& dir) {
     auto finite = [](double v) { return std::isfinite(v) ? v : std::nan(""); };
     if (!r.perception.empty()) {
         OutputFile f((fs::path(dir) / "sweeps_perception.csv").string());
-        f.print(
+        cells(f, 
             "belief_threshold,seeds,mean_taps,mean_taps_lo,mean_taps_hi,robot_time_s,"
             "robot_time_s_lo,robot_time_s_hi,edge_angle_error_deg,edge_angle_error_deg_lo,"
             "edge_angle_error_deg_hi,position_error_mm,position_error_mm_lo,position_error_mm_hi,"
@@ -540,19 +628,19 @@ void writeSweepRateTables(const SweepRates& r, const std::string& dir) {
             firstThen(r.perceptionSingleTap, r.perception);
         for (const auto& p : rows) {
             if (p.threshold == 0)
-                f.print("single_tap,%d", p.seeds);
+                cells(f, "single_tap,%d", p.seeds);
             else
-                f.print("%g,%d", p.threshold, p.seeds);
+                cells(f, "%g,%d", p.threshold, p.seeds);
             for (const SweepEstimate* e : {&p.taps, &p.robotTime_s, &p.angle_deg, &p.position_mm,
                                            &p.correct, &p.angleFall_deg, &p.positionFall_mm})
-                f.print(",%.5g,%.5g,%.5g", e->mean, finite(e->low), finite(e->high));
-            f.print(",%.4f,%.4f\n", p.planeRecognised.mean, p.airRecognised.mean);
+                cells(f, ",%.5g,%.5g,%.5g", e->mean, finite(e->low), finite(e->high));
+            cells(f, ",%.4f,%.4f\n", p.planeRecognised.mean, p.airRecognised.mean);
         }
         f.close();
     }
     if (!r.following.empty()) {
         OutputFile f((fs::path(dir) / "sweeps_following.csv").string());
-        f.print(
+        cells(f, 
             "mode,follow_step_mm,reposition_step_mm,belief_threshold,paper_setting,seeds,trials,"
             "completed,completed_rate,completed_lo,completed_hi,contour_distance_mm,"
             "contour_distance_mm_lo,contour_distance_mm_hi,robot_time_per_trial_s,taps_per_trial,"
@@ -561,7 +649,7 @@ void writeSweepRateTables(const SweepRates& r, const std::string& dir) {
             "completion_vs_paper_points_lo,completion_vs_paper_points_hi,time_ratio_vs_paper,"
             "time_ratio_vs_paper_lo,time_ratio_vs_paper_hi,on_pareto_front,beats_paper\n");
         for (const auto& s : r.following) {
-            f.print(
+            cells(f, 
                 "%s,%g,%g,%g,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.2f,%.3f,%.3f,%.3f",
                 modeName(s.mode), s.followStep_mm, s.repositionStep_mm, s.beliefThreshold,
                 int(s.paperSetting), s.seeds, s.completed.total, s.completed.count,
@@ -571,19 +659,19 @@ void writeSweepRateTables(const SweepRates& r, const std::string& dir) {
                 finite(s.robotTimePerCompletion_s.mean), finite(s.robotTimePerCompletion_s.low),
                 finite(s.robotTimePerCompletion_s.high));
             if (s.paired)
-                f.print(",%.3f,%.3f,%.3f,%.4f,%.4f,%.4f", s.completionDifference_points.mean,
+                cells(f, ",%.3f,%.3f,%.3f,%.4f,%.4f,%.4f", s.completionDifference_points.mean,
                         finite(s.completionDifference_points.low),
                         finite(s.completionDifference_points.high), finite(s.timeRatio.mean),
                         finite(s.timeRatio.low), finite(s.timeRatio.high));
             else
-                f.print(",,,,,,");
-            f.print(",%d,%d\n", int(s.onParetoFront), int(s.beatsPaper));
+                cells(f, ",,,,,,");
+            cells(f, ",%d,%d\n", int(s.onParetoFront), int(s.beatsPaper));
         }
         f.close();
     }
     if (!r.robustness.empty()) {
         OutputFile f((fs::path(dir) / "sweeps_robustness.csv").string());
-        f.print(
+        cells(f, 
             "fault,seeds,failed_runs,active_trials,active_completed,completed_rate,completed_lo,"
             "completed_hi,completion_fall_points,completion_fall_points_lo,"
             "completion_fall_points_hi,recognition_trials,recognised_raw,recognised_rate,"
@@ -591,7 +679,7 @@ void writeSweepRateTables(const SweepRates& r, const std::string& dir) {
             "recognition_fall_points_lo,recognition_fall_points_hi,validation_angle_error_deg\n");
         const std::vector<RobustnessOverSeeds> all = firstThen(r.robustnessBase, r.robustness);
         for (const auto& x : all)
-            f.print(
+            cells(f, 
                 "%s,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%d,%d,%.4f,%.4f,%.4f,%d,%.3f,%.3f,"
                 "%.3f,%.3f\n",
                 csvField({x.fault}).c_str(), x.seeds, x.failedRuns, x.completed.total,
@@ -606,12 +694,12 @@ void writeSweepRateTables(const SweepRates& r, const std::string& dir) {
     }
     if (!r.compute.empty()) {
         OutputFile f((fs::path(dir) / "sweeps_compute.csv").string());
-        f.print(
+        cells(f, 
             "bins,samples_per_tap,paper_setting,angle_error_deg,angle_error_deg_lo,"
             "angle_error_deg_hi,position_error_mm,position_error_mm_lo,position_error_mm_hi,"
             "microseconds_per_decision\n");
         for (const auto& c : r.compute)
-            f.print("%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f\n", c.bins, c.samples,
+            cells(f, "%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f\n", c.bins, c.samples,
                     int(c.paperSetting), c.angle_deg.mean, finite(c.angle_deg.low),
                     finite(c.angle_deg.high), c.position_mm.mean, finite(c.position_mm.low),
                     finite(c.position_mm.high), c.microsecondsPerDecision.mean);
@@ -667,7 +755,7 @@ std::vector<std::string> describeSweepRates(const SweepRates& r) {
                           100 * f.completed.high());
             std::string mark = f.paperSetting ? " paper" : "";
             if (f.onParetoFront) mark += " front";
-            if (f.beatsPaper) mark += " BEATS";
+            if (f.verdict == PaperVerdict::Beats) mark += " BEATS";
             std::snprintf(
                 buf, sizeof buf, "    %-32s %-23s %-22s %-25s %-30s %-20s%s",
                 settingName(f).c_str(), completed,
@@ -682,11 +770,22 @@ std::vector<std::string> describeSweepRates(const SweepRates& r) {
                 mark.c_str());
             lines.push_back(buf);
         }
-        std::string beating;
-        for (const auto& f : r.following)
-            if (f.beatsPaper) beating += (beating.empty() ? "" : "; ") + settingName(f);
+        std::string beating, undecided;
+        for (const auto& f : r.following) {
+            if (f.verdict == PaperVerdict::Beats)
+                beating += (beating.empty() ? "" : "; ") + settingName(f);
+            if (f.paired && f.verdict == PaperVerdict::NotEnoughSeeds)
+                undecided += (undecided.empty() ? "" : "; ") + settingName(f) + " (" +
+                             std::to_string(f.pairedSeeds) + " paired seeds)";
+        }
         lines.push_back("    beat the paper's setting in robot time at no loss of completion: " +
                         (beating.empty() ? std::string("none") : beating));
+        if (!undecided.empty())
+            lines.push_back("    not enough seeds yet for a verdict on: " + undecided +
+                            "; a verdict needs " + std::to_string(kMinVerdictSeeds) +
+                            " paired seeds and intervals of non-zero width");
+        lines.push_back("    (a dash: no value; no trial of that setting completed, or no seed "
+                        "had such decisions)");
     }
     if (!r.robustness.empty()) {
         lines.push_back(

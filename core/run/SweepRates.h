@@ -14,9 +14,17 @@
 
 namespace activetouch {
 
-/// A mean over seeds with its 95 % interval (Student's t over the seeds' values), the interval
-/// kept within the quantity's own range [least, most] (an error is never negative). With one
-/// seed the interval is the whole range; with none, all zero.
+/// A verdict against the paper's setting.
+enum class PaperVerdict { NotEnoughSeeds, DoesNotBeat, Beats };
+/// The fewest paired seeds a verdict against the paper's setting rests on.
+inline constexpr int kMinVerdictSeeds = 20;
+
+/// A mean over seeds with its 95 % interval (Student's t over the seeds' values). A quantity with
+/// a range [least, most] has its interval computed where it cannot leave that range (the logit
+/// of its place in a two-sided range, the log of its distance from a lower bound, by the delta
+/// method) rather than cut at the bound. With one seed the interval is the whole range; with
+/// none, all zero.
+
 SweepEstimate overSeeds(const std::vector<double>& perSeed,
                         double least = -std::numeric_limits<double>::infinity(),
                         double most = std::numeric_limits<double>::infinity());
@@ -47,8 +55,16 @@ struct FollowingOverSeeds {
     bool paired = false;
     SweepEstimate completionDifference_points, timeRatio, distanceDifference_mm;
     bool onParetoFront = false;  ///< no other setting is as fast, as complete and as close
-    bool beatsPaper = false;     ///< faster than the paper's at no loss of completion
+    int pairedSeeds = 0;         ///< seeds where both this and the paper's setting ran trials
+    PaperVerdict verdict = PaperVerdict::NotEnoughSeeds;
+    bool beatsPaper = false;     ///< verdict Beats: faster than the paper's at no loss of completion
 };
+
+/// Whether a setting beats the paper's: given only on enough seeds for its intervals to say
+/// something (kMinVerdictSeeds paired seeds, and a completion difference and time ratio whose
+/// intervals have width); then Beats if the time ratio's interval lies below 1 and the
+/// completion difference's above -kCompletionMargin_points.
+PaperVerdict paperVerdict(const FollowingOverSeeds& f);
 
 /// Sweep (c) at one setting over seeds.
 struct ComputeOverSeeds {

@@ -5,6 +5,8 @@
 // path error, and accumulating evidence costs robot time. Over seeds, each figure is the mean of
 // the seeds' figures, the following settings are paired with the paper's seed by seed, and what
 // a seed keeps of its sweeps reads back to the same rates.
+#include <QRegularExpression>
+#include <QTemporaryDir>
 #include <QtTest>
 #include <cmath>
 
@@ -262,10 +264,10 @@ private slots:
     }
 
     void aSettingBeatsThePaperOnlyFasterAtNoLossOfCompletion() {
-        // Ten seeds with three settings: the paper's; one that completes as often in two thirds
-        // of the robot time; one faster still that loses a tenth of its trials.
+        // Thirty seeds with three settings: the paper's; one that completes as often in two
+        // thirds of the robot time; one faster still that loses a tenth of its trials.
         std::vector<SeedOutcome> seeds;
-        for (int s = 0; s < 10; ++s) {
+        for (int s = 0; s < 30; ++s) {
             SeedOutcome o;
             o.seed = s + 1;
             auto row = [&](double follow, bool paper, int completed, double time) {
@@ -282,12 +284,29 @@ private slots:
             seeds.push_back(o);
         }
         SeedOutcome failed;  // a run stopped by a rig error measured no sweep
-        failed.seed = 11;
+        failed.seed = 31;
         failed.runFailure = "stage asked past its travel";
         seeds.push_back(failed);
+        {
+            // On ten seeds the same settings get no verdict: too few for the intervals to say.
+            const std::vector<SeedOutcome> few(seeds.begin(), seeds.begin() + 10);
+            const SweepRates early = sweepRates(few);
+            QCOMPARE(early.following[1].pairedSeeds, 10);
+            QVERIFY(early.following[1].verdict == PaperVerdict::NotEnoughSeeds);
+            QVERIFY(!early.following[1].beatsPaper);
+            bool said = false;
+            for (const std::string& line : describeSweepRates(early))
+                said = said || line.find("not enough seeds yet for a verdict on") != std::string::npos;
+            QVERIFY(said);
+        }
         const SweepRates rates = sweepRates(seeds);
-        QCOMPARE(rates.seeds, 10);
-        QCOMPARE(rates.following[0].completed.total, 100);
+        QCOMPARE(rates.seeds, 30);
+        QCOMPARE(rates.following[0].completed.total, 300);
+        // Every seed gives the same completion difference (0): its interval is not the
+        // zero-width "+0.0 (+0.0 to +0.0)" but the paired score interval over the 300 trials.
+        QVERIFY(rates.following[1].completionDifference_points.low < 0 &&
+                rates.following[1].completionDifference_points.high > 0);
+        QVERIFY(rates.following[1].verdict == PaperVerdict::Beats);
         QVERIFY(rates.following[1].beatsPaper);
         QVERIFY(std::abs(rates.following[1].completionDifference_points.mean) < 1e-12);
         QVERIFY(rates.following[1].timeRatio.high < 1.0);
@@ -309,6 +328,59 @@ private slots:
         QVERIFY(!more.following[3].onParetoFront);
         QVERIFY(!more.following[3].beatsPaper);
         QVERIFY(more.following[0].onParetoFront);
+    }
+
+    void boundedQuantitiesHaveIntervalsInsideTheirRangeUncut() {
+        // An error near 0 with one large seed: Student's t would reach below 0; the interval on
+        // the log scale stays above it without being cut there, and keeps the mean inside.
+        const SweepEstimate e = overSeeds({0.1, 0.2, 0.15, 5.0}, 0.0);
+        QVERIFY2(e.low > 0.0 && e.low < e.mean && e.high > e.mean,
+                 qPrintable(QString("%1 (%2 to %3)").arg(e.mean).arg(e.low).arg(e.high)));
+        // A fraction near 1: inside (0, 1), never cut at 1.
+        const SweepEstimate f = overSeeds({1.0, 1.0, 0.9, 1.0, 0.5}, 0.0, 1.0);
+        QVERIFY(f.low > 0.0 && f.high < 1.0 && f.low < f.mean && f.mean < f.high);
+        // Every seed at the bound: the mean and a zero-width interval there, no NaN.
+        const SweepEstimate z = overSeeds({0.0, 0.0, 0.0}, 0.0);
+        QVERIFY(z.mean == 0.0 && z.low == 0.0 && z.high == 0.0);
+        // Unbounded: Student's t, symmetric.
+        const SweepEstimate u = overSeeds({-1.0, 1.0, 0.0});
+        QVERIFY(std::abs(u.low + u.high) < 1e-12 && u.high > 0);
+    }
+
+    void tablesHoldNoNanOrInfinity() {
+        // A setting that never completes has no time per completion and no time ratio: the
+        // tables leave those cells empty and the report prints a dash, never nan or inf.
+        std::vector<SeedOutcome> seeds;
+        for (int s = 0; s < 3; ++s) {
+            SeedOutcome o;
+            o.seed = s + 1;
+            FollowingSweepRow paper{FollowingMode::Active, 2.0, 1.0, 0.0};
+            paper.paperSetting = true;
+            paper.trials = 4;
+            paper.completed = 4;
+            paper.meanRobotTime_s = 100;
+            FollowingSweepRow never = paper;
+            never.paperSetting = false;
+            never.followStep_mm = 6.0;
+            never.completed = 0;
+            o.sweeps.following = {paper, never};
+            seeds.push_back(o);
+        }
+        const SweepRates rates = sweepRates(seeds);
+        QTemporaryDir dir;
+        writeSweepRateTables(rates, dir.path().toStdString());
+        QFile table(dir.filePath("sweeps_following.csv"));
+        QVERIFY(table.open(QIODevice::ReadOnly));
+        const QString text = table.readAll();
+        const QRegularExpression nonFinite("\\b(nan|inf)\\b",
+                                           QRegularExpression::CaseInsensitiveOption);
+        QVERIFY2(!text.contains(nonFinite), qPrintable(text));
+        bool dashed = false;
+        for (const std::string& line : describeSweepRates(rates)) {
+            QVERIFY2(!QString::fromStdString(line).contains(nonFinite), line.c_str());
+            dashed = dashed || line.find("a dash: no value") != std::string::npos;
+        }
+        QVERIFY(dashed);
     }
 
     void eachFaultIsTheWholeRunOnItsFaultyScene() {
@@ -381,7 +453,10 @@ private slots:
         QCOMPARE(three.mean, 2.0);
         QVERIFY(std::abs(three.high - (2.0 + 4.303 / std::sqrt(3.0))) < 1e-9);
         QVERIFY(std::abs(three.low - (2.0 - 4.303 / std::sqrt(3.0))) < 1e-9);
-        QCOMPARE(overSeeds({1.0, 2.0, 3.0}, 1.5).low, 1.5);
+        // Near a bound the interval is taken on the log scale of the distance from it: inside,
+        // not cut at the bound.
+        const SweepEstimate bounded = overSeeds({1.0, 2.0, 3.0}, 1.5);
+        QVERIFY(bounded.low > 1.5 && bounded.low < 2.0 && bounded.high > three.high);
         const SweepEstimate flat = overSeeds(std::vector<double>(100, 0.25));
         QCOMPARE(flat.low, 0.25);
         QCOMPARE(flat.high, 0.25);
