@@ -2,6 +2,7 @@
 // read as each of the three, and a log that reads is cut into taps with and without poses.
 #include "core/common/InputError.h"
 #include "core/records/DumperLog.h"
+#include "core/records/TapCutting.h"
 #include "fuzz/FuzzInput.h"
 
 using namespace activetouch;

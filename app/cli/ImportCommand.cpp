@@ -11,6 +11,7 @@
 #include "core/common/NumberText.h"
 #include "core/experiment/Experiment.h"
 #include "core/records/DumperLog.h"
+#include "core/records/TapCutting.h"
 #include "core/records/TapCsv.h"
 #include "core/run/OutputFiles.h"
 #include "core/run/RunFolder.h"
@@ -80,6 +81,7 @@ int commandImport(const std::vector<std::string>& args) {
         const TaxelMap map = readTaxelMap(parsed.text("--taxel-map"),
                                           static_cast<int>(spec.scene.fingertip.taxels.size()));
         const SkinStream stream = readDumperLog(logPath, map);
+        checkMapReadsTheTouch(stream, map, parsed.text("--taxel-map"));
         RecordingBounds bounds;
         bounds.travel_mm = spec.scene.stage.travel_mm;
         std::vector<PoseLogEntry> poses;
@@ -142,7 +144,7 @@ int commandImport(const std::vector<std::string>& args) {
                     parsed.experimentPath.c_str(), tapsPath.c_str());
         return kOk;
     } catch (const InputError& e) {
-        std::fprintf(stderr, "%s\n", e.what());
+        std::fprintf(stderr, "error: %s\n", e.what());
         return kBadInput;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "import failed: %s\n", e.what());
@@ -182,7 +184,7 @@ int commandDump(const std::vector<std::string>& args) {
         if (!cutOff.empty()) std::printf("left out: %s\n", cutOff.c_str());
         return kOk;
     } catch (const InputError& e) {
-        std::fprintf(stderr, "%s\n", e.what());
+        std::fprintf(stderr, "error: %s\n", e.what());
         return kBadInput;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "dump failed: %s\n", e.what());

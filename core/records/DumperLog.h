@@ -42,6 +42,8 @@ struct SkinStream {
     std::vector<double> values;  ///< frame-major: values[f * taxels + k]
     int stamps = 1;              ///< stamps per line (2: the dumper logged tx and rx; tx is used)
     std::int64_t framesMissing = 0;  ///< counter gaps over the whole log
+    /// The least and largest of every value of the frame (mapped or not), over the log.
+    std::vector<double> valueLow, valueHigh;
 
     std::size_t frameCount() const { return times_s.size(); }
     const double* frame(std::size_t f) const {
@@ -50,11 +52,21 @@ struct SkinStream {
 };
 
 /// Reads `path` (a dumper's folder holding data.log, or the data.log itself) through `map`.
-/// Every line must hold a whole counter that never falls, one or two stamps (info.log's
-/// "Stamp:", else inferred from the first line) that never run backwards, and exactly
+/// Every line must hold a whole counter that never falls nor skips more frames than 1000 a second
+/// of its stamps, one or two stamps (info.log's "Stamp:", else inferred from the first line) that
+/// never run backwards, and exactly
 /// map.valuesPerFrame finite values, each within 0..255; anything else is refused naming the
 /// line and the field. An empty log is refused.
 SkinStream readDumperLog(const std::string& path, const TaxelMap& map);
+
+/// A taxel that is touched varies by at least this over a log of taps.
+inline constexpr double kMinTouchRange_counts = 10.0;
+
+/// Refuses (InputError naming `mapPath`) a map whose taxels never vary by kMinTouchRange_counts
+/// over the log while another of the frame's values does: the map reads a fingertip that was
+/// not touched (another finger's), and every tap would read nothing.
+void checkMapReadsTheTouch(const SkinStream& stream, const TaxelMap& map,
+                           const std::string& mapPath);
 
 /// One line of a pose log: the robot time a tap began (the clock the dumper's stamps use) and the
 /// commanded fingertip pose in stage millimetres.
@@ -67,43 +79,6 @@ struct PoseLogEntry {
 /// stage port writes them); '#' starts a comment. Refuses, by line, non-numbers, times running
 /// backwards and poses outside 0..bounds.travel_mm.
 std::vector<PoseLogEntry> readPoseLog(const std::string& path, const RecordingBounds& bounds);
-
-/// How a stream is cut into taps.
-struct TapCutting {
-    int samplesPerTap = kSamplesPerTap;
-    double sampleRate_hz = kSampleRateHz;
-    /// The reflex threshold: total pressure over the fingertip's taxels, counts. A tap whose
-    /// window reaches it ended on the reflex; one that never does, at the stroke limit.
-    double reflexThreshold = 40.0;
-    /// Without a pose log, a tap's window starts this many frames before the frame that crosses
-    /// the threshold (the descent to the surface).
-    int leadFrames = 4;
-};
-
-/// The taps in `stream`. With `poses`, one per pose line: the window is the samplesPerTap frames
-/// from the first frame stamped at or after the line's time (less half a period), and the tap's
-/// pose and start time are the line's. Without, one per rising crossing of the reflex threshold,
-/// its window starting leadFrames before it (taps that never touch leave no trace and are not
-/// found). A window with a frame missing (a counter gap or a stamp gap over 1.5 periods) is
-/// refused naming its lines; a last window cut short by the end of the log is left out and
-/// `cutOff` says so (without `cutOff` it is refused).
-std::vector<TapRecord> cutTaps(const SkinStream& stream, const std::vector<PoseLogEntry>* poses,
-                               const TapCutting& cutting, const std::string& logPath,
-                               const std::string& poseLogPath, std::string* cutOff = nullptr);
-
-/// Labels cut taps with the training protocol that took them: the k-th tap is the protocol's
-/// k-th (data set, class, repeat), in the order collectTrainingTaps takes them. With poses from
-/// a log, each must lie within `tolerance_mm` plus four standard deviations of the placement
-/// jitter of the protocol's pose for it (else the log is of another experiment or out of order,
-/// refused naming the pose log's line), and its true offset is its distance from the edge.
-/// Without, the protocol's commanded pose and offset are used. More taps than the protocol takes
-/// are refused.
-std::vector<CollectedTap> labelProtocolTaps(const std::vector<TapRecord>& taps, bool posesLogged,
-                                            const std::vector<PoseLogEntry>& poseLines,
-                                            const Polygon& object, const ClassSet& classes,
-                                            const TrainingProtocolSettings& protocol,
-                                            const std::string& poseLogPath,
-                                            const std::string& logPath, double tolerance_mm = 0.25);
 
 /// Writes `taps` as a dumper would have logged them (for yarpdataplayer, and to test the import):
 /// `folder`/data.log with one frame per sample at sampleRate_hz, resting frames of zeros between
