@@ -1435,18 +1435,21 @@ std::optional<double> readStageError(const SceneSpec& given, const SceneSpec& ba
 SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded,
                   const SceneFitSettings& settings) {
     if (recorded.size() < 20)
-        throw InputError(given.source, "",
+        throw InputError(settings.recording, "",
                          "a fit needs at least 20 recorded taps; the recording has " +
                              std::to_string(recorded.size()));
     auto model = std::make_shared<const FingertipContactModel>(given.fingertip);
     const int K = model->taxelCount();
     for (const auto& r : recorded)
         if (r.tap.taxels != K || r.tap.sampleCount() != given.tap.samples)
-            throw InputError(given.source, "/tap/samples",
+            throw InputError(settings.recording, "",
                              "the recording's taps have " + std::to_string(r.tap.sampleCount()) +
                                  " samples of " + std::to_string(r.tap.taxels) +
-                                 " taxels; the scene's fingertip and tap say " +
-                                 std::to_string(given.tap.samples) + " of " + std::to_string(K));
+                                 " taxels, but the scene's fingertip and tap (" +
+                                 (given.source.empty() ? std::string("the experiment's scene")
+                                                       : given.source + " at /tap/samples") +
+                                 ") say " + std::to_string(given.tap.samples) + " of " +
+                                 std::to_string(K) + "; give the scene the taps were taken with");
     SceneFit fit;
     const double z = upperNormalQuantile(settings.alpha);
 
@@ -1576,7 +1579,7 @@ SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded
     const Moments target = momentsOf(recorded, masks, skip);
     fit.nothingSamples = target.nothing;
     if (target.nothing < 1000)
-        throw InputError(base.source, "",
+        throw InputError(settings.recording, "",
                          "the recording has only " + std::to_string(target.nothing) +
                              " samples over nothing (off the object, or before contact); the "
                              "noise and drift cannot be read from it");

@@ -23,6 +23,8 @@ struct SceneFitSettings {
     /// An effect is listed when its test statistic's p-value under "absent" is below this.
     double alpha = 0.001;
     std::uint64_t seed = 1;  ///< of the simulations the fit runs (common to every round)
+    /// The recording's name, for what the fit refuses about the recorded taps.
+    std::string recording = "the recording";
 };
 
 struct FittedParameter {
@@ -85,8 +87,8 @@ struct SceneFit {
 };
 
 /// Fits `base` (its object, fingertip, tap and stage as mounted) to `recorded` taps, taken at
-/// their poses. Throws InputError (naming `base.source`) if the taps cannot be fitted: fewer than
-/// 20, poses outside the stage, none over nothing.
+/// their poses. Throws InputError (naming `settings.recording`) if the taps cannot be fitted:
+/// fewer than 20, of another shape than the scene's tap, none over nothing.
 SceneFit fitScene(const SceneSpec& base, const std::vector<TapRecord>& recorded,
                   const SceneFitSettings& settings = {});
 
