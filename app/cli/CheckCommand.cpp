@@ -46,11 +46,15 @@ namespace activetouch::cli {
 namespace fs = std::filesystem;
 
 int commandCheck(const std::vector<std::string>& argsIn) {
-    const CommandLine line = parseCommandLine({{}, {"--allow-long-plan"}}, argsIn);
+    const CommandLine line = parseCommandLine(
+        {{{"--experiment", "the experiment the recording was taken with"}}, {"--allow-long-plan"}},
+        argsIn);
     if (!line.error.empty()) return usageError(line.error);
     const std::vector<std::string>& args = line.positional;
     const bool allowLongPlan = line.has("--allow-long-plan");
     if (args.size() != 1) return usageError("check takes exactly one file");
+    if (line.values.count("--experiment") && args[0].find(".csv") == std::string::npos)
+        return usageError("--experiment goes with a recording (a .csv file) to check against it");
     const std::string& file = args[0];
     if (file.size() > 4 && file.substr(file.size() - 4) == ".csv") {
         // A tap recording (data/taps.csv) or a following recording (data/following_taps.csv),
@@ -58,7 +62,21 @@ int commandCheck(const std::vector<std::string>& argsIn) {
         // run.json where it has one.
         try {
             std::string note;
-            const RecordingBounds bounds = checkedRecordingBounds(file, &note);
+            RecordingBounds bounds = checkedRecordingBounds(file, &note);
+            ClassSet classes;
+            if (const std::string e = line.value("--experiment"); !e.empty()) {
+                const ExperimentSpec spec = loadCheckedExperiment(e, false, simulatedRigs());
+                classes = spec.classes;
+                bounds.taxels = static_cast<int>(spec.scene.fingertip.taxels.size());
+                bounds.taxelsFrom = "the fingertip of " + e;
+            } else if (bounds.taxels <= 0) {
+                // Nothing says which fingertip took it: held to the paper's.
+                bounds.taxels = kFingertipTaxels;
+                bounds.taxelsFrom =
+                    "the paper's fingertip (there is no run.json beside the recording; give "
+                    "--experiment with the experiment it was taken with to check it against "
+                    "that one's)";
+            }
             if (!note.empty()) std::fprintf(stderr, "caution: %s\n", note.c_str());
             std::ifstream in = openRecording(file);
             std::string header(17, '\0');
@@ -81,7 +99,7 @@ int commandCheck(const std::vector<std::string>& argsIn) {
                 return kOk;
             }
             std::string cut;
-            const auto taps = readTapCsv(file, ClassSet{}, &cut, bounds);
+            const auto taps = readTapCsv(file, classes, &cut, bounds);
             std::printf("%s: ok (%zu taps, %d samples each)%s%s%s\n", file.c_str(), taps.size(),
                         taps.front().record.tap.sampleCount(),
                         cut.empty() ? ""

@@ -63,8 +63,12 @@ CommandLine parseCommandLine(const CommandSyntax& syntax, const std::vector<std:
     for (const QString& p : parser.positionalArguments())
         r.positional.push_back(p.toLocal8Bit().toStdString());
     for (const auto& [option, what] : syntax.values)
-        if (parser.isSet(bare(option)))
+        if (parser.isSet(bare(option))) {
             r.values[option] = parser.value(bare(option)).toLocal8Bit().toStdString();
+            // An empty value names nothing: never read as if the option were not given.
+            if (r.values[option].empty() && r.error.empty())
+                r.error = option + " was given an empty value; it needs " + what;
+        }
     for (const std::string& flag : syntax.flags)
         if (parser.isSet(bare(flag))) r.flags.push_back(flag);
     return r;

@@ -101,6 +101,7 @@ FollowingRecordingContents parseFollowingRecording(const std::string& path,
                          "tap,... and ends with sample,taxel_0,...,taxel_11");
 
     FollowingRecordingContents contents;
+    checkTaxelCount(taxels, bounds, path);
     contents.samplesPerTap = bounds.samplesPerTap;
     int lineNo = 1;
     std::vector<std::string> first;  // the tap's first row: its own columns hold on every row

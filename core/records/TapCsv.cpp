@@ -67,6 +67,7 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
                              "the run's data/taps.csv)"
                            : ""));
     }
+    checkTaxelCount(taxels, bounds, path);
     std::vector<CollectedTap> taps;
     std::vector<std::vector<double>> samples;
     int lineNo = 1;
@@ -99,6 +100,9 @@ std::vector<CollectedTap> readTapCsv(const std::string& path, const ClassSet& cl
     while (rows.next(f)) {
         lineNo = rows.line();
         const int set = integer(f[0], "set");
+        if (set < 1)
+            throw InputError(path, "line " + std::to_string(lineNo) + ", column set",
+                             "data set " + f[0] + " is below 1; data sets are numbered from 1");
         const int cls = integer(f[1], "class");
         if (cls < 0 || cls >= classes.classCount())
             throw InputError(path, "line " + std::to_string(lineNo) + ", column class",

@@ -153,6 +153,41 @@ private slots:
             v.err.contains("column taxel_3") && v.err.contains("outside the fingertip's 0..255"),
             qPrintable(v.err));
     }
+
+    void aRecordingWithoutItsRunIsHeldToAFingertipAndToDataSetsFromOne() {
+        // Without a run.json beside it, a recording is held to the paper's fingertip (or to the
+        // experiment given): 11 or 13 taxels, or a data set below 1, are refused as analyse
+        // refuses them.
+        auto row = [](int taxels, int set) {
+            QString header = "set,class,orientation_deg,position,true_offset_mm,pose_x_mm,"
+                             "pose_y_mm,robot_time_s,ending,stop_depth_mm,sample";
+            QString values = QString("%1,0,270,1,-8.5,150,129,0,reflex,0,0").arg(set);
+            for (int k = 0; k < taxels; ++k) {
+                header += QString(",taxel_%1").arg(k);
+                values += ",0";
+            }
+            return header + "\n" + values + "\n";
+        };
+        for (const int taxels : {11, 13}) {
+            const QString file = write(QString("taxels_%1.csv").arg(taxels), row(taxels, 1));
+            const Outcome o = runCli({"check", file});
+            QCOMPARE(o.exitCode, 2);
+            QVERIFY2(o.err.contains(file) &&
+                         o.err.contains(QString("has %1 taxel columns").arg(taxels)) &&
+                         o.err.contains("has 12 taxels"),
+                     qPrintable(o.err));
+        }
+        const QString minus = write("set_minus.csv", row(12, -7));
+        const Outcome o = runCli({"check", minus});
+        QCOMPARE(o.exitCode, 2);
+        QVERIFY2(o.err.contains("column set") && o.err.contains("data set -7 is below 1"),
+                 qPrintable(o.err));
+        QCOMPARE(runCli({"check", write("good.csv", row(12, 1))}).exitCode, 0);
+        // Checked against an experiment with another fingertip, its count is the one held to.
+        const Outcome against = runCli({"check", write("with.csv", row(12, 1)), "--experiment",
+                                        sourceFile("experiments/paper.json")});
+        QVERIFY2(against.exitCode == 0, qPrintable(against.err));
+    }
 };
 
 QTEST_GUILESS_MAIN(TestCliCheck)

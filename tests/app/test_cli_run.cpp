@@ -242,6 +242,30 @@ private slots:
         const Outcome help = runCli({"--help"});
         QCOMPARE(help.exitCode, 0);
         QVERIFY(help.out.contains("run <experiment.json>"));
+        // Every command's own help, whatever else is given with it.
+        for (const char* command : {"run", "seeds", "merge", "compare", "analyse", "replay",
+                                    "import", "dump", "calibrate", "check"}) {
+            const Outcome own = runCli({command, "--help"});
+            QCOMPARE(own.exitCode, 0);
+            QVERIFY2(own.out.contains(QString("activetouch-cli ") + command + " <") ||
+                         own.out.contains(QString("activetouch-cli ") + command + " "),
+                     qPrintable(own.out));
+            QVERIFY2(!own.out.contains("activetouch-cli dump") || QString(command) == "dump",
+                     "another command's help");
+        }
+        QCOMPARE(runCli({"run", sourceFile("experiments/paper.json"), "-h"}).exitCode, 0);
+        // An option given an empty value names nothing: refused, never read as not given.
+        const Outcome emptyShard =
+            runCli({"seeds", sourceFile("experiments/paper.json"), "--from", "1", "--to", "3",
+                    "--shard", "", "--out", dir_.filePath("never")});
+        QCOMPARE(emptyShard.exitCode, 2);
+        QVERIFY2(emptyShard.err.contains("--shard was given an empty value"),
+                 qPrintable(emptyShard.err));
+        QVERIFY(!QFile::exists(dir_.filePath("never")));
+        const Outcome emptyRig = runCli({"run", sourceFile("experiments/paper.json"), "--rig", "",
+                                         "--out", dir_.filePath("never")});
+        QCOMPARE(emptyRig.exitCode, 2);
+        QVERIFY2(emptyRig.err.contains("--rig was given an empty value"), qPrintable(emptyRig.err));
         const Outcome version = runCli({"--version"});
         QCOMPARE(version.exitCode, 0);
         QVERIFY2(QRegularExpression("^activetouch-cli \\d+\\.\\d+\\.\\d+\n$")

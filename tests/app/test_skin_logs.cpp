@@ -7,6 +7,7 @@
 #include "CliFixture.h"
 #include "core/experiment/Experiment.h"
 #include "core/records/DumperLog.h"
+#include "core/records/TapCutting.h"
 #include "core/records/TapCsv.h"
 
 class TestSkinLogs : public CliFixture {
@@ -101,14 +102,18 @@ private slots:
         QCOMPARE(after["class_regions"], before["class_regions"]);
     }
 
-    void anotherFingersValuesAreAnotherRecording() {
-        // The map decides which values are read: the index finger's are the resting zeros.
+    void anotherFingersMapIsRefusedNamingTheFingerThatTouched() {
+        // The map decides which values are read: the index finger's are the resting zeros while
+        // the middle finger's press, so every tap would read nothing: refused, naming both.
         const QString indexMap = write("index.map", "values_per_frame 192\nfinger index\n");
         const QString out = dir_.filePath("imported_index");
         const Outcome o = runCli({"import", paper_, logDir_, "--taxel-map", indexMap, "--poses",
                                   logDir_ + "/poses.log", "--out", out});
-        QVERIFY2(o.exitCode == 0, qPrintable(o.err));
-        QCOMPARE(readJson(out + "/import.json")["taps_on_the_reflex"].toInt(), 0);
+        QCOMPARE(o.exitCode, 2);
+        QVERIFY2(o.err.startsWith("error: " + indexMap) && o.err.contains("the middle finger's") &&
+                     o.err.contains("another fingertip than the one that touched"),
+                 qPrintable(o.err));
+        QVERIFY(!QFile::exists(out));
     }
 
     void withoutAPoseLogTapsThatTouchNothingCannotBeMatched() {
@@ -176,8 +181,27 @@ private slots:
         const Outcome missing = runCli({"calibrate", paper_, dir_.filePath("nowhere"), "--out",
                                         dir_.filePath("fitted/none.json")});
         QCOMPARE(missing.exitCode, 2);
-        QVERIFY2(missing.err.contains("nowhere"), qPrintable(missing.err));
+        QVERIFY2(missing.err.startsWith("error: ") && missing.err.contains("nowhere"),
+                 qPrintable(missing.err));
         QVERIFY(!QFile::exists(dir_.filePath("fitted/none.json")));
+        // An --out that cannot be written is said before the fit, as a run that failed (1).
+        const QString aFile = write("not_a_folder", "x");
+        const Outcome unwritable = runCli(
+            {"calibrate", paper_, dir_.filePath("paper"), "--out", aFile + "/fitted.json"});
+        QCOMPARE(unwritable.exitCode, 1);
+        QVERIFY2(unwritable.err.startsWith("error: ") && unwritable.err.contains(aFile) &&
+                     unwritable.err.contains("Nothing was fitted"),
+                 qPrintable(unwritable.err));
+        QVERIFY2(!unwritable.out.contains("samples over nothing"), "the fit ran first");
+        // What the fit refuses about the taps names the recording, not the scene.
+        QStringList few = lines(dir_.filePath("paper/data/taps.csv")).mid(0, 1 + 5 * 50);
+        const QString fewTaps = write("few_taps.csv", few.join('\n') + '\n');
+        const Outcome tooFew = runCli(
+            {"calibrate", paper_, fewTaps, "--out", dir_.filePath("fitted/few.json")});
+        QCOMPARE(tooFew.exitCode, 2);
+        QVERIFY2(tooFew.err.startsWith("error: " + fewTaps) &&
+                     tooFew.err.contains("at least 20 recorded taps; the recording has 5"),
+                 qPrintable(tooFew.err));
     }
 
     void theReflexThresholdFindsTapsThatTouch() {
@@ -249,6 +273,14 @@ private slots:
         QTest::newRow("a counter that falls") << "counter"
                                               << "data.log"
                                               << "line 30, counter: counter 2 after 28";
+        QTest::newRow("a counter that jumps past its stamps") << "counter jump"
+                                                              << "data.log"
+                                                              << "line 30, counter: counter "
+                                                                 "1000000000000000 after 28 skips";
+        QTest::newRow("a pose time below zero") << "pose negative"
+                                                << "poses.log"
+                                                << "line 2, column time_s: robot time -5 s is "
+                                                   "negative";
         QTest::newRow("a value past the skin's range") << "range"
                                                        << "data.log"
                                                        << "line 5, value 14: 300 is outside";
@@ -299,6 +331,12 @@ private slots:
                 if (edit == "non-numeric") setField(9, 2 + 17, "n/a");
                 if (edit == "backwards") setField(20, 1, "0.000000");
                 if (edit == "counter") setField(30, 0, "2");
+                if (edit == "counter jump") setField(30, 0, "1000000000000000");
+                if (edit == "pose negative") {
+                    QStringList p = poses[1].split(' ');  // the first after the comment
+                    p[p.size() - 3] = "-5";
+                    poses[1] = p.join(' ');
+                }
                 if (edit == "range") setField(5, 2 + 14, "300");
                 if (edit == "truncated") data.last() = data.last().left(data.last().size() / 2);
                 if (edit == "gap") data.removeAt(20);  // inside the first tap's window
@@ -320,7 +358,8 @@ private slots:
         const Outcome o = runCli({"import", paper_, folder, "--taxel-map", folder + "/map.txt",
                                   "--poses", folder + "/poses.log", "--out", out});
         QCOMPARE(o.exitCode, 2);
-        QVERIFY2(o.err.contains(folder + "/" + file) && o.err.contains(expected),
+        QVERIFY2(o.err.startsWith("error: ") && o.err.contains(folder + "/" + file) &&
+                     o.err.contains(expected),
                  qPrintable(o.err));
         QVERIFY(!QFile::exists(out));  // nothing written
     }
