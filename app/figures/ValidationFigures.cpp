@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "app/figures/FigureLayout.h"
-#include "core/common/Median.h"
+#include "core/stats/Intervals.h"
 #include "core/run/ExperimentRun.h"
 #include "qcustomplot.h"
 
@@ -303,7 +303,7 @@ bool buildContinuousAngleFigure(QCustomPlot& plot, const RunResult& r) {
             for (int a = 0; a < kAngleBins; ++a)
                 for (int o = 0; o < kOffsetBins; ++o) {
                     const auto& c = cells[static_cast<std::size_t>(a * kOffsetBins + o)];
-                    map->data()->setCell(o, a, medianOr(c, std::nan("")));
+                    map->data()->setCell(o, a, stats::medianOr(c, std::nan("")));
                 }
             rect->axis(QCPAxis::atBottom)->setRange(-4.5, 4.5);
             rect->axis(QCPAxis::atLeft)->setRange(0.0, 360.0);

@@ -9,7 +9,7 @@
 #include <memory>
 #include <optional>
 
-#include "core/common/Median.h"
+#include "core/stats/Intervals.h"
 #include "core/common/NumberText.h"
 #include "core/control/ControllerRange.h"
 #include "core/experiment/RunPlan.h"
@@ -211,7 +211,7 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
         for (const FollowedTap& t : run.result.taps)
             if (t.angleError_deg >= 0.0) angleErrors.push_back(t.angleError_deg);
     result.pathAngleTaps = static_cast<int>(angleErrors.size());
-    result.pathMedianAngleError_deg = medianOr(angleErrors, -1.0);
+    result.pathMedianAngleError_deg = stats::medianOr(angleErrors, -1.0);
     if (!spec.recognition.enabled) return;
     // Templates at the centre of the valid range, one per distinct object followed.
     std::vector<NamedOutline> shapes;
@@ -259,8 +259,8 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
         result.recognitionAccuracySmoothed = double(correctSmoothed) / recognised;
         result.recognitionAccuracyAnyPose = double(correctAnyPose) / recognised;
     }
-    result.medianRotationError_deg = medianOr(turnErrors, 0.0);
-    result.medianPositionError_mm = medianOr(placeErrors, 0.0);
+    result.medianRotationError_deg = stats::medianOr(turnErrors, 0.0);
+    result.medianPositionError_mm = stats::medianOr(placeErrors, 0.0);
 }
 
 /// Trains the classifier on the training sets of `result.taps` and validates it on the others:

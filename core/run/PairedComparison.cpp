@@ -1,3 +1,4 @@
+#include "core/stats/Intervals.h"
 #include "core/run/PairedComparison.h"
 #include "core/run/RunArtefacts.h"
 
@@ -20,17 +21,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kZ = 1.959963984540054;  // two-sided 95 %
-
-/// The interval's centre and half-width: Agresti and Min (2005), half a pair added to each cell.
-std::pair<double, double> adjustedDifference(const PairedRate& r) {
-    const double n = r.pairs() + 2.0;
-    const double onlyA = r.onlyA + 0.5, onlyB = r.onlyB + 0.5;
-    const double d = (onlyB - onlyA) / n;
-    const double variance =
-        std::max(0.0, (onlyA + onlyB) - (onlyB - onlyA) * (onlyB - onlyA) / n) / (n * n);
-    return {d, kZ * std::sqrt(variance)};
-}
 
 using TrialKey = std::tuple<FollowingMode, std::string, int>;
 
@@ -146,25 +136,15 @@ double PairedRate::difference() const {
 }
 
 double PairedRate::differenceLow() const {
-    const auto [d, half] = adjustedDifference(*this);
-    return std::max(-1.0, d - half);
+    return stats::agrestiMinDifference(onlyA, onlyB, pairs()).interval.low;
 }
 
 double PairedRate::differenceHigh() const {
-    const auto [d, half] = adjustedDifference(*this);
-    return std::min(1.0, d + half);
+    return stats::agrestiMinDifference(onlyA, onlyB, pairs()).interval.high;
 }
 
 double PairedRate::mcnemarP() const {
-    const int n = onlyA + onlyB;
-    if (n == 0) return 1.0;
-    const int k = std::min(onlyA, onlyB);
-    // P(X <= k) for X ~ Binomial(n, 1/2), summed in the log domain; doubled for two sides.
-    double tail = 0.0;
-    for (int i = 0; i <= k; ++i)
-        tail += std::exp(std::lgamma(n + 1.0) - std::lgamma(i + 1.0) - std::lgamma(n - i + 1.0) -
-                         n * std::log(2.0));
-    return std::min(1.0, 2.0 * tail);
+    return stats::mcnemarExactP(onlyA, onlyB);
 }
 
 double PairedComparison::robotTimeDifferenceSd_s() const {

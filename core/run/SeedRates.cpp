@@ -9,7 +9,7 @@
 #include <optional>
 #include <utility>
 
-#include "core/common/Median.h"
+#include "core/stats/Intervals.h"
 #include "core/run/OutputFiles.h"
 
 namespace activetouch {
@@ -225,17 +225,6 @@ void Tracing::add(const Tracing& other) {
 }
 
 namespace {
-// Wilson score interval at 95 %.
-constexpr double kZ = 1.959963984540054;
-double wilsonCentre(const Rate& r) {
-    const double n = r.total, p = r.fraction(), z2 = kZ * kZ;
-    return (p + z2 / (2 * n)) / (1 + z2 / n);
-}
-double wilsonHalfWidth(const Rate& r) {
-    const double n = r.total, p = r.fraction(), z2 = kZ * kZ;
-    return kZ * std::sqrt(p * (1 - p) / n + z2 / (4 * n * n)) / (1 + z2 / n);
-}
-
 Rate sumOver(const std::vector<SeedOutcome>& seeds, Rate (*part)(const SeedOutcome&)) {
     Rate r;
     for (const auto& s : seeds) {
@@ -257,10 +246,10 @@ Json rateJson(const Rate& r) {
 }
 
 double Rate::low() const {
-    return total > 0 ? std::max(0.0, wilsonCentre(*this) - wilsonHalfWidth(*this)) : 0.0;
+    return total > 0 ? stats::wilson(count, total).low : 0.0;
 }
 double Rate::high() const {
-    return total > 0 ? std::min(1.0, wilsonCentre(*this) + wilsonHalfWidth(*this)) : 1.0;
+    return total > 0 ? stats::wilson(count, total).high : 1.0;
 }
 
 Rate passiveLostIn(const SeedOutcome& s) {
@@ -312,7 +301,7 @@ double medianOverNamings(const std::vector<SeedOutcome>& seeds, double PathNamin
     for (const auto& o : seeds)
         for (const PathNaming& n : o.namings)
             if (n.*error >= 0.0) v.push_back(n.*error);
-    return medianOr(v, -1.0);
+    return stats::medianOr(v, -1.0);
 }
 
 }  // namespace

@@ -1,3 +1,6 @@
+#include "core/stats/Distributions.h"
+#include "core/stats/Intervals.h"
+#include "core/stats/Resampling.h"
 #include "core/run/SweepRates.h"
 
 #include <algorithm>
@@ -20,45 +23,11 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// Student's t at 97.5 % for `df` degrees of freedom (a table to 30, then the Cornish-Fisher
-/// expansion, within 0.001 of the exact value).
-double tQuantile975(int df) {
-    static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306,
-                                   2.262,  2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120,
-                                   2.110,  2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064,
-                                   2.060,  2.056, 2.052, 2.048, 2.045, 2.042};
-    if (df < 1) return kInf;
-    if (df <= 30) return table[df - 1];
-    const double z = 1.959964, d = df;
-    return z + (z * z * z + z) / (4 * d) +
-           (5 * std::pow(z, 5) + 16 * z * z * z + 3 * z) / (96 * d * d);
-}
-
-/// A fixed generator for resampling, so that the intervals are the same on every machine.
-struct Lcg {
-    std::uint64_t state;
-    std::size_t below(std::size_t n) {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        return static_cast<std::size_t>((state >> 33) % n);
-    }
-};
-
-/// The 2.5 and 97.5 percentiles of `values` (sorted in place); non-finite values sort last.
-std::pair<double, double> percentiles95(std::vector<double>& values) {
-    std::sort(values.begin(), values.end(), [](double a, double b) {
-        if (std::isnan(a)) return false;
-        if (std::isnan(b)) return true;
-        return a < b;
-    });
-    const std::size_t n = values.size();
-    const auto at = [&](double q) {
-        return values[std::min(n - 1,
-                               static_cast<std::size_t>(std::floor(q * double(n - 1) + 0.5)))];
-    };
-    return {at(0.025), at(0.975)};
-}
-
 constexpr int kResamples = 2000;
+
+std::pair<double, double> asPair(const stats::Interval& i) {
+    return {i.low, i.high};
+}
 
 struct SettingSums {
     double time = 0, completed = 0;
@@ -146,41 +115,8 @@ double keptOf(const Json& j) {
 }  // namespace
 
 SweepEstimate overSeeds(const std::vector<double>& perSeed, double least, double most) {
-    SweepEstimate e;
-    const std::size_t n = perSeed.size();
-    if (n == 0) return e;
-    double sum = 0.0;
-    for (double v : perSeed) sum += v;
-    e.mean = sum / double(n);
-    if (n == 1 || !std::isfinite(e.mean)) {
-        e.low = n == 1 ? least : e.mean;
-        e.high = n == 1 ? most : e.mean;
-        return e;
-    }
-    double ss = 0.0;
-    for (double v : perSeed) ss += (v - e.mean) * (v - e.mean);
-    const double t = tQuantile975(int(n) - 1), se = std::sqrt(ss / double(n - 1) / double(n));
-    const bool below = std::isfinite(least), above = std::isfinite(most);
-    if (below && above && e.mean > least && e.mean < most) {
-        // A bounded quantity: the interval on the logit scale of where the mean lies in its
-        // range (delta method), mapped back, so that it stays inside without being cut.
-        const double width = most - least, u = (e.mean - least) / width;
-        const double centre = std::log(u / (1.0 - u)), half = t * se / (width * u * (1.0 - u));
-        const auto back = [&](double x) { return least + width / (1.0 + std::exp(-x)); };
-        e.low = back(centre - half);
-        e.high = back(centre + half);
-    } else if (below && !above && e.mean > least) {
-        // Bounded below (an error, a time): the interval on the log scale of the distance from
-        // the bound (delta method), so that it never reaches past the bound.
-        const double d = e.mean - least, factor = std::exp(t * se / d);
-        e.low = least + d / factor;
-        e.high = least + d * factor;
-    } else {
-        // Unbounded, or every seed at its bound (then se is 0 and so is the width).
-        e.low = std::max(least, e.mean - t * se);
-        e.high = std::min(most, e.mean + t * se);
-    }
-    return e;
+    const stats::MeanInterval m = stats::studentMean(perSeed, least, most);
+    return {m.mean, m.low, m.high};
 }
 
 PaperVerdict paperVerdict(const FollowingOverSeeds& f) {
@@ -299,7 +235,7 @@ SweepRates sweepRates(const std::vector<SeedOutcome>& all) {
     const std::size_t n = runs.size();
     // Resampled seeds, the same draws for every setting so that the pairs stay paired.
     std::vector<std::vector<std::size_t>> draws(kResamples, std::vector<std::size_t>(n));
-    Lcg lcg{0x5eed5eedULL};
+    stats::ResamplingGenerator lcg{0x5eed5eedULL};
     for (auto& d : draws)
         for (auto& k : d) k = lcg.below(n);
     auto resampledTotal = [&](std::size_t setting, const std::vector<std::size_t>& d) {
@@ -314,7 +250,7 @@ SweepRates sweepRates(const std::vector<SeedOutcome>& all) {
         std::vector<double> values;
         for (const auto& d : draws) values.push_back(ratio(resampledTotal(i, d)));
         std::tie(out.following[i].robotTimePerCompletion_s.low,
-                 out.following[i].robotTimePerCompletion_s.high) = percentiles95(values);
+                 out.following[i].robotTimePerCompletion_s.high) = asPair(stats::percentileInterval(values));
     }
     for (std::size_t i = 0; i < settings; ++i) {
         FollowingOverSeeds& f = out.following[i];
@@ -347,7 +283,7 @@ SweepRates sweepRates(const std::vector<SeedOutcome>& all) {
                     rows[paper].trials > 0)
                     pairedTrials += std::min(rows[i].trials, rows[paper].trials);
             }
-            const double z2 = 1.959964 * 1.959964;
+            const double z = stats::normalTwoSided(), z2 = z * z;
             SweepEstimate& c = f.completionDifference_points;
             const double half = 100.0 * z2 / (pairedTrials + z2);
             c.low = std::max(-100.0, c.mean - half);
@@ -363,7 +299,7 @@ SweepRates sweepRates(const std::vector<SeedOutcome>& all) {
             theirs.time += sums[paper][k].time, theirs.completed += sums[paper][k].completed;
         }
         f.timeRatio.mean = ratio(mine) / ratio(theirs);
-        std::tie(f.timeRatio.low, f.timeRatio.high) = percentiles95(ratios);
+        std::tie(f.timeRatio.low, f.timeRatio.high) = asPair(stats::percentileInterval(ratios));
         f.pairedSeeds = static_cast<int>(completion.size());
         f.verdict = paperVerdict(f);
         f.beatsPaper = f.verdict == PaperVerdict::Beats;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/common/Median.h"
+#include "core/stats/Intervals.h"
 
 namespace activetouch {
 
@@ -124,8 +124,8 @@ ValidationResult validateOffline(const HistogramClassifier& classifier, const Cl
             if (position >= r.validRange.first && position <= r.validRange.last)
                 inRange.push_back(err);
         }
-        r.continuousMedianAngleError_deg = medianOr(all, -1.0);
-        r.continuousMedianAngleErrorInRange_deg = medianOr(inRange, -1.0);
+        r.continuousMedianAngleError_deg = stats::medianOr(all, -1.0);
+        r.continuousMedianAngleErrorInRange_deg = stats::medianOr(inRange, -1.0);
     }
     return r;
 }

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <optional>
 
+#include "core/stats/Distributions.h"
 #include "core/common/InputError.h"
 #include "core/common/NumberText.h"
 #include "core/run/ExperimentRun.h"
@@ -482,22 +483,6 @@ std::vector<double> readings(const std::vector<TapRecord>& taps, int k) {
     for (const auto& r : taps)
         for (int t = 0; t < r.tap.sampleCount(); ++t) v.push_back(r.tap.at(t, k));
     return v;
-}
-
-/// The upper quantile of chi-square with `df` degrees of freedom (Wilson-Hilferty).
-double chiSquareQuantile(double df, double z) {
-    const double h = 2.0 / (9.0 * df);
-    return df * std::pow(1.0 - h + z * std::sqrt(h), 3.0);
-}
-
-/// The standard normal quantile of 1 - alpha (one-sided), by bisection on erfc.
-double upperNormalQuantile(double alpha) {
-    double lo = 0.0, hi = 10.0;
-    for (int i = 0; i < 100; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (0.5 * std::erfc(mid / std::sqrt(2.0)) > alpha ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
 }
 
 /// The mean of `v` (non-empty).
@@ -1451,7 +1436,7 @@ SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded
                                  ") say " + std::to_string(given.tap.samples) + " of " +
                                  std::to_string(K) + "; give the scene the taps were taken with");
     SceneFit fit;
-    const double z = upperNormalQuantile(settings.alpha);
+    const double z = stats::normalUpper(settings.alpha);
 
     // The reflex's latency first: every simulation below then presses, on average, as deep as
     // the recorded taps did.
@@ -1729,7 +1714,7 @@ SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded
             fit.holdGains.push_back(std::exp(held.logGain[k]));
             fit.holdGainLogSe.push_back(held.se[k]);
         }
-        const double threshold = held.df > 1 ? chiSquareQuantile(held.df - 1, z) : 0.0;
+        const double threshold = held.df > 1 ? stats::chiSquareUpper(held.df - 1, settings.alpha) : 0.0;
         const bool listed = held.df > 1 && held.q > threshold;
         fit.choices.push_back(
             {"taxel_gain", listed,
@@ -1744,12 +1729,12 @@ SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded
         fit.pressureScaleLow = std::exp(meanLog - 1.96 * seCommon);
         fit.pressureScaleHigh = std::exp(meanLog + 1.96 * seCommon);
         fit.pressureScaleDiffers =
-            seCommon > 0 ? std::abs(meanLog) / seCommon > upperNormalQuantile(settings.alpha / 2)
+            seCommon > 0 ? std::abs(meanLog) / seCommon > stats::normalUpper(settings.alpha / 2)
                          : meanLog != 0.0;
         if (listed) {
             // The gains are one family: 95 % intervals that hold for every live taxel at once
             // (Bonferroni), each from its log's.
-            const double zAll = upperNormalQuantile(0.025 / std::max(df, 1));
+            const double zAll = stats::normalUpper(0.025 / std::max(df, 1));
             for (int k = 0; k < K; ++k) {
                 const std::size_t kk = static_cast<std::size_t>(k);
                 if (skip[kk]) continue;

@@ -448,11 +448,12 @@ private slots:
         QCOMPARE(one.mean, 2.0);
         QCOMPARE(one.low, 0.0);  // one seed says nothing of the spread
         QCOMPARE(one.high, 5.0);
-        // 1, 2, 3: mean 2, standard error 1/sqrt(3), t(2) = 4.303.
+        // 1, 2, 3: mean 2, standard error 1/sqrt(3), t(2) = 0.95 / sqrt(2 * 0.975 * 0.025).
         const SweepEstimate three = overSeeds({1.0, 2.0, 3.0});
         QCOMPARE(three.mean, 2.0);
-        QVERIFY(std::abs(three.high - (2.0 + 4.303 / std::sqrt(3.0))) < 1e-9);
-        QVERIFY(std::abs(three.low - (2.0 - 4.303 / std::sqrt(3.0))) < 1e-9);
+        const double t2 = 0.95 / std::sqrt(2 * 0.975 * 0.025);
+        QVERIFY(std::abs(three.high - (2.0 + t2 / std::sqrt(3.0))) < 1e-9);
+        QVERIFY(std::abs(three.low - (2.0 - t2 / std::sqrt(3.0))) < 1e-9);
         // Near a bound the interval is taken on the log scale of the distance from it: inside,
         // not cut at the bound.
         const SweepEstimate bounded = overSeeds({1.0, 2.0, 3.0}, 1.5);

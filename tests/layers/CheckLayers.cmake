@@ -31,7 +31,7 @@ check_folder(core "<Q[A-Za-z]" "<qcustomplot" "\"app/" "\"devices/")
 check_folder(devices "\"app/" "<QtWidgets" "<QWidget" "<QApplication" "<qcustomplot")
 
 # core's folders from the bottom up: each may include only those before it.
-set(kCoreOrder common geometry tap fingertip io rig classify scene validation control recognition
+set(kCoreOrder common stats geometry tap fingertip io rig classify scene validation control recognition
     records experiment run)
 file(GLOB core_folders RELATIVE "${SOURCE_DIR}/core" "${SOURCE_DIR}/core/*")
 foreach(folder ${core_folders})
