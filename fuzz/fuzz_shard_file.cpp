@@ -3,8 +3,8 @@
 #include <filesystem>
 
 #include "core/common/InputError.h"
-#include "core/run/ComparisonShards.h"
-#include "core/run/SeedShards.h"
+#include "core/analysis/ComparisonShards.h"
+#include "core/analysis/SeedShards.h"
 #include "fuzz/FuzzInput.h"
 
 using namespace activetouch;

@@ -4,7 +4,7 @@
 #include "core/run/OutputFiles.h"
 #include "core/run/RunArtefacts.h"
 #include "core/run/RunFolder.h"
-#include "core/run/SweepRates.h"
+#include "core/run/SweepRecords.h"
 
 namespace activetouch {
 namespace fs = std::filesystem;

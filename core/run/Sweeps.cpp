@@ -11,7 +11,6 @@
 #include "core/classify/BeliefCalibration.h"
 #include "core/classify/SequentialPerception.h"
 #include "core/run/ExperimentRun.h"
-#include "core/run/SeedRates.h"
 #include "core/validation/TrainingProtocol.h"
 
 namespace activetouch {
@@ -399,15 +398,21 @@ BanditResult banditSweep(const RunResult& r, const RunOptions& options,
 }
 
 RobustnessRow robustnessRow(const std::string& fault, const RunResult& run) {
-    const SeedOutcome o = seedOutcome(run);
     RobustnessRow row;
     row.fault = fault;
     row.failure = run.failure;
-    row.activeTrials = o.activeTrials;
-    row.activeCompleted = o.activeCompleted;
-    row.recognitionTrials = o.recognitionTrials();
-    row.recognisedRaw = o.recognisedRaw();
-    row.recognisedAnyPose = o.recognisedAnyPose();
+    for (const TrialRun& t : run.trials) {
+        if (t.result.end == TrialEnd::DeviceError || t.result.mode != FollowingMode::Active)
+            continue;  // a device error fails the run, not the trial
+        ++row.activeTrials;
+        if (!t.result.completed()) continue;
+        ++row.activeCompleted;
+        if (!t.recognised) continue;
+        ++row.recognitionTrials;
+        row.recognisedRaw += t.recognition.predicted == t.label;
+        const PoseRecognition& pose = t.poseRecognition;
+        row.recognisedAnyPose += pose.valid && pose.predicted == t.label;
+    }
     row.angleError_deg = run.validation.angleError_deg;
     row.positionError_mm = run.validation.positionError_mm;
     return row;

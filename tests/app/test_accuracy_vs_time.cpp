@@ -12,8 +12,8 @@
 
 #include "core/experiment/RunPlan.h"
 #include "core/run/ExperimentRun.h"
-#include "core/run/SeedRates.h"
-#include "core/run/SweepRates.h"
+#include "core/analysis/SeedRates.h"
+#include "core/analysis/SweepRates.h"
 #include "support/Paths.h"
 #include "support/SimulatedRun.h"
 

@@ -17,8 +17,8 @@
 #include <thread>
 
 #include "core/run/ExperimentRun.h"
-#include "core/run/PairedComparison.h"
-#include "core/run/SeedRates.h"
+#include "core/analysis/PairedComparison.h"
+#include "core/analysis/SeedRates.h"
 #include "support/Paths.h"
 #include "support/SimulatedRun.h"
 

@@ -32,7 +32,7 @@ check_folder(devices "\"app/" "<QtWidgets" "<QWidget" "<QApplication" "<qcustomp
 
 # core's folders from the bottom up: each may include only those before it.
 set(kCoreOrder common stats geometry tap fingertip io rig classify scene validation control recognition
-    records experiment run)
+    records experiment run analysis)
 file(GLOB core_folders RELATIVE "${SOURCE_DIR}/core" "${SOURCE_DIR}/core/*")
 foreach(folder ${core_folders})
   if(IS_DIRECTORY "${SOURCE_DIR}/core/${folder}")

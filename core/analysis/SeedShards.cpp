@@ -1,4 +1,4 @@
-#include "core/run/SeedShards.h"
+#include "core/analysis/SeedShards.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -7,10 +7,10 @@
 
 #include "core/common/InputError.h"
 #include "core/io/JsonFields.h"
-#include "core/run/OutcomeChecks.h"
+#include "core/analysis/OutcomeChecks.h"
 #include "core/run/OutputFiles.h"
 #include "core/run/RunFolder.h"
-#include "core/run/SweepRates.h"
+#include "core/analysis/SweepRates.h"
 
 namespace activetouch {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "core/run/ComparisonShards.h"
+#include "core/analysis/ComparisonShards.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -7,7 +7,7 @@
 
 #include "core/common/InputError.h"
 #include "core/io/JsonFields.h"
-#include "core/run/OutcomeChecks.h"
+#include "core/analysis/OutcomeChecks.h"
 #include "core/run/OutputFiles.h"
 #include "core/run/RunFolder.h"
 

@@ -1,4 +1,4 @@
-#include "core/run/OutcomeChecks.h"
+#include "core/analysis/OutcomeChecks.h"
 
 #include <cmath>
 

@@ -9,7 +9,8 @@
 #include <vector>
 
 #include "core/io/OutputFile.h"
-#include "core/run/SeedRates.h"
+#include "core/analysis/SeedRates.h"
+#include "core/run/SweepRecords.h"
 #include "core/run/SweepResults.h"
 
 namespace activetouch {
@@ -130,19 +131,5 @@ void writeSweepRateTables(const SweepRates& rates, const std::string& dir);
 /// The tables as text for a terminal: (a), the calibration, (b) with the front and the settings
 /// that beat the paper's, (c).
 std::vector<std::string> describeSweepRates(const SweepRates& rates);
-
-/// One run's robustness rows as JSON (summary.json's sweeps.robustness) and as lines of text.
-Json robustnessJson(const SweepResults& sweeps);
-std::vector<std::string> describeRobustness(const SweepResults& sweeps);
-
-/// One run's bandit as JSON (summary.json's sweeps.bandit) and as a line of text.
-Json banditJson(const BanditResult& bandit, const std::vector<FollowingSweepRow>& following);
-std::string describeBandit(const BanditResult& bandit,
-                           const std::vector<FollowingSweepRow>& following);
-
-/// What a seed keeps of its run's sweeps, and back: enough to aggregate over seeds (the per-run
-/// intervals over classes are not kept).
-Json seedSweepsJson(const SweepResults& sweeps);
-SweepResults seedSweepsFromJson(const Json& j);
 
 }  // namespace activetouch

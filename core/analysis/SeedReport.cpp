@@ -4,8 +4,8 @@
 #include <optional>
 
 #include "core/run/OutputFiles.h"
-#include "core/run/SeedRates.h"
-#include "core/run/SweepRates.h"
+#include "core/analysis/SeedRates.h"
+#include "core/analysis/SweepRates.h"
 
 namespace activetouch {
 

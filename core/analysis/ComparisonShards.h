@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "core/run/PairedComparison.h"
-#include "core/run/SeedShards.h"
+#include "core/analysis/PairedComparison.h"
+#include "core/analysis/SeedShards.h"
 
 namespace activetouch {
 

@@ -1,4 +1,4 @@
-#include "core/run/SeedRates.h"
+#include "core/analysis/SeedRates.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,8 +5,8 @@
 // place and what is wrong, so that no rate ever reads "132 / 32".
 #include <string>
 
-#include "core/run/PairedComparison.h"
-#include "core/run/SeedRates.h"
+#include "core/analysis/PairedComparison.h"
+#include "core/analysis/SeedRates.h"
 
 namespace activetouch {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/io/JsonFields.h"
-#include "core/run/SeedRates.h"
+#include "core/analysis/SeedRates.h"
 
 namespace activetouch {
 

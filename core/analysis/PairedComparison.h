@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/io/OutputFile.h"
-#include "core/run/SeedRates.h"
+#include "core/analysis/SeedRates.h"
 
 namespace activetouch {
 

@@ -1,5 +1,5 @@
 #include "core/stats/Intervals.h"
-#include "core/run/PairedComparison.h"
+#include "core/analysis/PairedComparison.h"
 #include "core/run/RunArtefacts.h"
 
 #include <algorithm>
