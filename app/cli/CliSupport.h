@@ -17,8 +17,8 @@
 #include "core/run/ExperimentRun.h"
 #include "core/run/RunArtefacts.h"
 #include "core/run/RunFolder.h"
-#include "core/run/SeedRates.h"
-#include "core/run/SeedShards.h"
+#include "core/analysis/SeedRates.h"
+#include "core/analysis/SeedShards.h"
 
 namespace activetouch::cli {
 

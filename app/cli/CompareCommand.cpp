@@ -1,6 +1,6 @@
 #include "app/cli/Commands.h"
 #include "app/cli/CliSupport.h"
-#include "core/run/ComparisonShards.h"
+#include "core/analysis/ComparisonShards.h"
 
 #include <QApplication>
 #include <algorithm>
@@ -27,10 +27,10 @@
 #include "core/run/RunArtefacts.h"
 #include "core/run/ExperimentRun.h"
 #include "core/run/RecordedRuns.h"
-#include "core/run/PairedComparison.h"
+#include "core/analysis/PairedComparison.h"
 #include "core/run/RunFolder.h"
-#include "core/run/SeedRates.h"
-#include "core/run/SeedShards.h"
+#include "core/analysis/SeedRates.h"
+#include "core/analysis/SeedShards.h"
 #include "core/experiment/Experiment.h"
 #include "core/experiment/RunPlan.h"
 #include "core/io/Csv.h"

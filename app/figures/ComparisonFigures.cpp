@@ -7,7 +7,7 @@
 
 #include "app/figures/FigureLayout.h"
 #include "app/figures/FollowingFigures.h"
-#include "core/run/PairedComparison.h"
+#include "core/analysis/PairedComparison.h"
 #include "qcustomplot.h"
 
 namespace activetouch {

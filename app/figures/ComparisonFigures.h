@@ -1,5 +1,5 @@
 #pragma once
-// Two experiments compared trial by trial on the same seeds (core/run/PairedComparison.h): for each
+// Two experiments compared trial by trial on the same seeds (core/analysis/PairedComparison.h): for each
 // part of the paper's result, B's rate minus A's with its 95 % interval, McNemar's p beside it,
 // and what each costs in robot time per run.
 #include <QString>

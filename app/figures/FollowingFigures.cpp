@@ -10,7 +10,7 @@
 #include "app/figures/SweepFigures.h"
 #include "app/figures/ValidationFigures.h"
 #include "core/run/ExperimentRun.h"
-#include "core/run/SeedRates.h"
+#include "core/analysis/SeedRates.h"
 #include "qcustomplot.h"
 
 namespace activetouch {

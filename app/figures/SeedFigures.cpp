@@ -5,8 +5,8 @@
 #include "app/figures/FigureExport.h"
 #include "app/figures/FigureLayout.h"
 #include "app/figures/SweepFigures.h"
-#include "core/run/SeedRates.h"
-#include "core/run/SweepRates.h"
+#include "core/analysis/SeedRates.h"
+#include "core/analysis/SweepRates.h"
 #include "qcustomplot.h"
 
 namespace activetouch {

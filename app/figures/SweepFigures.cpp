@@ -6,7 +6,7 @@
 
 #include "app/figures/FigureLayout.h"
 #include "core/run/ExperimentRun.h"
-#include "core/run/SweepRates.h"
+#include "core/analysis/SweepRates.h"
 #include "qcustomplot.h"
 
 namespace activetouch {

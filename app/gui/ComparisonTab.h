@@ -1,6 +1,6 @@
 #pragma once
 // The comparison tab: the experiment as shown (A) against another experiment file (B), run on
-// the same seeds and compared trial by trial (core/run/PairedComparison.h). Each seed's trials
+// the same seeds and compared trial by trial (core/analysis/PairedComparison.h). Each seed's trials
 // that the two ended differently arrive as rows as it finishes, and each outcome's rate in A and
 // in B, the disagreements, the paired difference with its interval and McNemar's p follow the
 // seeds as they accumulate.
@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/run/PairedComparison.h"
+#include "core/analysis/PairedComparison.h"
 
 class QLabel;
 class QPushButton;

@@ -48,7 +48,7 @@
 #include "core/records/TapCsv.h"
 #include "core/run/ExperimentFiles.h"
 #include "core/run/RunFolder.h"
-#include "core/run/SeedRates.h"
+#include "core/analysis/SeedRates.h"
 #include "core/run/Sweeps.h"
 #include "devices/simulated/SimulatedWorld.h"
 #include "qcustomplot.h"

@@ -15,8 +15,8 @@
 #include "app/figures/SweepFigures.h"
 #include "app/figures/ValidationFigures.h"
 #include "app/gui/PlotPanel.h"
-#include "core/run/SeedRates.h"
-#include "core/run/SweepRates.h"
+#include "core/analysis/SeedRates.h"
+#include "core/analysis/SweepRates.h"
 #include "qcustomplot.h"
 
 namespace activetouch {

@@ -10,8 +10,8 @@
 #include "app/gui/LiveFeed.h"
 #include "core/run/ExperimentRun.h"
 #include "core/run/RecordedRuns.h"
-#include "core/run/PairedComparison.h"
-#include "core/run/SeedRates.h"
+#include "core/analysis/PairedComparison.h"
+#include "core/analysis/SeedRates.h"
 
 namespace activetouch {
 

@@ -7,7 +7,7 @@
 #include <memory>
 #include <optional>
 
-#include "core/run/SeedRates.h"
+#include "core/analysis/SeedRates.h"
 
 class QLabel;
 class QPushButton;
