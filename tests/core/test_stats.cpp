@@ -10,6 +10,7 @@
 #include "core/stats/Distributions.h"
 #include "core/stats/Intervals.h"
 #include "core/stats/Resampling.h"
+#include "core/stats/SampleTests.h"
 
 using namespace activetouch::stats;
 
@@ -104,6 +105,23 @@ private slots:
         // Thousands of discordant pairs stay finite (no factorials).
         const double p2 = mcnemarExactP(4000, 4200);
         QVERIFY(std::isfinite(p2) && p2 > 0.0 && p2 < 0.05);
+    }
+
+    void sampleDistancesAndCochransQ() {
+        // Two samples of four, shifted by two: the cumulative shares differ by a half at most
+        // (ks.test(1:4, 3:6)$statistic = 0.5); every quantile moves by 2.
+        QCOMPARE(ksDistance({1, 2, 3, 4}, {3, 4, 5, 6}), 0.5);
+        QCOMPARE(ksDistance({1, 2, 3}, {1, 2, 3}), 0.0);
+        QCOMPARE(ksDistance({1, 2}, {5, 6}), 1.0);
+        QVERIFY(near(wasserstein({1, 2, 3, 4}, {3, 4, 5, 6}), 2.0));
+        QCOMPARE(wasserstein({0.5}, {0.5}), 0.0);
+        // Empty samples have no distance: NaN, never a crash or a 0 that reads as "the same".
+        QVERIFY(std::isnan(ksDistance({}, {1.0})) && std::isnan(wasserstein({1.0}, {})));
+        // Q of 0 and 1 with unit errors about their mean 0.5: 0.25 + 0.25; a zero error is left
+        // out; none left gives 0.
+        QVERIFY(near(cochranQ({0.0, 1.0}, {1.0, 1.0}), 0.5));
+        QVERIFY(near(cochranQ({0.0, 1.0, 9.0}, {1.0, 1.0, 0.0}), 0.5));
+        QCOMPARE(cochranQ({1.0}, {0.0}), 0.0);
     }
 
     void resamplingIsTheSameOnEveryMachine() {
