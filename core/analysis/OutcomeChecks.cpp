@@ -28,8 +28,9 @@ public:
     }
     [[noreturn]] void fail(const std::string& key, const std::string& what) const {
         throw InputError(path_, place_ + "/" + key,
-                         what + "; no run writes that, so the file was damaged or edited: run "
-                                "that shard again");
+                         what +
+                             "; no run writes that, so the file was damaged or edited: run "
+                             "that shard again");
     }
 
 private:
@@ -48,8 +49,8 @@ void checkTracing(const Checker& c, const Tracing& t, const char* key) {
 }
 
 void checkCorners(const Checker& c, const CornerTally& t, const char* key) {
-    for (const int v : {t.endedConvex, t.endedConcave, t.endedAway, t.rounded.convex,
-                        t.rounded.concave})
+    for (const int v :
+         {t.endedConvex, t.endedConcave, t.endedAway, t.rounded.convex, t.rounded.concave})
         c.count(v, key);
 }
 
@@ -64,8 +65,9 @@ void checkSeedOutcome(const SeedOutcome& o, const std::string& path, const std::
     c.amount(o.completedRobotTime_s, "completed_robot_time_s", kMaxSeedRobotTime_s);
     c.amount(o.runRobotTime_s, "run_robot_time_s", kMaxSeedRobotTime_s);
     if (o.completedRobotTime_s > o.runRobotTime_s)
-        c.fail("completed_robot_time_s", "the completed trials' robot time is more than the "
-                                          "whole run's");
+        c.fail("completed_robot_time_s",
+               "the completed trials' robot time is more than the "
+               "whole run's");
     c.amount(o.angleError_deg, "angle_error_deg", 180.0);
     c.amount(o.positionError_mm, "position_error_mm", 1e6);
     if (o.validRange.first > o.validRange.last || !std::isfinite(o.validRange.score))

@@ -189,15 +189,14 @@ namespace {
 void writePerceptionTable(const SweepRates& r, const std::string& dir) {
     auto finite = [](double v) { return std::isfinite(v) ? v : std::nan(""); };
     OutputFile f((fs::path(dir) / "sweeps_perception.csv").string());
-    cells(f, 
-        "belief_threshold,seeds,mean_taps,mean_taps_lo,mean_taps_hi,robot_time_s,"
-        "robot_time_s_lo,robot_time_s_hi,edge_angle_error_deg,edge_angle_error_deg_lo,"
-        "edge_angle_error_deg_hi,position_error_mm,position_error_mm_lo,position_error_mm_hi,"
-        "correct_fraction,correct_fraction_lo,correct_fraction_hi,angle_fall_deg,"
-        "angle_fall_deg_lo,angle_fall_deg_hi,position_fall_mm,position_fall_mm_lo,"
-        "position_fall_mm_hi,plane_as_plane,air_as_air\n");
-    const std::vector<PerceptionOverSeeds> rows =
-        firstThen(r.perceptionSingleTap, r.perception);
+    cells(f,
+          "belief_threshold,seeds,mean_taps,mean_taps_lo,mean_taps_hi,robot_time_s,"
+          "robot_time_s_lo,robot_time_s_hi,edge_angle_error_deg,edge_angle_error_deg_lo,"
+          "edge_angle_error_deg_hi,position_error_mm,position_error_mm_lo,position_error_mm_hi,"
+          "correct_fraction,correct_fraction_lo,correct_fraction_hi,angle_fall_deg,"
+          "angle_fall_deg_lo,angle_fall_deg_hi,position_fall_mm,position_fall_mm_lo,"
+          "position_fall_mm_hi,plane_as_plane,air_as_air\n");
+    const std::vector<PerceptionOverSeeds> rows = firstThen(r.perceptionSingleTap, r.perception);
     for (const auto& p : rows) {
         if (p.threshold == 0)
             cells(f, "single_tap,%d", p.seeds);
@@ -215,29 +214,28 @@ void writePerceptionTable(const SweepRates& r, const std::string& dir) {
 void writeFollowingTable(const SweepRates& r, const std::string& dir) {
     auto finite = [](double v) { return std::isfinite(v) ? v : std::nan(""); };
     OutputFile f((fs::path(dir) / "sweeps_following.csv").string());
-    cells(f, 
-        "mode,follow_step_mm,reposition_step_mm,belief_threshold,paper_setting,seeds,trials,"
-        "completed,completed_rate,completed_lo,completed_hi,contour_distance_mm,"
-        "contour_distance_mm_lo,contour_distance_mm_hi,robot_time_per_trial_s,taps_per_trial,"
-        "robot_time_per_completion_s,robot_time_per_completion_s_lo,"
-        "robot_time_per_completion_s_hi,completion_vs_paper_points,"
-        "completion_vs_paper_points_lo,completion_vs_paper_points_hi,time_ratio_vs_paper,"
-        "time_ratio_vs_paper_lo,time_ratio_vs_paper_hi,on_pareto_front,beats_paper\n");
+    cells(f,
+          "mode,follow_step_mm,reposition_step_mm,belief_threshold,paper_setting,seeds,trials,"
+          "completed,completed_rate,completed_lo,completed_hi,contour_distance_mm,"
+          "contour_distance_mm_lo,contour_distance_mm_hi,robot_time_per_trial_s,taps_per_trial,"
+          "robot_time_per_completion_s,robot_time_per_completion_s_lo,"
+          "robot_time_per_completion_s_hi,completion_vs_paper_points,"
+          "completion_vs_paper_points_lo,completion_vs_paper_points_hi,time_ratio_vs_paper,"
+          "time_ratio_vs_paper_lo,time_ratio_vs_paper_hi,on_pareto_front,beats_paper\n");
     for (const auto& s : r.following) {
-        cells(f, 
-            "%s,%g,%g,%g,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.2f,%.3f,%.3f,%.3f",
-            modeName(s.mode), s.followStep_mm, s.repositionStep_mm, s.beliefThreshold,
-            int(s.paperSetting), s.seeds, s.completed.total, s.completed.count,
-            s.completed.fraction(), s.completed.low(), s.completed.high(),
-            s.contourDistance_mm.mean, s.contourDistance_mm.low, s.contourDistance_mm.high,
-            s.robotTimePerTrial_s.mean, s.tapsPerTrial.mean,
-            finite(s.robotTimePerCompletion_s.mean), finite(s.robotTimePerCompletion_s.low),
-            finite(s.robotTimePerCompletion_s.high));
+        cells(f, "%s,%g,%g,%g,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.2f,%.3f,%.3f,%.3f",
+              modeName(s.mode), s.followStep_mm, s.repositionStep_mm, s.beliefThreshold,
+              int(s.paperSetting), s.seeds, s.completed.total, s.completed.count,
+              s.completed.fraction(), s.completed.low(), s.completed.high(),
+              s.contourDistance_mm.mean, s.contourDistance_mm.low, s.contourDistance_mm.high,
+              s.robotTimePerTrial_s.mean, s.tapsPerTrial.mean,
+              finite(s.robotTimePerCompletion_s.mean), finite(s.robotTimePerCompletion_s.low),
+              finite(s.robotTimePerCompletion_s.high));
         if (s.paired)
             cells(f, ",%.3f,%.3f,%.3f,%.4f,%.4f,%.4f", s.completionDifference_points.mean,
-                    finite(s.completionDifference_points.low),
-                    finite(s.completionDifference_points.high), finite(s.timeRatio.mean),
-                    finite(s.timeRatio.low), finite(s.timeRatio.high));
+                  finite(s.completionDifference_points.low),
+                  finite(s.completionDifference_points.high), finite(s.timeRatio.mean),
+                  finite(s.timeRatio.low), finite(s.timeRatio.high));
         else
             cells(f, ",,,,,,");
         cells(f, ",%d,%d\n", int(s.onParetoFront), int(s.beatsPaper));
@@ -249,25 +247,25 @@ void writeFollowingTable(const SweepRates& r, const std::string& dir) {
 void writeRobustnessTable(const SweepRates& r, const std::string& dir) {
     auto finite = [](double v) { return std::isfinite(v) ? v : std::nan(""); };
     OutputFile f((fs::path(dir) / "sweeps_robustness.csv").string());
-    cells(f, 
-        "fault,seeds,failed_runs,active_trials,active_completed,completed_rate,completed_lo,"
-        "completed_hi,completion_fall_points,completion_fall_points_lo,"
-        "completion_fall_points_hi,recognition_trials,recognised_raw,recognised_rate,"
-        "recognised_lo,recognised_hi,recognised_any_pose,recognition_fall_points,"
-        "recognition_fall_points_lo,recognition_fall_points_hi,validation_angle_error_deg\n");
+    cells(f,
+          "fault,seeds,failed_runs,active_trials,active_completed,completed_rate,completed_lo,"
+          "completed_hi,completion_fall_points,completion_fall_points_lo,"
+          "completion_fall_points_hi,recognition_trials,recognised_raw,recognised_rate,"
+          "recognised_lo,recognised_hi,recognised_any_pose,recognition_fall_points,"
+          "recognition_fall_points_lo,recognition_fall_points_hi,validation_angle_error_deg\n");
     const std::vector<RobustnessOverSeeds> all = firstThen(r.robustnessBase, r.robustness);
     for (const auto& x : all)
-        cells(f, 
-            "%s,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%d,%d,%.4f,%.4f,%.4f,%d,%.3f,%.3f,"
-            "%.3f,%.3f\n",
-            csvField({x.fault}).c_str(), x.seeds, x.failedRuns, x.completed.total,
-            x.completed.count, x.completed.fraction(), x.completed.low(), x.completed.high(),
-            x.completionFall_points.mean, finite(x.completionFall_points.low),
-            finite(x.completionFall_points.high), x.recognisedRaw.total, x.recognisedRaw.count,
-            x.recognisedRaw.fraction(), x.recognisedRaw.low(), x.recognisedRaw.high(),
-            x.recognisedAnyPose.count, x.recognitionFall_points.mean,
-            finite(x.recognitionFall_points.low), finite(x.recognitionFall_points.high),
-            x.angleError_deg.mean);
+        cells(f,
+              "%s,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%d,%d,%.4f,%.4f,%.4f,%d,%.3f,%.3f,"
+              "%.3f,%.3f\n",
+              csvField({x.fault}).c_str(), x.seeds, x.failedRuns, x.completed.total,
+              x.completed.count, x.completed.fraction(), x.completed.low(), x.completed.high(),
+              x.completionFall_points.mean, finite(x.completionFall_points.low),
+              finite(x.completionFall_points.high), x.recognisedRaw.total, x.recognisedRaw.count,
+              x.recognisedRaw.fraction(), x.recognisedRaw.low(), x.recognisedRaw.high(),
+              x.recognisedAnyPose.count, x.recognitionFall_points.mean,
+              finite(x.recognitionFall_points.low), finite(x.recognitionFall_points.high),
+              x.angleError_deg.mean);
     f.close();
 }
 
@@ -275,15 +273,15 @@ void writeRobustnessTable(const SweepRates& r, const std::string& dir) {
 void writeComputeTable(const SweepRates& r, const std::string& dir) {
     auto finite = [](double v) { return std::isfinite(v) ? v : std::nan(""); };
     OutputFile f((fs::path(dir) / "sweeps_compute.csv").string());
-    cells(f, 
-        "bins,samples_per_tap,paper_setting,angle_error_deg,angle_error_deg_lo,"
-        "angle_error_deg_hi,position_error_mm,position_error_mm_lo,position_error_mm_hi,"
-        "microseconds_per_decision\n");
+    cells(f,
+          "bins,samples_per_tap,paper_setting,angle_error_deg,angle_error_deg_lo,"
+          "angle_error_deg_hi,position_error_mm,position_error_mm_lo,position_error_mm_hi,"
+          "microseconds_per_decision\n");
     for (const auto& c : r.compute)
         cells(f, "%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f\n", c.bins, c.samples,
-                int(c.paperSetting), c.angle_deg.mean, finite(c.angle_deg.low),
-                finite(c.angle_deg.high), c.position_mm.mean, finite(c.position_mm.low),
-                finite(c.position_mm.high), c.microsecondsPerDecision.mean);
+              int(c.paperSetting), c.angle_deg.mean, finite(c.angle_deg.low),
+              finite(c.angle_deg.high), c.position_mm.mean, finite(c.position_mm.low),
+              finite(c.position_mm.high), c.microsecondsPerDecision.mean);
     f.close();
 }
 
@@ -306,8 +304,7 @@ void describePerception(const SweepRates& r, std::vector<std::string>& lines) {
     lines.push_back(
         "    threshold   taps per decision     edge angle error (deg)   position error (mm)   "
         "angle fall (deg)      position fall (mm)");
-    const std::vector<PerceptionOverSeeds> rows =
-        firstThen(r.perceptionSingleTap, r.perception);
+    const std::vector<PerceptionOverSeeds> rows = firstThen(r.perceptionSingleTap, r.perception);
     for (const auto& p : rows) {
         std::snprintf(
             buf, sizeof buf, "    %-10s  %-20s  %-23s  %-20s  %-20s  %s",
@@ -336,16 +333,14 @@ void describeFollowing(const SweepRates& r, std::vector<std::string>& lines) {
         if (f.onParetoFront) mark += " front";
         if (f.verdict == PaperVerdict::Beats) mark += " BEATS";
         std::snprintf(
-            buf, sizeof buf, "    %-32s %-23s %-22s %-25s %-30s %-20s%s",
-            settingName(f).c_str(), completed,
-            estimateText(f.contourDistance_mm, "%.2f").c_str(),
+            buf, sizeof buf, "    %-32s %-23s %-22s %-25s %-30s %-20s%s", settingName(f).c_str(),
+            completed, estimateText(f.contourDistance_mm, "%.2f").c_str(),
             std::isfinite(f.robotTimePerCompletion_s.mean)
                 ? estimateText(f.robotTimePerCompletion_s, "%.1f").c_str()
                 : "none completed",
             f.paired ? estimateText(f.completionDifference_points, "%+.1f").c_str() : "",
-            f.paired && std::isfinite(f.timeRatio.mean)
-                ? estimateText(f.timeRatio, "%.2f").c_str()
-                : "",
+            f.paired && std::isfinite(f.timeRatio.mean) ? estimateText(f.timeRatio, "%.2f").c_str()
+                                                        : "",
             mark.c_str());
         lines.push_back(buf);
     }
@@ -363,8 +358,9 @@ void describeFollowing(const SweepRates& r, std::vector<std::string>& lines) {
         lines.push_back("    not enough seeds yet for a verdict on: " + undecided +
                         "; a verdict needs " + std::to_string(kMinVerdictSeeds) +
                         " paired seeds and intervals of non-zero width");
-    lines.push_back("    (a dash: no value; no trial of that setting completed, or no seed "
-                    "had such decisions)");
+    lines.push_back(
+        "    (a dash: no value; no trial of that setting completed, or no seed "
+        "had such decisions)");
 }
 
 /// Sweep (e) over seeds, for a terminal.
@@ -388,12 +384,11 @@ void describeRobustnessOverSeeds(const SweepRates& r, std::vector<std::string>& 
         const bool base = f.fault == "none";
         const std::string failed =
             f.failedRuns ? " (" + std::to_string(f.failedRuns) + " runs failed)" : "";
-        std::snprintf(buf, sizeof buf, "    %-19s %-25s %-22s %-27s %s%s",
-                      base ? "none (base)" : f.fault.c_str(), completed,
-                      base ? "" : estimateText(f.completionFall_points, "%+.1f").c_str(),
-                      recognised,
-                      base ? "" : estimateText(f.recognitionFall_points, "%+.1f").c_str(),
-                      failed.c_str());
+        std::snprintf(
+            buf, sizeof buf, "    %-19s %-25s %-22s %-27s %s%s",
+            base ? "none (base)" : f.fault.c_str(), completed,
+            base ? "" : estimateText(f.completionFall_points, "%+.1f").c_str(), recognised,
+            base ? "" : estimateText(f.recognitionFall_points, "%+.1f").c_str(), failed.c_str());
         lines.push_back(buf);
     }
 }
@@ -407,8 +402,8 @@ void describeCompute(const SweepRates& r, std::vector<std::string>& lines) {
                       "    %3d bins x %2d samples: angle %s deg, position %s mm, %.2f us per "
                       "decision%s",
                       c.bins, c.samples, estimateText(c.angle_deg, "%.1f").c_str(),
-                      estimateText(c.position_mm, "%.2f").c_str(),
-                      c.microsecondsPerDecision.mean, c.paperSetting ? "  (paper)" : "");
+                      estimateText(c.position_mm, "%.2f").c_str(), c.microsecondsPerDecision.mean,
+                      c.paperSetting ? "  (paper)" : "");
         lines.push_back(buf);
     }
 }

@@ -267,37 +267,183 @@ void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double c
     r.coverage = static_cast<double>(covered) / samples;
 }
 
+namespace {
+
+/// One trial's perception-action loop: its settings, the short-term memory, the belief over the
+/// taps of one decision, and where along the contour it has got to (for judging only: the loop
+/// never sees the outline).
+class TrialLoop {
+public:
+    TrialLoop(const HistogramClassifier& classifier, const ClassSet& classes,
+              const Polygon& outline, const TrialSetup& setup)
+        : classifier_(classifier),
+          classes_(classes),
+          outline_(outline),
+          setup_(setup),
+          s_(setup.settings),
+          sequential_(s_.beliefThreshold > 0.0),
+          continuous_(s_.percept == PerceptKind::Continuous),
+          belief_(classes),
+          evidence_(sequential_ ? std::size_t(classes.classCount()) : 0),
+          calibrated_(evidence_.size()),
+          logLikelihoods_(continuous_ ? std::size_t(classes.classCount()) : 0),
+          perimeter_(outline.perimeter()),
+          startArc_(outline.nearestOutlinePoint(setup.start).arcLength),
+          lastArc_(startArc_),
+          corners_(cornerCriteria(classes)) {
+        memory_.confirmationsNeeded =
+            setup.mode == FollowingMode::Active ? s_.edgeConfirmationTaps : 1;
+        if (continuous_) memory_.sameEdgeToleranceDeg = s_.sameEdgeTolerance_deg;
+        memory_.lastEdgeDeg = setup.startEdgeDeg;
+        memory_.heading = followDirection(setup.startEdgeDeg);
+    }
+
+    int tapCap() const {
+        const int tapsPerDecision = sequential_ ? s_.maxTapsPerDecision : 1;
+        return std::max(
+            1, static_cast<int>(std::ceil(s_.tapCapPerimeters * perimeter_ / s_.followStep_mm)) *
+                   tapsPerDecision);
+    }
+    double perimeter() const { return perimeter_; }
+    double progress() const { return progress_; }
+    double startArc() const { return startArc_; }
+
+    /// Perceives `t` (its tap taken at `pose`) and decides; false while a sequential decision
+    /// gathers more evidence.
+    bool perceiveAndDecide(FollowedTap& t, Vec2 pose) {
+        bool decisionMade = true;
+        if (sequential_)
+            decisionMade = perceiveSequentially(t);
+        else if (continuous_) {
+            classifier_.logLikelihoods(t.record.tap, logLikelihoods_.data());
+            t.percept =
+                perceiveContinuous(classes_, logLikelihoods_.data(),
+                                   perceptTemperatureFor(s_.perceptTemperature, t.record.tap));
+        } else {
+            t.percept = perceive(classifier_, classes_, t.record.tap);
+        }
+        usableEdge_ = setup_.mode == FollowingMode::Passive
+                          ? t.percept.region == Region::Edge
+                          : orientationTrusted(t.percept, setup_.valid);
+        if (continuous_ && decisionMade && usableEdge_ && s_.curvatureTaps >= 2)
+            memory_.noteEdgeAt(pose, t.percept.orientationDeg, s_.curvatureTaps);
+        if (decisionMade) t.decision = decide(t.percept, memory_, setup_.mode, s_, setup_.valid);
+        return decisionMade;
+    }
+
+    /// Judges the trial at this tap: progress along the contour, distance from it, the true edge
+    /// and, where it can be judged, the percept's angle error.
+    void judge(FollowedTap& t, Vec2 pose) {
+        const auto nearest = outline_.nearestOutlinePoint(pose);
+        double delta = nearest.arcLength - lastArc_;
+        if (delta > perimeter_ / 2) delta -= perimeter_;
+        if (delta < -perimeter_ / 2) delta += perimeter_;
+        progress_ += delta;
+        lastArc_ = nearest.arcLength;
+        t.progress_mm = progress_;
+        t.contourDistance_mm = outline_.contains(pose) ? nearest.distance : -nearest.distance;
+        t.trueEdgeDeg = degreesOf(outline_.outwardNormal(nearest.edge));
+        const double offset = -t.contourDistance_mm;
+        if (t.percept.continuous && t.percept.region == Region::Edge &&
+            offset >= setup_.valid.low && offset <= setup_.valid.high &&
+            contourPlace(outline_, nearest.point, nearest.arcLength, corners_).kind ==
+                PlaceKind::AwayFromCorners)
+            t.angleError_deg = angleDifferenceDeg(t.percept.orientationDeg, t.trueEdgeDeg);
+    }
+
+    void remember(const FollowedTap& t, bool decisionMade) {
+        if (decisionMade) memory_.update(t.percept, usableEdge_);
+    }
+
+    /// How the trial ends at tap `t`, or nothing while it goes on.
+    std::optional<TrialEnd> endAt(const FollowedTap& t, Vec2 pose, bool keepGoing) const {
+        if (-t.contourDistance_mm > s_.lostOutside_mm) return TrialEnd::LostOutside;
+        if (t.contourDistance_mm > s_.lostInside_mm) return TrialEnd::LostInside;
+        if (memory_.planeOrAirRun >= s_.lostPlaneOrAirTaps) return TrialEnd::LostPlaneOrAir;
+        if (progress_ >= perimeter_ && distance(pose, setup_.start) <= s_.completionRadius_mm)
+            return TrialEnd::Completed;
+        if (!keepGoing) return TrialEnd::Cancelled;
+        return std::nullopt;
+    }
+
+    /// After a tap: a decision starts the next belief afresh; evidence still being gathered is
+    /// shifted with the move.
+    void afterMove(const FollowedTap& t, bool decisionMade) {
+        if (!sequential_) return;
+        if (decisionMade)
+            belief_ = SequentialBelief(classes_);
+        else
+            belief_.shift(t.decision.move());
+    }
+
+private:
+    bool perceiveSequentially(FollowedTap& t) {
+        if (continuous_ || !s_.calibratedBelief) {
+            belief_.update(classifier_, t.record.tap);
+        } else {
+            classifier_.logLikelihoods(t.record.tap, evidence_.data());
+            calibratedLogBelief(evidence_.data(), classes_.classCount(), setup_.beliefScaling,
+                                calibrated_.data());
+            belief_.update(calibrated_.data());
+        }
+        // The calibrated belief decides on percepts (plane and air each one); the naive one, and
+        // the continuous percept, on the single most likely class.
+        const double believed =
+            s_.calibratedBelief && !continuous_ ? belief_.perceptBelief() : belief_.bestPosterior();
+        t.percept =
+            continuous_
+                ? perceiveContinuous(
+                      classes_, belief_.logPosterior().data(),
+                      belief_.taps() * perceptTemperatureFor(s_.perceptTemperature, t.record.tap))
+                : perceptOf(belief_.best(), believed, classes_);
+        if (believed >= s_.beliefThreshold || belief_.taps() >= s_.maxTapsPerDecision) return true;
+        // Gather more evidence here; optionally reposition toward the valid range.
+        t.decision = {RuleId::Sensing, {}, {}};
+        if (s_.repositionWhileSensing && setup_.mode == FollowingMode::Active &&
+            orientationTrusted(t.percept, setup_.valid))
+            t.decision.reposition =
+                decide(t.percept, memory_, setup_.mode, s_, setup_.valid).reposition;
+        return false;
+    }
+
+    const HistogramClassifier& classifier_;
+    const ClassSet& classes_;
+    const Polygon& outline_;
+    const TrialSetup& setup_;
+    const FollowingSettings& s_;
+    const bool sequential_, continuous_;
+    ShortTermMemory memory_;
+    SequentialBelief belief_;
+    std::vector<double> evidence_, calibrated_, logLikelihoods_;
+    const double perimeter_, startArc_;
+    double lastArc_, progress_ = 0.0;
+    const CornerCriteria corners_;
+    bool usableEdge_ = false;
+};
+
+/// "completed after 210 taps, 212 of 212 mm of contour", and where a trial that did not
+/// complete got furthest.
+std::string trialDetail(const TrialResult& r, double progress, double perimeter) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s after %zu taps, %.0f of %.0f mm of contour",
+                  trialEndName(r.end), r.taps.size(), progress, perimeter);
+    std::string detail = buf;
+    if (!r.completed()) detail += "; furthest " + describePlace(r.furthest);
+    return detail;
+}
+
+}  // namespace
+
 TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const ClassSet& classes,
                      const Polygon& outline, const TrialSetup& setup,
                      const std::function<bool(const FollowedTap&)>& onTap) {
-    const FollowingSettings& s = setup.settings;
     TrialResult result;
     result.mode = setup.mode;
-    const double perimeter = outline.perimeter();
-    const bool sequential = s.beliefThreshold > 0.0;
-    const int tapsPerDecision = sequential ? s.maxTapsPerDecision : 1;
-    const int tapCap =
-        std::max(1, static_cast<int>(std::ceil(s.tapCapPerimeters * perimeter / s.followStep_mm)) *
-                        tapsPerDecision);
-    SequentialBelief belief(classes);
-    std::vector<double> evidence(sequential ? std::size_t(classes.classCount()) : 0),
-        calibrated(evidence.size());
-    const double startTime = rig.clock.now_s();
-
-    ShortTermMemory memory;
-    memory.confirmationsNeeded = setup.mode == FollowingMode::Active ? s.edgeConfirmationTaps : 1;
-    const bool continuous = s.percept == PerceptKind::Continuous;
-    if (continuous) memory.sameEdgeToleranceDeg = s.sameEdgeTolerance_deg;
-    std::vector<double> logLikelihoods(continuous ? std::size_t(classes.classCount()) : 0);
-    memory.lastEdgeDeg = setup.startEdgeDeg;
-    memory.heading = followDirection(setup.startEdgeDeg);
-    Vec2 pose = setup.start;
-    double progress = 0.0;
-    const double startArc = outline.nearestOutlinePoint(pose).arcLength;
-    double lastArc = startArc;
-    const CornerCriteria corners = cornerCriteria(classes);
     result.end = TrialEnd::TapCap;
-
+    TrialLoop loop(classifier, classes, outline, setup);
+    const int tapCap = loop.tapCap();
+    const double startTime = rig.clock.now_s();
+    Vec2 pose = setup.start;
     try {
         rig.stage.moveTo(pose);
         for (int n = 0; n < tapCap; ++n) {
@@ -305,100 +451,16 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
             t.record = rig.tapper.tap();
             t.record.pose = pose;
             t.contact = contactMade(t.record, setup.noiseFloor);
-            bool decisionMade = true;
-            if (sequential) {
-                if (continuous || !s.calibratedBelief) {
-                    belief.update(classifier, t.record.tap);
-                } else {
-                    classifier.logLikelihoods(t.record.tap, evidence.data());
-                    calibratedLogBelief(evidence.data(), classes.classCount(), setup.beliefScaling,
-                                        calibrated.data());
-                    belief.update(calibrated.data());
-                }
-                // The calibrated belief decides on percepts (plane and air each one); the naive
-                // one, and the continuous percept, on the single most likely class.
-                const double believed = s.calibratedBelief && !continuous ? belief.perceptBelief()
-                                                                          : belief.bestPosterior();
-                t.percept = continuous
-                                ? perceiveContinuous(
-                                      classes, belief.logPosterior().data(),
-                                      belief.taps() *
-                                          perceptTemperatureFor(s.perceptTemperature, t.record.tap))
-                                : perceptOf(belief.best(), believed, classes);
-                if (believed < s.beliefThreshold && belief.taps() < s.maxTapsPerDecision) {
-                    // Gather more evidence here; optionally reposition toward the valid range.
-                    decisionMade = false;
-                    t.decision = {RuleId::Sensing, {}, {}};
-                    if (s.repositionWhileSensing && setup.mode == FollowingMode::Active &&
-                        orientationTrusted(t.percept, setup.valid))
-                        t.decision.reposition =
-                            decide(t.percept, memory, setup.mode, s, setup.valid).reposition;
-                }
-            } else if (continuous) {
-                classifier.logLikelihoods(t.record.tap, logLikelihoods.data());
-                t.percept =
-                    perceiveContinuous(classes, logLikelihoods.data(),
-                                       perceptTemperatureFor(s.perceptTemperature, t.record.tap));
-            } else {
-                t.percept = perceive(classifier, classes, t.record.tap);
-            }
-            const bool passive = setup.mode == FollowingMode::Passive;
-            const bool usableEdge = passive ? t.percept.region == Region::Edge
-                                            : orientationTrusted(t.percept, setup.valid);
-            if (continuous && decisionMade && usableEdge && s.curvatureTaps >= 2)
-                memory.noteEdgeAt(pose, t.percept.orientationDeg, s.curvatureTaps);
-            if (decisionMade) t.decision = decide(t.percept, memory, setup.mode, s, setup.valid);
-
-            // Judge the trial at this tap (evaluation only: the loop never sees the outline).
-            const auto nearest = outline.nearestOutlinePoint(pose);
-            double delta = nearest.arcLength - lastArc;
-            if (delta > perimeter / 2) delta -= perimeter;
-            if (delta < -perimeter / 2) delta += perimeter;
-            progress += delta;
-            lastArc = nearest.arcLength;
-            t.progress_mm = progress;
-            t.contourDistance_mm = outline.contains(pose) ? nearest.distance : -nearest.distance;
-            {
-                const Vec2 n = outline.outwardNormal(nearest.edge);
-                t.trueEdgeDeg = degreesOf(n);
-                const double offset = -t.contourDistance_mm;
-                if (t.percept.continuous && t.percept.region == Region::Edge &&
-                    offset >= setup.valid.low && offset <= setup.valid.high &&
-                    contourPlace(outline, nearest.point, nearest.arcLength, corners).kind ==
-                        PlaceKind::AwayFromCorners)
-                    t.angleError_deg = angleDifferenceDeg(t.percept.orientationDeg, t.trueEdgeDeg);
-            }
-
-            if (decisionMade) memory.update(t.percept, usableEdge);
+            const bool decisionMade = loop.perceiveAndDecide(t, pose);
+            loop.judge(t, pose);
+            loop.remember(t, decisionMade);
             result.taps.push_back(t);
             const bool keepGoing = !onTap || onTap(result.taps.back());
-
-            if (-t.contourDistance_mm > s.lostOutside_mm) {
-                result.end = TrialEnd::LostOutside;
+            if (const auto end = loop.endAt(t, pose, keepGoing)) {
+                result.end = *end;
                 break;
             }
-            if (t.contourDistance_mm > s.lostInside_mm) {
-                result.end = TrialEnd::LostInside;
-                break;
-            }
-            if (memory.planeOrAirRun >= s.lostPlaneOrAirTaps) {
-                result.end = TrialEnd::LostPlaneOrAir;
-                break;
-            }
-            if (progress >= perimeter && distance(pose, setup.start) <= s.completionRadius_mm) {
-                result.end = TrialEnd::Completed;
-                break;
-            }
-            if (!keepGoing) {
-                result.end = TrialEnd::Cancelled;
-                break;
-            }
-            if (sequential) {
-                if (decisionMade)
-                    belief = SequentialBelief(classes);
-                else
-                    belief.shift(t.decision.move());
-            }
+            loop.afterMove(t, decisionMade);
             if (n + 1 < tapCap && t.decision.move() != Vec2{})
                 pose = sendMotorCommand(rig.stage, pose, t.decision);
         }
@@ -409,17 +471,12 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
         result.end = TrialEnd::DeviceError;
         result.detail = e.what();
     }
-    result.progress_mm = progress;
-    judgePlaces(outline, startArc, cornerCriteria(classes), result);
-    if (result.detail.empty()) {
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "%s after %zu taps, %.0f of %.0f mm of contour",
-                      trialEndName(result.end), result.taps.size(), progress, perimeter);
-        result.detail = buf;
-        if (!result.completed()) result.detail += "; furthest " + describePlace(result.furthest);
-    }
+    result.progress_mm = loop.progress();
+    judgePlaces(outline, loop.startArc(), cornerCriteria(classes), result);
+    if (result.detail.empty())
+        result.detail = trialDetail(result, loop.progress(), loop.perimeter());
     result.robotTime_s = rig.clock.now_s() - startTime;
-    measurePath(outline, result.path(), s.coverageRadius_mm, result);
+    measurePath(outline, result.path(), setup.settings.coverageRadius_mm, result);
     return result;
 }
 

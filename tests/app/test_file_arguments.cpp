@@ -165,8 +165,7 @@ class TestFileArguments : public QObject {
              out + "_i2"});
         add({"import", paper_, log_, "--taxel-map", map_, "--poses", hostile(kind, "poses.log"),
              "--out", out + "_i3"});
-        add({"dump", paper_, hostile(kind, "dump.csv"), "--taxel-map", map_, "--out",
-             out + "_d"});
+        add({"dump", paper_, hostile(kind, "dump.csv"), "--taxel-map", map_, "--out", out + "_d"});
         add({"calibrate", paper_, hostile(kind, "calibrate.csv"), "--out", out + "_c.json"});
         add({"calibrate", paper_, run_, "--scene", hostile(kind, "scene.json"), "--out",
              out + "_s.json"});
@@ -221,13 +220,12 @@ private slots:
         }
         log_ = write("data.log", log);
         // One trial on the rectangle: an experiment a rig with a real fingertip may run.
-        onRig_ = write("on_the_rig.json",
-                       QString(R"({"extends": "%1", "name": "on_the_rig",
+        onRig_ = write("on_the_rig.json", QString(R"({"extends": "%1", "name": "on_the_rig",
             "training": {"data_sets": 2}, "recognition": null, "following": {"trials": [
             {"mode": "active", "object": {"shape": "rectangle", "width_mm": 48, "height_mm": 58,
             "offset_mm": [150, 150], "top_height_mm": 10}}]}})")
-                           .arg(paper_)
-                           .toUtf8());
+                                              .arg(paper_)
+                                              .toUtf8());
     }
 
     void everyFileArgumentRefusesAPipeAndAnEndlessFile_data() {
@@ -249,7 +247,8 @@ private slots:
         QFETCH(Environment, env);
         QFETCH(QString, named);
         const Measured m = measure(args, env);
-        QVERIFY2(m.exitCode == 2 || m.exitCode == 1, qPrintable(QString::number(m.exitCode) + m.err));
+        QVERIFY2(m.exitCode == 2 || m.exitCode == 1,
+                 qPrintable(QString::number(m.exitCode) + m.err));
         QVERIFY2(m.seconds < 2.0, qPrintable(QString("took %1 s").arg(m.seconds)));
         QVERIFY2(m.maxRss_kib < kMemoryBound_kib,
                  qPrintable(QString("peaked at %1 MiB").arg(m.maxRss_kib / 1024)));
@@ -263,19 +262,18 @@ private slots:
         const QString big = hostile("big", "one_line.csv");
         const QString bigLog = hostile("big", "one_line.log");
         QTest::newRow("check a recording") << QStringList{"check", big};
-        QTest::newRow("analyse") << QStringList{"analyse", paper_, big, "--out", path("b_an"),
-                                                "--no-figures"};
-        QTest::newRow("calibrate") << QStringList{"calibrate", paper_, big, "--out",
-                                                  path("b_c.json")};
-        QTest::newRow("dump") << QStringList{"dump", paper_, big, "--taxel-map", map_, "--out",
-                                             path("b_d")};
-        QTest::newRow("import: skin log") << QStringList{"import", paper_, bigLog, "--taxel-map",
-                                                         map_, "--out", path("b_i1")};
-        QTest::newRow("import: taxel map") << QStringList{"import", paper_, log_, "--taxel-map",
-                                                          bigLog, "--out", path("b_i2")};
-        QTest::newRow("import: pose log") << QStringList{"import", paper_, log_, "--taxel-map",
-                                                         map_, "--poses", bigLog, "--out",
-                                                         path("b_i3")};
+        QTest::newRow("analyse") << QStringList{"analyse", paper_,       big,
+                                                "--out",   path("b_an"), "--no-figures"};
+        QTest::newRow("calibrate")
+            << QStringList{"calibrate", paper_, big, "--out", path("b_c.json")};
+        QTest::newRow("dump") << QStringList{"dump", paper_,  big,        "--taxel-map",
+                                             map_,   "--out", path("b_d")};
+        QTest::newRow("import: skin log")
+            << QStringList{"import", paper_, bigLog, "--taxel-map", map_, "--out", path("b_i1")};
+        QTest::newRow("import: taxel map")
+            << QStringList{"import", paper_, log_, "--taxel-map", bigLog, "--out", path("b_i2")};
+        QTest::newRow("import: pose log") << QStringList{
+            "import", paper_, log_, "--taxel-map", map_, "--poses", bigLog, "--out", path("b_i3")};
     }
     void aOneLineGigabyteIsRefusedWithinItsLineBound() {
         QFETCH(QStringList, args);
@@ -293,20 +291,20 @@ private slots:
         // wait out its timeouts; Ctrl-C ends the wait within a second, naming what it did.
         QTcpServer silent;
         QVERIFY(silent.listen(QHostAddress::LocalHost));
-        const QString rig = write("silent_rig.json",
-                                  QString(R"({"tapper": {"device": "nxt"}, "fingertip": {
+        const QString rig =
+            write("silent_rig.json", QString(R"({"tapper": {"device": "nxt"}, "fingertip": {
             "device": "yarp", "name_server": "127.0.0.1", "name_server_port": %1}})")
-                                      .arg(silent.serverPort())
-                                      .toUtf8());
+                                         .arg(silent.serverPort())
+                                         .toUtf8());
         const QString out = path("silent");
         QElapsedTimer sinceInterrupt;
-        const Measured m = measure(
-            {"run", onRig_, "--rig", rig, "--out", out, "--no-figures"}, {}, 20, [&](pid_t pid) {
-                QVERIFY(silent.waitForNewConnection(10000));
-                std::this_thread::sleep_for(std::chrono::milliseconds(200));
-                ::kill(pid, SIGINT);
-                sinceInterrupt.start();
-            });
+        const Measured m = measure({"run", onRig_, "--rig", rig, "--out", out, "--no-figures"}, {},
+                                   20, [&](pid_t pid) {
+                                       QVERIFY(silent.waitForNewConnection(10000));
+                                       std::this_thread::sleep_for(std::chrono::milliseconds(200));
+                                       ::kill(pid, SIGINT);
+                                       sinceInterrupt.start();
+                                   });
         const double afterInterrupt_s = sinceInterrupt.elapsed() / 1000.0;
         QCOMPARE(m.exitCode, 1);
         QVERIFY2(afterInterrupt_s < 1.0, qPrintable(QString("took %1 s").arg(afterInterrupt_s)));
@@ -320,11 +318,11 @@ private slots:
         // neither is called a YARP name server that did not answer.
         QTcpServer server;
         QVERIFY(server.listen(QHostAddress::LocalHost));
-        const QString rig = write("closing_rig.json",
-                                  QString(R"({"tapper": {"device": "nxt"}, "fingertip": {
+        const QString rig =
+            write("closing_rig.json", QString(R"({"tapper": {"device": "nxt"}, "fingertip": {
             "device": "yarp", "name_server": "127.0.0.1", "name_server_port": %1}})")
-                                      .arg(server.serverPort())
-                                      .toUtf8());
+                                          .arg(server.serverPort())
+                                          .toUtf8());
         const auto closeAt = [&](const QByteArray& say) {
             return [&server, say](pid_t) {
                 if (!server.waitForNewConnection(10000)) return;
@@ -337,14 +335,14 @@ private slots:
                 s->waitForDisconnected(1000);
             };
         };
-        const Measured closed = measure({"run", onRig_, "--rig", rig, "--out", path("closed"),
-                                         "--no-figures"},
-                                        {}, 20, closeAt({}));
+        const Measured closed =
+            measure({"run", onRig_, "--rig", rig, "--out", path("closed"), "--no-figures"}, {}, 20,
+                    closeAt({}));
         QCOMPARE(closed.exitCode, 1);
         QVERIFY2(closed.err.contains("closed it without a word"), qPrintable(closed.err));
-        const Measured other = measure({"run", onRig_, "--rig", rig, "--out", path("other"),
-                                        "--no-figures"},
-                                       {}, 20, closeAt("SSH-2.0-OpenSSH_9.2\r\n"));
+        const Measured other =
+            measure({"run", onRig_, "--rig", rig, "--out", path("other"), "--no-figures"}, {}, 20,
+                    closeAt("SSH-2.0-OpenSSH_9.2\r\n"));
         QCOMPARE(other.exitCode, 1);
         QVERIFY2(other.err.contains("answered 'SSH-2.0-OpenSSH_9.2' instead of YARP's welcome"),
                  qPrintable(other.err));
@@ -352,8 +350,8 @@ private slots:
         const quint16 port = server.serverPort();
         server.close();
         Q_UNUSED(port);
-        const Measured nobody = measure(
-            {"run", onRig_, "--rig", rig, "--out", path("nobody"), "--no-figures"});
+        const Measured nobody =
+            measure({"run", onRig_, "--rig", rig, "--out", path("nobody"), "--no-figures"});
         QCOMPARE(nobody.exitCode, 1);
         QVERIFY2(nobody.err.contains("cannot be reached") && nobody.err.contains("refused"),
                  qPrintable(nobody.err));

@@ -37,7 +37,8 @@ void writeAll(const QString& path, const QByteArray& bytes) {
 /// Copies folder `from` to `to`, files only, one level of subfolders.
 void copyFolder(const QString& from, const QString& to) {
     QDir().mkpath(to);
-    for (const QFileInfo& e : QDir(from).entryInfoList(QDir::Files | QDir::Dirs | QDir::NoDotAndDotDot)) {
+    for (const QFileInfo& e :
+         QDir(from).entryInfoList(QDir::Files | QDir::Dirs | QDir::NoDotAndDotDot)) {
         if (e.isDir())
             copyFolder(e.filePath(), to + "/" + e.fileName());
         else
@@ -70,8 +71,7 @@ class TestShardProofs : public QObject {
     QString tampered(const std::function<void(QJsonObject&)>& edit, bool rehashed) {
         const QString folder = dir_.filePath("tampered_" + QString::number(++copies_));
         copyFolder(shard1_, folder);
-        QJsonObject j =
-            QJsonDocument::fromJson(readAll(folder + "/seed_outcomes.json")).object();
+        QJsonObject j = QJsonDocument::fromJson(readAll(folder + "/seed_outcomes.json")).object();
         edit(j);
         writeAll(folder + "/seed_outcomes.json", QJsonDocument(j).toJson(QJsonDocument::Compact));
         if (rehashed) rehash(folder, "seed_outcomes.json");
@@ -107,8 +107,8 @@ private slots:
                                    "--out", out, "--no-figures"});
             QVERIFY2(o.exitCode == 0, qPrintable(o.err));
         }
-        const auto o = runCli(
-            {"seeds", paper, "--from", "1", "--to", "4", "--out", whole_, "--no-figures"});
+        const auto o =
+            runCli({"seeds", paper, "--from", "1", "--to", "4", "--out", whole_, "--no-figures"});
         QVERIFY2(o.exitCode == 0, qPrintable(o.err));
     }
 
@@ -143,8 +143,8 @@ private slots:
         writeAll(folder + "/seed_outcomes.json", text);
         refused({folder, shard2_}, folder + "/seed_outcomes.json", "SHA-256 differs");
         // Rewritten whole, its size gives it away first.
-        const QString rewritten = tampered(
-            [](QJsonObject& j) { setFirstOutcome(j, "active_completed", 132); }, false);
+        const QString rewritten =
+            tampered([](QJsonObject& j) { setFirstOutcome(j, "active_completed", 132); }, false);
         refused({rewritten, shard2_}, rewritten + "/seed_outcomes.json", "was written to since");
     }
 
@@ -157,10 +157,10 @@ private slots:
         QTest::newRow("negative trials") << "passive_trials" << -4.0 << "is below 0";
         QTest::newRow("centuries of robot time")
             << "run_robot_time_s" << 1e308 << "is not a finite value within 0..";
-        QTest::newRow("negative time") << "completed_robot_time_s" << -1.0
-                                       << "is not a finite value within 0..";
-        QTest::newRow("angle error past 180") << "angle_error_deg" << 500.0
-                                              << "is not a finite value within 0..180";
+        QTest::newRow("negative time")
+            << "completed_robot_time_s" << -1.0 << "is not a finite value within 0..";
+        QTest::newRow("angle error past 180")
+            << "angle_error_deg" << 500.0 << "is not a finite value within 0..180";
     }
     void outcomesThatNoRunWritesAreRefusedEvenWithTheirDigestsForged() {
         QFETCH(QString, key);
@@ -182,8 +182,7 @@ private slots:
             true);
         refused({folder, shard2_}, folder, "holds 1 seeds' outcomes, but its block as shard 1/2");
         // A seed moved outside its shard's block.
-        const QString moved = tampered(
-            [](QJsonObject& j) { setFirstOutcome(j, "seed", 4); }, true);
+        const QString moved = tampered([](QJsonObject& j) { setFirstOutcome(j, "seed", 4); }, true);
         refused({moved, shard2_}, moved, "holds seed 4, but as shard 1/2 of 1-4 its block is");
     }
 
@@ -223,8 +222,8 @@ private slots:
         QCOMPARE(checked.exitCode, 2);
         QVERIFY2(checked.err.contains("taps.csv") && checked.err.contains("SHA-256 differs"),
                  qPrintable(checked.err));
-        const auto replayed = runCli({"replay", sourceFile("experiments/paper.json"), run,
-                                      "--out", dir_.filePath("replayed"), "--no-figures"});
+        const auto replayed = runCli({"replay", sourceFile("experiments/paper.json"), run, "--out",
+                                      dir_.filePath("replayed"), "--no-figures"});
         QCOMPARE(replayed.exitCode, 2);
         QVERIFY2(replayed.err.contains("SHA-256 differs"), qPrintable(replayed.err));
     }

@@ -29,16 +29,17 @@ private slots:
         QVERIFY(near(normalTwoSided(0.95), 1.959963984540054));  // qnorm(0.975)
         QVERIFY(near(normalUpper(0.001), 3.090232306167813));    // qnorm(0.999)
         QVERIFY(near(normalUpper(0.5), 0.0, 1e-15));
-        // qt(0.975, 2), which for 2 degrees of freedom is (2p - 1) / sqrt(2p(1 - p)) in closed form.
+        // qt(0.975, 2), which for 2 degrees of freedom is (2p - 1) / sqrt(2p(1 - p)) in closed
+        // form.
         QVERIFY(near(studentTwoSided(2), 0.95 / std::sqrt(2 * 0.975 * 0.025)));
-        QVERIFY(near(studentTwoSided(9), 2.262157162798205));   // qt(0.975, 9)
-        QVERIFY(near(studentTwoSided(30), 2.042272456301238));  // qt(0.975, 30)
-        QVERIFY(near(studentTwoSided(100), 1.983971518523552));  // qt(0.975, 100)
-        QVERIFY(near(chiSquareUpper(1, 0.05), 3.841458820694124));   // qchisq(0.95, 1)
-        QVERIFY(near(chiSquareUpper(3, 0.05), 7.814727903251178));   // qchisq(0.95, 3)
+        QVERIFY(near(studentTwoSided(9), 2.262157162798205));         // qt(0.975, 9)
+        QVERIFY(near(studentTwoSided(30), 2.042272456301238));        // qt(0.975, 30)
+        QVERIFY(near(studentTwoSided(100), 1.983971518523552));       // qt(0.975, 100)
+        QVERIFY(near(chiSquareUpper(1, 0.05), 3.841458820694124));    // qchisq(0.95, 1)
+        QVERIFY(near(chiSquareUpper(3, 0.05), 7.814727903251178));    // qchisq(0.95, 3)
         QVERIFY(near(chiSquareUpper(10, 0.001), 29.58829844507442));  // qchisq(0.999, 10)
-        QVERIFY(near(betaQuantile(8, 3, 0.025), 0.4439045, 1e-7));  // qbeta(0.025, 8, 3)
-        QCOMPARE(binomialCdf(2, 10, 0.5), 56.0 / 1024.0);  // pbinom(2, 10, 0.5)
+        QVERIFY(near(betaQuantile(8, 3, 0.025), 0.4439045, 1e-7));    // qbeta(0.025, 8, 3)
+        QCOMPARE(binomialCdf(2, 10, 0.5), 56.0 / 1024.0);             // pbinom(2, 10, 0.5)
         QCOMPARE(binomialCdf(-1, 10, 0.5), 0.0);
         QCOMPARE(binomialCdf(10, 10, 0.5), 1.0);
     }
@@ -52,7 +53,8 @@ private slots:
         QVERIFY(near(cp.low, 0.4439045, 1e-7) && near(cp.high, 0.9747893, 1e-7));
         // At the ends they stay inside [0, 1]: 0 of 20 and 20 of 20.
         QCOMPARE(clopperPearson(0, 20).low, 0.0);
-        QVERIFY(near(clopperPearson(0, 20).high, 1.0 - std::pow(0.025, 1.0 / 20.0)));  // closed form
+        QVERIFY(
+            near(clopperPearson(0, 20).high, 1.0 - std::pow(0.025, 1.0 / 20.0)));  // closed form
         QCOMPARE(clopperPearson(20, 20).high, 1.0);
         QCOMPARE(wilson(0, 20).low, 0.0);
         QCOMPARE(wilson(20, 20).high, 1.0);
@@ -92,7 +94,8 @@ private slots:
         // half-width 1.96 * sqrt((11 - 36 / 52) / 52^2).
         const PairedDifference p = agrestiMinDifference(2, 8, 50);
         QVERIFY(near(p.difference, 6.0 / 50.0));
-        const double centre = 6.0 / 52.0, half = 1.959963984540054 * std::sqrt((11.0 - 36.0 / 52.0) / (52.0 * 52.0));
+        const double centre = 6.0 / 52.0,
+                     half = 1.959963984540054 * std::sqrt((11.0 - 36.0 / 52.0) / (52.0 * 52.0));
         QVERIFY(near(p.interval.low, centre - half) && near(p.interval.high, centre + half));
         // None discordant: a symmetric interval about 0, never empty.
         const PairedDifference none = agrestiMinDifference(0, 0, 100);

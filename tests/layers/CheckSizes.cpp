@@ -33,7 +33,7 @@ constexpr int kMaxFunctionLines = 80;
 struct Finding {
     std::string where;  ///< "file:line"
     std::string what;
-    std::string key;    ///< "file", or "file: function", as the list of what is still over names it
+    std::string key;  ///< "file", or "file: function", as the list of what is still over names it
 };
 
 /// `text` with comments and literals blanked (newlines kept, so lines still count).
@@ -62,8 +62,9 @@ std::string code(const std::string& text) {
                 end == std::string::npos ? text.size() : end + delimiter.size();
             blank(i + 1, stop);
             i = stop;
-        } else if (text[i] == '"' || (text[i] == '\'' && !(i > 0 && std::isxdigit(
-                                                               static_cast<unsigned char>(text[i - 1]))))) {
+        } else if (text[i] == '"' ||
+                   (text[i] == '\'' &&
+                    !(i > 0 && std::isxdigit(static_cast<unsigned char>(text[i - 1]))))) {
             const char quote = text[i];
             std::size_t k = i + 1;
             while (k < text.size() && text[k] != quote && text[k] != '\n')
@@ -131,8 +132,10 @@ void checkFunctions(const std::string& file, const std::string& text, std::vecto
             const bool atTop = std::all_of(stack.begin(), stack.end(),
                                            [](const Scope& s) { return s.kind == Container; });
             Kind kind = Other;
-            if (atTop && isContainerHead(head)) kind = Container;
-            else if (atTop && isFunctionHead(head)) kind = Function;
+            if (atTop && isContainerHead(head))
+                kind = Container;
+            else if (atTop && isFunctionHead(head))
+                kind = Function;
             stack.push_back({kind, headStarted ? headLine : line, nameOf(head)});
             head.clear();
             headStarted = false;
@@ -212,7 +215,8 @@ int selfTest() {
     checkFileLength("short.cpp", shortOnes, found);
     checkFileLength("long_file.cpp", longFile, found);
     const bool ok = found.size() == 2 && found[0].where == "long_function.cpp:2" &&
-                    found[0].what.rfind("f is 88 lines", 0) == 0 && found[1].where == "long_file.cpp";
+                    found[0].what.rfind("f is 88 lines", 0) == 0 &&
+                    found[1].where == "long_file.cpp";
     for (const Finding& x : found) std::printf("%s: %s\n", x.where.c_str(), x.what.c_str());
     std::printf(ok ? "self-test: the check finds a long function and a long file, and nothing "
                      "else\n"
@@ -255,8 +259,9 @@ int main(int argc, char** argv) {
             std::printf("%s: within its bound now; take it off %s\n", key.c_str(), argv[2]);
             ++failures;
         }
-    std::printf("%d production files or functions over their bounds (%d lines a file, %d a "
-                "function) and not listed; %d listed as still being split\n",
-                failures, kMaxFileLines, kMaxFunctionLines, known);
+    std::printf(
+        "%d production files or functions over their bounds (%d lines a file, %d a "
+        "function) and not listed; %d listed as still being split\n",
+        failures, kMaxFileLines, kMaxFunctionLines, known);
     return failures == 0 ? 0 : 1;
 }

@@ -1,4 +1,5 @@
-// The taps' holds: each pressed reading against the model at the depth it held, and the gains they give.
+// The taps' holds: each pressed reading against the model at the depth it held, and the gains they
+// give.
 #include "devices/simulated/fit/FitHolds.h"
 
 namespace activetouch::scenefit {

@@ -93,7 +93,6 @@ private:
     std::unique_ptr<Effect> crosstalk_;
 };
 
-
 std::vector<Hold> holdsOf(const SceneSpec& base, const FingertipContactModel& model,
                           const std::vector<TapRecord>& recorded, const std::vector<char>& skip,
                           double maxCounts, bool coupled = true);

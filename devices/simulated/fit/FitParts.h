@@ -27,8 +27,7 @@ using stats::wasserstein;
 
 /// The effects this fit estimates from taps; every other effect is kept as the base lists it.
 inline const char* const kEstimated[] = {"taxel_noise", "baseline_drift",   "taxel_gain",
-                                  "dead_taxel",  "adc_quantisation", "intermittent_taxel"};
-
+                                         "dead_taxel",  "adc_quantisation", "intermittent_taxel"};
 
 bool estimatedHere(const std::string& name);
 
@@ -90,7 +89,6 @@ inline constexpr long kPileReadings = 20;
 inline constexpr long kPileRatio = 4;
 
 inline constexpr int kMargin = 4;
-
 
 Moments momentsOf(const std::vector<TapRecord>& taps, const Masks& masks,
                   const std::vector<char>& skip);
@@ -181,13 +179,11 @@ Blinking readBlinking(const SceneSpec& base,
                       const std::vector<char>& skip, double period, std::uint64_t seed,
                       const std::vector<int>& taxels = {});
 
-
 std::vector<double> readings(const std::vector<TapRecord>& taps, int k);
 
 /// The mean of `v` (non-empty).
 
 double meanOf(const std::vector<double>& v);
-
 
 double sd(const std::vector<double>& v);
 
@@ -210,7 +206,6 @@ struct Tail {
 };
 
 inline constexpr int kTailFrames = 10;
-
 
 Tail tailOf(const std::vector<TapRecord>& taps, const std::vector<char>& skip,
             double contactThreshold);
@@ -270,7 +265,6 @@ Memory fitMemory(const SceneSpec& scene, const std::shared_ptr<const FingertipCo
                  const std::vector<TapRecord>& at, const Tail& target,
                  const std::vector<char>& skip, Memory start, int rounds, int sims,
                  std::uint64_t seed);
-
 
 SceneSpec readLatency(const SceneSpec& given,
                       const std::shared_ptr<const FingertipContactModel>& model,

@@ -47,8 +47,7 @@ std::vector<double> holdOffsetsOf(const HoldModel& grid, const std::vector<TapRe
 }
 
 OffsetSpread offsetSpread(const std::vector<double>& offsets,
-                          const std::vector<std::vector<double>>& nulls,
-                          std::size_t leaveOut) {
+                          const std::vector<std::vector<double>>& nulls, std::size_t leaveOut) {
     OffsetSpread o;
     for (std::size_t i = 0; i < offsets.size(); ++i) {
         if (!std::isfinite(offsets[i])) continue;
