@@ -62,7 +62,9 @@ void renderJson(const Json& value, std::string& out, std::size_t budget) {
         return;
     }
     if (value.is_string() && value.get_ref<const std::string&>().size() > budget) {
-        out += Json(value.get_ref<const std::string&>().substr(0, budget)).dump();
+        // The cut may fall inside a character of several bytes: dumped with replacement.
+        out += Json(value.get_ref<const std::string&>().substr(0, budget))
+                   .dump(-1, ' ', false, Json::error_handler_t::replace);
         return;
     }
     out += value.dump(-1, ' ', false, Json::error_handler_t::replace);

@@ -59,6 +59,18 @@ private slots:
         QCOMPARE(sceneToJson(again).dump(), sceneToJson(s).dump());
     }
 
+    void aLongStringIsShownCutWithoutBreakingACharacter() {
+        // A document that is one long string: refused, quoting its start, even where the cut
+        // for the message falls inside a character of two bytes.
+        const std::string text = "\"" + std::string(59, 'a') + "\xc3\xbb" + std::string(100, 'b') + "\"";
+        try {
+            loadScene(write("cut.json", text));
+            QFAIL("a string was taken for a scene");
+        } catch (const InputError& e) {
+            QVERIFY2(QString::fromUtf8(e.what()).contains("expected a JSON object"), e.what());
+        }
+    }
+
     void shippedExperimentsAndScenesLoad() {
         const SceneSpec s = loadScene(test::sourcePath("experiments/scenes/paper_rectangle.json"));
         QVERIFY(s.lists("taxel_noise"));
