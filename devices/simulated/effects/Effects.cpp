@@ -338,174 +338,154 @@ int Effect::constructedCount(const std::string& name) {
     return it == counts().end() ? 0 : it->second;
 }
 
+namespace {
+
+using M = FingertipContactModel;
+
+/// The effects of the signal: noise, drift, quantisation, timing, the stage and the skin's memory.
+void addSignalEffects(std::vector<EffectDescription>& c) {
+    c.push_back({"taxel_noise",
+                 "Gaussian noise on every sample of every taxel, clipped at 0 counts.",
+                 {{"sigma_counts", "standard deviation, counts", 0.0, 50.0, 1.5}},
+                 false,
+                 [](const JsonFields& f, const M&, RandomStream r) {
+                     return std::make_unique<TaxelNoise>(f.number("sigma_counts", 0.0, 50.0),
+                                                         r);
+                 }});
+    c.push_back(
+        {"baseline_drift",
+         "Random-walk drift of each taxel's baseline with skinManager-style compensation.",
+         {{"rate_counts_per_sqrt_s", "random-walk drift, counts per sqrt(second)", 0.0, 20.0,
+           0.5},
+          {"touch_threshold_counts", "compensation's touch threshold, counts", 0.1, 100.0, 2.0},
+          {"free_gain", "compensation gain without touch", 0.0, 1.0, 0.2},
+          {"touch_gain", "compensation gain in touch", 0.0, 1.0, 0.05}},
+         false,
+         [](const JsonFields& f, const M& m, RandomStream r) {
+             return std::make_unique<BaselineDrift>(
+                 f.number("rate_counts_per_sqrt_s", 0.0, 20.0),
+                 f.number("touch_threshold_counts", 0.1, 100.0),
+                 f.number("free_gain", 0.0, 1.0), f.number("touch_gain", 0.0, 1.0),
+                 m.taxelCount(), r);
+         }});
+    c.push_back({"adc_quantisation",
+                 "8-bit conversion: readings rounded to whole counts and saturated.",
+                 {{"max_counts", "saturation level, counts", 1.0, 255.0, 255.0}},
+                 false,
+                 [](const JsonFields& f, const M&, RandomStream) {
+                     return std::make_unique<AdcQuantisation>(
+                         f.number("max_counts", 1.0, 255.0));
+                 }});
+    c.push_back({"contact_latency",
+                 "The contact reflex stops the tapper only after a latency.",
+                 {{"latency_s", "reflex latency, seconds", 0.0, 0.5, 0.02}},
+                 false,
+                 [](const JsonFields& f, const M&, RandomStream) {
+                     return std::make_unique<ContactLatency>(f.number("latency_s", 0.0, 0.5));
+                 }});
+    c.push_back({"stage_error",
+                 "Gaussian positioning error of the XY stage on each move.",
+                 {{"sigma_mm", "standard deviation per axis, mm", 0.0, 2.0, 0.02}},
+                 false,
+                 [](const JsonFields& f, const M&, RandomStream r) {
+                     return std::make_unique<StageError>(f.number("sigma_mm", 0.0, 2.0), r);
+                 }});
+    c.push_back({"viscoelastic_memory",
+                 "The pad keeps a decaying residual of recent presses.",
+                 {{"fraction", "residual right after release, fraction of the held pressure",
+                   0.0, 1.0, 0.1},
+                  {"time_constant_s", "decay time constant, seconds", 0.01, 60.0, 0.5}},
+                 false,
+                 [](const JsonFields& f, const M& m, RandomStream) {
+                     return std::make_unique<ViscoelasticMemory>(
+                         f.number("fraction", 0.0, 1.0),
+                         f.number("time_constant_s", 0.01, 60.0), m.taxelCount());
+                 }});
+}
+
+/// The effects of single taxels and of the link: crosstalk, dead taxels, per-taxel gains,
+/// saturation with recovery, intermittent taxels and dropouts.
+void addTaxelEffects(std::vector<EffectDescription>& c) {
+    c.push_back({"crosstalk",
+                 "Each taxel also reads a fraction of its neighbours' pressure.",
+                 {{"coupling", "fraction of each neighbour's pressure", 0.0, 0.5, 0.05},
+                  {"radius_mm", "neighbours within this distance on the contact plane, mm", 0.0,
+                   30.0, 4.5}},
+                 false,
+                 [](const JsonFields& f, const M& m, RandomStream) {
+                     return std::make_unique<Crosstalk>(f.number("coupling", 0.0, 0.5),
+                                                        f.number("radius_mm", 0.0, 30.0), m);
+                 }});
+    c.push_back({"dead_taxel",
+                 "Listed taxels read a fixed value (0 = dead) whatever the contact.",
+                 {{"reading_counts", "the stuck reading, counts", 0.0, 255.0, 0.0}},
+                 true,
+                 [](const JsonFields& f, const M& m, RandomStream) {
+                     return std::make_unique<DeadTaxel>(effectTaxelList(f, m.taxelCount()),
+                                                        f.number("reading_counts", 0.0, 255.0));
+                 }});
+    c.push_back(
+        {"taxel_gain",
+         "Each taxel's own sensitivity: gains log-normal around 1, fixed for the "
+         "fingertip (or 'gains', one per taxel, as measured).",
+         {{"spread", "standard deviation of the gains' logarithm", 0.0, 1.0, 0.2},
+          {"fingertip_seed", "which fingertip's gains (any whole number)", 0.0, 1e9, 1.0}},
+         false,
+         [](const JsonFields& f, const M& m, RandomStream) -> std::unique_ptr<Effect> {
+             if (f.has("gains"))
+                 return std::make_unique<TaxelGain>(effectGainList(f, m.taxelCount()));
+             const double seed = f.number("fingertip_seed", 0.0, 1e9);
+             if (seed != std::floor(seed)) f.fail("fingertip_seed", "give a whole number");
+             return std::make_unique<TaxelGain>(f.number("spread", 0.0, 1.0), seed,
+                                                m.taxelCount());
+         }});
+    c.back().takesGainList = true;
+    c.push_back(
+        {"saturation_recovery",
+         "Taxels saturate at a level and, once released, recover from it slowly.",
+         {{"saturation_counts", "the level a taxel saturates at, counts", 1.0, 1000.0, 150.0},
+          {"recovery_s", "time constant of the recovery, seconds", 0.001, 60.0, 1.0}},
+         false,
+         [](const JsonFields& f, const M& m, RandomStream) {
+             return std::make_unique<SaturationRecovery>(
+                 f.number("saturation_counts", 1.0, 1000.0),
+                 f.number("recovery_s", 0.001, 60.0), m.taxelCount());
+         }});
+    c.push_back(
+        {"intermittent_taxel",
+         "Listed taxels blink: off (reading a fixed value) for a share of the time, at "
+         "random.",
+         {{"off_fraction", "long-run share of the time a taxel is off", 0.0, 1.0, 0.1},
+          {"mean_off_s", "mean length of an off spell, seconds", 0.001, 60.0, 0.1},
+          {"reading_counts", "what an off taxel reads (0: nothing), counts", 0.0, 255.0, 0.0}},
+         true,
+         [](const JsonFields& f, const M& m, RandomStream r) {
+             return std::make_unique<IntermittentTaxel>(
+                 effectTaxelList(f, m.taxelCount()), f.number("off_fraction", 0.0, 1.0),
+                 f.number("mean_off_s", 0.001, 60.0), f.number("reading_counts", 0.0, 255.0),
+                 r);
+         }});
+    c.push_back({"link_dropout",
+                 "The fingertip's stream drops during a tap, as a flaky cable or network "
+                 "does: the tap fails with a device error (for trying fault handling).",
+                 {{"probability_per_tap", "chance that a tap's stream drops", 0.0, 1.0, 0.0}},
+                 false,
+                 [](const JsonFields& f, const M&, RandomStream r) {
+                     return std::make_unique<LinkDropout>(
+                         f.number("probability_per_tap", 0.0, 1.0), r);
+                 }});
+}
+
+}  // namespace
+
 const std::vector<EffectDescription>& effectCatalogue() {
-    using M = FingertipContactModel;
     static const std::vector<EffectDescription> catalogue = [] {
         std::vector<EffectDescription> c;
-        c.push_back({"taxel_noise",
-                     "Gaussian noise on every sample of every taxel, clipped at 0 counts.",
-                     {{"sigma_counts", "standard deviation, counts", 0.0, 50.0, 1.5}},
-                     false,
-                     [](const JsonFields& f, const M&, RandomStream r) {
-                         return std::make_unique<TaxelNoise>(f.number("sigma_counts", 0.0, 50.0),
-                                                             r);
-                     }});
-        c.push_back(
-            {"baseline_drift",
-             "Random-walk drift of each taxel's baseline with skinManager-style compensation.",
-             {{"rate_counts_per_sqrt_s", "random-walk drift, counts per sqrt(second)", 0.0, 20.0,
-               0.5},
-              {"touch_threshold_counts", "compensation's touch threshold, counts", 0.1, 100.0, 2.0},
-              {"free_gain", "compensation gain without touch", 0.0, 1.0, 0.2},
-              {"touch_gain", "compensation gain in touch", 0.0, 1.0, 0.05}},
-             false,
-             [](const JsonFields& f, const M& m, RandomStream r) {
-                 return std::make_unique<BaselineDrift>(
-                     f.number("rate_counts_per_sqrt_s", 0.0, 20.0),
-                     f.number("touch_threshold_counts", 0.1, 100.0),
-                     f.number("free_gain", 0.0, 1.0), f.number("touch_gain", 0.0, 1.0),
-                     m.taxelCount(), r);
-             }});
-        c.push_back({"adc_quantisation",
-                     "8-bit conversion: readings rounded to whole counts and saturated.",
-                     {{"max_counts", "saturation level, counts", 1.0, 255.0, 255.0}},
-                     false,
-                     [](const JsonFields& f, const M&, RandomStream) {
-                         return std::make_unique<AdcQuantisation>(
-                             f.number("max_counts", 1.0, 255.0));
-                     }});
-        c.push_back({"contact_latency",
-                     "The contact reflex stops the tapper only after a latency.",
-                     {{"latency_s", "reflex latency, seconds", 0.0, 0.5, 0.02}},
-                     false,
-                     [](const JsonFields& f, const M&, RandomStream) {
-                         return std::make_unique<ContactLatency>(f.number("latency_s", 0.0, 0.5));
-                     }});
-        c.push_back({"stage_error",
-                     "Gaussian positioning error of the XY stage on each move.",
-                     {{"sigma_mm", "standard deviation per axis, mm", 0.0, 2.0, 0.02}},
-                     false,
-                     [](const JsonFields& f, const M&, RandomStream r) {
-                         return std::make_unique<StageError>(f.number("sigma_mm", 0.0, 2.0), r);
-                     }});
-        c.push_back({"viscoelastic_memory",
-                     "The pad keeps a decaying residual of recent presses.",
-                     {{"fraction", "residual right after release, fraction of the held pressure",
-                       0.0, 1.0, 0.1},
-                      {"time_constant_s", "decay time constant, seconds", 0.01, 60.0, 0.5}},
-                     false,
-                     [](const JsonFields& f, const M& m, RandomStream) {
-                         return std::make_unique<ViscoelasticMemory>(
-                             f.number("fraction", 0.0, 1.0),
-                             f.number("time_constant_s", 0.01, 60.0), m.taxelCount());
-                     }});
-        c.push_back({"crosstalk",
-                     "Each taxel also reads a fraction of its neighbours' pressure.",
-                     {{"coupling", "fraction of each neighbour's pressure", 0.0, 0.5, 0.05},
-                      {"radius_mm", "neighbours within this distance on the contact plane, mm", 0.0,
-                       30.0, 4.5}},
-                     false,
-                     [](const JsonFields& f, const M& m, RandomStream) {
-                         return std::make_unique<Crosstalk>(f.number("coupling", 0.0, 0.5),
-                                                            f.number("radius_mm", 0.0, 30.0), m);
-                     }});
-        c.push_back({"dead_taxel",
-                     "Listed taxels read a fixed value (0 = dead) whatever the contact.",
-                     {{"reading_counts", "the stuck reading, counts", 0.0, 255.0, 0.0}},
-                     true,
-                     [](const JsonFields& f, const M& m, RandomStream) {
-                         return std::make_unique<DeadTaxel>(effectTaxelList(f, m.taxelCount()),
-                                                            f.number("reading_counts", 0.0, 255.0));
-                     }});
-        c.push_back(
-            {"taxel_gain",
-             "Each taxel's own sensitivity: gains log-normal around 1, fixed for the "
-             "fingertip (or 'gains', one per taxel, as measured).",
-             {{"spread", "standard deviation of the gains' logarithm", 0.0, 1.0, 0.2},
-              {"fingertip_seed", "which fingertip's gains (any whole number)", 0.0, 1e9, 1.0}},
-             false,
-             [](const JsonFields& f, const M& m, RandomStream) -> std::unique_ptr<Effect> {
-                 if (f.has("gains"))
-                     return std::make_unique<TaxelGain>(effectGainList(f, m.taxelCount()));
-                 const double seed = f.number("fingertip_seed", 0.0, 1e9);
-                 if (seed != std::floor(seed)) f.fail("fingertip_seed", "give a whole number");
-                 return std::make_unique<TaxelGain>(f.number("spread", 0.0, 1.0), seed,
-                                                    m.taxelCount());
-             }});
-        c.back().takesGainList = true;
-        c.push_back(
-            {"saturation_recovery",
-             "Taxels saturate at a level and, once released, recover from it slowly.",
-             {{"saturation_counts", "the level a taxel saturates at, counts", 1.0, 1000.0, 150.0},
-              {"recovery_s", "time constant of the recovery, seconds", 0.001, 60.0, 1.0}},
-             false,
-             [](const JsonFields& f, const M& m, RandomStream) {
-                 return std::make_unique<SaturationRecovery>(
-                     f.number("saturation_counts", 1.0, 1000.0),
-                     f.number("recovery_s", 0.001, 60.0), m.taxelCount());
-             }});
-        c.push_back(
-            {"intermittent_taxel",
-             "Listed taxels blink: off (reading a fixed value) for a share of the time, at "
-             "random.",
-             {{"off_fraction", "long-run share of the time a taxel is off", 0.0, 1.0, 0.1},
-              {"mean_off_s", "mean length of an off spell, seconds", 0.001, 60.0, 0.1},
-              {"reading_counts", "what an off taxel reads (0: nothing), counts", 0.0, 255.0, 0.0}},
-             true,
-             [](const JsonFields& f, const M& m, RandomStream r) {
-                 return std::make_unique<IntermittentTaxel>(
-                     effectTaxelList(f, m.taxelCount()), f.number("off_fraction", 0.0, 1.0),
-                     f.number("mean_off_s", 0.001, 60.0), f.number("reading_counts", 0.0, 255.0),
-                     r);
-             }});
-        c.push_back({"link_dropout",
-                     "The fingertip's stream drops during a tap, as a flaky cable or network "
-                     "does: the tap fails with a device error (for trying fault handling).",
-                     {{"probability_per_tap", "chance that a tap's stream drops", 0.0, 1.0, 0.0}},
-                     false,
-                     [](const JsonFields& f, const M&, RandomStream r) {
-                         return std::make_unique<LinkDropout>(
-                             f.number("probability_per_tap", 0.0, 1.0), r);
-                     }});
+        addSignalEffects(c);
+        addTaxelEffects(c);
         return c;
     }();
     return catalogue;
-}
-
-std::vector<int> effectTaxelList(const JsonFields& f, int taxelCount) {
-    const std::string indices = "taxel indices 0.." + std::to_string(taxelCount - 1);
-    if (!f.has("taxels") || !f.raw("taxels").is_array() || f.raw("taxels").empty())
-        f.fail("taxels", "this effect needs 'taxels': a non-empty list of " + indices);
-    std::vector<int> list;
-    for (const auto& v : f.raw("taxels")) {
-        // An index is compared as a whole number of any size: a huge one must not wrap.
-        const bool valid =
-            v.is_number_integer() && v.get<long long>() >= 0 && v.get<long long>() < taxelCount &&
-            !(v.is_number_unsigned() &&
-              v.get<unsigned long long>() >= static_cast<unsigned long long>(taxelCount));
-        if (!valid)
-            f.fail("taxels", "taxel " + describeJson(v) + " does not exist; use " + indices);
-        list.push_back(static_cast<int>(v.get<long long>()));
-    }
-    return list;
-}
-
-std::vector<double> effectGainList(const JsonFields& f, int taxelCount) {
-    for (const char* other : {"spread", "fingertip_seed"})
-        if (f.has(other))
-            f.fail(other, std::string("'gains' gives every taxel's gain; leave '") + other +
-                              "' out, or give 'spread' and 'fingertip_seed' without 'gains'");
-    const std::vector<double> gains = f.numbers("gains", 0.05, 20.0);
-    if (static_cast<int>(gains.size()) != taxelCount)
-        f.fail("gains", "give one gain per taxel: " + std::to_string(taxelCount) + ", not " +
-                            std::to_string(gains.size()));
-    return gains;
-}
-
-const EffectDescription* findEffect(const std::string& name) {
-    for (const auto& d : effectCatalogue())
-        if (d.name == name) return &d;
-    return nullptr;
 }
 
 }  // namespace activetouch
