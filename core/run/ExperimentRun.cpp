@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -22,6 +23,7 @@
 #include "core/run/ReplayRig.h"
 #include "core/run/RunFolder.h"
 #include "core/run/Sweeps.h"
+#include "core/run/TrialRecognition.h"
 #include "core/validation/ClassRegions.h"
 
 namespace activetouch {
@@ -116,6 +118,28 @@ void noteWhereReplayLeft(const RecordedTrial& recorded, TrialResult& replayed) {
                        ruleFor(now.decision.rule).name;
 }
 
+/// What a trial does with each tap: appends it to the recording, tells the observer, counts the
+/// run's progress; false once the observer asks to stop.
+std::function<bool(const FollowedTap&)> tapListener(FollowingRecording* recording,
+                                                    const TrialRun& run, FollowingMode mode,
+                                                    const RunOptions& options,
+                                                    RunProgress& progress, int& tapIndex) {
+    return [recording, &run, mode, &options, &progress, &tapIndex](const FollowedTap& tap) {
+        if (recording) recording->append(run.label, mode, run.trial, tapIndex, tap);
+        if (options.observer)
+            options.observer->tapTaken(
+                tap.record,
+                std::string(modeName(mode)) + " " + run.label + " trial " +
+                    std::to_string(run.trial) + ": " + tap.percept.shapeClass() + ", position " +
+                    std::to_string(tap.percept.position) + " -> " + ruleFor(tap.decision.rule).name,
+                RunObserver::Stage::Following);
+        ++tapIndex;
+        ++progress.tapsDone;
+        if (options.observer) options.observer->progressed(progress);
+        return !(options.observer && options.observer->stopRequested());
+    };
+}
+
 /// Runs the experiment's trials, each on the simulated rig, the connected one, or (`replayed`
 /// not empty) the recorded trial at its index.
 void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> model,
@@ -174,23 +198,9 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
             progress.step = std::string(modeName(ts.mode)) + " following, " + ts.label + " trial " +
                             std::to_string(run.trial);
             int tapIndex = 0;
-            run.result = runTrial(
-                rig, result.classifier, result.classes, run.outline, setup,
-                [&](const FollowedTap& tap) {
-                    if (recording) recording->append(run.label, ts.mode, run.trial, tapIndex, tap);
-                    if (options.observer)
-                        options.observer->tapTaken(
-                            tap.record,
-                            std::string(modeName(ts.mode)) + " " + run.label + " trial " +
-                                std::to_string(run.trial) + ": " + tap.percept.shapeClass() +
-                                ", position " + std::to_string(tap.percept.position) + " -> " +
-                                ruleFor(tap.decision.rule).name,
-                            RunObserver::Stage::Following);
-                    ++tapIndex;
-                    ++progress.tapsDone;
-                    if (options.observer) options.observer->progressed(progress);
-                    return !(options.observer && options.observer->stopRequested());
-                });
+            run.result = runTrial(rig, result.classifier, result.classes, run.outline, setup,
+                                  tapListener(recording.get(), run, ts.mode, options, progress,
+                                              tapIndex));
             if (replay && run.result.end == TrialEnd::LeftRecording)
                 noteWhereReplayLeft(*replayed[static_cast<std::size_t>(trialIndex)], run.result);
             result.robotTime_s += run.result.robotTime_s;
@@ -206,61 +216,8 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
             }
         }
     }
-    std::vector<double> angleErrors;
-    for (const TrialRun& run : result.trials)
-        for (const FollowedTap& t : run.result.taps)
-            if (t.angleError_deg >= 0.0) angleErrors.push_back(t.angleError_deg);
-    result.pathAngleTaps = static_cast<int>(angleErrors.size());
-    result.pathMedianAngleError_deg = stats::medianOr(angleErrors, -1.0);
-    if (!spec.recognition.enabled) return;
-    // Templates at the centre of the valid range, one per distinct object followed.
-    std::vector<NamedOutline> shapes;
-    for (const TrialRun& run : result.trials) shapes.push_back({run.label, &run.outline});
-    result.templates = shapeTemplates(
-        shapes, 0.5 * (result.validOffsets.low + result.validOffsets.high),
-        spec.following.followStep_mm, spec.recognition.bins, spec.recognition.smoothingSigmaBins);
-    // At any pose: one template per distinct shape, in the shape's own frame.
-    result.poseTemplates.clear();
-    const double centreOffset = 0.5 * (result.validOffsets.low + result.validOffsets.high);
-    for (const TrialSpec& ts : spec.trials) {
-        const bool known = std::any_of(result.poseTemplates.begin(), result.poseTemplates.end(),
-                                       [&](const PoseTemplate& t) { return t.shape == ts.label; });
-        if (known) continue;
-        ObjectSpec own = ts.object;
-        own.rotationDeg = 0.0;
-        own.offset = {};
-        result.poseTemplates.push_back(poseTemplate(ts.label, own.outline(), centreOffset));
-    }
-    int recognised = 0, correct = 0, correctSmoothed = 0, correctAnyPose = 0;
-    std::vector<double> turnErrors, placeErrors;
-    for (TrialRun& run : result.trials) {
-        if (run.result.mode != spec.recognition.ofMode) continue;
-        run.recognised = true;
-        const std::vector<Vec2> path = run.result.path();
-        run.recognition = recognise(path, result.templates, spec.recognition.smoothingSigmaBins);
-        run.poseRecognition = recognisePose(path, result.poseTemplates);
-        for (const PoseTemplate& tpl : result.poseTemplates)
-            if (tpl.shape == run.label)
-                run.objectCentre = run.objectOffset + rotated(tpl.centroid, run.rotationDeg);
-        ++recognised;
-        correct += run.recognition.predicted == run.label;
-        correctSmoothed += run.recognition.predictedSmoothed == run.label;
-        const PoseRecognition& pose = run.poseRecognition;
-        if (pose.valid && pose.predicted == run.label) {
-            ++correctAnyPose;
-            if (pose.best.symmetry != 0)
-                turnErrors.push_back(
-                    rotationErrorDeg(pose.best.rotationDeg, run.rotationDeg, pose.best.symmetry));
-            placeErrors.push_back(distance(pose.best.position, run.objectCentre));
-        }
-    }
-    if (recognised > 0) {
-        result.recognitionAccuracy = double(correct) / recognised;
-        result.recognitionAccuracySmoothed = double(correctSmoothed) / recognised;
-        result.recognitionAccuracyAnyPose = double(correctAnyPose) / recognised;
-    }
-    result.medianRotationError_deg = stats::medianOr(turnErrors, 0.0);
-    result.medianPositionError_mm = stats::medianOr(placeErrors, 0.0);
+    summarisePathAngles(result);
+    if (spec.recognition.enabled) recogniseTrialPaths(result);
 }
 
 /// Trains the classifier on the training sets of `result.taps` and validates it on the others:
