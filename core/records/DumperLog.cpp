@@ -83,6 +83,15 @@ struct FingerBlock {
 constexpr FingerBlock kFingers[] = {
     {"index", 0}, {"middle", 12}, {"ring", 24}, {"little", 36}, {"thumb", 48}};
 
+/// The first of the 12 values `name`'s fingertip has in an iCub hand's skin vector.
+int fingerBlock(std::string_view name, const std::string& path, int at) {
+    for (const auto& f : kFingers)
+        if (name == f.name) return f.first;
+    throw InputError(path, lineName(at),
+                     "'" + shortened(std::string(name), 40) +
+                         "' is no finger; use index, middle, ring, little or thumb");
+}
+
 }  // namespace
 
 TaxelMap readTaxelMap(const std::string& path, int taxels) {
@@ -127,14 +136,8 @@ TaxelMap readTaxelMap(const std::string& path, int taxels) {
                 throw InputError(path, lineName(at),
                                  "'finger' names all the fingertip's taxels at once; give it "
                                  "alone, or list every taxel");
-            const FingerBlock* block = nullptr;
-            for (const auto& f : kFingers)
-                if (w[1] == f.name) block = &f;
-            if (!block)
-                throw InputError(path, lineName(at),
-                                 "'" + shortened(std::string(w[1]), 40) +
-                                     "' is no finger; use index, middle, ring, little or thumb");
-            for (int k = 0; k < taxels; ++k) use(k, block->first + k, at);
+            const int first = fingerBlock(w[1], path, at);
+            for (int k = 0; k < taxels; ++k) use(k, first + k, at);
             continue;
         }
         if (w.size() != 4 || w[0] != "taxel" || w[2] != "value")
