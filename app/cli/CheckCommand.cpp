@@ -45,6 +45,68 @@ namespace activetouch::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+/// check on a recording: a tap recording (data/taps.csv) or a following recording
+/// (data/following_taps.csv), told apart by their header; every row, column and value checked,
+/// against the run's run.json where it has one, else against `experiment` or the paper's
+/// fingertip.
+int checkRecording(const std::string& file, const std::string& experiment) {
+    try {
+        std::string note;
+        RecordingBounds bounds = checkedRecordingBounds(file, &note);
+        ClassSet classes;
+        if (!experiment.empty()) {
+            const ExperimentSpec spec = loadCheckedExperiment(experiment, false, simulatedRigs());
+            classes = spec.classes;
+            bounds.taxels = static_cast<int>(spec.scene.fingertip.taxels.size());
+            bounds.taxelsFrom = "the fingertip of " + experiment;
+        } else if (bounds.taxels <= 0) {
+            // Nothing says which fingertip took it: held to the paper's.
+            bounds.taxels = kFingertipTaxels;
+            bounds.taxelsFrom =
+                "the paper's fingertip (there is no run.json beside the recording; give "
+                "--experiment with the experiment it was taken with to check it against "
+                "that one's)";
+        }
+        if (!note.empty()) std::fprintf(stderr, "caution: %s\n", note.c_str());
+        std::ifstream in = openRecording(file);
+        std::string header(17, '\0');
+        in.read(header.data(), static_cast<std::streamsize>(header.size()));
+        header.resize(static_cast<std::size_t>(in.gcount()));
+        const bool known = bounds.samplesPerTap > 0;
+        auto unconfirmed = [&](int taps) {
+            return known || taps > 1 ? ""
+                                     : "; with one tap and no run.json beside it, nothing "
+                                       "shows whether that tap is whole";
+        };
+        if (header.rfind("shape,mode,trial,", 0) == 0) {
+            const auto c = checkFollowingRecording(file, bounds);
+            std::printf("%s: ok (%d taps over %d trials, %d samples each)%s%s%s\n",
+                        file.c_str(), c.taps, c.trials, c.samplesPerTap,
+                        c.cutOff.empty() ? ""
+                                         : "; cut short at the end, as by a run "
+                                           "stopped while writing: ",
+                        c.cutOff.c_str(), unconfirmed(c.taps));
+            return kOk;
+        }
+        std::string cut;
+        const auto taps = readTapCsv(file, classes, &cut, bounds);
+        std::printf("%s: ok (%zu taps, %d samples each)%s%s%s\n", file.c_str(), taps.size(),
+                    taps.front().record.tap.sampleCount(),
+                    cut.empty() ? ""
+                                : "; cut short at the end, as by a run stopped while "
+                                  "writing: ",
+                    cut.c_str(), unconfirmed(static_cast<int>(taps.size())));
+        return kOk;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    }
+}
+
+}  // namespace
+
 int commandCheck(const std::vector<std::string>& argsIn) {
     const CommandLine line = parseCommandLine(
         {{{"--experiment", "the experiment the recording was taken with"}}, {"--allow-long-plan"}},
@@ -56,62 +118,8 @@ int commandCheck(const std::vector<std::string>& argsIn) {
     if (line.values.count("--experiment") && args[0].find(".csv") == std::string::npos)
         return usageError("--experiment goes with a recording (a .csv file) to check against it");
     const std::string& file = args[0];
-    if (file.size() > 4 && file.substr(file.size() - 4) == ".csv") {
-        // A tap recording (data/taps.csv) or a following recording (data/following_taps.csv),
-        // told apart by their header: every row, column and value checked, against the run's
-        // run.json where it has one.
-        try {
-            std::string note;
-            RecordingBounds bounds = checkedRecordingBounds(file, &note);
-            ClassSet classes;
-            if (const std::string e = line.value("--experiment"); !e.empty()) {
-                const ExperimentSpec spec = loadCheckedExperiment(e, false, simulatedRigs());
-                classes = spec.classes;
-                bounds.taxels = static_cast<int>(spec.scene.fingertip.taxels.size());
-                bounds.taxelsFrom = "the fingertip of " + e;
-            } else if (bounds.taxels <= 0) {
-                // Nothing says which fingertip took it: held to the paper's.
-                bounds.taxels = kFingertipTaxels;
-                bounds.taxelsFrom =
-                    "the paper's fingertip (there is no run.json beside the recording; give "
-                    "--experiment with the experiment it was taken with to check it against "
-                    "that one's)";
-            }
-            if (!note.empty()) std::fprintf(stderr, "caution: %s\n", note.c_str());
-            std::ifstream in = openRecording(file);
-            std::string header(17, '\0');
-            in.read(header.data(), static_cast<std::streamsize>(header.size()));
-            header.resize(static_cast<std::size_t>(in.gcount()));
-            const bool known = bounds.samplesPerTap > 0;
-            auto unconfirmed = [&](int taps) {
-                return known || taps > 1 ? ""
-                                         : "; with one tap and no run.json beside it, nothing "
-                                           "shows whether that tap is whole";
-            };
-            if (header.rfind("shape,mode,trial,", 0) == 0) {
-                const auto c = checkFollowingRecording(file, bounds);
-                std::printf("%s: ok (%d taps over %d trials, %d samples each)%s%s%s\n",
-                            file.c_str(), c.taps, c.trials, c.samplesPerTap,
-                            c.cutOff.empty() ? ""
-                                             : "; cut short at the end, as by a run "
-                                               "stopped while writing: ",
-                            c.cutOff.c_str(), unconfirmed(c.taps));
-                return kOk;
-            }
-            std::string cut;
-            const auto taps = readTapCsv(file, classes, &cut, bounds);
-            std::printf("%s: ok (%zu taps, %d samples each)%s%s%s\n", file.c_str(), taps.size(),
-                        taps.front().record.tap.sampleCount(),
-                        cut.empty() ? ""
-                                    : "; cut short at the end, as by a run stopped while "
-                                      "writing: ",
-                        cut.c_str(), unconfirmed(static_cast<int>(taps.size())));
-            return kOk;
-        } catch (const InputError& e) {
-            std::fprintf(stderr, "error: %s\n", e.what());
-            return kBadInput;
-        }
-    }
+    if (file.size() > 4 && file.substr(file.size() - 4) == ".csv")
+        return checkRecording(file, line.value("--experiment"));
     try {
         if (const Json j = readJsonFile(file); looksLikeRigFile(j)) {
             // The stage's soft limits come from the experiment's scene at run time.
