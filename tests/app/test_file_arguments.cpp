@@ -117,6 +117,14 @@ class TestFileArguments : public QObject {
         return p;
     }
 
+    /// A rig file whose fingertip asks the name server at 127.0.0.1:`port`.
+    QString rigWithNameServerAt(const QString& name, quint16 port) {
+        return write(name, QString(R"({"tapper": {"device": "nxt"}, "fingertip": {
+            "device": "yarp", "name_server": "127.0.0.1", "name_server_port": %1}})")
+                               .arg(port)
+                               .toUtf8());
+    }
+
     /// A folder whose run.json or seed_outcomes.json (`file`) is `hostile`.
     QString shardFolderWith(const QString& file, const QString& hostileFile) {
         const QString folder = path("shard_" + QFileInfo(hostileFile).fileName());
@@ -291,11 +299,7 @@ private slots:
         // wait out its timeouts; Ctrl-C ends the wait within a second, naming what it did.
         QTcpServer silent;
         QVERIFY(silent.listen(QHostAddress::LocalHost));
-        const QString rig =
-            write("silent_rig.json", QString(R"({"tapper": {"device": "nxt"}, "fingertip": {
-            "device": "yarp", "name_server": "127.0.0.1", "name_server_port": %1}})")
-                                         .arg(silent.serverPort())
-                                         .toUtf8());
+        const QString rig = rigWithNameServerAt("silent_rig.json", silent.serverPort());
         const QString out = path("silent");
         QElapsedTimer sinceInterrupt;
         const Measured m = measure({"run", onRig_, "--rig", rig, "--out", out, "--no-figures"}, {},
@@ -318,11 +322,7 @@ private slots:
         // neither is called a YARP name server that did not answer.
         QTcpServer server;
         QVERIFY(server.listen(QHostAddress::LocalHost));
-        const QString rig =
-            write("closing_rig.json", QString(R"({"tapper": {"device": "nxt"}, "fingertip": {
-            "device": "yarp", "name_server": "127.0.0.1", "name_server_port": %1}})")
-                                          .arg(server.serverPort())
-                                          .toUtf8());
+        const QString rig = rigWithNameServerAt("closing_rig.json", server.serverPort());
         const auto closeAt = [&](const QByteArray& say) {
             return [&server, say](pid_t) {
                 if (!server.waitForNewConnection(10000)) return;
