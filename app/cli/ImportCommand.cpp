@@ -32,6 +32,34 @@ std::optional<double> optionNumber(const std::string& text, double lo, double hi
     return v;
 }
 
+
+/// How the experiment's taps are cut from a skin log: its tap's samples and rate, the reflex
+/// threshold (the scene's, or --threshold) and the lead before a crossing (the descent, or
+/// --lead-frames). Empty, or what is wrong with an option.
+std::string cuttingOf(const ExperimentSpec& spec, const RunArguments& parsed,
+                      TapCutting& cutting) {
+    const TapSpec& tapSpec = spec.scene.tap;
+    cutting.samplesPerTap = tapSpec.samples;
+    cutting.sampleRate_hz = tapSpec.sampleRate_hz;
+    cutting.reflexThreshold = tapSpec.contactThreshold;
+    cutting.leadFrames =
+        static_cast<int>(std::ceil((tapSpec.retractHeight_mm - spec.scene.object.height_mm) /
+                                   tapSpec.descentSpeed_mm_s * tapSpec.sampleRate_hz));
+    if (!parsed.text("--threshold").empty()) {
+        const auto v = optionNumber(parsed.text("--threshold"), 1e-9, 255.0 * kMaxTaxels);
+        if (!v) return "--threshold takes a total pressure in counts above 0";
+        cutting.reflexThreshold = *v;
+    }
+    if (!parsed.text("--lead-frames").empty()) {
+        const auto v = optionNumber(parsed.text("--lead-frames"), 0, tapSpec.samples - 1);
+        if (!v || *v != std::floor(*v))
+            return "--lead-frames takes a whole number of frames, 0 to " +
+                   std::to_string(tapSpec.samples - 1);
+        cutting.leadFrames = static_cast<int>(*v);
+    }
+    return {};
+}
+
 }  // namespace
 
 /// import: a skin log from YARP's data dumper (with a taxel map and, where there is one, the
@@ -51,26 +79,9 @@ int commandImport(const std::vector<std::string>& args) {
     const auto loaded = loadForRun(parsed.experimentPath);
     if (!loaded) return kBadInput;
     const ExperimentSpec& spec = *loaded;
-    const TapSpec& tapSpec = spec.scene.tap;
     TapCutting cutting;
-    cutting.samplesPerTap = tapSpec.samples;
-    cutting.sampleRate_hz = tapSpec.sampleRate_hz;
-    cutting.reflexThreshold = tapSpec.contactThreshold;
-    cutting.leadFrames =
-        static_cast<int>(std::ceil((tapSpec.retractHeight_mm - spec.scene.object.height_mm) /
-                                   tapSpec.descentSpeed_mm_s * tapSpec.sampleRate_hz));
-    if (!parsed.text("--threshold").empty()) {
-        const auto v = optionNumber(parsed.text("--threshold"), 1e-9, 255.0 * kMaxTaxels);
-        if (!v) return usageError("--threshold takes a total pressure in counts above 0");
-        cutting.reflexThreshold = *v;
-    }
-    if (!parsed.text("--lead-frames").empty()) {
-        const auto v = optionNumber(parsed.text("--lead-frames"), 0, tapSpec.samples - 1);
-        if (!v || *v != std::floor(*v))
-            return usageError("--lead-frames takes a whole number of frames, 0 to " +
-                              std::to_string(tapSpec.samples - 1));
-        cutting.leadFrames = static_cast<int>(*v);
-    }
+    if (const std::string problem = cuttingOf(spec, parsed, cutting); !problem.empty())
+        return usageError(problem);
     const std::string outDir = parsed.outDir.empty()
                                    ? (fs::path("results") / (spec.name + "_import")).string()
                                    : parsed.outDir;
