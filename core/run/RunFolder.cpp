@@ -83,17 +83,18 @@ bool isHexDigest(const std::string& text) {
            text.find_first_not_of("0123456789abcdef") == std::string::npos;
 }
 
-// A file's entry in run.json: {"bytes": N, "sha256": "..."}.
+// A file's entry in run.json: {"bytes": N, "sha256": "..."}, or a bare size as run folders
+// written before digests were kept record it (read with an empty digest: its size is checked).
 FileStamp stampOf(Json::const_iterator entry, const std::string& file) {
     const Json& v = entry.value();
+    if (v.is_number_unsigned()) return {v.get<std::uintmax_t>(), ""};
     const auto bytes = v.is_object() ? v.find("bytes") : v.end();
     const auto digest = v.is_object() ? v.find("sha256") : v.end();
     if (bytes == v.end() || !bytes->is_number_unsigned() || digest == v.end() ||
         !digest->is_string() || !isHexDigest(digest->get<std::string>()))
         throw InputError(file, "/files/" + entry.key(),
                          "expected the file's size in bytes and its SHA-256 ({\"bytes\": N, "
-                         "\"sha256\": \"64 hex digits\"}); the manifest is damaged or was "
-                         "written by an older version: rerun into an empty folder");
+                         "\"sha256\": \"64 hex digits\"}); the manifest is damaged");
     return {bytes->get<std::uintmax_t>(), digest->get<std::string>()};
 }
 
@@ -270,7 +271,7 @@ void checkOneRun(const std::string& dir, const std::vector<std::string>& read, s
                                  std::to_string(listed->second.bytes) + " (" + manifest +
                                  "): it was written to since, perhaps by another run; rerun into "
                                  "an empty folder");
-        if (sha256OfFile(path) != listed->second.sha256)
+        if (!listed->second.sha256.empty() && sha256OfFile(path) != listed->second.sha256)
             throw InputError(path, "",
                              "this file's SHA-256 differs from the one run " + m->runId +
                                  " recorded in " + manifest +
@@ -298,6 +299,11 @@ void checkProvenRun(const std::string& dir, const std::string& file) {
                          "the run did not finish listing its files (it was stopped or killed), "
                          "so its " + file + " cannot be proven whole; run it again");
     checkOneRun(dir, {file});
+    if (const auto listed = m->files.find(file); listed->second.sha256.empty())
+        throw InputError(manifest, "/files/" + file,
+                         "records only the size of " + file +
+                             ", as folders written before digests were kept do, so it cannot be "
+                             "proven whole; run that shard again");
 }
 
 std::optional<std::string> runFolderOf(const std::string& recording) {

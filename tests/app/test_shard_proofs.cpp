@@ -206,6 +206,29 @@ private slots:
         refused({bare, shard2_}, bare + "/run.json", "there is no run.json");
     }
 
+    void foldersFromBeforeDigestsAreReadButNotMerged() {
+        // A run.json that records bare sizes, as folders written before digests were kept do: a
+        // recording in it is still read (its sizes checked), a shard is not merged.
+        auto bareSizes = [](const QString& folder) {
+            QJsonObject m = QJsonDocument::fromJson(readAll(folder + "/run.json")).object();
+            QJsonObject files = m["files"].toObject();
+            for (const QString& k : files.keys()) files[k] = files[k].toObject()["bytes"];
+            m["files"] = files;
+            writeAll(folder + "/run.json", QJsonDocument(m).toJson());
+        };
+        const QString run = dir_.filePath("earlier_run");
+        const auto made =
+            runCli({"run", sourceFile("experiments/paper.json"), "--out", run, "--no-figures"});
+        QVERIFY2(made.exitCode == 0, qPrintable(made.err));
+        bareSizes(run);
+        const auto checked = runCli({"check", run + "/data/taps.csv"});
+        QVERIFY2(checked.exitCode == 0, qPrintable(checked.err));
+        const QString earlier = dir_.filePath("earlier_shard");
+        copyFolder(shard1_, earlier);
+        bareSizes(earlier);
+        refused({earlier, shard2_}, earlier + "/run.json", "records only the size");
+    }
+
     void aRecordingChangedInPlaceIsRefusedByCheckAndReplay() {
         // Same size, one digit changed: only the digest shows it.
         const QString run = dir_.filePath("run");
