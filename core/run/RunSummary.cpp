@@ -236,6 +236,47 @@ Json sweepsJson(const SweepResults& sweeps) {
     return out;
 }
 
+/// The belief's calibration on the held-out taps: every candidate factor, the one chosen, and
+/// the reliability of the raw and calibrated beliefs.
+Json beliefCalibrationJson(const BeliefCalibration& b) {
+    auto bins = [](const std::vector<ReliabilityBin>& v) {
+        Json a = Json::array();
+        for (const ReliabilityBin& x : v)
+            a.push_back({{"confidence_from", x.lo},
+                         {"confidence_to", x.hi},
+                         {"taps", x.taps},
+                         {"mean_confidence", x.meanConfidence},
+                         {"accuracy", x.accuracy}});
+        return a;
+    };
+    return {
+        {"ece_raw", b.eceRaw},
+        {"ece_calibrated", b.eceCalibrated},
+        {"ece_if_perfectly_calibrated", b.eceIfCalibrated},
+        {"scaling",
+         {{"method", b.method}, {"factor", b.scaling.scale}, {"floor", b.scaling.floor}}},
+        {"sequential",
+         {{"factor", b.sequential.scale},
+          {"running_sums_fitted", b.sequencePrefixes},
+          {"what",
+           "the factor on evidence accumulated over repeated taps (sequential decisions), "
+           "fitted on the running sums of each class's held-out taps"}}},
+        {"candidates",
+         {{"fitted_temperature", {{"factor", b.fittedScale}, {"ece", b.eceFitted}}},
+          {"fitted_temperature_and_floor",
+           {{"factor", b.fittedWithFloor.scale},
+            {"floor", b.fittedWithFloor.floor},
+            {"ece", b.eceFittedWithFloor}}},
+          {"mean_per_sample", {{"factor", b.perSampleScale}, {"ece", b.ecePerSample}}}}},
+        {"single_tap_accuracy", b.accuracy},
+        {"taps_fitted", b.fitTaps},
+        {"taps_evaluated", b.evaluationTaps},
+        {"which_taps",
+         "the held-out (test) taps: the factor fitted on every other one, every error "
+         "measured on the rest"},
+        {"reliability", {{"raw", bins(b.raw)}, {"calibrated", bins(b.calibrated)}}}};
+}
+
 }  // namespace
 
 Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
@@ -274,44 +315,8 @@ Json summaryJson(const RunResult& r, double wall_s, double figures_s) {
                      {"placement_jitter_mm", r.spec.training.placementJitter_mm},
                      {"retrain_on_all_sets", r.spec.training.retrainOnAllSets}};
     if (!r.validation.byClass.empty()) j["validation"] = validationJson(r);
-    if (const BeliefCalibration& b = r.beliefCalibration; b.measured) {
-        auto bins = [](const std::vector<ReliabilityBin>& v) {
-            Json a = Json::array();
-            for (const ReliabilityBin& x : v)
-                a.push_back({{"confidence_from", x.lo},
-                             {"confidence_to", x.hi},
-                             {"taps", x.taps},
-                             {"mean_confidence", x.meanConfidence},
-                             {"accuracy", x.accuracy}});
-            return a;
-        };
-        j["belief_calibration"] = {
-            {"ece_raw", b.eceRaw},
-            {"ece_calibrated", b.eceCalibrated},
-            {"ece_if_perfectly_calibrated", b.eceIfCalibrated},
-            {"scaling",
-             {{"method", b.method}, {"factor", b.scaling.scale}, {"floor", b.scaling.floor}}},
-            {"sequential",
-             {{"factor", b.sequential.scale},
-              {"running_sums_fitted", b.sequencePrefixes},
-              {"what",
-               "the factor on evidence accumulated over repeated taps (sequential decisions), "
-               "fitted on the running sums of each class's held-out taps"}}},
-            {"candidates",
-             {{"fitted_temperature", {{"factor", b.fittedScale}, {"ece", b.eceFitted}}},
-              {"fitted_temperature_and_floor",
-               {{"factor", b.fittedWithFloor.scale},
-                {"floor", b.fittedWithFloor.floor},
-                {"ece", b.eceFittedWithFloor}}},
-              {"mean_per_sample", {{"factor", b.perSampleScale}, {"ece", b.ecePerSample}}}}},
-            {"single_tap_accuracy", b.accuracy},
-            {"taps_fitted", b.fitTaps},
-            {"taps_evaluated", b.evaluationTaps},
-            {"which_taps",
-             "the held-out (test) taps: the factor fitted on every other one, every error "
-             "measured on the rest"},
-            {"reliability", {{"raw", bins(b.raw)}, {"calibrated", bins(b.calibrated)}}}};
-    }
+    if (r.beliefCalibration.measured)
+        j["belief_calibration"] = beliefCalibrationJson(r.beliefCalibration);
     if (!r.failure.empty()) j["failure"] = r.failure;
     j["cautions"] = untrainedEdgeCautions(r.spec);
     j["controller"] = {
