@@ -137,46 +137,53 @@ void writeSeedRatesFiles(const SeedRates& rates, const std::string& outDir) {
         writeSweepRateTables(sweeps, outDir);
 }
 
-std::vector<ReportRow> rateReport(const SeedRates& r) {
-    std::vector<ReportRow> rows;
-    char buf[200];
-    // An indented entry ("  per label") belongs to the one above it.
-    auto split = [](const std::string& text) {
+namespace {
+
+/// The rows of a report as they are written: an indented entry ("  per label") belongs to the
+/// one above it.
+class ReportRows {
+public:
+    void line(const std::string& what, const Rate& rate) {
+        ReportRow row = split(what);
+        row.rate = rate;
+        rows_.push_back(row);
+    }
+    void push_back(const std::string& text) { rows_.push_back(split(text)); }
+    void perLabel(const RatesByLabel& rates) {
+        if (rates.size() > 1)
+            for (const auto& [label, rate] : rates) line("  " + label, rate);
+    }
+    std::vector<ReportRow> rows() && { return std::move(rows_); }
+
+private:
+    static ReportRow split(const std::string& text) {
         ReportRow row;
         std::size_t at = 0;
         while (at < text.size() && text[at] == ' ') ++at;
         row.indent = static_cast<int>(at / 2);
         row.what = text.substr(at);
         return row;
-    };
-    auto line = [&](const std::string& what, const Rate& rate) {
-        ReportRow row = split(what);
-        row.rate = rate;
-        rows.push_back(row);
-    };
-    struct Lines {
-        std::vector<ReportRow>& rows;
-        std::function<ReportRow(const std::string&)> split;
-        void push_back(const std::string& text) { rows.push_back(split(text)); }
-    } lines{rows, split};
-    auto perLabel = [&](const RatesByLabel& rates) {
-        if (rates.size() > 1)
-            for (const auto& [label, rate] : rates) line("  " + label, rate);
-    };
+    }
+    std::vector<ReportRow> rows_;
+};
+
+/// Runs failed, trials lost and completed, and where and round which corners.
+void reportTrials(ReportRows& lines, const SeedRates& r) {
+    char buf[200];
     if (const Rate failed = r.runsFailed(); failed.count > 0) {
         // A device or rig error is no outcome of the method: such runs count in no trial rate.
-        line("runs failed (device or rig error)", failed);
+        lines.line("runs failed (device or rig error)", failed);
         for (const SeedOutcome& o : r.seeds)
             if (o.failed())
                 lines.push_back("  seed " + std::to_string(o.seed) + ", " +
                                 std::to_string(o.trialsNotRun) +
                                 " trials not run: " + o.runFailure);
     }
-    line("passive trials lost", r.passiveLost());
-    perLabel(r.passiveLostByLabel());
-    line("passive trials lost at a corner", r.passiveLostAtCorner());
-    line("active trials completed", r.activeCompleted());
-    perLabel(r.activeCompletedByLabel());
+    lines.line("passive trials lost", r.passiveLost());
+    lines.perLabel(r.passiveLostByLabel());
+    lines.line("passive trials lost at a corner", r.passiveLostAtCorner());
+    lines.line("active trials completed", r.activeCompleted());
+    lines.perLabel(r.activeCompletedByLabel());
     // Where the active trials that did not complete got stuck, and how often each kind of corner
     // was got round in each mode.
     if (const CornerTally c = r.corners(FollowingMode::Active); c.notCompleted() > 0) {
@@ -189,40 +196,50 @@ std::vector<ReportRow> rateReport(const SeedRates& r) {
     for (const FollowingMode mode : {FollowingMode::Active, FollowingMode::Passive}) {
         const CornerTally c = r.corners(mode);
         const std::string m = modeName(mode);
-        if (c.convexRounded().total > 0) line("convex corners got round, " + m, c.convexRounded());
+        if (c.convexRounded().total > 0)
+            lines.line("convex corners got round, " + m, c.convexRounded());
         if (c.concaveRounded().total > 0)
-            line("concave corners got round, " + m, c.concaveRounded());
+            lines.line("concave corners got round, " + m, c.concaveRounded());
     }
     // Where the validation put the valid range decides where the active tip runs, so completion
     // is given per valid range when the runs picked more than one.
     if (const auto byRange = r.activeCompletedByValidRange(); byRange.size() > 1) {
         lines.push_back("active trials completed by the valid range each run picked:");
         for (const ValidRangeRate& v : byRange)
-            line("  " + v.range.span() + " mm, " + std::to_string(v.runs) +
-                     (v.runs == 1 ? " run" : " runs"),
-                 v.activeCompleted);
+            lines.line("  " + v.range.span() + " mm, " + std::to_string(v.runs) +
+                           (v.runs == 1 ? " run" : " runs"),
+                       v.activeCompleted);
     }
+}
+
+/// Paths recognised by each rule, what they were misnamed as, and the pose recovered.
+void reportRecognition(ReportRows& lines, const SeedRates& r) {
     const RecognitionConfusion confusion = r.confusion();
-    line("recognised, paper's rule", r.recognisedRaw());
+    lines.line("recognised, paper's rule", r.recognisedRaw());
     if (const std::string m = confusion.misnamed(false); !m.empty())
         lines.push_back("  misnamed: " + m);
-    line("recognised, smoothed histograms", r.recognisedSmoothed());
+    lines.line("recognised, smoothed histograms", r.recognisedSmoothed());
     if (const std::string m = confusion.misnamed(true); !m.empty())
         lines.push_back("  misnamed: " + m);
-    if (r.recognisedAnyPose().total > 0) {
-        line("recognised at any pose", r.recognisedAnyPose());
-        if (const std::string m = confusion.misnamedAnyPose(); !m.empty())
-            lines.push_back("  misnamed: " + m);
-        if (r.medianTurnError_deg() >= 0) {
-            std::snprintf(buf, sizeof buf,
-                          "recovered at any pose: turn off by %.2f deg, place by %.2f mm "
-                          "(medians)",
-                          r.medianTurnError_deg(), r.medianPlaceError_mm());
-            lines.push_back(buf);
-        }
+    if (r.recognisedAnyPose().total == 0) return;
+    lines.line("recognised at any pose", r.recognisedAnyPose());
+    if (const std::string m = confusion.misnamedAnyPose(); !m.empty())
+        lines.push_back("  misnamed: " + m);
+    if (r.medianTurnError_deg() >= 0) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf,
+                      "recovered at any pose: turn off by %.2f deg, place by %.2f mm (medians)",
+                      r.medianTurnError_deg(), r.medianPlaceError_mm());
+        lines.push_back(buf);
     }
-    line("runs with the paper's result whole", r.paperResult());
-    line("runs whole, smoothed histograms", r.paperResultSmoothed());
+}
+
+/// Runs with the paper's result whole, what a completed trial costs, and how closely completed
+/// trials traced the contour (passive only if any got round).
+void reportWholeRunsAndCosts(ReportRows& lines, const SeedRates& r) {
+    char buf[200];
+    lines.line("runs with the paper's result whole", r.paperResult());
+    lines.line("runs whole, smoothed histograms", r.paperResultSmoothed());
     if (const ShortOfPaper s = r.shortOfPaper(); s.runs > 0) {
         std::snprintf(buf, sizeof buf,
                       "runs short: %d (passive not lost at a corner %d, active lost %d, path "
@@ -237,8 +254,6 @@ std::vector<ReportRow> rateReport(const SeedRates& r) {
                       r.robotTimePerRun_s());
         lines.push_back(buf);
     }
-    // How closely the completed trials of each mode traced the contour, passive only if any got
-    // round.
     for (const FollowingMode mode : {FollowingMode::Active, FollowingMode::Passive}) {
         const Tracing t = r.tracing(mode);
         if (t.trials == 0) continue;
@@ -248,7 +263,16 @@ std::vector<ReportRow> rateReport(const SeedRates& r) {
                       modeName(mode), 100.0 * t.coverage(), t.meanDistance_mm(), t.trials);
         lines.push_back(buf);
     }
-    return rows;
+}
+
+}  // namespace
+
+std::vector<ReportRow> rateReport(const SeedRates& r) {
+    ReportRows lines;
+    reportTrials(lines, r);
+    reportRecognition(lines, r);
+    reportWholeRunsAndCosts(lines, r);
+    return std::move(lines).rows();
 }
 
 std::vector<std::string> describeRates(const SeedRates& r) {
