@@ -3,6 +3,40 @@
 
 namespace activetouch::scenefit {
 
+namespace {
+
+/// Counts, per taxel, the deep samples and the low ones among them (a blink), the spells of
+/// blinks and their readings; a frame where most deep taxels read low at once is a lost frame,
+/// not a blink, and counts for none. `deep` and `low` are [t * K + k].
+void countBlinks(BlinkStats& b, const Tap& tap, int K, const std::vector<char>& deep,
+                 const std::vector<char>& low) {
+    const int T = tap.sampleCount();
+    for (int t = 0; t < T; ++t) {
+        int deepHere = 0, lowHere = 0;
+        for (int k = 0; k < K; ++k) {
+            deepHere += deep[static_cast<std::size_t>(t * K + k)];
+            lowHere += low[static_cast<std::size_t>(t * K + k)];
+        }
+        const bool lostFrame = deepHere >= 2 && 2 * lowHere > deepHere;
+        for (int k = 0; k < K; ++k) {
+            const std::size_t at = static_cast<std::size_t>(t * K + k);
+            if (!deep[at] || lostFrame) continue;
+            ++b.deep[static_cast<std::size_t>(k)];
+            if (low[at]) {
+                ++b.low[static_cast<std::size_t>(k)];
+                b.lowReadings.push_back(tap.at(t, k));
+                ++b.spellSamples;
+                const bool continues = t > 0 &&
+                                       low[static_cast<std::size_t>((t - 1) * K + k)] &&
+                                       deep[static_cast<std::size_t>((t - 1) * K + k)];
+                if (!continues) ++b.spells;
+            }
+        }
+    }
+}
+
+}  // namespace
+
 BlinkStats blinksOf(const std::vector<TapRecord>& taps, const std::vector<TapRecord>& ideal,
                     const std::vector<char>& skip, const std::vector<int>& only) {
     const int K = static_cast<int>(skip.size());
@@ -59,28 +93,7 @@ BlinkStats blinksOf(const std::vector<TapRecord>& taps, const std::vector<TapRec
                 low[at] = tap.at(t, k) < 0.25 * median;
             }
         }
-        for (int t = 0; t < T; ++t) {
-            int deepHere = 0, lowHere = 0;
-            for (int k = 0; k < K; ++k) {
-                deepHere += deep[static_cast<std::size_t>(t * K + k)];
-                lowHere += low[static_cast<std::size_t>(t * K + k)];
-            }
-            const bool lostFrame = deepHere >= 2 && 2 * lowHere > deepHere;
-            for (int k = 0; k < K; ++k) {
-                const std::size_t at = static_cast<std::size_t>(t * K + k);
-                if (!deep[at] || lostFrame) continue;
-                ++b.deep[static_cast<std::size_t>(k)];
-                if (low[at]) {
-                    ++b.low[static_cast<std::size_t>(k)];
-                    b.lowReadings.push_back(tap.at(t, k));
-                    ++b.spellSamples;
-                    const bool continues = t > 0 &&
-                                           low[static_cast<std::size_t>((t - 1) * K + k)] &&
-                                           deep[static_cast<std::size_t>((t - 1) * K + k)];
-                    if (!continues) ++b.spells;
-                }
-            }
-        }
+        countBlinks(b, tap, K, deep, low);
     }
     return b;
 }
