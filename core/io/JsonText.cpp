@@ -240,19 +240,8 @@ void checkJsonText(const std::string& text, const std::string& source) {
 }
 
 std::string readJsonFileText(const std::string& path) {
-    std::ifstream in = openInputFile(path, std::ios::binary);
-    std::string text;
-    char buffer[1 << 16];
-    while (in) {
-        in.read(buffer, sizeof buffer);
-        text.append(buffer, static_cast<std::size_t>(in.gcount()));
-        if (text.size() > kMaxJsonFileBytes)
-            throw InputError(path, "",
-                             "the file is larger than " + std::to_string(kMaxJsonFileBytes >> 20) +
-                                 " MiB; experiment, scene, rig and fingertip files are a few "
-                                 "kilobytes, so this is not one of them");
-    }
-    return text;
+    return readBoundedFile(path, kMaxJsonFileBytes,
+                           "an experiment, scene, rig or fingertip file (a few kilobytes)");
 }
 
 }  // namespace activetouch

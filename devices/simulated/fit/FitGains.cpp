@@ -36,7 +36,7 @@ std::optional<std::vector<double>> holdReadingOf(const Tap& tap, const std::vect
         if (skip[static_cast<std::size_t>(k)]) continue;
         std::vector<double> quiet;
         for (int t : press->quiet) quiet.push_back(tap.at(t, k));
-        const double baseline = medianOf(std::move(quiet));
+        const double baseline = stats::medianOr(std::move(quiet), std::nan(""));
         std::vector<double> v;
         bool saturated = false;
         for (int t = press->first; t <= press->last; ++t)

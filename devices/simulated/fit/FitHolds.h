@@ -2,6 +2,7 @@
 // The holds of touching taps: each pressed reading against the model at the depth it held, and
 // the gains, stage error and crosstalk read from them (FitGains.cpp, FitStage.cpp,
 // FitCrosstalk.cpp). Internal to devices/simulated.
+#include "core/stats/Intervals.h"
 #include "devices/simulated/fit/FitParts.h"
 
 namespace activetouch::scenefit {
@@ -40,10 +41,6 @@ struct Press {
 
 std::optional<Press> pressOf(const Tap& tap, const std::vector<char>& skip,
                              double contactThreshold);
-
-/// The median of `v` (the mean of the middle two for an even count).
-
-double medianOf(std::vector<double> v);
 
 /// A touching tap's hold: each taxel's median over the frames of the hold, less its baseline
 /// before contact, and the model's pressures at the tap's pose over a grid of depths to the

@@ -13,7 +13,7 @@ Tail tailOf(const std::vector<TapRecord>& taps, const std::vector<char>& skip,
         const auto& raw = press->total;
         std::vector<double> quiet;
         for (int t : press->quiet) quiet.push_back(raw[static_cast<std::size_t>(t)]);
-        const double base = medianOf(std::move(quiet));
+        const double base = stats::medianOr(std::move(quiet), std::nan(""));
         const double pressed = press->level - base;
         if (pressed <= 0) continue;
         int end = -1;

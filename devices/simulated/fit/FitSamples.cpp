@@ -28,9 +28,4 @@ double zAbove(double value, const std::vector<double>& nulls) {
     return spread > 0 ? (value - expected) / spread : (value > expected ? 1e9 : 0.0);
 }
 
-double medianOf(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return 0.5 * (v[(v.size() - 1) / 2] + v[v.size() / 2]);
-}
-
 }  // namespace activetouch::scenefit
