@@ -151,6 +151,8 @@ struct RunOptions {
     /// Called once, after every input check and before the first file is written in outDir: a
     /// caller claims the folder there (RunFolder.h), so that a refused input writes nothing.
     std::function<void()> beforeWriting;
+    /// Whether the observer asked the run to stop.
+    bool stopRequested() const { return observer && observer->stopRequested(); }
 };
 
 /// `options.simulated`; throws std::logic_error when a run that needs simulated rigs was given

@@ -11,182 +11,11 @@
 #include "core/classify/BeliefCalibration.h"
 #include "core/classify/SequentialPerception.h"
 #include "core/run/ExperimentRun.h"
+#include "core/run/PerceptionSweep.h"
 #include "core/validation/TrainingProtocol.h"
 
 namespace activetouch {
 namespace {
-
-bool cancelled(const RunOptions& o) {
-    return o.observer && o.observer->stopRequested();
-}
-
-double angleError(const ClassSet& cs, int perceived, int truth) {
-    return angleDifferenceDeg(cs.orientationDegOf(perceived), cs.orientationDegOf(truth));
-}
-
-// The mean of per-decision values with a 95 % interval over the per-class means (decisions
-// about one class share taps; the classes are the independent units).
-SweepEstimate clusteredEstimate(const std::map<int, std::vector<double>>& byClass,
-                                double least = 0.0,
-                                double most = std::numeric_limits<double>::infinity()) {
-    SweepEstimate e;
-    std::vector<double> means;
-    double sum = 0.0;
-    std::size_t n = 0;
-    for (const auto& [cls, values] : byClass) {
-        if (values.empty()) continue;
-        double m = 0.0;
-        for (double v : values) m += v;
-        sum += m;
-        n += values.size();
-        means.push_back(m / static_cast<double>(values.size()));
-    }
-    if (n == 0) return e;
-    e.mean = sum / static_cast<double>(n);
-    double spread = 0.0;
-    if (means.size() > 1) {
-        double mm = 0.0;
-        for (double m : means) mm += m;
-        mm /= static_cast<double>(means.size());
-        for (double m : means) spread += (m - mm) * (m - mm);
-        spread = std::sqrt(spread / static_cast<double>(means.size() - 1) /
-                           static_cast<double>(means.size()));
-    }
-    // Clamped to the quantity's own range (an error is never negative, a fraction at most 1).
-    e.low = std::max(least, e.mean - 1.96 * spread);
-    e.high = std::min(most, e.mean + 1.96 * spread);
-    return e;
-}
-
-std::vector<PerceptionSweepRow> perceptionSweep(const RunResult& r, const RunOptions& options,
-                                                PerceptionSweepCalibration& calibration,
-                                                PerceptionSweepRow& singleTap) {
-    const SweepSpec& sw = r.spec.sweeps;
-    // Fresh repeated taps of every class, as the training protocol takes them.
-    auto model = std::make_shared<const FingertipContactModel>(r.spec.scene.fingertip);
-    SceneSpec scene = r.spec.scene;
-    scene.seed = RandomStream::derived(r.spec.scene.seed, "sweep:perception").next() >> 1;
-    const auto simulated = simulatedRigsOf(options).build(scene, model);
-    Rig rig = simulated->rig();
-    TrainingProtocolSettings protocol = r.spec.training;
-    protocol.dataSets = std::max(2, sw.tapsPerClass);
-    protocol.trainingSets = {};
-    const auto taps = collectTrainingTaps(rig, simulated->object(), r.classes, protocol,
-                                          RandomStream::derived(scene.seed, "sweep:placement"),
-                                          [&](const CollectedTap&) { return !cancelled(options); });
-    std::map<int, std::vector<const CollectedTap*>> byClass;
-    for (const auto& t : taps) byClass[t.cls].push_back(&t);
-    // Each tap's evidence once: the run's calibrated belief where it was measured, else the
-    // naive-Bayes log-likelihoods (whose posterior is near 1 after one tap).
-    const int C = r.classes.classCount();
-    const bool useCalibrated = r.beliefCalibration.measured;
-    std::map<const CollectedTap*, std::vector<double>> evidence;
-    std::vector<double> rawConfidence, calibratedConfidence;
-    std::vector<bool> right;
-    for (const auto& t : taps) {
-        std::vector<double> ll(static_cast<std::size_t>(C));
-        r.classifier.logLikelihoods(t.record.tap, ll.data());
-        int top = 0;
-        rawConfidence.push_back(calibratedTopBelief(ll.data(), C, BeliefScaling{}, &top));
-        right.push_back(top == t.cls);
-        if (useCalibrated) {
-            calibratedConfidence.push_back(
-                calibratedTopBelief(ll.data(), C, r.beliefCalibration.scaling, nullptr));
-            std::vector<double> belief(ll.size());
-            calibratedLogBelief(ll.data(), C, r.beliefCalibration.sequential, belief.data());
-            ll = std::move(belief);
-        }
-        evidence[&t] = std::move(ll);
-    }
-    if (!taps.empty()) {
-        calibration.measured = true;
-        calibration.calibrated = useCalibrated;
-        calibration.taps = static_cast<int>(taps.size());
-        calibration.eceRaw = expectedCalibrationError(rawConfidence, right, 10);
-        const auto& kept = useCalibrated ? calibratedConfidence : rawConfidence;
-        calibration.eceCalibrated = expectedCalibrationError(kept, right, 10);
-        calibration.eceIfCalibrated = expectedCalibrationErrorIfCalibrated(kept, 10);
-    }
-    std::vector<PerceptionSweepRow> rows;
-    // The single tap's errors, decision by decision, to pair each threshold's with.
-    std::map<int, std::vector<double>> firstAngle, firstPosition;
-    const double inf = std::numeric_limits<double>::infinity();
-    auto fall = [&](const std::map<int, std::vector<double>>& first,
-                    const std::map<int, std::vector<double>>& now) {
-        std::map<int, std::vector<double>> d;
-        for (const auto& [cls, values] : now) {
-            const auto& before = first.at(cls);
-            for (std::size_t i = 0; i < values.size(); ++i) d[cls].push_back(before[i] - values[i]);
-        }
-        return clusteredEstimate(d, -inf, inf);
-    };
-    // First the paper's operating point on the same taps and axes: one tap, its most likely
-    // class (threshold 0); then each threshold.
-    std::vector<double> thresholds{0.0};
-    thresholds.insert(thresholds.end(), sw.beliefThresholds.begin(), sw.beliefThresholds.end());
-    for (double threshold : thresholds) {
-        PerceptionSweepRow row;
-        row.threshold = threshold;
-        std::map<int, std::vector<double>> taken, seconds, angle, position, correct;
-        int planeRight = 0, airRight = 0;
-        for (const auto& [cls, list] : byClass) {
-            const Region truth = r.classes.regionOf(cls);
-            // Each starting tap begins one sequence through the class's repeats, in turn.
-            for (std::size_t start = 0; start < list.size(); ++start) {
-                SequentialBelief belief(r.classes);
-                const CollectedTap* last = nullptr;
-                double robot_s = 0.0;
-                for (std::size_t k = 0; k < list.size() && belief.taps() < sw.maxTapsPerDecision;
-                     ++k) {
-                    last = list[(start + k) % list.size()];
-                    belief.update(evidence[last].data());
-                    robot_s += last->record.cycleTime_s;
-                    if (threshold == 0.0 || belief.decided(threshold)) break;
-                }
-                const int perceived = belief.best();
-                taken[cls].push_back(belief.taps());
-                seconds[cls].push_back(robot_s);
-                position[cls].push_back(std::abs(
-                    r.classes.offsetOf(r.classes.positionOf(perceived)) - last->trueOffset_mm));
-                correct[cls].push_back(perceived == cls ? 1.0 : 0.0);
-                if (truth == Region::Edge) {
-                    angle[cls].push_back(angleError(r.classes, perceived, cls));
-                } else if (truth == Region::Plane) {
-                    ++row.planeDecisions;
-                    planeRight += r.classes.regionOf(perceived) == Region::Plane;
-                } else {
-                    ++row.airDecisions;
-                    airRight += r.classes.regionOf(perceived) == Region::Air;
-                }
-                ++row.decisions;
-            }
-        }
-        if (row.decisions == 0) break;
-        row.taps = clusteredEstimate(taken, 1.0);
-        row.robotTime_s = clusteredEstimate(seconds);
-        row.angle_deg = clusteredEstimate(angle);
-        row.position_mm = clusteredEstimate(position);
-        row.correct = clusteredEstimate(correct, 0.0, 1.0);
-        row.meanTaps = row.taps.mean;
-        row.meanRobotTime_s = row.robotTime_s.mean;
-        row.angleError_deg = row.angle_deg.mean;
-        row.positionError_mm = row.position_mm.mean;
-        row.correctFraction = row.correct.mean;
-        if (threshold == 0.0) {
-            firstAngle = angle;
-            firstPosition = position;
-        }
-        row.angleFall_deg = fall(firstAngle, angle);
-        row.positionFall_mm = fall(firstPosition, position);
-        row.planeRecognised = row.planeDecisions ? double(planeRight) / row.planeDecisions : 0.0;
-        row.airRecognised = row.airDecisions ? double(airRight) / row.airDecisions : 0.0;
-        if (threshold == 0.0)
-            singleTap = row;
-        else
-            rows.push_back(row);
-    }
-    return rows;
-}
 
 /// One of each object the experiment follows.
 std::vector<const TrialSpec*> objectsFollowed(const RunResult& r) {
@@ -217,7 +46,7 @@ TrialResult followOnce(const RunResult& r, const RunOptions& options,
     const Polygon outline = simulated->object();
     const TrialSetup setup = trialSetupFor(r, row.mode, settings, outline, object.start);
     return runTrial(rig, r.classifier, r.classes, outline, setup,
-                    [&](const FollowedTap&) { return !cancelled(options); });
+                    [&](const FollowedTap&) { return !options.stopRequested(); });
 }
 
 std::vector<FollowingSweepRow> followingSweep(const RunResult& r, const RunOptions& options) {
@@ -238,7 +67,7 @@ std::vector<FollowingSweepRow> followingSweep(const RunResult& r, const RunOptio
                     double time = 0, taps = 0, distance = 0;
                     for (const TrialSpec* object : objects) {
                         for (int k = 0; k < sw.followingRepeats; ++k) {
-                            if (cancelled(options)) return rows;
+                            if (options.stopRequested()) return rows;
                             const TrialResult t =
                                 followOnce(r, options, model, *object, row,
                                            "sweep:following:" + std::to_string(setting) + ":" +
@@ -298,7 +127,7 @@ std::vector<ComputeSweepRow> computeSweep(const RunResult& r, const RunOptions& 
         for (std::size_t i = 0; i < train.size(); ++i)
             labelled.push_back({&train[i], trainLabels[i]});
         for (int bins : sw.bins) {
-            if (cancelled(options)) return rows;
+            if (options.stopRequested()) return rows;
             ClassifierSettings settings = r.spec.classifier;
             settings.bins = bins;
             const HistogramClassifier c =
@@ -317,7 +146,8 @@ std::vector<ComputeSweepRow> computeSweep(const RunResult& r, const RunOptions& 
                 std::chrono::duration<double, std::micro>(t1 - t0).count() /
                 (repeats * static_cast<double>(test.size()));
             for (std::size_t i = 0; i < test.size(); ++i) {
-                row.angleError_deg += angleError(r.classes, decided[i], testLabels[i]);
+                row.angleError_deg += angleDifferenceDeg(r.classes.orientationDegOf(decided[i]),
+                                                         r.classes.orientationDegOf(testLabels[i]));
                 row.positionError_mm +=
                     std::abs(r.classes.offsetOf(r.classes.positionOf(decided[i])) - testOffsets[i]);
             }
@@ -347,7 +177,7 @@ BanditResult banditSweep(const RunResult& r, const RunOptions& options,
     auto model = std::make_shared<const FingertipContactModel>(r.spec.scene.fingertip);
     double highest = -std::numeric_limits<double>::infinity(), lowest = -highest;
     for (int n = 0; n < rounds; ++n) {
-        if (cancelled(options)) return b;
+        if (options.stopRequested()) return b;
         // UCB1: every arm once, then the highest mean plus its exploration bonus, scaled by the
         // range of the rewards seen so far (at least 1, the worth of a completion).
         int arm = n < A ? n : 0;
@@ -423,7 +253,7 @@ RobustnessRow robustnessRow(const std::string& fault, const RunResult& run) {
 std::vector<RobustnessRow> robustnessSweep(const RunResult& r, const RunOptions& options) {
     std::vector<RobustnessRow> rows;
     for (const SweepSpec::Fault& fault : r.spec.sweeps.faults) {
-        if (cancelled(options)) break;
+        if (options.stopRequested()) break;
         ExperimentSpec spec = r.spec;
         spec.sweeps = {};
         auto& effects = spec.scene.effects;
@@ -440,7 +270,7 @@ std::vector<RobustnessRow> robustnessSweep(const RunResult& r, const RunOptions&
         // Cancelling the run cancels this one (its observer hears only that question).
         struct Relay : RunObserver {
             const RunOptions* outer = nullptr;
-            bool stopRequested() const override { return cancelled(*outer); }
+            bool stopRequested() const override { return outer->stopRequested(); }
         } relay;
         relay.outer = &options;
         once.observer = &relay;
