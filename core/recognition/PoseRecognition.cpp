@@ -1,10 +1,10 @@
 #include "core/recognition/PoseRecognition.h"
 
-#include "core/recognition/PoseGrid.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "core/recognition/PoseGrid.h"
 
 namespace activetouch {
 
@@ -62,6 +62,102 @@ double rotationErrorDeg(double a, double b, int symmetry) {
     return std::min(d, period - d);
 }
 
+namespace {
+
+/// A template's two best turns from the coarse search, at least 15 degrees apart.
+struct Candidate {
+    std::size_t tpl;
+    Pose pose[2];
+    double coarse = 0.0, coarseSecond = 0.0;
+};
+
+/// Template `i` at every 6 degrees on its grid, placed on the path's centroid.
+Candidate coarseCandidate(std::size_t i, const Grid& grid, const Coords& coarse, Vec2 centre) {
+    std::vector<std::pair<double, double>> byTurn;  // cost, turn
+    for (double th = 0.0; th < 360.0; th += kCoarseStepDeg)
+        byTurn.push_back(
+            {meanCost(grid, coarse, {th, centre}, Mapping::IntoFrame, Lookup::Nearest), th});
+    std::sort(byTurn.begin(), byTurn.end());
+    Candidate c{i,
+                {{byTurn[0].second, centre}, {byTurn[0].second, centre}},
+                byTurn[0].first,
+                std::numeric_limits<double>::infinity()};
+    for (const auto& [cost, th] : byTurn)
+        if (rotationErrorDeg(th, byTurn[0].second, 1) > 15.0) {
+            c.pose[1] = {th, centre};
+            c.coarseSecond = cost;
+            break;
+        }
+    return c;
+}
+
+/// A pattern search from `p` on `cost`: turn and place together, steps halved until the turn's
+/// is under 0.2 degrees.
+template <typename Cost>
+Pose patternSearch(Pose p, const Cost& cost) {
+    double c = cost(p);
+    double stepDeg = 2.0, stepMm = 0.8;
+    while (stepDeg > 0.2) {
+        bool moved = false;
+        const Pose tries[6] = {
+            {p.thetaDeg + stepDeg, p.t},         {p.thetaDeg - stepDeg, p.t},
+            {p.thetaDeg, p.t + Vec2{stepMm, 0}}, {p.thetaDeg, p.t - Vec2{stepMm, 0}},
+            {p.thetaDeg, p.t + Vec2{0, stepMm}}, {p.thetaDeg, p.t - Vec2{0, stepMm}}};
+        for (const Pose& q : tries) {
+            const double cq = cost(q);
+            if (cq < c) {
+                c = cq;
+                p = q;
+                moved = true;
+            }
+        }
+        if (!moved) {
+            stepDeg *= 0.5;
+            stepMm *= 0.5;
+        }
+    }
+    return p;
+}
+
+/// The path as the search reads it: its points resampled, thinned for the coarse search and
+/// halved for the refinement, its centroid and its distance grid.
+struct PathView {
+    Vec2 centre;
+    Coords coarse, search, all;
+    Grid grid;
+};
+
+/// A fit of one template refined from its coarse candidate: both turns where the second is
+/// nearly as good, each by a pattern search on the two-way cost, the better by the full cost.
+void refineFit(const PoseTemplate& tpl, const Grid& grid, const Candidate& cand,
+               const PathView& path, PoseFit& fit) {
+    const Coords tplSearch(halved(tpl.points)), tplAll(tpl.points);
+    auto cost = [&](const Pose& p) {
+        return 0.5 * (meanCost(grid, path.search, p, Mapping::IntoFrame, Lookup::Bilinear) +
+                      meanCost(path.grid, tplSearch, p, Mapping::OntoPath, Lookup::Bilinear));
+    };
+    auto fullCost = [&](const Pose& p) {
+        return 0.5 * (meanCost(grid, path.all, p, Mapping::IntoFrame, Lookup::Bilinear) +
+                      meanCost(path.grid, tplAll, p, Mapping::OntoPath, Lookup::Bilinear));
+    };
+    double fitCost = std::numeric_limits<double>::infinity();
+    Pose fitPose;
+    for (int k = 0; k < 2; ++k) {
+        // The second turn only where the coarse search found it nearly as good.
+        if (k == 1 && !(cand.coarseSecond < 1.5 * cand.coarse)) break;
+        const Pose p = patternSearch(cand.pose[k], cost);
+        if (const double full = fullCost(p); full < fitCost) {
+            fitCost = full;
+            fitPose = p;
+        }
+    }
+    fit.score_mm = std::sqrt(fitCost);
+    fit.position = fitPose.t;
+    fit.rotationDeg = tpl.symmetry == 0 ? 0.0 : wrapDeg(fitPose.thetaDeg, 360.0 / tpl.symmetry);
+}
+
+}  // namespace
+
 namespace detail {
 
 PoseRecognition recognisePose(const std::vector<Vec2>& path,
@@ -73,46 +169,23 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
     if (templates.empty() || finite.size() < 3) return out;
     const std::vector<Vec2> points = resampled(finite, kSpacing_mm, false);
     if (points.size() < 3) return out;
-    const Vec2 centre = lengthCentroid(finite, false);
     std::vector<Vec2> coarsePoints;
     const std::size_t stride = std::max<std::size_t>(1, points.size() / kCoarsePoints);
     for (std::size_t i = 0; i < points.size(); i += stride) coarsePoints.push_back(points[i]);
-    const Coords coarse(coarsePoints);
-    const Coords searchPoints(halved(points)), allPoints(points);
-    Grid pathGrid;
-    pathGrid.cell = kPathCell_mm;
-    pathGrid.portable = portable;
-    pathGrid.build(finite, false);
+    PathView view{lengthCentroid(finite, false), Coords(coarsePoints), Coords(halved(points)),
+                  Coords(points), Grid{}};
+    view.grid.cell = kPathCell_mm;
+    view.grid.portable = portable;
+    view.grid.build(finite, false);
 
     // Coarse: every template at every 6 degrees, placed on the path's centroid; the two best
     // turns at least 15 degrees apart go on to be refined.
-    struct Candidate {
-        std::size_t tpl;
-        Pose pose[2];
-        double coarse = 0.0, coarseSecond = 0.0;
-    };
     std::vector<Candidate> candidates;
     std::vector<Grid> grids;
     grids.reserve(templates.size());
     for (std::size_t i = 0; i < templates.size(); ++i) {
         grids.push_back(gridOf(templates[i], portable));
-        std::vector<std::pair<double, double>> byTurn;  // cost, turn
-        for (double th = 0.0; th < 360.0; th += kCoarseStepDeg)
-            byTurn.push_back(
-                {meanCost(grids.back(), coarse, {th, centre}, Mapping::IntoFrame, Lookup::Nearest),
-                 th});
-        std::sort(byTurn.begin(), byTurn.end());
-        Candidate c{i,
-                    {{byTurn[0].second, centre}, {byTurn[0].second, centre}},
-                    byTurn[0].first,
-                    std::numeric_limits<double>::infinity()};
-        for (const auto& [cost, th] : byTurn)
-            if (rotationErrorDeg(th, byTurn[0].second, 1) > 15.0) {
-                c.pose[1] = {th, centre};
-                c.coarseSecond = cost;
-                break;
-            }
-        candidates.push_back(c);
+        candidates.push_back(coarseCandidate(i, grids.back(), view.coarse, view.centre));
     }
     std::vector<std::size_t> order(candidates.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -128,60 +201,14 @@ PoseRecognition recognisePose(const std::vector<Vec2>& path,
         out.fits[i].score_mm = std::sqrt(candidates[i].coarse);
         const double turn = candidates[i].pose[0].thetaDeg;
         out.fits[i].rotationDeg = tpl.symmetry == 0 ? 0.0 : wrapDeg(turn, 360.0 / tpl.symmetry);
-        out.fits[i].position = centre;
+        out.fits[i].position = view.centre;
     }
-    // Refined: the most promising templates, both turns, turn and place together by a pattern
-    // search on the two-way cost.
+    // Refined: the most promising templates, both turns, turn and place together.
     double bestScore = std::numeric_limits<double>::infinity();
     for (std::size_t r = 0; r < std::min(kRefinedTemplates, order.size()); ++r) {
         const std::size_t i = order[r];
-        const PoseTemplate& tpl = templates[i];
-        const Grid& grid = grids[i];
-        const Coords tplSearch(halved(tpl.points)), tplAll(tpl.points);
-        auto cost = [&](const Pose& p) {
-            return 0.5 * (meanCost(grid, searchPoints, p, Mapping::IntoFrame, Lookup::Bilinear) +
-                          meanCost(pathGrid, tplSearch, p, Mapping::OntoPath, Lookup::Bilinear));
-        };
-        auto fullCost = [&](const Pose& p) {
-            return 0.5 * (meanCost(grid, allPoints, p, Mapping::IntoFrame, Lookup::Bilinear) +
-                          meanCost(pathGrid, tplAll, p, Mapping::OntoPath, Lookup::Bilinear));
-        };
-        double fitCost = std::numeric_limits<double>::infinity();
-        Pose fitPose;
-        for (int k = 0; k < 2; ++k) {
-            // The second turn only where the coarse search found it nearly as good.
-            if (k == 1 && !(candidates[i].coarseSecond < 1.5 * candidates[i].coarse)) break;
-            Pose p = candidates[i].pose[k];
-            double c = cost(p);
-            double stepDeg = 2.0, stepMm = 0.8;
-            while (stepDeg > 0.2) {
-                bool moved = false;
-                const Pose tries[6] = {
-                    {p.thetaDeg + stepDeg, p.t},         {p.thetaDeg - stepDeg, p.t},
-                    {p.thetaDeg, p.t + Vec2{stepMm, 0}}, {p.thetaDeg, p.t - Vec2{stepMm, 0}},
-                    {p.thetaDeg, p.t + Vec2{0, stepMm}}, {p.thetaDeg, p.t - Vec2{0, stepMm}}};
-                for (const Pose& q : tries) {
-                    const double cq = cost(q);
-                    if (cq < c) {
-                        c = cq;
-                        p = q;
-                        moved = true;
-                    }
-                }
-                if (!moved) {
-                    stepDeg *= 0.5;
-                    stepMm *= 0.5;
-                }
-            }
-            if (const double full = fullCost(p); full < fitCost) {
-                fitCost = full;
-                fitPose = p;
-            }
-        }
         PoseFit& fit = out.fits[i];
-        fit.score_mm = std::sqrt(fitCost);
-        fit.position = fitPose.t;
-        fit.rotationDeg = tpl.symmetry == 0 ? 0.0 : wrapDeg(fitPose.thetaDeg, 360.0 / tpl.symmetry);
+        refineFit(templates[i], grids[i], candidates[i], view, fit);
         if (fit.score_mm < bestScore) {
             bestScore = fit.score_mm;
             out.best = fit;
