@@ -28,7 +28,51 @@ FollowingMode parseMode(const JsonFields& f, const std::string& key, const std::
     f.fail(key, "mode '" + m + "' is neither active nor passive");
 }
 
-void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
+/// One trial of the following section's list, at `place`.
+TrialSpec parseTrial(const JsonFields& t, const std::string& place, const ExperimentSpec& e) {
+    t.rejectUnknownKeys({"label", "mode", "object", "repeats", "start_mm"});
+    TrialSpec spec;
+    spec.place = place;
+    spec.mode = parseMode(t, "mode", "active");
+    spec.object = parseObject(t.object("object"));
+    spec.label = t.text("label", spec.object.shape);
+    const bool control = std::any_of(spec.label.begin(), spec.label.end(), [](char c) {
+        return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    });
+    if (spec.label.empty() || control || spec.label.find_first_of(",\"\r\n") != std::string::npos)
+        t.fail("label",
+               "'" + spec.label +
+                   "' cannot name a trial: labels go into the run's CSV files as they are, so "
+                   "give a name without commas, quotes, line breaks or other control "
+                   "characters");
+    spec.repeats = t.integer("repeats", 1, 1000, 1);
+    if (const std::string problem = objectPlacementProblem(spec.object, e.scene); !problem.empty())
+        throw InputError(t.source(), place + "/object", problem);
+    for (const Polygon& outline : spec.object.possibleOutlines())
+        if (const std::string problem =
+                followingTravelProblem(outline, e.following, e.scene.stage.travel_mm);
+            !problem.empty())
+            throw InputError(t.source(), place + "/object",
+                             "trial '" + spec.label + "'" +
+                                 (spec.object.rotationDrawn ? " (turned any way)" : "") + ": " +
+                                 problem);
+    if (t.has("start_mm")) {
+        spec.start = t.point("start_mm");
+        if (const std::string problem =
+                startProblem(spec.object.outline(), *spec.start, e.following);
+            !problem.empty())
+            t.fail("start_mm", problem);
+    } else {
+        try {
+            lowerEdgeStart(spec.object.outline(), ValidOffsets{});
+        } catch (const std::invalid_argument& err) {
+            t.fail("object", std::string(err.what()) + "; give start_mm");
+        }
+    }
+    return spec;
+}
+
+void parseFollowingSettings(const JsonFields& f, FollowingSettings& s) {
     f.rejectUnknownKeys({"follow_step_mm",
                          "reposition_step_mm",
                          "plane_step_mm",
@@ -52,7 +96,6 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
                          "curvature_taps",
                          "same_edge_tolerance_deg",
                          "trials"});
-    FollowingSettings& s = e.following;
     for (const FollowingNumber& n : followingNumbers())
         s.*n.member = f.number(n.key, n.lo, n.hi, s.*n.member);
     s.edgeConfirmationTaps = f.integer("edge_confirmation_taps", 1, 100, s.edgeConfirmationTaps);
@@ -80,6 +123,10 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
     s.curvatureTaps = f.integer("curvature_taps", 0, 50, s.curvatureTaps);
     if (s.curvatureTaps == 1)
         f.fail("curvature_taps", "a turn needs two angles: give 0 (no anticipation) or 2 or more");
+}
+
+void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
+    parseFollowingSettings(f, e.following);
     if (!f.has("trials")) return;
     const Json& list = f.raw("trials");
     if (!list.is_array())
@@ -88,49 +135,103 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
                "\"cross\"}, \"repeats\": 2}]");
     for (std::size_t i = 0; i < list.size(); ++i) {
         const std::string place = f.placeOf("trials") + "/" + std::to_string(i);
-        JsonFields t(list[i], f.source(), place);
-        t.rejectUnknownKeys({"label", "mode", "object", "repeats", "start_mm"});
-        TrialSpec spec;
-        spec.place = place;
-        spec.mode = parseMode(t, "mode", "active");
-        spec.object = parseObject(t.object("object"));
-        spec.label = t.text("label", spec.object.shape);
-        const bool control = std::any_of(spec.label.begin(), spec.label.end(), [](char c) {
-            return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
-        });
-        if (spec.label.empty() || control ||
-            spec.label.find_first_of(",\"\r\n") != std::string::npos)
-            t.fail("label",
-                   "'" + spec.label +
-                       "' cannot name a trial: labels go into the run's CSV files as they are, so "
-                       "give a name without commas, quotes, line breaks or other control "
-                       "characters");
-        spec.repeats = t.integer("repeats", 1, 1000, 1);
-        if (const std::string problem = objectPlacementProblem(spec.object, e.scene);
-            !problem.empty())
-            throw InputError(f.source(), place + "/object", problem);
-        for (const Polygon& outline : spec.object.possibleOutlines())
-            if (const std::string problem =
-                    followingTravelProblem(outline, s, e.scene.stage.travel_mm);
-                !problem.empty())
-                throw InputError(f.source(), place + "/object",
-                                 "trial '" + spec.label + "'" +
-                                     (spec.object.rotationDrawn ? " (turned any way)" : "") + ": " +
-                                     problem);
-        if (t.has("start_mm")) {
-            spec.start = t.point("start_mm");
-            if (const std::string problem = startProblem(spec.object.outline(), *spec.start, s);
-                !problem.empty())
-                t.fail("start_mm", problem);
-        } else {
-            try {
-                lowerEdgeStart(spec.object.outline(), ValidOffsets{});
-            } catch (const std::invalid_argument& err) {
-                t.fail("object", std::string(err.what()) + "; give start_mm");
-            }
-        }
-        e.trials.push_back(spec);
+        e.trials.push_back(parseTrial(JsonFields(list[i], f.source(), place), place, e));
     }
+}
+
+/// The experiment's scene: inline, or the path of a scene file relative to the experiment.
+SceneSpec parseSceneField(const JsonFields& f, const std::string& baseDirectory) {
+    if (!f.has("scene"))
+        f.fail("scene", "missing 'scene': a scene object or the path of a scene file");
+    const Json& scene = f.raw("scene");
+    if (scene.is_string()) {
+        fs::path p(scene.get<std::string>());
+        if (p.is_relative()) p = fs::path(baseDirectory) / p;
+        std::error_code ec;
+        if (!fs::exists(p, ec))
+            f.fail("scene",
+                   "scene file '" + shortened(p.string()) +
+                       "' does not exist; check the path (relative to the experiment file)");
+        return loadScene(p.string());
+    } else {
+        return parseScene(scene, f.source(), "/scene", baseDirectory);
+    }
+}
+
+void parseClasses(const JsonFields& c, ClassSet& classes) {
+    c.rejectUnknownKeys(
+        {"orientations_deg", "orientation_step_deg", "positions", "position_step_mm"});
+    if (c.has("orientations_deg") && c.has("orientation_step_deg"))
+        c.fail("orientation_step_deg",
+               "give either orientations_deg (a list) or orientation_step_deg (every so many "
+               "degrees round the circle from 270), not both; a file that extends one with a "
+               "list removes the list with \"orientations_deg\": null");
+    if (c.has("orientation_step_deg")) {
+        // Every `step` degrees round the circle, from the lower edge's 270.
+        const double step = c.number("orientation_step_deg", 1.0, 180.0);
+        const double count = 360.0 / step;
+        if (std::abs(count - std::round(count)) > 1e-9)
+            c.fail("orientation_step_deg",
+                   numberText(step) +
+                       " deg does not divide the circle into whole steps; use "
+                       "a divisor of 360 such as 5, 10, 15 or 45");
+        classes.orientationsDeg.clear();
+        for (int i = 0; i < static_cast<int>(std::round(count)); ++i)
+            classes.orientationsDeg.push_back(std::fmod(270.0 + i * step, 360.0));
+    } else if (c.has("orientations_deg")) {
+        classes.orientationsDeg = c.numbers("orientations_deg", -360.0, 360.0);
+        const auto& o = classes.orientationsDeg;
+        if (o.empty()) c.fail("orientations_deg", "list at least one orientation");
+        if (o.size() > static_cast<std::size_t>(kMaxOrientations))
+            c.fail("orientations_deg", std::to_string(o.size()) + " orientations; at most " +
+                                           std::to_string(kMaxOrientations) + ", one per degree");
+        // Two entries facing the same way would make classes no tap can tell apart.
+        for (std::size_t i = 0; i < o.size(); ++i)
+            for (std::size_t j = 0; j < i; ++j)
+                if (angleDifferenceDeg(o[i], o[j]) < 1e-9)
+                    c.fail("orientations_deg", "orientation " + numberText(o[i]) +
+                                                   " deg faces the same way as orientation " +
+                                                   numberText(o[j]) +
+                                                   " deg before it; list each edge once");
+    }
+    classes.positions = c.integer("positions", 2, 200, classes.positions);
+    classes.positionStep_mm = c.number("position_step_mm", 0.05, 10.0, classes.positionStep_mm);
+}
+
+void parseTraining(const JsonFields& t, TrainingProtocolSettings& training) {
+    t.rejectUnknownKeys({"data_sets", "training_sets", "taps_per_class", "test_offset_mm",
+                         "placement_jitter_mm", "retrain_on_all_sets"});
+    training.dataSets = t.integer("data_sets", 2, 1000, training.dataSets);
+    if (t.has("training_sets")) {
+        training.trainingSets.clear();
+        for (double s : t.numbers("training_sets", 1, 1000)) {
+            if (s != std::floor(s))
+                t.fail("training_sets", "data set " + numberText(s) +
+                                            " is not a whole number; sets are numbered 1, 2, "
+                                            "3 ...");
+            training.trainingSets.push_back(static_cast<int>(s));
+        }
+    }
+    training.tapsPerClass = t.integer("taps_per_class", 1, 1000, training.tapsPerClass);
+    training.testOffset_mm = t.number("test_offset_mm", -5.0, 5.0, training.testOffset_mm);
+    training.placementJitter_mm =
+        t.number("placement_jitter_mm", 0.0, 5.0, training.placementJitter_mm);
+    training.retrainOnAllSets = t.flag("retrain_on_all_sets", training.retrainOnAllSets);
+    if (auto p = training.problem(); !p.empty()) throw InputError(t.source(), "/training", p);
+}
+
+void parseRecognition(const JsonFields& r, ExperimentSpec& e) {
+    r.rejectUnknownKeys({"bins", "smoothing_sigma_bins", "of_mode"});
+    e.recognition.enabled = true;
+    e.recognition.bins = r.integer("bins", 2, 200, e.recognition.bins);
+    e.recognition.smoothingSigmaBins =
+        r.number("smoothing_sigma_bins", 0.0, 20.0, e.recognition.smoothingSigmaBins);
+    e.recognition.ofMode = parseMode(r, "of_mode", "active");
+    bool any = false;
+    for (const auto& t : e.trials) any = any || t.mode == e.recognition.ofMode;
+    if (!any)
+        r.fail("of_mode", std::string("no ") + modeName(e.recognition.ofMode) +
+                              " trials to recognise; add trials or change of_mode");
 }
 
 }  // namespace
@@ -144,65 +245,10 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
     e.source = source;
     e.name = f.text("name");
     e.description = f.text("description", "");
-    if (!f.has("scene"))
-        f.fail("scene", "missing 'scene': a scene object or the path of a scene file");
-    const Json& scene = f.raw("scene");
-    if (scene.is_string()) {
-        fs::path p(scene.get<std::string>());
-        if (p.is_relative()) p = fs::path(baseDirectory) / p;
-        std::error_code ec;
-        if (!fs::exists(p, ec))
-            f.fail("scene",
-                   "scene file '" + shortened(p.string()) +
-                       "' does not exist; check the path (relative to the experiment file)");
-        e.scene = loadScene(p.string());
-    } else {
-        e.scene = parseScene(scene, source, "/scene", baseDirectory);
-    }
+    e.scene = parseSceneField(f, baseDirectory);
     if (f.has("seed")) e.scene.seed = static_cast<std::uint64_t>(f.integer("seed", 0, 2147483647L));
 
-    if (f.has("classes")) {
-        const JsonFields c = f.object("classes");
-        c.rejectUnknownKeys(
-            {"orientations_deg", "orientation_step_deg", "positions", "position_step_mm"});
-        if (c.has("orientations_deg") && c.has("orientation_step_deg"))
-            c.fail("orientation_step_deg",
-                   "give either orientations_deg (a list) or orientation_step_deg (every so many "
-                   "degrees round the circle from 270), not both; a file that extends one with a "
-                   "list removes the list with \"orientations_deg\": null");
-        if (c.has("orientation_step_deg")) {
-            // Every `step` degrees round the circle, from the lower edge's 270.
-            const double step = c.number("orientation_step_deg", 1.0, 180.0);
-            const double count = 360.0 / step;
-            if (std::abs(count - std::round(count)) > 1e-9)
-                c.fail("orientation_step_deg",
-                       numberText(step) +
-                           " deg does not divide the circle into whole steps; use "
-                           "a divisor of 360 such as 5, 10, 15 or 45");
-            e.classes.orientationsDeg.clear();
-            for (int i = 0; i < static_cast<int>(std::round(count)); ++i)
-                e.classes.orientationsDeg.push_back(std::fmod(270.0 + i * step, 360.0));
-        } else if (c.has("orientations_deg")) {
-            e.classes.orientationsDeg = c.numbers("orientations_deg", -360.0, 360.0);
-            const auto& o = e.classes.orientationsDeg;
-            if (o.empty()) c.fail("orientations_deg", "list at least one orientation");
-            if (o.size() > static_cast<std::size_t>(kMaxOrientations))
-                c.fail("orientations_deg", std::to_string(o.size()) + " orientations; at most " +
-                                               std::to_string(kMaxOrientations) +
-                                               ", one per degree");
-            // Two entries facing the same way would make classes no tap can tell apart.
-            for (std::size_t i = 0; i < o.size(); ++i)
-                for (std::size_t j = 0; j < i; ++j)
-                    if (angleDifferenceDeg(o[i], o[j]) < 1e-9)
-                        c.fail("orientations_deg", "orientation " + numberText(o[i]) +
-                                                       " deg faces the same way as orientation " +
-                                                       numberText(o[j]) +
-                                                       " deg before it; list each edge once");
-        }
-        e.classes.positions = c.integer("positions", 2, 200, e.classes.positions);
-        e.classes.positionStep_mm =
-            c.number("position_step_mm", 0.05, 10.0, e.classes.positionStep_mm);
-    }
+    if (f.has("classes")) parseClasses(f.object("classes"), e.classes);
     if (f.has("classifier")) {
         const JsonFields c = f.object("classifier");
         c.rejectUnknownKeys({"bins", "smoothing", "kernel_sigma_bins"});
@@ -211,28 +257,7 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
         e.classifier.kernelSigma_bins =
             c.number("kernel_sigma_bins", 0.0, kMaxKernelSigma_bins, e.classifier.kernelSigma_bins);
     }
-    if (f.has("training")) {
-        const JsonFields t = f.object("training");
-        t.rejectUnknownKeys({"data_sets", "training_sets", "taps_per_class", "test_offset_mm",
-                             "placement_jitter_mm", "retrain_on_all_sets"});
-        e.training.dataSets = t.integer("data_sets", 2, 1000, e.training.dataSets);
-        if (t.has("training_sets")) {
-            e.training.trainingSets.clear();
-            for (double s : t.numbers("training_sets", 1, 1000)) {
-                if (s != std::floor(s))
-                    t.fail("training_sets", "data set " + numberText(s) +
-                                                " is not a whole number; sets are numbered 1, 2, "
-                                                "3 ...");
-                e.training.trainingSets.push_back(static_cast<int>(s));
-            }
-        }
-        e.training.tapsPerClass = t.integer("taps_per_class", 1, 1000, e.training.tapsPerClass);
-        e.training.testOffset_mm = t.number("test_offset_mm", -5.0, 5.0, e.training.testOffset_mm);
-        e.training.placementJitter_mm =
-            t.number("placement_jitter_mm", 0.0, 5.0, e.training.placementJitter_mm);
-        e.training.retrainOnAllSets = t.flag("retrain_on_all_sets", e.training.retrainOnAllSets);
-        if (auto p = e.training.problem(); !p.empty()) throw InputError(source, "/training", p);
-    }
+    if (f.has("training")) parseTraining(f.object("training"), e.training);
     if (f.has("validation")) {
         const JsonFields v = f.object("validation");
         v.rejectUnknownKeys({"valid_range_positions"});
@@ -240,20 +265,7 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
             v.integer("valid_range_positions", 1, e.classes.positions, e.validRangeWidth);
     }
     if (f.has("following")) parseFollowing(f.object("following"), e);
-    if (f.has("recognition")) {
-        const JsonFields r = f.object("recognition");
-        r.rejectUnknownKeys({"bins", "smoothing_sigma_bins", "of_mode"});
-        e.recognition.enabled = true;
-        e.recognition.bins = r.integer("bins", 2, 200, e.recognition.bins);
-        e.recognition.smoothingSigmaBins =
-            r.number("smoothing_sigma_bins", 0.0, 20.0, e.recognition.smoothingSigmaBins);
-        e.recognition.ofMode = parseMode(r, "of_mode", "active");
-        bool any = false;
-        for (const auto& t : e.trials) any = any || t.mode == e.recognition.ofMode;
-        if (!any)
-            r.fail("of_mode", std::string("no ") + modeName(e.recognition.ofMode) +
-                                  " trials to recognise; add trials or change of_mode");
-    }
+    if (f.has("recognition")) parseRecognition(f.object("recognition"), e);
     if (f.has("sweeps")) parseSweeps(f.object("sweeps"), e);
     if (const std::string problem = trainingObjectProblem(e); !problem.empty())
         throw InputError(source, "/scene", "training on the scene's object: " + problem);
