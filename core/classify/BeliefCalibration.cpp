@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <tuple>
 
 namespace activetouch {
 
@@ -198,55 +199,95 @@ double expectedCalibrationErrorIfCalibrated(const std::vector<double>& confidenc
     return sum / kDraws;
 }
 
+namespace {
+
+/// The held-out taps' log-likelihoods in two folds (even- and odd-numbered taps).
+struct Folds {
+    std::vector<std::vector<double>> ll[2];
+    std::vector<int> truth[2];
+    int samples = 0;  ///< the most readings in one tap
+};
+
+Folds foldsOf(const HistogramClassifier& classifier, const std::vector<const Tap*>& heldOut,
+              const std::vector<int>& truth) {
+    Folds f;
+    for (std::size_t t = 0; t < heldOut.size(); ++t) {
+        std::vector<double> v(static_cast<std::size_t>(classifier.classCount()));
+        classifier.logLikelihoods(*heldOut[t], v.data());
+        f.samples = std::max(f.samples, heldOut[t]->sampleCount() * heldOut[t]->taxels);
+        f.ll[t % 2].push_back(std::move(v));
+        f.truth[t % 2].push_back(truth[t]);
+    }
+    return f;
+}
+
+/// The expected calibration error with each tap's confidence under scaling[its fold].
+double eceUnder(const Folds& folds, int C, const BeliefScaling (&scaling)[2],
+                std::vector<ReliabilityBin>* bins, std::vector<double>* confidenceOut = nullptr) {
+    std::vector<double> confidence;
+    std::vector<bool> correct;
+    for (int f = 0; f < 2; ++f)
+        for (std::size_t t = 0; t < folds.ll[f].size(); ++t) {
+            int top = 0;
+            confidence.push_back(calibratedTopBelief(folds.ll[f][t].data(), C, scaling[f], &top));
+            correct.push_back(top == folds.truth[f][t]);
+        }
+    if (confidenceOut) *confidenceOut = confidence;
+    return expectedCalibrationError(confidence, correct, 10, bins);
+}
+
+/// A scaling to choose from: fitted per fold on the other fold (to measure) and on every tap
+/// (to keep).
+struct Candidate {
+    const char* method;
+    BeliefScaling kept;
+    BeliefScaling perFold[2];
+    double ece = 0.0;
+    std::vector<ReliabilityBin> bins;
+    std::vector<double> confidence;
+};
+
+/// The sequential factor: fitted on the running sums of each class's held-out taps, in the
+/// order they were taken; and how many sums it was fitted on.
+std::pair<BeliefScaling, int> sequentialScaling(const Folds& folds, const std::vector<int>& truth,
+                                                int C) {
+    std::vector<std::vector<double>> sums;
+    std::vector<int> sumTruth;
+    std::vector<std::size_t> lastOfClass(static_cast<std::size_t>(C), SIZE_MAX);
+    for (std::size_t t = 0; t < truth.size(); ++t) {
+        const auto& v = folds.ll[t % 2][t / 2];
+        auto& last = lastOfClass[static_cast<std::size_t>(truth[t])];
+        std::vector<double> sum = v;
+        if (last != SIZE_MAX)
+            for (std::size_t c = 0; c < sum.size(); ++c) sum[c] += sums[last][c];
+        last = sums.size();
+        sums.push_back(std::move(sum));
+        sumTruth.push_back(truth[t]);
+    }
+    return {{fitLogLikelihoodScale(sums, sumTruth), 0.0}, static_cast<int>(sums.size())};
+}
+
+}  // namespace
+
 BeliefCalibration calibrateBelief(const HistogramClassifier& classifier,
                                   const std::vector<const Tap*>& heldOut,
                                   const std::vector<int>& truth) {
     BeliefCalibration r;
     if (heldOut.size() < 4 || heldOut.size() != truth.size() || !classifier.trained()) return r;
     const int C = classifier.classCount();
-    // Two folds of the held-out taps (even- and odd-numbered): each tap's calibrated confidence
-    // comes from the scaling fitted on the other fold, so every error is measured on taps the
-    // scaling never saw; the scaling kept for use is fitted on them all.
-    std::vector<std::vector<double>> ll[2];
-    std::vector<int> fold[2];
-    int samples = 0;
-    for (std::size_t t = 0; t < heldOut.size(); ++t) {
-        std::vector<double> v(static_cast<std::size_t>(C));
-        classifier.logLikelihoods(*heldOut[t], v.data());
-        samples = std::max(samples, heldOut[t]->sampleCount() * heldOut[t]->taxels);
-        ll[t % 2].push_back(std::move(v));
-        fold[t % 2].push_back(truth[t]);
-    }
+    // Two folds of the held-out taps: each tap's calibrated confidence comes from the scaling
+    // fitted on the other fold, so every error is measured on taps the scaling never saw; the
+    // scaling kept for use is fitted on them all.
+    const Folds folds = foldsOf(classifier, heldOut, truth);
+    const auto& ll = folds.ll;
+    const auto& fold = folds.truth;
     std::vector<std::vector<double>> all = ll[0];
     all.insert(all.end(), ll[1].begin(), ll[1].end());
     std::vector<int> allTruth = fold[0];
     allTruth.insert(allTruth.end(), fold[1].begin(), fold[1].end());
     r.fittedScale = fitLogLikelihoodScale(all, allTruth);
     r.fittedWithFloor = fitBeliefScaling(all, allTruth);
-    r.perSampleScale = 1.0 / std::max(1, samples);
-    // The expected calibration error with each tap's confidence under scaling[fold].
-    auto ece = [&](const BeliefScaling(&scaling)[2], std::vector<ReliabilityBin>* bins,
-                   std::vector<double>* confidenceOut = nullptr) {
-        std::vector<double> confidence;
-        std::vector<bool> correct;
-        for (int f = 0; f < 2; ++f)
-            for (std::size_t t = 0; t < ll[f].size(); ++t) {
-                int top = 0;
-                confidence.push_back(calibratedTopBelief(ll[f][t].data(), C, scaling[f], &top));
-                correct.push_back(top == fold[f][t]);
-            }
-        if (confidenceOut) *confidenceOut = confidence;
-        return expectedCalibrationError(confidence, correct, 10, bins);
-    };
-    // The candidates: fitted per fold on the other fold (to measure) and on every tap (to keep).
-    struct Candidate {
-        const char* method;
-        BeliefScaling kept;
-        BeliefScaling perFold[2];
-        double ece = 0.0;
-        std::vector<ReliabilityBin> bins;
-        std::vector<double> confidence;
-    };
+    r.perSampleScale = 1.0 / std::max(1, folds.samples);
     const BeliefScaling perSample{r.perSampleScale, 0.0};
     Candidate candidates[3] = {
         {"temperature fitted on held-out taps",
@@ -263,9 +304,9 @@ BeliefCalibration calibrateBelief(const HistogramClassifier& classifier,
          {},
          {}},
         {"mean per sample", perSample, {perSample, perSample}, 0.0, {}, {}}};
-    for (Candidate& c : candidates) c.ece = ece(c.perFold, &c.bins, &c.confidence);
+    for (Candidate& c : candidates) c.ece = eceUnder(folds, C, c.perFold, &c.bins, &c.confidence);
     const BeliefScaling raw[2] = {};
-    r.eceRaw = ece(raw, &r.raw);
+    r.eceRaw = eceUnder(folds, C, raw, &r.raw);
     r.eceFitted = candidates[0].ece;
     r.eceFittedWithFloor = candidates[1].ece;
     r.ecePerSample = candidates[2].ece;
@@ -279,25 +320,7 @@ BeliefCalibration calibrateBelief(const HistogramClassifier& classifier,
     r.eceCalibrated = kept->ece;
     r.calibrated = kept->bins;
     r.eceIfCalibrated = expectedCalibrationErrorIfCalibrated(kept->confidence, 10);
-    // The sequential factor: on the running sums of each class's held-out taps, in the order
-    // they were taken.
-    {
-        std::vector<std::vector<double>> sums;
-        std::vector<int> sumTruth;
-        std::vector<std::size_t> lastOfClass(static_cast<std::size_t>(C), SIZE_MAX);
-        for (std::size_t t = 0; t < heldOut.size(); ++t) {
-            const auto& v = ll[t % 2][t / 2];
-            auto& last = lastOfClass[static_cast<std::size_t>(truth[t])];
-            std::vector<double> sum = v;
-            if (last != SIZE_MAX)
-                for (std::size_t c = 0; c < sum.size(); ++c) sum[c] += sums[last][c];
-            last = sums.size();
-            sums.push_back(std::move(sum));
-            sumTruth.push_back(truth[t]);
-        }
-        r.sequential = {fitLogLikelihoodScale(sums, sumTruth), 0.0};
-        r.sequencePrefixes = static_cast<int>(sums.size());
-    }
+    std::tie(r.sequential, r.sequencePrefixes) = sequentialScaling(folds, truth, C);
     int right = 0;
     for (std::size_t t = 0; t < all.size(); ++t)
         right += argmaxLowestIndex(all[t].data(), C) == allTruth[t];
