@@ -82,19 +82,26 @@ HistogramClassifier HistogramClassifier::train(const std::vector<LabelledTap>& t
     if (taps.empty()) throw std::invalid_argument("no training taps");
     const int K = taps.front().tap->taxels;
     if (K < 1) throw std::invalid_argument("training taps have no taxels");
-
     HistogramClassifier c;
     c.classes_ = classCount;
     c.taxels_ = K;
     c.bins_ = settings.bins;
-    c.min_.assign(static_cast<std::size_t>(K), std::numeric_limits<double>::infinity());
-    c.max_.assign(static_cast<std::size_t>(K), -std::numeric_limits<double>::infinity());
-    std::vector<int> tapsPerClass(static_cast<std::size_t>(classCount), 0);
+    c.readRanges(taps);
+    c.learnTable(taps, settings);
+    c.buildScreening();
+    return c;
+}
+
+void HistogramClassifier::readRanges(const std::vector<LabelledTap>& taps) {
+    const int K = taxels_;
+    min_.assign(static_cast<std::size_t>(K), std::numeric_limits<double>::infinity());
+    max_.assign(static_cast<std::size_t>(K), -std::numeric_limits<double>::infinity());
+    std::vector<int> tapsPerClass(static_cast<std::size_t>(classes_), 0);
     for (const auto& lt : taps) {
         if (lt.tap->taxels != K) throw std::invalid_argument("training taps differ in taxel count");
-        if (lt.cls < 0 || lt.cls >= classCount)
+        if (lt.cls < 0 || lt.cls >= classes_)
             throw std::invalid_argument("training label " + std::to_string(lt.cls) +
-                                        " is outside 0.." + std::to_string(classCount - 1));
+                                        " is outside 0.." + std::to_string(classes_ - 1));
         if (lt.tap->sampleCount() < 1) throw std::invalid_argument("a training tap has no samples");
         ++tapsPerClass[static_cast<std::size_t>(lt.cls)];
         for (std::size_t i = 0; i < lt.tap->samples.size(); ++i) {
@@ -102,88 +109,93 @@ HistogramClassifier HistogramClassifier::train(const std::vector<LabelledTap>& t
             if (!std::isfinite(v))
                 throw std::invalid_argument("a training tap holds a non-finite sample");
             const auto k = i % static_cast<std::size_t>(K);
-            c.min_[k] = std::min(c.min_[k], v);
-            c.max_[k] = std::max(c.max_[k], v);
+            min_[k] = std::min(min_[k], v);
+            max_[k] = std::max(max_[k], v);
         }
     }
-    for (int cls = 0; cls < classCount; ++cls)
+    for (int cls = 0; cls < classes_; ++cls)
         if (tapsPerClass[static_cast<std::size_t>(cls)] == 0)
             throw std::invalid_argument("class " + std::to_string(cls) + " has no training tap");
-    c.scale_.resize(static_cast<std::size_t>(K));
+    scale_.resize(static_cast<std::size_t>(K));
     for (std::size_t k = 0; k < static_cast<std::size_t>(K); ++k) {
-        const double width = c.max_[k] - c.min_[k];
-        c.scale_[k] = (width > 0.0 && std::isfinite(c.bins_ / width)) ? c.bins_ / width : 0.0;
+        const double width = max_[k] - min_[k];
+        scale_[k] = (width > 0.0 && std::isfinite(bins_ / width)) ? bins_ / width : 0.0;
     }
-
     // The per-taxel range tiled over a block of frames, for the vectorised binning.
     constexpr std::size_t kTileFrames = 64;
     for (std::size_t f = 0; f < kTileFrames; ++f) {
         for (std::size_t k = 0; k < static_cast<std::size_t>(K); ++k) {
-            c.minTiled_.push_back(c.min_[k]);
-            c.scaleTiled_.push_back(c.scale_[k]);
-            c.cellBaseTiled_.push_back(
-                static_cast<std::uint32_t>(k * static_cast<std::size_t>(c.bins_)));
+            minTiled_.push_back(min_[k]);
+            scaleTiled_.push_back(scale_[k]);
+            cellBaseTiled_.push_back(
+                static_cast<std::uint32_t>(k * static_cast<std::size_t>(bins_)));
         }
     }
+}
 
+void HistogramClassifier::learnTable(const std::vector<LabelledTap>& taps,
+                                     const ClassifierSettings& settings) {
     // Counts per [taxel][bin][class], then smoothed log probabilities in place.
-    const std::size_t B = static_cast<std::size_t>(c.bins_),
-                      C = static_cast<std::size_t>(classCount);
-    c.logTable_.assign(static_cast<std::size_t>(K) * B * C, 0.0);
+    const int K = taxels_;
+    const std::size_t B = static_cast<std::size_t>(bins_), C = static_cast<std::size_t>(classes_);
+    logTable_.assign(static_cast<std::size_t>(K) * B * C, 0.0);
     std::vector<double> total(static_cast<std::size_t>(K) * C, 0.0);
     for (const auto& lt : taps) {
         const Tap& t = *lt.tap;
         for (int s = 0; s < t.sampleCount(); ++s) {
             for (int k = 0; k < K; ++k) {
-                const auto b = static_cast<std::size_t>(c.binOf(k, t.at(s, k)));
-                c.logTable_[(static_cast<std::size_t>(k) * B + b) * C +
-                            static_cast<std::size_t>(lt.cls)] += 1.0;
+                const auto b = static_cast<std::size_t>(binOf(k, t.at(s, k)));
+                logTable_[(static_cast<std::size_t>(k) * B + b) * C +
+                          static_cast<std::size_t>(lt.cls)] += 1.0;
                 total[static_cast<std::size_t>(k) * C + static_cast<std::size_t>(lt.cls)] += 1.0;
             }
         }
     }
     if (settings.kernelSigma_bins > 0.0)
-        spreadCounts(c.logTable_, K, B, C, settings.kernelSigma_bins);
+        spreadCounts(logTable_, K, B, C, settings.kernelSigma_bins);
     const double alpha = settings.smoothing;
     for (std::size_t k = 0; k < static_cast<std::size_t>(K); ++k) {
         for (std::size_t b = 0; b < B; ++b) {
             for (std::size_t cls = 0; cls < C; ++cls) {
-                double& cell = c.logTable_[(k * B + b) * C + cls];
+                double& cell = logTable_[(k * B + b) * C + cls];
                 cell = std::log(cell + alpha) -
                        std::log(total[k * C + cls] + static_cast<double>(B) * alpha);
             }
         }
     }
-    // The screening copies (classify, decide). Each cell's row is stored about its midrange in
-    // steps of one size for the whole table, the widest half-range taking the full 16 bits.
-    const std::size_t cells = static_cast<std::size_t>(K) * B;
-    c.logTableByClass_.resize(cells * C);
-    c.screenOffset_.assign(cells, 0.0);
+}
+
+void HistogramClassifier::buildScreening() {
+    // Each cell's row is stored about its midrange in steps of one size for the whole table, the
+    // widest half-range taking the full 16 bits.
+    const std::size_t C = static_cast<std::size_t>(classes_);
+    const std::size_t cells = static_cast<std::size_t>(taxels_) * static_cast<std::size_t>(bins_);
+    logTableByClass_.resize(cells * C);
+    screenOffset_.assign(cells, 0.0);
     double widestHalfRange = 0.0;
     for (std::size_t cell = 0; cell < cells; ++cell) {
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
         for (std::size_t cls = 0; cls < C; ++cls) {
-            const double v = c.logTable_[cell * C + cls];
-            c.logTableByClass_[cls * cells + cell] = v;
-            c.maxAbsLog_ = std::max(c.maxAbsLog_, std::abs(v));
+            const double v = logTable_[cell * C + cls];
+            logTableByClass_[cls * cells + cell] = v;
+            maxAbsLog_ = std::max(maxAbsLog_, std::abs(v));
             lo = std::min(lo, v);
             hi = std::max(hi, v);
         }
-        c.screenOffset_[cell] = 0.5 * (lo + hi);
+        screenOffset_[cell] = 0.5 * (lo + hi);
         widestHalfRange = std::max(widestHalfRange, 0.5 * (hi - lo));
     }
-    c.screenStep_ = widestHalfRange > 0.0 ? widestHalfRange / kScreenLevels : 1.0;
-    c.screenStride_ = (C + 15) / 16 * 16;
+    screenStep_ = widestHalfRange > 0.0 ? widestHalfRange / kScreenLevels : 1.0;
+    screenStride_ = (C + 15) / 16 * 16;
     // One row more, all zeros: the partner of an odd row out in the pairwise sums.
-    c.screenTable_.assign((cells + 1) * c.screenStride_, 0);
+    screenTable_.assign((cells + 1) * screenStride_, 0);
     for (std::size_t cell = 0; cell < cells; ++cell)
         for (std::size_t cls = 0; cls < C; ++cls) {
-            const double q = std::nearbyint((c.logTable_[cell * C + cls] - c.screenOffset_[cell]) /
-                                            c.screenStep_);
-            c.screenTable_[cell * c.screenStride_ + cls] =
+            const double q =
+                std::nearbyint((logTable_[cell * C + cls] - screenOffset_[cell]) / screenStep_);
+            screenTable_[cell * screenStride_ + cls] =
                 static_cast<std::int16_t>(std::clamp(q, -kScreenLevels, kScreenLevels));
         }
-    return c;
 }
 
 int argmaxLowestIndex(const double* v, int n) {

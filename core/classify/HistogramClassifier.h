@@ -120,6 +120,11 @@ private:
     /// screening scores and -1 is returned. Otherwise the rest are -inf, and a class alone within
     /// the margin is returned without any exact sum (-1 when there are several).
     int screenedScores(const Tap& tap, double marginNats, bool posterior, double* out) const;
+    /// train()'s steps: each taxel's range over the training taps (checking them), the
+    /// smoothed log probabilities, and the screening copies of the table.
+    void readRanges(const std::vector<LabelledTap>& taps);
+    void learnTable(const std::vector<LabelledTap>& taps, const ClassifierSettings& settings);
+    void buildScreening();
 
     int classes_ = 0, taxels_ = 0, bins_ = 0;
     std::vector<double> min_, max_,
