@@ -288,7 +288,6 @@ void writeComputeTable(const SweepRates& r, const std::string& dir) {
 }  // namespace
 
 void writeSweepRateTables(const SweepRates& r, const std::string& dir) {
-    auto finite = [](double v) { return std::isfinite(v) ? v : std::nan(""); };
     if (!r.perception.empty()) writePerceptionTable(r, dir);
     if (!r.following.empty()) writeFollowingTable(r, dir);
     if (!r.robustness.empty()) writeRobustnessTable(r, dir);

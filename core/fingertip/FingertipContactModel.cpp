@@ -88,10 +88,15 @@ FingertipContactModel::FingertipContactModel(const FingertipSpec& spec) : spec_(
     lowestZ_ = tilt.worldZ(xl, yl);
     firstContactForward_ = lowestY_;
     firstContactDrop_ = -lowestZ_;
+    buildPatch(placeTaxels());
+}
 
+double FingertipContactModel::placeTaxels() {
+    const FingertipSpec& spec = spec_;
+    const Tilt tilt(spec.mountTiltDeg);
+    const double R = spec.radius, x0 = spec.capStart, L = spec.tipEnd - spec.capStart;
     const double headingTurn = spec.mountHeadingDeg - 90.0;
     auto toPlane = [&](double X, double Y) { return rotated(Vec2{X, Y - lowestY_}, headingTurn); };
-
     // Taxels sit on the body surface at their published axial position and angle around the axis.
     double reach = 0.0;
     for (const auto& t : spec.taxels) {
@@ -105,7 +110,13 @@ FingertipContactModel::FingertipContactModel(const FingertipSpec& spec) : spec_(
         taxelHeights_.push_back(tilt.worldZ(xf, yf) - lowestZ_);
         reach = std::max(reach, norm(p));
     }
+    return reach;
+}
 
+void FingertipContactModel::buildPatch(double reach) {
+    const FingertipSpec& spec = spec_;
+    const double R = spec.radius, L = spec.tipEnd - spec.capStart;
+    const double headingTurn = spec.mountHeadingDeg - 90.0;
     // Patch points: a square grid around the first-contact point, kept where the body comes
     // within maxIndentation of the plane.
     const double step = spec.gridStep;

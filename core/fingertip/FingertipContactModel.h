@@ -89,6 +89,10 @@ private:
         float weightSum;  // sum over taxels of the receptive-field weights
     };
     double lowestBodyHeight(double worldX, double worldY) const;
+    /// The constructor's steps: the taxels on the body surface, projected onto the plane (returns
+    /// their farthest reach from the first-contact point); the patch points and their weights.
+    double placeTaxels();
+    void buildPatch(double reach);
 
     FingertipSpec spec_;
     int taxelCount_ = 0;
