@@ -210,122 +210,125 @@ private:
 
 }  // namespace
 
-Polygon polygonFromSvgPath(const std::string& d, double tolerance_mm, const std::string& source,
-                           const std::string& place) {
-    PathReader in(d, source, place);
-    if (!(tolerance_mm > 0.0) || !std::isfinite(tolerance_mm))
-        in.failWhole("the flattening tolerance must be a positive number of mm");
-    const Flattener flat(tolerance_mm);
-    std::vector<Vec2> points;
-    Vec2 current, start, lastControl;
-    char previous = 0;
-    bool closed = false, begun = false;
-    if (in.atEnd()) in.failWhole("the path data is empty; give one closed outline (M ... Z)");
-    while (!in.atEnd()) {
-        const char c = in.command();
-        const bool relative = std::islower(static_cast<unsigned char>(c));
+namespace {
+
+/// The points a path's commands draw, one command's parameters at a time.
+class PathTracer {
+public:
+    PathTracer(PathReader& in, double tolerance_mm) : in_(in), flat_(tolerance_mm) {}
+
+    /// The next command with every parameter group that follows it.
+    void command() {
+        const char c = in_.command();
+        relative_ = std::islower(static_cast<unsigned char>(c));
         const char C = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-        if (!begun && C != 'M') in.fail("path data must begin with a move (M)");
-        if (closed && C != 'Z') in.fail("a second outline after Z; give one closed outline");
-        // S and T: the last control point reflected through the current point if the previous
-        // command was one of `kinds` (a curve of the same order), else the current point.
-        auto smoothControl = [&](const char* kinds) {
-            return previous && std::strchr(kinds, previous) ? 2.0 * current - lastControl : current;
-        };
-        auto point = [&] {
-            const double x = in.number(), y = in.number();
-            return relative ? current + Vec2{x, y} : Vec2{x, y};
-        };
+        if (!begun && C != 'M') in_.fail("path data must begin with a move (M)");
+        if (closed && C != 'Z') in_.fail("a second outline after Z; give one closed outline");
         bool first = true;
         do {
-            switch (C) {
-                case 'M':
-                    if (!first) {  // further pairs after a move are lines
-                        current = point();
-                        points.push_back(current);
-                        break;
-                    }
-                    if (begun) in.fail("a second move (M): give one closed outline per object");
-                    current = start = point();
-                    begun = true;
-                    points.push_back(current);
-                    break;
-                case 'L':
-                    current = point();
-                    points.push_back(current);
-                    break;
-                case 'H': {
-                    const double x = in.number();
-                    current.x = relative ? current.x + x : x;
-                    points.push_back(current);
-                    break;
-                }
-                case 'V': {
-                    const double y = in.number();
-                    current.y = relative ? current.y + y : y;
-                    points.push_back(current);
-                    break;
-                }
-                case 'C': {
-                    const Vec2 c1 = point(), c2 = point(), end = point();
-                    flat.cubic(points, current, c1, c2, end);
-                    lastControl = c2;
-                    current = end;
-                    break;
-                }
-                case 'S': {
-                    const Vec2 c1 = smoothControl("CS");
-                    const Vec2 c2 = point(), end = point();
-                    flat.cubic(points, current, c1, c2, end);
-                    lastControl = c2;
-                    current = end;
-                    break;
-                }
-                case 'Q': {
-                    const Vec2 control = point(), end = point();
-                    flat.quadratic(points, current, control, end);
-                    lastControl = control;
-                    current = end;
-                    break;
-                }
-                case 'T': {
-                    const Vec2 control = smoothControl("QT");
-                    const Vec2 end = point();
-                    flat.quadratic(points, current, control, end);
-                    lastControl = control;
-                    current = end;
-                    break;
-                }
-                case 'A': {
-                    const double rx = in.number(), ry = in.number(), rotation = in.number();
-                    const bool large = in.flag(), sweep = in.flag();
-                    const Vec2 end = point();
-                    if (auto problem =
-                            flat.arc(points, current, rx, ry, rotation, large, sweep, end))
-                        in.fail(*problem);
-                    current = end;
-                    break;
-                }
-                case 'Z':
-                    closed = true;
-                    current = start;
-                    break;
-            }
-            previous = C == 'M' && !first ? 'L' : C;
+            group(C, first);
+            previous_ = C == 'M' && !first ? 'L' : C;
             first = false;
             if (points.size() > kMaxOutlineVertices)
-                in.fail("the outline needs more than " + std::to_string(kMaxOutlineVertices) +
-                        " vertices at this tolerance; give a coarser tolerance or a simpler path");
-        } while (C != 'Z' && in.numberNext());
-        if (C == 'Z' && in.numberNext()) in.fail("Z takes no numbers");
+                in_.fail("the outline needs more than " + std::to_string(kMaxOutlineVertices) +
+                         " vertices at this tolerance; give a coarser tolerance or a simpler path");
+        } while (C != 'Z' && in_.numberNext());
+        if (C == 'Z' && in_.numberNext()) in_.fail("Z takes no numbers");
     }
-    // Closed by Z, or by ending where it began (within the tolerance).
-    if (!closed) {
-        const Vec2 gap = points.back() - start;
-        if (std::hypot(gap.x, gap.y) > tolerance_mm)
-            in.failWhole("the path does not close: end it with Z, or where it began");
+
+    std::vector<Vec2> points;
+    Vec2 start;
+    bool closed = false, begun = false;
+
+private:
+    Vec2 point() {
+        const double x = in_.number(), y = in_.number();
+        return relative_ ? current_ + Vec2{x, y} : Vec2{x, y};
     }
-    // The closing vertex repeats the first; repeated points (a zero-length segment) go.
+    /// S and T: the last control point reflected through the current point if the previous
+    /// command was one of `kinds` (a curve of the same order), else the current point.
+    Vec2 smoothControl(const char* kinds) const {
+        return previous_ && std::strchr(kinds, previous_) ? 2.0 * current_ - lastControl_
+                                                          : current_;
+    }
+    void lineTo(Vec2 p) {
+        current_ = p;
+        points.push_back(current_);
+    }
+    void cubicTo(Vec2 c1, Vec2 c2, Vec2 end) {
+        flat_.cubic(points, current_, c1, c2, end);
+        lastControl_ = c2;
+        current_ = end;
+    }
+    void quadraticTo(Vec2 control, Vec2 end) {
+        flat_.quadratic(points, current_, control, end);
+        lastControl_ = control;
+        current_ = end;
+    }
+    void arcTo() {
+        const double rx = in_.number(), ry = in_.number(), rotation = in_.number();
+        const bool large = in_.flag(), sweep = in_.flag();
+        const Vec2 end = point();
+        if (auto problem = flat_.arc(points, current_, rx, ry, rotation, large, sweep, end))
+            in_.fail(*problem);
+        current_ = end;
+    }
+
+    /// One parameter group of command `C`; `first` for the group right after the letter.
+    void group(char C, bool first) {
+        switch (C) {
+            case 'M':
+                if (!first) return lineTo(point());  // further pairs after a move are lines
+                if (begun) in_.fail("a second move (M): give one closed outline per object");
+                begun = true;
+                lineTo(point());
+                start = current_;
+                return;
+            case 'L':
+                return lineTo(point());
+            case 'H': {
+                const double x = in_.number();
+                return lineTo({relative_ ? current_.x + x : x, current_.y});
+            }
+            case 'V': {
+                const double y = in_.number();
+                return lineTo({current_.x, relative_ ? current_.y + y : y});
+            }
+            case 'C': {
+                const Vec2 c1 = point(), c2 = point();
+                return cubicTo(c1, c2, point());
+            }
+            case 'S': {
+                const Vec2 c1 = smoothControl("CS"), c2 = point();
+                return cubicTo(c1, c2, point());
+            }
+            case 'Q': {
+                const Vec2 control = point();
+                return quadraticTo(control, point());
+            }
+            case 'T': {
+                const Vec2 control = smoothControl("QT");
+                return quadraticTo(control, point());
+            }
+            case 'A':
+                return arcTo();
+            case 'Z':
+                closed = true;
+                current_ = start;
+                return;
+        }
+    }
+
+    PathReader& in_;
+    const Flattener flat_;
+    bool relative_ = false;
+    Vec2 current_, lastControl_;
+    char previous_ = 0;
+};
+
+/// The traced points as an outline: the closing vertex that repeats the first and repeated
+/// points (a zero-length segment) left out.
+std::vector<Vec2> outlineOf(const std::vector<Vec2>& points, double tolerance_mm) {
     std::vector<Vec2> outline;
     for (const Vec2& p : points) {
         if (!outline.empty()) {
@@ -339,6 +342,26 @@ Polygon polygonFromSvgPath(const std::string& d, double tolerance_mm, const std:
         if (std::hypot(gap.x, gap.y) > std::max(1e-9, 0.5 * tolerance_mm)) break;
         outline.pop_back();
     }
+    return outline;
+}
+
+}  // namespace
+
+Polygon polygonFromSvgPath(const std::string& d, double tolerance_mm, const std::string& source,
+                           const std::string& place) {
+    PathReader in(d, source, place);
+    if (!(tolerance_mm > 0.0) || !std::isfinite(tolerance_mm))
+        in.failWhole("the flattening tolerance must be a positive number of mm");
+    if (in.atEnd()) in.failWhole("the path data is empty; give one closed outline (M ... Z)");
+    PathTracer trace(in, tolerance_mm);
+    while (!in.atEnd()) trace.command();
+    // Closed by Z, or by ending where it began (within the tolerance).
+    if (!trace.closed) {
+        const Vec2 gap = trace.points.back() - trace.start;
+        if (std::hypot(gap.x, gap.y) > tolerance_mm)
+            in.failWhole("the path does not close: end it with Z, or where it began");
+    }
+    std::vector<Vec2> outline = outlineOf(trace.points, tolerance_mm);
     if (auto problem = Polygon::problemWith(outline))
         in.failWhole("the outline it draws cannot be an object: " + *problem);
     return Polygon(std::move(outline));
