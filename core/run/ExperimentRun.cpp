@@ -10,7 +10,6 @@
 #include <memory>
 #include <optional>
 
-#include "core/stats/Intervals.h"
 #include "core/common/NumberText.h"
 #include "core/control/ControllerRange.h"
 #include "core/experiment/RunPlan.h"
@@ -24,6 +23,7 @@
 #include "core/run/RunFolder.h"
 #include "core/run/Sweeps.h"
 #include "core/run/TrialRecognition.h"
+#include "core/stats/Intervals.h"
 #include "core/validation/ClassRegions.h"
 
 namespace activetouch {
@@ -198,9 +198,9 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
             progress.step = std::string(modeName(ts.mode)) + " following, " + ts.label + " trial " +
                             std::to_string(run.trial);
             int tapIndex = 0;
-            run.result = runTrial(rig, result.classifier, result.classes, run.outline, setup,
-                                  tapListener(recording.get(), run, ts.mode, options, progress,
-                                              tapIndex));
+            run.result =
+                runTrial(rig, result.classifier, result.classes, run.outline, setup,
+                         tapListener(recording.get(), run, ts.mode, options, progress, tapIndex));
             if (replay && run.result.end == TrialEnd::LeftRecording)
                 noteWhereReplayLeft(*replayed[static_cast<std::size_t>(trialIndex)], run.result);
             result.robotTime_s += run.result.robotTime_s;
@@ -274,6 +274,74 @@ void trainAndValidate(RunResult& result, const std::vector<IdealClassContact>& i
     }
 }
 
+/// Where the run's taps come from, said in the result.
+void noteRig(RunResult& result, const RunOptions& options, const SceneRig* simulated) {
+    if (simulated)
+        result.activeEffects = simulated->activeEffects();
+    else if (options.recordedTaps)
+        result.rig = (options.recordedTrials ? "replay of " : "recording ") + options.recordingName;
+    else
+        result.rig = options.connected->description;
+}
+
+/// The training and test taps into result.taps, read from the recording or taken on the rig,
+/// each written to `recording` and told to the observer as it comes; false when the run was
+/// stopped before every planned tap.
+bool takeTrainingTaps(RunResult& result, const RunOptions& options, SceneRig* simulated,
+                      RunProgress& progress, TapCsvWriter* recording) {
+    const ExperimentSpec& spec = result.spec;
+    auto onTap = [&](const CollectedTap& tap) {
+        if (recording) recording->append(tap, result.classes);
+        if (options.observer)
+            options.observer->tapTaken(
+                tap.record,
+                "training set " + std::to_string(tap.dataSet) + ": " +
+                    ClassSet::orientationName(result.classes.orientationDegOf(tap.cls)) +
+                    " edge, position " + std::to_string(result.classes.positionOf(tap.cls)),
+                RunObserver::Stage::Training);
+        ++progress.tapsDone;
+        if (options.observer) options.observer->progressed(progress);
+        return !options.stopRequested();
+    };
+    if (const auto* recorded = options.recordedTaps) {
+        for (const CollectedTap& tap : *recorded) {
+            result.taps.push_back(tap);
+            if (!onTap(tap)) break;
+        }
+        if (!result.taps.empty())
+            result.robotTime_s =
+                result.taps.back().record.startTime_s - result.taps.front().record.startTime_s;
+        return result.taps.size() >= recorded->size();
+    }
+    Rig rig = options.connected ? options.connected->rig : simulated->rig();
+    const double robotStart_s = rig.clock.now_s();
+    result.taps = collectTrainingTaps(
+        rig, simulated ? simulated->object() : spec.scene.object.outline(), result.classes,
+        spec.training, RandomStream::derived(spec.scene.seed, "protocol:placement"), onTap);
+    result.robotTime_s = rig.clock.now_s() - robotStart_s;
+    if (simulated) result.tapsSimulated = simulated->tapsSimulated();
+    return static_cast<std::int64_t>(result.taps.size()) >= spec.plannedTaps();
+}
+
+/// After training: the trials and the sweeps. A recording is analysed offline: its trials, if
+/// any, replay on the recorded taps, and of the sweeps only the one on the recorded taps
+/// themselves runs.
+void runAfterTraining(RunResult& result, const std::shared_ptr<const FingertipContactModel>& model,
+                      const RunOptions& options, RunProgress& progress,
+                      const std::vector<const RecordedTrial*>& replayed) {
+    const ExperimentSpec& spec = result.spec;
+    const bool recorded = options.recordedTaps != nullptr;
+    if (!recorded)
+        runTrials(result, model, options, progress);
+    else if (!replayed.empty() && !result.cancelled)
+        runTrials(result, model, options, progress, replayed);
+    const bool sweeps = recorded ? !spec.sweeps.bins.empty() : spec.sweeps.any();
+    if (!sweeps || result.cancelled || !result.failure.empty()) return;
+    progress.step = recorded ? "compute sweep on the recorded taps" : "accuracy-versus-time sweeps";
+    if (options.observer) options.observer->progressed(progress);
+    result.sweeps = runSweeps(result, options, recorded);
+}
+
 }  // namespace
 
 RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options) {
@@ -296,13 +364,7 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     std::unique_ptr<SceneRig> simulated;
     if (!options.connected && !recorded)
         simulated = simulatedRigsOf(options).build(spec.scene, model);
-    if (simulated) {
-        result.activeEffects = simulated->activeEffects();
-    } else if (recorded) {
-        result.rig = (options.recordedTrials ? "replay of " : "recording ") + options.recordingName;
-    } else {
-        result.rig = options.connected->description;
-    }
+    noteRig(result, options, simulated.get());
     result.classes = spec.classes;
     const auto ideal =
         idealClassContacts(*model, spec.classes, spec.scene.tap, spec.scene.strokeLimitDepth());
@@ -322,65 +384,11 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     progress.tapsPlanned = recorded ? static_cast<int>(recorded->size()) : plannedTapEstimate(spec);
     for (const RecordedTrial* t : replayed)
         progress.tapsPlanned += static_cast<int>(t->taps.size());
-    auto onTap = [&](const CollectedTap& tap) {
-        if (recording) recording->append(tap, result.classes);
-        if (options.observer)
-            options.observer->tapTaken(
-                tap.record,
-                "training set " + std::to_string(tap.dataSet) + ": " +
-                    ClassSet::orientationName(result.classes.orientationDegOf(tap.cls)) +
-                    " edge, position " + std::to_string(result.classes.positionOf(tap.cls)),
-                RunObserver::Stage::Training);
-        ++progress.tapsDone;
-        if (options.observer) options.observer->progressed(progress);
-        return !(options.observer && options.observer->stopRequested());
-    };
-    if (recorded) {
-        for (const CollectedTap& tap : *recorded) {
-            result.taps.push_back(tap);
-            if (!onTap(tap)) break;
-        }
-        if (!result.taps.empty())
-            result.robotTime_s =
-                result.taps.back().record.startTime_s - result.taps.front().record.startTime_s;
+    if (takeTrainingTaps(result, options, simulated.get(), progress, recording.get())) {
+        trainAndValidate(result, ideal);
+        runAfterTraining(result, model, options, progress, replayed);
     } else {
-        Rig rig = options.connected ? options.connected->rig : simulated->rig();
-        const double robotStart_s = rig.clock.now_s();
-        result.taps = collectTrainingTaps(
-            rig, simulated ? simulated->object() : spec.scene.object.outline(), result.classes,
-            spec.training, RandomStream::derived(spec.scene.seed, "protocol:placement"), onTap);
-        result.robotTime_s = rig.clock.now_s() - robotStart_s;
-    }
-    if (simulated) result.tapsSimulated = simulated->tapsSimulated();
-    if (recorded ? result.taps.size() < recorded->size()
-                 : static_cast<std::int64_t>(result.taps.size()) < spec.plannedTaps()) {
         result.cancelled = true;
-        result.runWall_s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-        return result;
-    }
-
-    trainAndValidate(result, ideal);
-
-    if (recorded) {
-        // A recording is analysed offline: its trials, if any, replay on the recorded taps, and
-        // of the sweeps only the one on the recorded taps themselves runs.
-        if (!replayed.empty() && !result.cancelled)
-            runTrials(result, model, options, progress, replayed);
-        if (!spec.sweeps.bins.empty() && !result.cancelled && result.failure.empty()) {
-            progress.step = "compute sweep on the recorded taps";
-            if (options.observer) options.observer->progressed(progress);
-            result.sweeps = runSweeps(result, options, true);
-        }
-        result.runWall_s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-        return result;
-    }
-    runTrials(result, model, options, progress);
-    if (spec.sweeps.any() && !result.cancelled && result.failure.empty()) {
-        progress.step = "accuracy-versus-time sweeps";
-        if (options.observer) options.observer->progressed(progress);
-        result.sweeps = runSweeps(result, options);
     }
     result.runWall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
