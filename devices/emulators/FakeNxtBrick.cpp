@@ -93,6 +93,84 @@ nxt::Bytes FakeNxtBrick::outputStateReply(std::uint8_t port, std::uint8_t status
     return r;
 }
 
+std::optional<FakeNxtBrick::Armed> FakeNxtBrick::takeFault(std::uint8_t op) {
+    for (auto it = faults_.begin(); it != faults_.end(); ++it) {
+        if (it->opcode != 0 && it->opcode != op) continue;
+        if (it->skip-- > 0) continue;
+        const Armed fault = *it;
+        faults_.erase(it);
+        return fault;
+    }
+    return std::nullopt;
+}
+
+std::uint8_t FakeNxtBrick::setOutputState(const nxt::Bytes& q) {
+    if (q.size() != 12) return 0xED;
+    if (q[2] > 2 && q[2] != 0xFF) return 0xC0;
+    std::uint32_t limit = 0;
+    std::memcpy(&limit, q.data() + 8, 4);
+    for (std::uint8_t p = 0; p < 3; ++p) {
+        if (q[2] != 0xFF && q[2] != p) continue;
+        Motor& m = motors_[p];
+        const int newPower = static_cast<std::int8_t>(q[3]);
+        if (newPower == 0 && (q[4] & nxt::Brake) && m.power != 0 && m.runState != nxt::RunIdle) {
+            // Braking: the motor turns on for a moment.
+            m.tacho += m.power / 100.0 * s_.fullPowerDegreesPerSecond * s_.brakeOvershoot_s;
+        }
+        m.power = newPower;
+        m.mode = q[4];
+        m.regulation = q[5];
+        m.turn = static_cast<std::int8_t>(q[6]);
+        m.runState = q[7];
+        m.limit = limit;
+        m.runStart = m.tacho;
+    }
+    return 0x00;
+}
+
+std::uint8_t FakeNxtBrick::command(const nxt::Bytes& q, nxt::Bytes& payload) {
+    const std::uint8_t type = q[0], op = q[1];
+    auto portOk = [&](std::size_t at, std::uint8_t max) { return q.size() > at && q[at] <= max; };
+    switch (op) {
+        case nxt::PlayTone:
+            return q.size() != 6 ? 0xED : 0x00;
+        case nxt::SetOutputState:
+            return setOutputState(q);
+        case nxt::SetInputMode:
+            return portOk(2, 3) ? 0x00 : 0xC0;
+        case nxt::GetInputValues:
+            if (!portOk(2, 3)) return 0xC0;
+            payload = {q[2], 1, 0, 0x01, 0x20, 0, 0, 0, 0, 0, 0, 0, 0};
+            return 0x00;
+        case nxt::ResetMotorPosition:
+            if (!portOk(2, 2)) return 0xC0;
+            if (q.size() > 3 && q[3])
+                motors_[q[2]].blockStart = motors_[q[2]].tacho;
+            else
+                motors_[q[2]].rotationStart = motors_[q[2]].tacho;
+            return 0x00;
+        case nxt::GetBatteryLevel:
+            payload = {static_cast<std::uint8_t>(s_.batteryMillivolts & 0xFF),
+                       static_cast<std::uint8_t>(s_.batteryMillivolts >> 8)};
+            return 0x00;
+        case nxt::KeepAlive:
+            put32(payload, s_.sleepMs);
+            return 0x00;
+        case nxt::GetDeviceInfo: {
+            if (type != 0x01 && type != 0x81) return 0xBE;
+            payload.assign(30, 0);
+            std::memcpy(payload.data(), s_.name.data(), std::min<std::size_t>(s_.name.size(), 14));
+            const std::uint8_t bt[6] = {0x00, 0x16, 0x53, 0x0A, 0x0B, 0x0C};
+            std::memcpy(payload.data() + 15, bt, 6);
+            const std::uint32_t flash = 53000;
+            std::memcpy(payload.data() + 26, &flash, 4);
+            return 0x00;
+        }
+        default:
+            return 0xBE;
+    }
+}
+
 std::optional<nxt::Bytes> FakeNxtBrick::handle(const nxt::Bytes& q) {
     std::lock_guard lock(mutex_);
     if (unplugged_) return std::nullopt;
@@ -101,115 +179,21 @@ std::optional<nxt::Bytes> FakeNxtBrick::handle(const nxt::Bytes& q) {
     if (q.size() < 2) return std::nullopt;  // the firmware ignores a runt telegram
     const std::uint8_t type = q[0], op = q[1];
     const bool reply = type == 0x00 || type == 0x01;
-
-    std::optional<Armed> fault;
-    for (auto it = faults_.begin(); it != faults_.end(); ++it) {
-        if (it->opcode != 0 && it->opcode != op) continue;
-        if (it->skip-- > 0) continue;
-        fault = *it;
-        faults_.erase(it);
-        break;
-    }
+    const std::optional<Armed> fault = takeFault(op);
     if (fault && fault->fault == Fault::Unplug) {
         unplugged_ = true;
         return std::nullopt;
     }
     if (fault && fault->fault == Fault::NoReply) return std::nullopt;
-
-    std::uint8_t status = 0x00;
-    nxt::Bytes payload;
-    auto portOk = [&](std::size_t at, std::uint8_t max) { return q.size() > at && q[at] <= max; };
-    switch (op) {
-        case nxt::PlayTone:
-            if (q.size() != 6) status = 0xED;
-            break;
-        case nxt::SetOutputState: {
-            if (q.size() != 12) {
-                status = 0xED;
-                break;
-            }
-            if (!portOk(2, 2) && q[2] != 0xFF) {
-                status = 0xC0;
-                break;
-            }
-            std::uint32_t limit = 0;
-            std::memcpy(&limit, q.data() + 8, 4);
-            for (std::uint8_t p = 0; p < 3; ++p) {
-                if (q[2] != 0xFF && q[2] != p) continue;
-                Motor& m = motors_[p];
-                const int newPower = static_cast<std::int8_t>(q[3]);
-                if (newPower == 0 && (q[4] & nxt::Brake) && m.power != 0 &&
-                    m.runState != nxt::RunIdle) {
-                    // Braking: the motor turns on for a moment.
-                    m.tacho += m.power / 100.0 * s_.fullPowerDegreesPerSecond * s_.brakeOvershoot_s;
-                }
-                m.power = newPower;
-                m.mode = q[4];
-                m.regulation = q[5];
-                m.turn = static_cast<std::int8_t>(q[6]);
-                m.runState = q[7];
-                m.limit = limit;
-                m.runStart = m.tacho;
-            }
-            break;
-        }
-        case nxt::SetInputMode:
-            if (!portOk(2, 3)) status = 0xC0;
-            break;
-        case nxt::GetOutputState:
-            if (!portOk(2, 2)) {
-                status = 0xC0;
-                break;
-            }
-            if (!reply) return std::nullopt;
-            {
-                nxt::Bytes r = outputStateReply(q[2], 0);
-                if (fault && fault->fault == Fault::Status) {
-                    return nxt::Bytes{0x02, op, fault->status};
-                }
-                if (fault && fault->fault == Fault::WrongOpcode) r[1] = nxt::GetInputValues;
-                return r;
-            }
-        case nxt::GetInputValues:
-            if (!portOk(2, 3)) {
-                status = 0xC0;
-                break;
-            }
-            payload = {q[2], 1, 0, 0x01, 0x20, 0, 0, 0, 0, 0, 0, 0, 0};
-            break;
-        case nxt::ResetMotorPosition:
-            if (!portOk(2, 2)) {
-                status = 0xC0;
-                break;
-            }
-            if (q.size() > 3 && q[3])
-                motors_[q[2]].blockStart = motors_[q[2]].tacho;
-            else
-                motors_[q[2]].rotationStart = motors_[q[2]].tacho;
-            break;
-        case nxt::GetBatteryLevel:
-            payload = {static_cast<std::uint8_t>(s_.batteryMillivolts & 0xFF),
-                       static_cast<std::uint8_t>(s_.batteryMillivolts >> 8)};
-            break;
-        case nxt::KeepAlive:
-            put32(payload, s_.sleepMs);
-            break;
-        case nxt::GetDeviceInfo: {
-            if (type != 0x01 && type != 0x81) {
-                status = 0xBE;
-                break;
-            }
-            payload.assign(30, 0);
-            std::memcpy(payload.data(), s_.name.data(), std::min<std::size_t>(s_.name.size(), 14));
-            const std::uint8_t bt[6] = {0x00, 0x16, 0x53, 0x0A, 0x0B, 0x0C};
-            std::memcpy(payload.data() + 15, bt, 6);
-            const std::uint32_t flash = 53000;
-            std::memcpy(payload.data() + 26, &flash, 4);
-            break;
-        }
-        default:
-            status = 0xBE;
+    if (op == nxt::GetOutputState && q.size() > 2 && q[2] <= 2) {
+        if (!reply) return std::nullopt;
+        if (fault && fault->fault == Fault::Status) return nxt::Bytes{0x02, op, fault->status};
+        nxt::Bytes r = outputStateReply(q[2], 0);
+        if (fault && fault->fault == Fault::WrongOpcode) r[1] = nxt::GetInputValues;
+        return r;
     }
+    nxt::Bytes payload;
+    std::uint8_t status = op == nxt::GetOutputState ? 0xC0 : command(q, payload);
     if (!reply) return std::nullopt;
     if (fault && fault->fault == Fault::Status) status = fault->status;
     nxt::Bytes r{0x02, op, status};

@@ -61,6 +61,13 @@ private:
     };
     void advance();
     nxt::Bytes outputStateReply(std::uint8_t port, std::uint8_t status);
+    struct Armed;
+    /// The first armed fault for opcode `op` whose skips are spent, taken off the list.
+    std::optional<Armed> takeFault(std::uint8_t op);
+    /// A direct command's status (0 for success) and reply payload, for every opcode but
+    /// GETOUTPUTSTATE, whose reply outputStateReply() builds.
+    std::uint8_t command(const nxt::Bytes& q, nxt::Bytes& payload);
+    std::uint8_t setOutputState(const nxt::Bytes& q);
 
     FakeNxtSettings s_;
     mutable std::mutex mutex_;

@@ -101,6 +101,80 @@ bool NxtTapper::abortAndWait(std::chrono::milliseconds bound) {
     return idle.owns_lock();
 }
 
+struct NxtTapper::Stroke {
+    std::uint32_t limitDeg = 0;
+    double hold_s = 0.0;
+    std::uint64_t seq = 0;  ///< the last frame read
+    int samples = 0, tacho = 0, stopTacho = 0;
+    std::optional<int> contactTacho;
+    Clock::time_point holdUntil{}, lastPoll = Clock::now();
+};
+
+void NxtTapper::keepAwake() {
+    if (sleepMs_ > 0 &&
+        (clock_.now_s() - lastKeepAlive_s_) * 1000.0 / s_.timeScale > sleepMs_ / 2.0) {
+        sleepMs_ = brick_.keepAlive();
+        lastKeepAlive_s_ = clock_.now_s();
+    }
+}
+
+void NxtTapper::stopDescent(Stroke& s, TapRecord& record, TapEnding ending) {
+    if (ending == TapEnding::ContactReflex) brake(true);
+    s.tacho = brick_.outputState(s_.motorPort).rotationCount;
+    s.lastPoll = Clock::now();
+    s.stopTacho = s.tacho;
+    record.ending = ending;
+    s.holdUntil = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                     std::chrono::duration<double>(s.hold_s));
+    setPhase(Phase::Holding);
+}
+
+void NxtTapper::readFrame(Stroke& s, TapRecord& record, std::vector<double>& frame) {
+    const std::uint64_t next = sensor_.waitFrame(s.seq, s_.frameTimeoutMs, frame.data());
+    if (next == 0)
+        throw RigError("fingertip: no frame for " + std::to_string(s_.frameTimeoutMs) +
+                       " ms during a tap; the stream has stalled");
+    s.seq = next;
+    const auto K = static_cast<std::ptrdiff_t>(frame.size());
+    std::copy(frame.begin(), frame.end(), record.tap.samples.begin() + s.samples * K);
+    ++s.samples;
+    double total = 0.0;
+    for (double v : frame) total += v;
+    if (phase_ != Phase::Descending) return;
+    // Contact onset, for the stop depth: a tenth of the threshold is well above what the skin's
+    // noise sums to over the untouched taxels.
+    if (!s.contactTacho && total >= 0.1 * tap_.contactThreshold) {
+        s.tacho = brick_.outputState(s_.motorPort).rotationCount;
+        s.lastPoll = Clock::now();
+        s.contactTacho = s.tacho;
+    }
+    if (total >= tap_.contactThreshold) stopDescent(s, record, TapEnding::ContactReflex);
+}
+
+void NxtTapper::pollMotor(Stroke& s, TapRecord& record) {
+    if (Clock::now() - s.lastPoll < pollPeriod()) return;
+    const OutputState st = brick_.outputState(s_.motorPort);
+    s.tacho = st.rotationCount;
+    s.lastPoll = Clock::now();
+    if (phase_ == Phase::Descending &&
+        (st.runState == RunIdle || s.tacho >= static_cast<int>(s.limitDeg) - 1))
+        stopDescent(s, record, TapEnding::StrokeLimit);
+}
+
+void NxtTapper::holdAndReturn(Stroke& s) {
+    if (phase_ == Phase::Holding && Clock::now() >= s.holdUntil) {
+        if (s.tacho > s_.retractToleranceDeg)
+            brick_.call(setOutputState(s_.motorPort, -s_.returnPower, MotorOn | Brake | Regulated,
+                                       RegulationSpeed, 0, RunRunning,
+                                       static_cast<std::uint32_t>(s.tacho), true));
+        setPhase(Phase::Returning);
+    }
+    if (phase_ == Phase::Returning && s.tacho <= s_.retractToleranceDeg) {
+        brake(true);
+        setPhase(Phase::Retracted);
+    }
+}
+
 TapRecord NxtTapper::tap() {
     const std::lock_guard running(inTap_);
     if (abort_) throw RigError("NXT tapper: stopped (the application is closing); no further taps");
@@ -111,13 +185,13 @@ TapRecord NxtTapper::tap() {
     record.tap = Tap(T, K);
     record.ending = TapEnding::StrokeLimit;
     std::vector<double> frame(static_cast<std::size_t>(K));
-
-    const auto limitDeg = static_cast<std::uint32_t>(std::lround(tap_.stroke_mm * s_.degreesPerMm));
+    Stroke s;
+    s.limitDeg = static_cast<std::uint32_t>(std::lround(tap_.stroke_mm * s_.degreesPerMm));
+    s.hold_s = tap_.contactTime_s / s_.timeScale;
     const int power =
         std::clamp(static_cast<int>(std::lround(tap_.descentSpeed_mm_s * s_.degreesPerMm /
                                                 s_.fullPowerDegreesPerSecond * 100.0)),
                    1, 100);
-    const double hold_s = tap_.contactTime_s / s_.timeScale;
     // Worst case: a full stroke down and back at the commanded speeds, the hold and the window,
     // three times over and two seconds to spare. Nothing waits longer.
     const double deadline_s =
@@ -125,93 +199,35 @@ TapRecord NxtTapper::tap() {
             (2.0 * tap_.stroke_mm / tap_.descentSpeed_mm_s + tap_.contactTime_s + tap_.window_s()) /
             s_.timeScale +
         2.0;
-
     try {
-        if (sleepMs_ > 0 &&
-            (clock_.now_s() - lastKeepAlive_s_) * 1000.0 / s_.timeScale > sleepMs_ / 2.0) {
-            sleepMs_ = brick_.keepAlive();
-            lastKeepAlive_s_ = clock_.now_s();
-        }
-        std::uint64_t seq = sensor_.waitFrame(0, s_.frameTimeoutMs, frame.data());
-        if (seq == 0)
+        keepAwake();
+        s.seq = sensor_.waitFrame(0, s_.frameTimeoutMs, frame.data());
+        if (s.seq == 0)
             throw RigError("fingertip: no frame for " + std::to_string(s_.frameTimeoutMs) +
                            " ms before the tap; the stream has stalled (the tapper did not move)");
         const auto started = Clock::now();
         brick_.call(setOutputState(s_.motorPort, power, MotorOn | Brake | Regulated,
-                                   RegulationSpeed, 0, RunRunning, limitDeg, true));
+                                   RegulationSpeed, 0, RunRunning, s.limitDeg, true));
         setPhase(Phase::Descending);
-        int samples = 0;
-        int tacho = 0;
-        std::optional<int> contactTacho;
-        int stopTacho = 0;
-        Clock::time_point holdUntil{}, lastPoll = Clock::now();
-        auto poll = [&] {
-            tacho = brick_.outputState(s_.motorPort).rotationCount;
-            lastPoll = Clock::now();
-        };
-        auto stopDescent = [&](TapEnding ending) {
-            if (ending == TapEnding::ContactReflex) brake(true);
-            poll();
-            stopTacho = tacho;
-            record.ending = ending;
-            holdUntil = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                           std::chrono::duration<double>(hold_s));
-            setPhase(Phase::Holding);
-        };
-        while (samples < T || phase_ != Phase::Retracted) {
+        s.lastPoll = Clock::now();
+        while (s.samples < T || phase_ != Phase::Retracted) {
             if (abort_) throw RigError("NXT tapper: the tap was stopped");
             if (secondsSince(started) > deadline_s)
                 throw RigError("NXT tapper: the tap did not finish within " +
                                std::to_string(deadline_s) + " s");
-            if (samples < T) {
-                const std::uint64_t next = sensor_.waitFrame(seq, s_.frameTimeoutMs, frame.data());
-                if (next == 0)
-                    throw RigError("fingertip: no frame for " + std::to_string(s_.frameTimeoutMs) +
-                                   " ms during a tap; the stream has stalled");
-                seq = next;
-                std::copy(frame.begin(), frame.end(),
-                          record.tap.samples.begin() + static_cast<std::ptrdiff_t>(samples) * K);
-                ++samples;
-                double total = 0.0;
-                for (double v : frame) total += v;
-                if (phase_ == Phase::Descending) {
-                    // Contact onset, for the stop depth: a tenth of the threshold is well above
-                    // what the skin's noise sums to over the untouched taxels.
-                    if (!contactTacho && total >= 0.1 * tap_.contactThreshold) {
-                        poll();
-                        contactTacho = tacho;
-                    }
-                    if (total >= tap_.contactThreshold) stopDescent(TapEnding::ContactReflex);
-                }
-            } else {
+            if (s.samples < T)
+                readFrame(s, record, frame);
+            else
                 std::this_thread::sleep_for(pollPeriod());
-            }
             if (phase_ == Phase::Retracted) continue;
-            if (Clock::now() - lastPoll >= pollPeriod()) {
-                const OutputState st = brick_.outputState(s_.motorPort);
-                tacho = st.rotationCount;
-                lastPoll = Clock::now();
-                if (phase_ == Phase::Descending &&
-                    (st.runState == RunIdle || tacho >= static_cast<int>(limitDeg) - 1))
-                    stopDescent(TapEnding::StrokeLimit);
-            }
-            if (phase_ == Phase::Holding && Clock::now() >= holdUntil) {
-                if (tacho > s_.retractToleranceDeg)
-                    brick_.call(setOutputState(
-                        s_.motorPort, -s_.returnPower, MotorOn | Brake | Regulated, RegulationSpeed,
-                        0, RunRunning, static_cast<std::uint32_t>(tacho), true));
-                setPhase(Phase::Returning);
-            }
-            if (phase_ == Phase::Returning && tacho <= s_.retractToleranceDeg) {
-                brake(true);
-                setPhase(Phase::Retracted);
-            }
+            pollMotor(s, record);
+            holdAndReturn(s);
         }
         if (clearance_mm_)
-            record.stopDepth_mm = std::max(0.0, stopTacho / s_.degreesPerMm - *clearance_mm_);
+            record.stopDepth_mm = std::max(0.0, s.stopTacho / s_.degreesPerMm - *clearance_mm_);
         else
             record.stopDepth_mm =
-                contactTacho ? std::max(0, stopTacho - *contactTacho) / s_.degreesPerMm : 0.0;
+                s.contactTacho ? std::max(0, s.stopTacho - *s.contactTacho) / s_.degreesPerMm : 0.0;
     } catch (const RigError& e) {
         const std::string after = safeStop();
         throw RigError(std::string(e.what()) + "; " + after);

@@ -68,6 +68,14 @@ private:
     void brake(bool withReply);
     std::chrono::milliseconds pollPeriod() const;
     void setPhase(Phase p) { phase_ = p; }
+    struct Stroke;  ///< one tap's progress (NxtTapper.cpp)
+    /// tap()'s steps: the brick kept awake, the next frame read into the tap (and the reflex
+    /// checked), the motor polled, the descent stopped, the hold and return moved on.
+    void keepAwake();
+    void readFrame(Stroke& s, TapRecord& record, std::vector<double>& frame);
+    void pollMotor(Stroke& s, TapRecord& record);
+    void stopDescent(Stroke& s, TapRecord& record, TapEnding ending);
+    void holdAndReturn(Stroke& s);
     NxtBrick& brick_;
     TactileSensor& sensor_;
     const RobotClock& clock_;
