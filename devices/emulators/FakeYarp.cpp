@@ -194,83 +194,91 @@ void FakeYarp::serveNameServer(Client& c) {
     }
 }
 
-void FakeYarp::serveData(Client& c) {
-    if (c.state == Client::State::Greeting && !c.in.empty()) {
-        if (c.in[0] == 'Y') {
-            if (c.in.size() < 8) return;
-            // "YA" int16 7777 + carrier "RP": only fast_tcp (3, no acknowledgements) is served.
-            const int spec =
-                static_cast<unsigned char>(c.in[2]) | (static_cast<unsigned char>(c.in[3]) << 8);
-            if (c.in[1] != 'A' || c.in[6] != 'R' || c.in[7] != 'P' || spec != 7777 + 3) {
-                c.state = Client::State::Closed;
-                return;
-            }
-            c.binary = true;
-            c.in.erase(0, 8);
-            c.state = Client::State::BinaryName;
-        } else {
-            const auto nl = c.in.find('\n');
-            if (nl == std::string::npos) return;
-            const std::string line = c.in.substr(0, nl);
-            c.in.erase(0, nl + 1);
-            if (line.rfind("CONNECT ", 0) != 0) {
-                c.state = Client::State::Closed;
-                return;
-            }
-            c.out += "Welcome " + line.substr(8, line.find_first_of("\r") - 8) + "\n";
-            c.state = Client::State::Handshake;
+void FakeYarp::greet(Client& c) {
+    if (c.in[0] == 'Y') {
+        if (c.in.size() < 8) return;
+        // "YA" int16 7777 + carrier "RP": only fast_tcp (3, no acknowledgements) is served.
+        const int spec =
+            static_cast<unsigned char>(c.in[2]) | (static_cast<unsigned char>(c.in[3]) << 8);
+        if (c.in[1] != 'A' || c.in[6] != 'R' || c.in[7] != 'P' || spec != 7777 + 3) {
+            c.state = Client::State::Closed;
+            return;
         }
+        c.binary = true;
+        c.in.erase(0, 8);
+        c.state = Client::State::BinaryName;
+        return;
     }
-    if (c.state == Client::State::BinaryName) {
-        if (c.in.size() < 4) return;
+    const auto nl = c.in.find('\n');
+    if (nl == std::string::npos) return;
+    const std::string line = c.in.substr(0, nl);
+    c.in.erase(0, nl + 1);
+    if (line.rfind("CONNECT ", 0) != 0) {
+        c.state = Client::State::Closed;
+        return;
+    }
+    c.out += "Welcome " + line.substr(8, line.find_first_of("\r") - 8) + "\n";
+    c.state = Client::State::Handshake;
+}
+
+void FakeYarp::readBinaryName(Client& c) {
+    if (c.in.size() < 4) return;
+    std::uint32_t n = 0;
+    std::memcpy(&n, c.in.data(), 4);
+    if (n > 1000) {
+        c.state = Client::State::Closed;
+        return;
+    }
+    if (c.in.size() < 4 + n) return;
+    c.in.erase(0, 4 + n);
+    c.out += yarp::headerReply(dataPort_);
+    c.state = Client::State::Handshake;
+}
+
+bool FakeYarp::reversedBinary(Client& c) {
+    // A whole message whose port command is ~r; anything else leaves the connection an input of
+    // the port, which never streams to it (a bare "~r\n" among them).
+    static const std::string kIndex = yarp::headerReply(10);
+    if (c.in.size() < 18) return false;
+    if (c.in.compare(0, 8, kIndex) != 0) {
+        c.in.clear();
+        return false;
+    }
+    const int blocks = static_cast<unsigned char>(c.in[8]) + static_cast<unsigned char>(c.in[9]);
+    const std::size_t head = 18 + 4 * static_cast<std::size_t>(blocks);
+    if (c.in.size() < head) return false;
+    std::size_t total = 0;
+    for (int b = 0; b < blocks; ++b) {
         std::uint32_t n = 0;
-        std::memcpy(&n, c.in.data(), 4);
-        if (n > 1000) {
-            c.state = Client::State::Closed;
-            return;
-        }
-        if (c.in.size() < 4 + n) return;
-        c.in.erase(0, 4 + n);
-        c.out += yarp::headerReply(dataPort_);
-        c.state = Client::State::Handshake;
+        std::memcpy(&n, c.in.data() + 18 + 4 * b, 4);
+        total += n;
     }
-    if (c.state != Client::State::Handshake) return;
-    if (!c.binary) {
-        const auto at = c.in.find("r\n");
-        if (at == std::string::npos) return;
-        c.in.erase(0, at + 2);
-    } else {
-        // A whole message whose port command is ~r; anything else leaves the connection an
-        // input of the port, which never streams to it (a bare "~r\n" among them).
-        static const std::string kIndex = yarp::headerReply(10);
-        if (c.in.size() < 18) return;
-        if (c.in.compare(0, 8, kIndex) != 0) {
-            c.in.clear();
-            return;
-        }
-        const int blocks =
-            static_cast<unsigned char>(c.in[8]) + static_cast<unsigned char>(c.in[9]);
-        const std::size_t head = 18 + 4 * static_cast<std::size_t>(blocks);
-        if (c.in.size() < head) return;
-        std::size_t total = 0;
-        for (int b = 0; b < blocks; ++b) {
-            std::uint32_t n = 0;
-            std::memcpy(&n, c.in.data() + 18 + 4 * b, 4);
-            total += n;
-        }
-        if (total > (1u << 20)) {
-            c.state = Client::State::Closed;
-            return;
-        }
-        if (c.in.size() < head + total) return;
-        bool reverse = false;
-        try {
-            reverse = yarp::parseBinaryContent(c.in.data() + head, total).command == 'r';
-        } catch (const yarp::YarpError&) {
-        }
-        c.in.erase(0, head + total);
-        if (!reverse) return;
+    if (total > (1u << 20)) {
+        c.state = Client::State::Closed;
+        return false;
     }
+    if (c.in.size() < head + total) return false;
+    bool reverse = false;
+    try {
+        reverse = yarp::parseBinaryContent(c.in.data() + head, total).command == 'r';
+    } catch (const yarp::YarpError&) {
+    }
+    c.in.erase(0, head + total);
+    return reverse;
+}
+
+bool FakeYarp::reversed(Client& c) {
+    if (c.binary) return reversedBinary(c);
+    const auto at = c.in.find("r\n");
+    if (at == std::string::npos) return false;
+    c.in.erase(0, at + 2);
+    return true;
+}
+
+void FakeYarp::serveData(Client& c) {
+    if (c.state == Client::State::Greeting && !c.in.empty()) greet(c);
+    if (c.state == Client::State::BinaryName) readBinaryName(c);
+    if (c.state != Client::State::Handshake || !reversed(c)) return;
     c.state = Client::State::Reader;
     c.reader = true;
     c.nextFrame = std::chrono::steady_clock::now();

@@ -68,6 +68,12 @@ private:
     void loop();
     void serveNameServer(Client& c);
     void serveData(Client& c);
+    /// serveData()'s steps: the carrier's greeting, the binary carrier's name, and the port
+    /// command that turns the connection round (true once it came).
+    void greet(Client& c);
+    void readBinaryName(Client& c);
+    bool reversed(Client& c);
+    bool reversedBinary(Client& c);
     void publish(Client& c);
     std::vector<double> handVector();  ///< 192 values with the fingertip's, or a faulty size
     std::string textMessage();
