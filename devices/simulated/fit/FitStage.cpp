@@ -73,6 +73,59 @@ OffsetSpread offsetSpread(const std::vector<double>& offsets,
     return o;
 }
 
+namespace {
+
+/// The holds' offsets across the outline in recordings simulated at the recorded poses.
+struct StageOffsets {
+    const HoldModel& grid;
+    const std::shared_ptr<const FingertipContactModel>& model;
+    const std::vector<TapRecord>& recorded;
+    const std::vector<char>& skip;
+    double threshold, maxCounts, limit;
+    std::vector<double> in(const SceneSpec& scene, std::uint64_t seed) const {
+        return holdOffsetsOf(grid, simulateAt(scene, model, recorded, seed, true), skip, threshold,
+                             maxCounts, limit);
+    }
+};
+
+/// The stage error at which recordings simulated with `fitted` show the recorded `excess` of
+/// squared offsets over `nulls` (the excess grows as the error's square: scaled over three
+/// rounds of three), with its standard error.
+std::pair<double, double> fitStageSigma(const StageOffsets& offsets, const SceneSpec& fitted,
+                                        const std::vector<std::vector<double>>& nulls,
+                                        const std::vector<double>& nullExcess, double excess,
+                                        double precision, const SceneFitSettings& settings) {
+    double sigma =
+        std::clamp(std::sqrt(std::max(excess, 0.0) / precision), 1e-3, kMaxStageSigma_mm);
+    auto excessAt = [&](double at, int count, std::uint64_t seed) {
+        std::vector<double> out;
+        const SceneSpec scene = withEffect(fitted, "stage_error", Json{{"sigma_mm", at}});
+        for (int r = 0; r < count; ++r)
+            out.push_back(
+                offsetSpread(offsets.in(scene, seed + 7 * static_cast<std::uint64_t>(r)), nulls)
+                    .excess());
+        return out;
+    };
+    for (int round = 0; round < 3; ++round) {
+        const double mean = meanOf(excessAt(sigma, 3, settings.seed + 96000));
+        if (mean > 0)
+            sigma = std::clamp(sigma * std::sqrt(std::max(excess, 0.0) / mean), 1e-3,
+                               kMaxStageSigma_mm);
+    }
+    const auto again =
+        excessAt(sigma, std::max(settings.bootstrapReplicates, 5), settings.seed + 97000);
+    const double mean = meanOf(again);
+    std::vector<double> sigmas;
+    for (double e : again) sigmas.push_back(sigma * std::sqrt(std::max(e, 0.0) / mean));
+    // Every replicate is set against the same simulated recordings of an exact stage, so their
+    // spread misses what those recordings' own finite number adds to the recorded excess: the
+    // spread of the excess among them, through dσ = σ dE / 2E.
+    const double viaNulls = mean > 0 ? sigma * sd(nullExcess) / (2.0 * mean) : 0.0;
+    return {sigma, std::hypot(sd(sigmas), viaNulls)};
+}
+
+}  // namespace
+
 std::optional<double> readStageError(const SceneSpec& given, const SceneSpec& base,
                                      const std::shared_ptr<const FingertipContactModel>& model,
                                      const std::vector<TapRecord>& recorded,
@@ -84,89 +137,51 @@ std::optional<double> readStageError(const SceneSpec& given, const SceneSpec& ba
     // their variance there); its size then fitted by simulation, with standard errors from
     // recordings simulated at the estimate. Where the taps do not show it, the base's is kept:
     // a stage error much under the holds' own spread cannot be told from none.
-    std::optional<double> stageSigma;
-    {
-        const HoldModel grid(base, *model);
-        const double threshold = base.tap.contactThreshold;
-        const double limit = base.strokeLimitDepth();
-        auto offsetsIn = [&](const SceneSpec& scene, std::uint64_t seed) {
-            return holdOffsetsOf(grid, simulateAt(scene, model, recorded, seed, true), skip,
-                                 threshold, maxCounts, limit);
-        };
-        const auto offsets = holdOffsetsOf(grid, recorded, skip, threshold, maxCounts, limit);
-        // The scene as fitted: only the effects listed, at their estimates.
-        const SceneSpec& fitted = fit.fitted;
-        const SceneSpec exact = withEffect(fitted, "stage_error", Json());
-        std::vector<std::vector<double>> nulls;
-        for (int b = 0; b < std::max(settings.bootstrapReplicates, 10); ++b)
-            nulls.push_back(
-                offsetsIn(exact, settings.seed + 95000 + static_cast<std::uint64_t>(b)));
-        const OffsetSpread spread = offsetSpread(offsets, nulls);
-        std::vector<double> nullExcess;
-        for (std::size_t j = 0; j < nulls.size(); ++j)
-            nullExcess.push_back(offsetSpread(nulls[j], nulls, j).excess());
-        const double stat = zAbove(spread.excess(), nullExcess);
-        const bool listed = spread.taps >= 10 && stat > z;
-        const std::string test =
-            "the squared offsets across the outline of " + std::to_string(spread.taps) +
-            " taps' holds (each the shift of the model's pose, its depth fitted alongside, that "
-            "fits the hold best) about their means over " +
-            std::to_string(nulls.size()) +
-            " recordings simulated with the fitted scene and an exact stage, over their variance "
-            "there, averaged, less its mean over those recordings, over its standard deviation, "
-            "against the one-sided normal quantile at the level";
-        // How small a stage error the test can see: one whose excess reaches the quantile (the
-        // excess grows as the error's square over each tap's variance).
-        const double precision = spread.precision;
-        const double smallest = precision > 0 ? std::sqrt(z * sd(nullExcess) / precision) : NAN;
-        if (listed) {
-            // The excess grows as the error's square: scaled until recordings simulated at the
-            // estimate show the recorded one (three rounds of three).
-            double sigma = std::clamp(std::sqrt(std::max(spread.excess(), 0.0) / precision), 1e-3,
-                                      kMaxStageSigma_mm);
-            auto excessAt = [&](double at, int count, std::uint64_t seed) {
-                std::vector<double> out;
-                for (int r = 0; r < count; ++r)
-                    out.push_back(offsetSpread(offsetsIn(withEffect(fitted, "stage_error",
-                                                                    Json{{"sigma_mm", at}}),
-                                                         seed + 7 * static_cast<std::uint64_t>(r)),
-                                               nulls)
-                                      .excess());
-                return out;
-            };
-            for (int round = 0; round < 3; ++round) {
-                const auto shown = excessAt(sigma, 3, settings.seed + 96000);
-                const double mean = meanOf(shown);
-                if (mean > 0)
-                    sigma = std::clamp(sigma * std::sqrt(std::max(spread.excess(), 0.0) / mean),
-                                       1e-3, kMaxStageSigma_mm);
-            }
-            const auto again =
-                excessAt(sigma, std::max(settings.bootstrapReplicates, 5), settings.seed + 97000);
-            const double mean = meanOf(again);
-            std::vector<double> sigmas;
-            for (double e : again) sigmas.push_back(sigma * std::sqrt(std::max(e, 0.0) / mean));
-            // Every replicate is set against the same simulated recordings of an exact stage, so
-            // their spread misses what those recordings' own finite number adds to the recorded
-            // excess: the spread of the excess among them, through dσ = σ dE / 2E.
-            const double viaNulls = mean > 0 ? sigma * sd(nullExcess) / (2.0 * mean) : 0.0;
-            const double se = std::hypot(sd(sigmas), viaNulls);
-            stageSigma = sigma;
-            fit.choices.push_back({"stage_error", true, test, stat, z, true});
-            fit.parameters.push_back(
-                {"stage_error", "sigma_mm", sigma, se, sigma - 1.96 * se, sigma + 1.96 * se});
-        } else {
-            fit.choices.push_back(
-                {"stage_error", given.lists("stage_error"),
-                 test + "; under it, so " +
-                     (given.lists("stage_error") ? "kept as the base scene lists it"
-                                                 : std::string("not listed")) +
-                     " (these taps would show a stage error of about " +
-                     numberText(std::round(smallest * 1000.0) / 1000.0) + " mm and more)",
-                 stat, z, false});
-        }
+    const HoldModel grid(base, *model);
+    const StageOffsets offsetsOf{
+        grid, model, recorded, skip, base.tap.contactThreshold, maxCounts, base.strokeLimitDepth()};
+    const auto offsets =
+        holdOffsetsOf(grid, recorded, skip, offsetsOf.threshold, maxCounts, offsetsOf.limit);
+    // The scene as fitted: only the effects listed, at their estimates.
+    const SceneSpec& fitted = fit.fitted;
+    const SceneSpec exact = withEffect(fitted, "stage_error", Json());
+    std::vector<std::vector<double>> nulls;
+    for (int b = 0; b < std::max(settings.bootstrapReplicates, 10); ++b)
+        nulls.push_back(offsetsOf.in(exact, settings.seed + 95000 + static_cast<std::uint64_t>(b)));
+    const OffsetSpread spread = offsetSpread(offsets, nulls);
+    std::vector<double> nullExcess;
+    for (std::size_t j = 0; j < nulls.size(); ++j)
+        nullExcess.push_back(offsetSpread(nulls[j], nulls, j).excess());
+    const double stat = zAbove(spread.excess(), nullExcess);
+    const bool listed = spread.taps >= 10 && stat > z;
+    const std::string test =
+        "the squared offsets across the outline of " + std::to_string(spread.taps) +
+        " taps' holds (each the shift of the model's pose, its depth fitted alongside, that "
+        "fits the hold best) about their means over " +
+        std::to_string(nulls.size()) +
+        " recordings simulated with the fitted scene and an exact stage, over their variance "
+        "there, averaged, less its mean over those recordings, over its standard deviation, "
+        "against the one-sided normal quantile at the level";
+    if (listed) {
+        const auto [sigma, se] = fitStageSigma(offsetsOf, fitted, nulls, nullExcess,
+                                               spread.excess(), spread.precision, settings);
+        fit.choices.push_back({"stage_error", true, test, stat, z, true});
+        fit.parameters.push_back(
+            {"stage_error", "sigma_mm", sigma, se, sigma - 1.96 * se, sigma + 1.96 * se});
+        return sigma;
     }
-    return stageSigma;
+    // How small a stage error the test can see: one whose excess reaches the quantile (the
+    // excess grows as the error's square over each tap's variance).
+    const double precision = spread.precision;
+    const double smallest = precision > 0 ? std::sqrt(z * sd(nullExcess) / precision) : NAN;
+    fit.choices.push_back({"stage_error", given.lists("stage_error"),
+                           test + "; under it, so " +
+                               (given.lists("stage_error") ? "kept as the base scene lists it"
+                                                           : std::string("not listed")) +
+                               " (these taps would show a stage error of about " +
+                               numberText(std::round(smallest * 1000.0) / 1000.0) + " mm and more)",
+                           stat, z, false});
+    return std::nullopt;
 }
 
 }  // namespace activetouch::scenefit
