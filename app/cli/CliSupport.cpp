@@ -22,6 +22,10 @@
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
+#include "core/analysis/PairedComparison.h"
+#include "core/analysis/SeedRates.h"
+#include "core/analysis/SeedShards.h"
+#include "core/analysis/SweepRates.h"
 #include "core/experiment/Experiment.h"
 #include "core/experiment/RunPlan.h"
 #include "core/io/Csv.h"
@@ -30,13 +34,9 @@
 #include "core/rig/Rig.h"
 #include "core/run/ExperimentFiles.h"
 #include "core/run/ExperimentRun.h"
-#include "core/analysis/PairedComparison.h"
 #include "core/run/RecordedRuns.h"
 #include "core/run/RunArtefacts.h"
 #include "core/run/RunFolder.h"
-#include "core/analysis/SeedRates.h"
-#include "core/analysis/SeedShards.h"
-#include "core/analysis/SweepRates.h"
 #include "devices/rigs/RigAssembly.h"
 #include "devices/rigs/RigFile.h"
 #include "devices/simulated/SimulatedWorld.h"
@@ -266,10 +266,37 @@ void printTrialMeasures(const TrialRun& t) {
         t.result.completed() ? "" : (", furthest " + describePlace(t.result.furthest)).c_str());
 }
 
-/// What a run or an analysis found: validation, noise floor, trials, recognition, where it went.
-void printReport(const RunResult& result, double wall, double figures_s,
-                 const std::string& outDir) {
-    const ExperimentSpec& spec = result.spec;
+namespace {
+
+/// The perception sweep's rows, when it ran.
+void printPerceptionSweep(const SweepResults& sweeps) {
+    const auto& c = sweeps.perceptionCalibration;
+    if (!c.measured) return;
+    std::printf(
+        "sequential perception: one tap's belief on %d fresh taps has expected calibration "
+        "error %.3f raw, %.3f %s (a perfectly calibrated belief would show %.3f)\n",
+        c.taps, c.eceRaw, c.eceCalibrated, c.calibrated ? "calibrated" : "as used",
+        c.eceIfCalibrated);
+    const PerceptionSweepRow& one = sweeps.perceptionSingleTap;
+    std::printf(
+        "  single tap (the paper's)     %5.1f s per decision; edge angle error %5.2f deg "
+        "(%5.2f-%5.2f), position error %.3f mm (%.3f-%.3f), class %.1f %%\n",
+        one.meanRobotTime_s, one.angleError_deg, one.angle_deg.low, one.angle_deg.high,
+        one.positionError_mm, one.position_mm.low, one.position_mm.high,
+        100.0 * one.correctFraction);
+    for (const auto& row : sweeps.perception)
+        std::printf(
+            "  belief %-8.6g %5.2f taps (%5.2f-%5.2f) %5.1f s per decision; edge angle error "
+            "%5.2f deg (%5.2f-%5.2f), position error %.3f mm (%.3f-%.3f), class %.1f %%, "
+            "plane %.0f %%, air %.0f %%\n",
+            row.threshold, row.meanTaps, row.taps.low, row.taps.high, row.meanRobotTime_s,
+            row.angleError_deg, row.angle_deg.low, row.angle_deg.high, row.positionError_mm,
+            row.position_mm.low, row.position_mm.high, 100.0 * row.correctFraction,
+            100.0 * row.planeRecognised, 100.0 * row.airRecognised);
+}
+
+/// Validation, the belief's calibration, the continuous percept and the noise floor.
+void printValidation(const RunResult& result) {
     const auto& v = result.validation;
     std::printf(
         "validation: angle error %.2f deg, position error %.3f mm, class accuracy %.1f %%, "
@@ -300,6 +327,15 @@ void printReport(const RunResult& result, double wall, double figures_s,
             "noise floor: %.1f counts, the scene's (no class lies wholly in the air to "
             "measure it from)\n",
             result.noiseFloor_counts);
+}
+
+}  // namespace
+
+/// What a run or an analysis found: validation, noise floor, trials, recognition, where it went.
+void printReport(const RunResult& result, double wall, double figures_s,
+                 const std::string& outDir) {
+    const ExperimentSpec& spec = result.spec;
+    printValidation(result);
     int labelWidth = 9;  // the columns line up whatever the trials are called
     for (const auto& t : result.trials) labelWidth = std::max(labelWidth, int(t.label.size()));
     for (const auto& t : result.trials) {
@@ -322,29 +358,7 @@ void printReport(const RunResult& result, double wall, double figures_s,
             "by %.2f mm (medians over the paths named right)\n",
             100.0 * result.recognitionAccuracyAnyPose, modeName(spec.recognition.ofMode),
             result.medianRotationError_deg, result.medianPositionError_mm);
-    if (const auto& c = result.sweeps.perceptionCalibration; c.measured) {
-        std::printf(
-            "sequential perception: one tap's belief on %d fresh taps has expected calibration "
-            "error %.3f raw, %.3f %s (a perfectly calibrated belief would show %.3f)\n",
-            c.taps, c.eceRaw, c.eceCalibrated, c.calibrated ? "calibrated" : "as used",
-            c.eceIfCalibrated);
-        const PerceptionSweepRow& one = result.sweeps.perceptionSingleTap;
-        std::printf(
-            "  single tap (the paper's)     %5.1f s per decision; edge angle error %5.2f deg "
-            "(%5.2f-%5.2f), position error %.3f mm (%.3f-%.3f), class %.1f %%\n",
-            one.meanRobotTime_s, one.angleError_deg, one.angle_deg.low, one.angle_deg.high,
-            one.positionError_mm, one.position_mm.low, one.position_mm.high,
-            100.0 * one.correctFraction);
-        for (const auto& row : result.sweeps.perception)
-            std::printf(
-                "  belief %-8.6g %5.2f taps (%5.2f-%5.2f) %5.1f s per decision; edge angle error "
-                "%5.2f deg (%5.2f-%5.2f), position error %.3f mm (%.3f-%.3f), class %.1f %%, "
-                "plane %.0f %%, air %.0f %%\n",
-                row.threshold, row.meanTaps, row.taps.low, row.taps.high, row.meanRobotTime_s,
-                row.angleError_deg, row.angle_deg.low, row.angle_deg.high, row.positionError_mm,
-                row.position_mm.low, row.position_mm.high, 100.0 * row.correctFraction,
-                100.0 * row.planeRecognised, 100.0 * row.airRecognised);
-    }
+    printPerceptionSweep(result.sweeps);
     for (const std::string& line : describeRobustness(result.sweeps))
         std::printf("%s\n", line.c_str());
     if (const std::string b = describeBandit(result.sweeps.bandit, result.sweeps.following);

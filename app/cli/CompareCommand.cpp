@@ -1,7 +1,3 @@
-#include "app/cli/Commands.h"
-#include "app/cli/CliSupport.h"
-#include "core/analysis/ComparisonShards.h"
-
 #include <QApplication>
 #include <algorithm>
 #include <atomic>
@@ -19,16 +15,14 @@
 #include <variant>
 #include <vector>
 
+#include "app/cli/CliSupport.h"
+#include "app/cli/Commands.h"
 #include "app/figures/ComparisonFigures.h"
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
-#include "core/run/ExperimentFiles.h"
-#include "core/run/RunArtefacts.h"
-#include "core/run/ExperimentRun.h"
-#include "core/run/RecordedRuns.h"
+#include "core/analysis/ComparisonShards.h"
 #include "core/analysis/PairedComparison.h"
-#include "core/run/RunFolder.h"
 #include "core/analysis/SeedRates.h"
 #include "core/analysis/SeedShards.h"
 #include "core/experiment/Experiment.h"
@@ -37,6 +31,11 @@
 #include "core/records/FollowingRecording.h"
 #include "core/records/TapCsv.h"
 #include "core/rig/Rig.h"
+#include "core/run/ExperimentFiles.h"
+#include "core/run/ExperimentRun.h"
+#include "core/run/RecordedRuns.h"
+#include "core/run/RunArtefacts.h"
+#include "core/run/RunFolder.h"
 #include "devices/rigs/RigAssembly.h"
 #include "devices/rigs/RigFile.h"
 #include "devices/simulated/SimulatedWorld.h"
@@ -93,7 +92,8 @@ int showTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, const TrialR
                   const std::string& outDir, bool figures, int argc, char** argv) {
     try {
         const auto start = std::chrono::steady_clock::now();
-        const TrialPairRun pair = runTrialPair(simulatedRigs(), a, b, ref.seed, ref.mode, ref.label, ref.trial);
+        const TrialPairRun pair =
+            runTrialPair(simulatedRigs(), a, b, ref.seed, ref.mode, ref.label, ref.trial);
         const int nameWidth = int(std::max(pair.nameA.size(), pair.nameB.size()));
         std::printf("seed %llu, %s trial %d of %s, as each experiment ran it:\n",
                     static_cast<unsigned long long>(ref.seed), modeName(ref.mode), ref.trial,
@@ -123,6 +123,41 @@ int showTrialPair(const ExperimentSpec& a, const ExperimentSpec& b, const TrialR
     }
 }
 
+/// One seed's paired trials as they come, the ones that ended differently named.
+bool printSeedPairs(std::uint64_t seed, const std::vector<PairedTrial>& pairs,
+                    const PairedComparison&) {
+    int differ = 0;
+    for (const PairedTrial& p : pairs) differ += p.differs();
+    std::printf("seed %llu: %zu trials paired, %d ended differently\n",
+                static_cast<unsigned long long>(seed), pairs.size(), differ);
+    for (const PairedTrial& p : pairs)
+        if (p.differs())
+            std::printf("    %s %s trial %d: a %s, b %s\n", modeName(p.mode), p.label.c_str(),
+                        p.trial, endedText(p.outcomeA, p.namedA).c_str(),
+                        endedText(p.outcomeB, p.namedB).c_str());
+    std::fflush(stdout);
+    return true;
+}
+
+/// --show's trial, or the seed range: a usage error where they are mixed.
+std::optional<std::string> readShowOrRange(const RunArguments& parsed, std::optional<TrialRef>& ref,
+                                           SeedRange& range) {
+    const std::string show = parsed.text("--show");
+    if (show.empty()) {
+        range = seedRangeOf(parsed, "compare --from 1 --to 100");
+        if (!range.error.empty()) return range.error;
+        return std::nullopt;
+    }
+    if (parsed.seeds.count("--from") || parsed.seeds.count("--to") || parsed.seeds.count("--jobs"))
+        return "--show runs the one seed it names; leave out --from, --to and --jobs";
+    auto read = parseTrialRef(show);
+    if (auto* error = std::get_if<std::string>(&read)) return *error;
+    ref = std::get<TrialRef>(read);
+    if (!parsed.text("--shard").empty())
+        return "--show runs the one seed it names; leave out --shard";
+    return std::nullopt;
+}
+
 }  // namespace
 
 int commandCompare(const std::vector<std::string>& args, int argc, char** argv) {
@@ -131,23 +166,9 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
                           {{"--show", "a trial: seed,mode,label,trial, e.g. 3,active,cross,2"},
                            {"--shard", "K/N, e.g. 2/3 for the second of three shards"}});
     if (!parsed.error.empty()) return usageError(parsed.error);
-    const std::string show = parsed.text("--show");
     std::optional<TrialRef> ref;
     SeedRange range;
-    if (!show.empty()) {
-        if (parsed.seeds.count("--from") || parsed.seeds.count("--to") ||
-            parsed.seeds.count("--jobs"))
-            return usageError(
-                "--show runs the one seed it names; leave out --from, --to and --jobs");
-        auto read = parseTrialRef(show);
-        if (auto* error = std::get_if<std::string>(&read)) return usageError(*error);
-        ref = std::get<TrialRef>(read);
-        if (!parsed.text("--shard").empty())
-            return usageError("--show runs the one seed it names; leave out --shard");
-    } else {
-        range = seedRangeOf(parsed, "compare --from 1 --to 100");
-        if (!range.error.empty()) return usageError(range.error);
-    }
+    if (const auto error = readShowOrRange(parsed, ref, range)) return usageError(*error);
     const auto& seeds = range.seeds;  // this shard's block; none if it has no seed
     const auto a = loadForRun(parsed.experimentPath);
     if (!a) return kBadInput;
@@ -173,31 +194,15 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv) 
     const int code = overSeeds(
         "compare failed", outDir, "compare.csv", parsed.figures, range.jobs, argc, argv,
         [&] {
-            const PairedComparison c = comparePaired(
-                simulatedRigs(), *a, *b, seeds ? seeds->first : 1, seeds ? seeds->second : 0,
-                outDir,
-                [](std::uint64_t seed, const std::vector<PairedTrial>& pairs,
-                   const PairedComparison&) {
-                    int differ = 0;
-                    for (const PairedTrial& p : pairs) differ += p.differs();
-                    std::printf("seed %llu: %zu trials paired, %d ended differently\n",
-                                static_cast<unsigned long long>(seed), pairs.size(), differ);
-                    for (const PairedTrial& p : pairs)
-                        if (p.differs())
-                            std::printf("    %s %s trial %d: a %s, b %s\n", modeName(p.mode),
-                                        p.label.c_str(), p.trial,
-                                        endedText(p.outcomeA, p.namedA).c_str(),
-                                        endedText(p.outcomeB, p.namedB).c_str());
-                    std::fflush(stdout);
-                    return true;
-                },
-                range.jobs);
+            const PairedComparison c =
+                comparePaired(simulatedRigs(), *a, *b, seeds ? seeds->first : 1,
+                              seeds ? seeds->second : 0, outDir, printSeedPairs, range.jobs);
             // Every seed's record, so that shards merge into exactly one comparison's files.
-            writeComparisonShardFile(
-                outDir, {a->name, b->name,
-                         experimentFingerprint(parsed.experimentPath, *a) + "+" +
-                             experimentFingerprint(parsed.recordingPath, *b),
-                         range.first, range.last, range.shard, c.records});
+            writeComparisonShardFile(outDir,
+                                     {a->name, b->name,
+                                      experimentFingerprint(parsed.experimentPath, *a) + "+" +
+                                          experimentFingerprint(parsed.recordingPath, *b),
+                                      range.first, range.last, range.shard, c.records});
             printShardBlock(range);
             std::printf("\n");
             for (const std::string& line : describeComparison(c)) std::printf("%s\n", line.c_str());

@@ -11,8 +11,8 @@
 #include "core/common/NumberText.h"
 #include "core/experiment/Experiment.h"
 #include "core/records/DumperLog.h"
-#include "core/records/TapCutting.h"
 #include "core/records/TapCsv.h"
+#include "core/records/TapCutting.h"
 #include "core/run/OutputFiles.h"
 #include "core/run/RunFolder.h"
 
@@ -32,12 +32,10 @@ std::optional<double> optionNumber(const std::string& text, double lo, double hi
     return v;
 }
 
-
 /// How the experiment's taps are cut from a skin log: its tap's samples and rate, the reflex
 /// threshold (the scene's, or --threshold) and the lead before a crossing (the descent, or
 /// --lead-frames). Empty, or what is wrong with an option.
-std::string cuttingOf(const ExperimentSpec& spec, const RunArguments& parsed,
-                      TapCutting& cutting) {
+std::string cuttingOf(const ExperimentSpec& spec, const RunArguments& parsed, TapCutting& cutting) {
     const TapSpec& tapSpec = spec.scene.tap;
     cutting.samplesPerTap = tapSpec.samples;
     cutting.sampleRate_hz = tapSpec.sampleRate_hz;
@@ -58,6 +56,72 @@ std::string cuttingOf(const ExperimentSpec& spec, const RunArguments& parsed,
         cutting.leadFrames = static_cast<int>(*v);
     }
     return {};
+}
+
+}  // namespace
+
+namespace {
+
+/// What an import reads, every part checked before anything is written.
+struct Imported {
+    TaxelMap map;
+    SkinStream stream;
+    std::vector<CollectedTap> taps;
+    std::string cutOff;  ///< the last tap, where the log ends inside it
+};
+
+Imported readImported(const ExperimentSpec& spec, const RunArguments& parsed,
+                      const TapCutting& cutting) {
+    const std::string posePath = parsed.text("--poses");
+    Imported in;
+    in.map = readTaxelMap(parsed.text("--taxel-map"),
+                          static_cast<int>(spec.scene.fingertip.taxels.size()));
+    in.stream = readDumperLog(parsed.recordingPath, in.map);
+    checkMapReadsTheTouch(in.stream, in.map, parsed.text("--taxel-map"));
+    RecordingBounds bounds;
+    bounds.travel_mm = spec.scene.stage.travel_mm;
+    std::vector<PoseLogEntry> poses;
+    if (!posePath.empty()) poses = readPoseLog(posePath, bounds);
+    const std::vector<TapRecord> cut = cutTaps(in.stream, posePath.empty() ? nullptr : &poses,
+                                               cutting, in.stream.source, posePath, &in.cutOff);
+    in.taps = labelProtocolTaps(cut, !posePath.empty(), poses, spec.scene.object.outline(),
+                                spec.classes, spec.training, posePath, in.stream.source);
+    const std::int64_t planned = spec.plannedTaps();
+    if (posePath.empty() && static_cast<std::int64_t>(in.taps.size()) != planned)
+        throw InputError(in.stream.source, "",
+                         "the reflex threshold (" + numberText(cutting.reflexThreshold) +
+                             " counts) finds " + std::to_string(in.taps.size()) +
+                             " taps, but the experiment's protocol takes " +
+                             std::to_string(planned) +
+                             ": taps that touch nothing leave no trace in a skin log, so without "
+                             "the stage's pose log (--poses) the taps cannot be matched to their "
+                             "classes");
+    return in;
+}
+
+/// import.json: where the taps came from and how they were cut.
+Json importRecord(const ExperimentSpec& spec, const RunArguments& parsed, const Imported& in,
+                  const TapCutting& cutting, int reflex) {
+    const std::string posePath = parsed.text("--poses");
+    return {
+        {"experiment", spec.name},
+        {"skin_log", parsed.recordingPath},
+        {"taxel_map", parsed.text("--taxel-map")},
+        {"values_per_frame", in.map.valuesPerFrame},
+        {"taxel_values", in.map.valueOf},
+        {"stamps_per_line", in.stream.stamps},
+        {"frames", in.stream.frameCount()},
+        {"frames_missing", in.stream.framesMissing},
+        {"cut_by", posePath.empty() ? "reflex threshold" : "pose log"},
+        {"pose_log", posePath.empty() ? Json() : Json(posePath)},
+        {"reflex_threshold_counts", cutting.reflexThreshold},
+        {"lead_frames", posePath.empty() ? Json(cutting.leadFrames) : Json()},
+        {"samples_per_tap", cutting.samplesPerTap},
+        {"taps", in.taps.size()},
+        {"taps_planned", spec.plannedTaps()},
+        {"taps_on_the_reflex", reflex},
+        {"cut_off", in.cutOff.empty() ? Json() : Json(in.cutOff)},
+    };
 }
 
 }  // namespace
@@ -85,72 +149,29 @@ int commandImport(const std::vector<std::string>& args) {
     const std::string outDir = parsed.outDir.empty()
                                    ? (fs::path("results") / (spec.name + "_import")).string()
                                    : parsed.outDir;
-    const std::string logPath = parsed.recordingPath;
-    const std::string posePath = parsed.text("--poses");
     try {
-        // Everything is read and checked before anything is written.
-        const TaxelMap map = readTaxelMap(parsed.text("--taxel-map"),
-                                          static_cast<int>(spec.scene.fingertip.taxels.size()));
-        const SkinStream stream = readDumperLog(logPath, map);
-        checkMapReadsTheTouch(stream, map, parsed.text("--taxel-map"));
-        RecordingBounds bounds;
-        bounds.travel_mm = spec.scene.stage.travel_mm;
-        std::vector<PoseLogEntry> poses;
-        if (!posePath.empty()) poses = readPoseLog(posePath, bounds);
-        std::string cutOff;
-        const std::vector<TapRecord> cut = cutTaps(stream, posePath.empty() ? nullptr : &poses,
-                                                   cutting, stream.source, posePath, &cutOff);
-        const std::vector<CollectedTap> taps =
-            labelProtocolTaps(cut, !posePath.empty(), poses, spec.scene.object.outline(),
-                              spec.classes, spec.training, posePath, stream.source);
-        const std::int64_t planned = spec.plannedTaps();
-        if (posePath.empty() && static_cast<std::int64_t>(taps.size()) != planned)
-            throw InputError(stream.source, "",
-                             "the reflex threshold (" + numberText(cutting.reflexThreshold) +
-                                 " counts) finds " + std::to_string(taps.size()) +
-                                 " taps, but the experiment's protocol takes " +
-                                 std::to_string(planned) +
-                                 ": taps that touch nothing leave no trace in a skin log, so "
-                                 "without the stage's pose log (--poses) the taps cannot be "
-                                 "matched to their classes");
+        const Imported in = readImported(spec, parsed, cutting);
         const auto claimed =
-            claimOrSay(outDir, "import", spec, runFactsOf(spec, &taps), parsed.replace);
+            claimOrSay(outDir, "import", spec, runFactsOf(spec, &in.taps), parsed.replace);
         if (!claimed) return kBadInput;
         ensureOutputDirectory((fs::path(outDir) / "data").string());
         const std::string tapsPath = (fs::path(outDir) / "data" / "taps.csv").string();
         {
-            TapCsvWriter writer(tapsPath, static_cast<int>(map.valueOf.size()));
-            for (const CollectedTap& t : taps) writer.append(t, spec.classes);
+            TapCsvWriter writer(tapsPath, static_cast<int>(in.map.valueOf.size()));
+            for (const CollectedTap& t : in.taps) writer.append(t, spec.classes);
         }
         int reflex = 0;
-        for (const CollectedTap& t : taps) reflex += t.record.ending == TapEnding::ContactReflex;
-        Json doc = {
-            {"experiment", spec.name},
-            {"skin_log", logPath},
-            {"taxel_map", parsed.text("--taxel-map")},
-            {"values_per_frame", map.valuesPerFrame},
-            {"taxel_values", map.valueOf},
-            {"stamps_per_line", stream.stamps},
-            {"frames", stream.frameCount()},
-            {"frames_missing", stream.framesMissing},
-            {"cut_by", posePath.empty() ? "reflex threshold" : "pose log"},
-            {"pose_log", posePath.empty() ? Json() : Json(posePath)},
-            {"reflex_threshold_counts", cutting.reflexThreshold},
-            {"lead_frames", posePath.empty() ? Json(cutting.leadFrames) : Json()},
-            {"samples_per_tap", cutting.samplesPerTap},
-            {"taps", taps.size()},
-            {"taps_planned", planned},
-            {"taps_on_the_reflex", reflex},
-            {"cut_off", cutOff.empty() ? Json() : Json(cutOff)},
-        };
-        writeJsonAtomically((fs::path(outDir) / "import.json").string(), doc);
+        for (const CollectedTap& t : in.taps) reflex += t.record.ending == TapEnding::ContactReflex;
+        writeJsonAtomically((fs::path(outDir) / "import.json").string(),
+                            importRecord(spec, parsed, in, cutting, reflex));
         std::printf(
             "%s: %zu frames (%lld missing by the counter) from %s, %zu taps cut by the %s (%d "
             "reached the reflex threshold of %g counts) of the %lld the protocol takes\n",
-            spec.name.c_str(), stream.frameCount(), static_cast<long long>(stream.framesMissing),
-            logPath.c_str(), taps.size(), posePath.empty() ? "reflex threshold" : "pose log",
-            reflex, cutting.reflexThreshold, static_cast<long long>(planned));
-        if (!cutOff.empty()) std::printf("%s\n", cutOff.c_str());
+            spec.name.c_str(), in.stream.frameCount(),
+            static_cast<long long>(in.stream.framesMissing), parsed.recordingPath.c_str(),
+            in.taps.size(), parsed.text("--poses").empty() ? "reflex threshold" : "pose log",
+            reflex, cutting.reflexThreshold, static_cast<long long>(spec.plannedTaps()));
+        if (!in.cutOff.empty()) std::printf("%s\n", in.cutOff.c_str());
         std::printf("wrote %s; analyse it with: activetouch-cli analyse %s %s\n", tapsPath.c_str(),
                     parsed.experimentPath.c_str(), tapsPath.c_str());
         return kOk;

@@ -9,8 +9,8 @@
 #include "app/figures/FigureLayout.h"
 #include "app/figures/SweepFigures.h"
 #include "app/figures/ValidationFigures.h"
-#include "core/run/ExperimentRun.h"
 #include "core/analysis/SeedRates.h"
+#include "core/run/ExperimentRun.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
@@ -138,30 +138,122 @@ bool buildPathFigure(QCustomPlot& plot, const RunResult& r, FollowingMode mode,
     return true;
 }
 
-bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
-    const int bins = r.spec.recognition.bins;
-    if (r.templates.empty()) {
-        // Nothing recognised (no recognition step, or no run yet): no accuracy to claim.
-        startFigure(plot, QString("Figure 9 - recognition from %1 × %1 path histograms").arg(bins));
-        return false;
-    }
-    startFigure(plot, QString("Figure 9 - recognition from %1 × %1 path histograms").arg(bins),
-                QString("Named rightly: %1 % (paper's rule),\n%2 % (smoothed histograms, "
-                        "σ = %3 bins).")
-                    .arg(100.0 * r.recognitionAccuracy, 0, 'f', 0)
-                    .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0)
-                    .arg(r.spec.recognition.smoothingSigmaBins));
-    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    // One row per shape traced, in the order of the confusion tables beside the figure (the
-    // templates' order: the paper's rectangle, cross, C, L).
-    std::vector<std::pair<std::string, std::vector<const TrialRun*>>> byShape;
-    int maxTrials = 0;
+namespace {
+
+using ShapeTrials = std::vector<std::pair<std::string, std::vector<const TrialRun*>>>;
+
+/// One row per shape traced, in the order of the confusion tables beside the figure (the
+/// templates' order: the paper's rectangle, cross, C, L).
+ShapeTrials shapesTraced(const RunResult& r) {
+    ShapeTrials byShape;
     for (const std::string& shape : recognitionConfusion(r).labels) {
         std::vector<const TrialRun*> trials;
         for (const auto& t : r.trials)
             if (t.recognised && t.label == shape) trials.push_back(&t);
         if (!trials.empty()) byShape.emplace_back(shape, std::move(trials));
     }
+    return byShape;
+}
+
+/// A path histogram as a heat map in `rect`, coloured on `scale`.
+void addHistogramPanel(QCPAxisRect* rect, const PathHistogram& h, const QString& title,
+                       QCPColorScale* scale) {
+    setPanelTitle(rect, title);
+    rect->axis(QCPAxis::atBottom)->setLabel("x bin");
+    rect->axis(QCPAxis::atLeft)->setLabel("y bin");
+    auto* map = new QCPColorMap(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+    map->data()->setSize(h.bins, h.bins);
+    map->data()->setRange(QCPRange(0.5, h.bins - 0.5), QCPRange(0.5, h.bins - 0.5));
+    for (int iy = 0; iy < h.bins; ++iy)
+        for (int ix = 0; ix < h.bins; ++ix) map->data()->setCell(ix, iy, h.at(ix, iy));
+    map->setInterpolate(false);
+    map->setColorScale(scale);
+    // Square bins: the axes widen beyond the histogram to fit the panel, so ticks are labelled
+    // only where there are bins.
+    setEqualAspectRanges(rect, QCPRange(0, h.bins), QCPRange(0, h.bins));
+    QSharedPointer<QCPAxisTickerText> ticks(new QCPAxisTickerText);
+    const int step = std::max(1, h.bins / 4);
+    for (int b = 0; b <= h.bins; b += step) ticks->addTick(b, QString::number(b));
+    rect->axis(QCPAxis::atBottom)->setTicker(ticks);
+    rect->axis(QCPAxis::atLeft)->setTicker(ticks);
+}
+
+/// What the paper's rule named a trial; the smoothed rule's name on a line of its own when the
+/// two disagree, so the title stays as narrow as its panel.
+QString trialTitle(const TrialRun& t) {
+    const auto& rec = t.recognition;
+    QString title = QString("ACF%1%2 -> %3")
+                        .arg(t.trial)
+                        .arg(t.result.end == TrialEnd::Completed ? "" : " (incomplete)",
+                             QString::fromStdString(rec.predicted));
+    if (rec.predictedSmoothed != rec.predicted)
+        title += QString("\nsmoothed: %1").arg(QString::fromStdString(rec.predictedSmoothed));
+    return title;
+}
+
+/// Distances to every template, one bar group per template, bars lying along the distance axis
+/// so that the templates' names stack and never run into each other. The legend goes in a row
+/// of its own under the bars: inside the panel it would hide the longest bars, which are the
+/// ones a reader compares.
+void addDistancePanel(QCustomPlot& plot, QCPLayoutGrid* grid, int row, int column,
+                      const std::vector<const TrialRun*>& trials, const RunResult& r) {
+    const auto [dr, barLegend] = addPanelWithLegendBelow(grid, row, column, /*perLine=*/0);
+    // On two lines: the title is centred over the bars, which the templates' names push right in
+    // a narrow panel.
+    setPanelTitle(dr, "distances\n(paper's rule)");
+    QCPAxis* templateAxis = dr->axis(QCPAxis::atLeft);
+    QCPAxis* distanceAxis = dr->axis(QCPAxis::atBottom);
+    distanceAxis->setLabel("Euclidean distance");
+    distanceAxis->ticker()->setTickCount(3);  // the panel is narrow; labels like 0.025 are wide
+    QSharedPointer<QCPAxisTickerText> ticker(new QCPAxisTickerText);
+    // One named row per template: the panel is never shorter than their names stacked.
+    dr->setMinimumSize(0, static_cast<int>(r.templates.size()) *
+                              (QFontMetrics(templateAxis->tickLabelFont()).height() + 6));
+    auto* group = new QCPBarsGroup(&plot);
+    double longest = 0.0;
+    for (std::size_t k = 0; k < trials.size(); ++k) {
+        auto* bars = new QCPBars(templateAxis, distanceAxis);
+        bars->setBrush(trialColour(trials[k]->trial));
+        bars->setPen(Qt::NoPen);
+        bars->setWidth(0.35);
+        bars->setBarsGroup(group);
+        bars->setName(QString("ACF%1").arg(trials[k]->trial));
+        barLegend->addItem(new QCPPlottableLegendItem(barLegend, bars));
+        QVector<double> keys, values;
+        int i = 0;
+        for (const auto& t : r.templates) {
+            keys << ++i;
+            values << trials[k]->recognition.distances.at(t.shape);
+            longest = std::max(longest, values.back());
+            if (k == 0) ticker->addTick(i, QString::fromStdString(t.shape));
+        }
+        bars->setData(keys, values);
+    }
+    templateAxis->setTicker(ticker);
+    templateAxis->setRange(0.4, r.templates.size() + 0.6);
+    templateAxis->setRangeReversed(true);  // the first template on top, as in the legend
+    distanceAxis->setRange(0, longest * 1.1);
+}
+
+}  // namespace
+
+bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
+    const int bins = r.spec.recognition.bins;
+    const QString title = QString("Figure 9 - recognition from %1 × %1 path histograms").arg(bins);
+    if (r.templates.empty()) {
+        // Nothing recognised (no recognition step, or no run yet): no accuracy to claim.
+        startFigure(plot, title);
+        return false;
+    }
+    startFigure(plot, title,
+                QString("Named rightly: %1 % (paper's rule),\n%2 % (smoothed histograms, "
+                        "σ = %3 bins).")
+                    .arg(100.0 * r.recognitionAccuracy, 0, 'f', 0)
+                    .arg(100.0 * r.recognitionAccuracySmoothed, 0, 'f', 0)
+                    .arg(r.spec.recognition.smoothingSigmaBins));
+    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
+    const ShapeTrials byShape = shapesTraced(r);
+    int maxTrials = 0;
     for (const auto& [shape, trials] : byShape)
         maxTrials = std::max(maxTrials, static_cast<int>(trials.size()));
     auto* scale = new QCPColorScale(&plot);
@@ -169,91 +261,20 @@ bool buildRecognitionFigure(QCustomPlot& plot, const RunResult& r) {
     scale->axis()->setLabel("fraction of taps per bin");
     scale->setDataRange(QCPRange(0, 0.05));
     scale->setGradient(heatGradient());
-    auto heat = [&](QCPAxisRect* rect, const PathHistogram& h, const QString& title) {
-        setPanelTitle(rect, title);
-        rect->axis(QCPAxis::atBottom)->setLabel("x bin");
-        rect->axis(QCPAxis::atLeft)->setLabel("y bin");
-        auto* map = new QCPColorMap(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
-        map->data()->setSize(h.bins, h.bins);
-        map->data()->setRange(QCPRange(0.5, h.bins - 0.5), QCPRange(0.5, h.bins - 0.5));
-        for (int iy = 0; iy < h.bins; ++iy)
-            for (int ix = 0; ix < h.bins; ++ix) map->data()->setCell(ix, iy, h.at(ix, iy));
-        map->setInterpolate(false);
-        map->setColorScale(scale);
-        // Square bins: the axes widen beyond the histogram to fit the panel, so ticks are labelled
-        // only where there are bins.
-        setEqualAspectRanges(rect, QCPRange(0, h.bins), QCPRange(0, h.bins));
-        QSharedPointer<QCPAxisTickerText> ticks(new QCPAxisTickerText);
-        const int step = std::max(1, h.bins / 4);
-        for (int b = 0; b <= h.bins; b += step) ticks->addTick(b, QString::number(b));
-        rect->axis(QCPAxis::atBottom)->setTicker(ticks);
-        rect->axis(QCPAxis::atLeft)->setTicker(ticks);
-    };
     int row = 0;
     for (const auto& [shape, trials] : byShape) {
-        const ShapeTemplate* tmpl = nullptr;
-        for (const auto& t : r.templates)
-            if (t.shape == shape) tmpl = &t;
         auto* tr = new QCPAxisRect(&plot);
         grid->addElement(row, 0, tr);
-        if (tmpl) heat(tr, tmpl->raw, QString("template: %1").arg(QString::fromStdString(shape)));
+        for (const auto& t : r.templates)
+            if (t.shape == shape)
+                addHistogramPanel(
+                    tr, t.raw, QString("template: %1").arg(QString::fromStdString(shape)), scale);
         for (std::size_t k = 0; k < trials.size(); ++k) {
             auto* pr = new QCPAxisRect(&plot);
             grid->addElement(row, 1 + static_cast<int>(k), pr);
-            const auto& rec = trials[k]->recognition;
-            // What the paper's rule named; the smoothed rule's name on a line of its own when
-            // the two disagree, so the title stays as narrow as its panel.
-            QString title =
-                QString("ACF%1%2 -> %3")
-                    .arg(trials[k]->trial)
-                    .arg(trials[k]->result.end == TrialEnd::Completed ? "" : " (incomplete)",
-                         QString::fromStdString(rec.predicted));
-            if (rec.predictedSmoothed != rec.predicted)
-                title +=
-                    QString("\nsmoothed: %1").arg(QString::fromStdString(rec.predictedSmoothed));
-            heat(pr, rec.raw, title);
+            addHistogramPanel(pr, trials[k]->recognition.raw, trialTitle(*trials[k]), scale);
         }
-        // Distances to every template, one bar group per template, bars lying along the
-        // distance axis so that the templates' names stack and never run into each other.
-        // The legend goes in a row of its own under the bars: inside the panel it would hide the
-        // longest bars, which are the ones a reader compares.
-        const auto [dr, barLegend] =
-            addPanelWithLegendBelow(grid, row, 1 + maxTrials, /*perLine=*/0);
-        // On two lines: the title is centred over the bars, which the templates' names push
-        // right in a narrow panel.
-        setPanelTitle(dr, "distances\n(paper's rule)");
-        QCPAxis* templateAxis = dr->axis(QCPAxis::atLeft);
-        QCPAxis* distanceAxis = dr->axis(QCPAxis::atBottom);
-        distanceAxis->setLabel("Euclidean distance");
-        distanceAxis->ticker()->setTickCount(3);  // the panel is narrow; labels like 0.025 are wide
-        QSharedPointer<QCPAxisTickerText> ticker(new QCPAxisTickerText);
-        // One named row per template: the panel is never shorter than their names stacked.
-        dr->setMinimumSize(0, static_cast<int>(r.templates.size()) *
-                                  (QFontMetrics(templateAxis->tickLabelFont()).height() + 6));
-        auto* group = new QCPBarsGroup(&plot);
-        double longest = 0.0;
-        for (std::size_t k = 0; k < trials.size(); ++k) {
-            auto* bars = new QCPBars(templateAxis, distanceAxis);
-            bars->setBrush(trialColour(trials[k]->trial));
-            bars->setPen(Qt::NoPen);
-            bars->setWidth(0.35);
-            bars->setBarsGroup(group);
-            bars->setName(QString("ACF%1").arg(trials[k]->trial));
-            barLegend->addItem(new QCPPlottableLegendItem(barLegend, bars));
-            QVector<double> keys, values;
-            int i = 0;
-            for (const auto& t : r.templates) {
-                keys << ++i;
-                values << trials[k]->recognition.distances.at(t.shape);
-                longest = std::max(longest, values.back());
-                if (k == 0) ticker->addTick(i, QString::fromStdString(t.shape));
-            }
-            bars->setData(keys, values);
-        }
-        templateAxis->setTicker(ticker);
-        templateAxis->setRange(0.4, r.templates.size() + 0.6);
-        templateAxis->setRangeReversed(true);  // the first template on top, as in the legend
-        distanceAxis->setRange(0, longest * 1.1);
+        addDistancePanel(plot, grid, row, 1 + maxTrials, trials, r);
         ++row;
     }
     grid->addElement(0, 2 + maxTrials, scale);

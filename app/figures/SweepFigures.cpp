@@ -5,8 +5,8 @@
 #include <tuple>
 
 #include "app/figures/FigureLayout.h"
-#include "core/run/ExperimentRun.h"
 #include "core/analysis/SweepRates.h"
+#include "core/run/ExperimentRun.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
@@ -303,28 +303,19 @@ bool buildPerceptionSweepOverSeedsFigure(QCustomPlot& plot, const SweepRates& r)
     return true;
 }
 
-bool buildFollowingParetoFigure(QCustomPlot& plot, const SweepRates& r) {
-    startFigure(plot, QString("Accuracy costs time (b) over %1 seeds: contour following, the "
-                              "trade-off and its Pareto front (labels: follow/reposition mm, "
-                              "threshold)")
-                          .arg(r.seeds));
-    // Active settings only: passive trials almost never complete, and their time per completion
-    // (tens of thousands of seconds) would crush the active trade-off into a corner. They stay
-    // in the tables.
-    std::vector<const FollowingOverSeeds*> shown;
-    for (const auto& f : r.following)
-        if (f.mode == FollowingMode::Active && std::isfinite(f.robotTimePerCompletion_s.mean))
-            shown.push_back(&f);
-    if (shown.empty()) return false;
-    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
-    const auto [completion, lc] =
-        addTitledPanelWithLegendBelow(grid, 0, 0, /*perLine=*/2, "completion (front circled)",
-                                      "robot time per completed trial (s)", "trials completed (%)");
-    const auto [distance, ld] = addTitledPanelWithLegendBelow(
-        grid, 0, 1, /*perLine=*/2, "path error (front circled)",
-        "robot time per completed trial (s)", "mean distance of taps to the contour (mm)");
-    // One series per mode and threshold; the front joined in order of time.
-    std::map<std::pair<int, double>, std::vector<const FollowingOverSeeds*>> groups;
+namespace {
+
+using Shown = std::vector<const FollowingOverSeeds*>;
+
+/// Two panels of the following trade-off, each with its legend below.
+struct ParetoPanels {
+    QCPAxisRect *completion, *distance;
+    QCPLegend *lc, *ld;
+};
+
+/// One series per mode and threshold, with their intervals both ways.
+void addFollowingSeries(const ParetoPanels& p, const Shown& shown) {
+    std::map<std::pair<int, double>, Shown> groups;
     for (const auto* f : shown) groups[{int(f->mode), f->beliefThreshold}].push_back(f);
     int colour = 0;
     for (const auto& [key, list] : groups) {
@@ -344,11 +335,16 @@ bool buildFollowingParetoFigure(QCustomPlot& plot, const SweepRates& r) {
                 .arg(modeName(FollowingMode(key.first)))
                 .arg(key.second > 0 ? QString("threshold %1").arg(key.second, 0, 'g', 6)
                                     : QString("single tap"));
-        intervalBars(addSeries(completion, lc, name, t, c, seriesColour(colour), false), cE, &tE);
-        intervalBars(addSeries(distance, ld, name, t, d, seriesColour(colour), false), dE, &tE);
+        intervalBars(addSeries(p.completion, p.lc, name, t, c, seriesColour(colour), false), cE,
+                     &tE);
+        intervalBars(addSeries(p.distance, p.ld, name, t, d, seriesColour(colour), false), dE, &tE);
         ++colour;
     }
-    std::vector<const FollowingOverSeeds*> front;
+}
+
+/// The Pareto front circled in order of time: a front in three measures, so no line joins it.
+void addParetoFront(const ParetoPanels& p, const Shown& shown) {
+    Shown front;
     for (const auto* f : shown)
         if (f->onParetoFront) front.push_back(f);
     std::sort(front.begin(), front.end(), [](const auto* a, const auto* b) {
@@ -361,50 +357,80 @@ bool buildFollowingParetoFigure(QCustomPlot& plot, const SweepRates& r) {
         fd << f->contourDistance_mm.mean;
     }
     for (auto [rect, legend, y] :
-         {std::tuple{completion, lc, &fc}, std::tuple{distance, ld, &fd}}) {
+         {std::tuple{p.completion, p.lc, &fc}, std::tuple{p.distance, p.ld, &fd}}) {
         auto* g =
             addSeries(rect, legend, "Pareto front (time, completion, distance)", ft, *y, Qt::black);
         g->setScatterStyle(
             QCPScatterStyle(QCPScatterStyle::ssCircle, QPen(Qt::black, 1.5), Qt::NoBrush, 10));
-        g->setLineStyle(QCPGraph::lsNone);  // a front in three measures: no line joins it
+        g->setLineStyle(QCPGraph::lsNone);
     }
+}
+
+/// The paper's setting marked; it and the settings that beat it named (only those, so that
+/// labels do not pile up; the front is circled, and named in the tables).
+void labelPaperAndWinners(const ParetoPanels& p, const Shown& shown) {
     for (const auto* f : shown) {
-        if (f->paperSetting && f->mode == FollowingMode::Active) {
-            markPaper(completion, lc, f->robotTimePerCompletion_s.mean,
-                      100.0 * f->completed.fraction(), "paper: 2 mm, 1 mm, single tap");
-            markPaper(distance, ld, f->robotTimePerCompletion_s.mean, f->contourDistance_mm.mean,
+        const bool paper = f->paperSetting && f->mode == FollowingMode::Active;
+        const double t = f->robotTimePerCompletion_s.mean, c = 100.0 * f->completed.fraction();
+        if (paper) {
+            markPaper(p.completion, p.lc, t, c, "paper: 2 mm, 1 mm, single tap");
+            markPaper(p.distance, p.ld, t, f->contourDistance_mm.mean,
                       "paper: 2 mm, 1 mm, single tap");
         }
-        // Only the paper's setting and those that beat it are named, so that labels do not pile
-        // up; the front is circled, and named in the tables.
-        const bool paper = f->paperSetting && f->mode == FollowingMode::Active;
+        if (!f->beatsPaper && !paper) continue;
         const QString label = settingLabel(*f) + (f->beatsPaper ? " (beats paper)" : "");
-        if (f->beatsPaper || paper)
-            pointLabel(completion, f->robotTimePerCompletion_s.mean,
-                       100.0 * f->completed.fraction(), label);
-        if (f->beatsPaper || paper)
-            pointLabel(distance, f->robotTimePerCompletion_s.mean, f->contourDistance_mm.mean,
-                       label);
+        pointLabel(p.completion, t, c, label);
+        pointLabel(p.distance, t, f->contourDistance_mm.mean, label);
     }
-    for (QCPAxisRect* rect : {completion, distance}) {
-        QCPAxis* x = rect->axis(QCPAxis::atBottom);
-        x->setScaleType(QCPAxis::stLogarithmic);
-        QSharedPointer<QCPAxisTickerText> ticks(new QCPAxisTickerText);
-        for (double decade = 1e-2; decade < 1e7; decade *= 10)
-            for (double step : {1.0, 2.0, 5.0})
-                ticks->addTick(decade * step, QString::number(decade * step, 'g', 6));
-        x->setTicker(ticks);
-        fit(rect);
-        // Logarithmic: widen by factors, not by steps, and keep the lower end positive.
-        double lo = qInf(), hi = 0;
-        for (const auto* f : shown) {
-            lo = std::min(lo, f->robotTimePerCompletion_s.low);
-            hi = std::max(hi, std::isfinite(f->robotTimePerCompletion_s.high)
-                                  ? f->robotTimePerCompletion_s.high
-                                  : f->robotTimePerCompletion_s.mean);
-        }
-        x->setRange(std::max(1e-3, lo) / 1.15, hi * 1.15);
+}
+
+/// Robot time on a logarithmic axis: widened by factors, not by steps, its lower end positive.
+void logTimeAxis(QCPAxisRect* rect, const Shown& shown) {
+    QCPAxis* x = rect->axis(QCPAxis::atBottom);
+    x->setScaleType(QCPAxis::stLogarithmic);
+    QSharedPointer<QCPAxisTickerText> ticks(new QCPAxisTickerText);
+    for (double decade = 1e-2; decade < 1e7; decade *= 10)
+        for (double step : {1.0, 2.0, 5.0})
+            ticks->addTick(decade * step, QString::number(decade * step, 'g', 6));
+    x->setTicker(ticks);
+    fit(rect);
+    double lo = qInf(), hi = 0;
+    for (const auto* f : shown) {
+        lo = std::min(lo, f->robotTimePerCompletion_s.low);
+        hi = std::max(hi, std::isfinite(f->robotTimePerCompletion_s.high)
+                              ? f->robotTimePerCompletion_s.high
+                              : f->robotTimePerCompletion_s.mean);
     }
+    x->setRange(std::max(1e-3, lo) / 1.15, hi * 1.15);
+}
+
+}  // namespace
+
+bool buildFollowingParetoFigure(QCustomPlot& plot, const SweepRates& r) {
+    startFigure(plot, QString("Accuracy costs time (b) over %1 seeds: contour following, the "
+                              "trade-off and its Pareto front (labels: follow/reposition mm, "
+                              "threshold)")
+                          .arg(r.seeds));
+    // Active settings only: passive trials almost never complete, and their time per completion
+    // (tens of thousands of seconds) would crush the active trade-off into a corner. They stay
+    // in the tables.
+    Shown shown;
+    for (const auto& f : r.following)
+        if (f.mode == FollowingMode::Active && std::isfinite(f.robotTimePerCompletion_s.mean))
+            shown.push_back(&f);
+    if (shown.empty()) return false;
+    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
+    const auto [completion, lc] =
+        addTitledPanelWithLegendBelow(grid, 0, 0, /*perLine=*/2, "completion (front circled)",
+                                      "robot time per completed trial (s)", "trials completed (%)");
+    const auto [distance, ld] = addTitledPanelWithLegendBelow(
+        grid, 0, 1, /*perLine=*/2, "path error (front circled)",
+        "robot time per completed trial (s)", "mean distance of taps to the contour (mm)");
+    const ParetoPanels panels{completion, distance, lc, ld};
+    addFollowingSeries(panels, shown);
+    addParetoFront(panels, shown);
+    labelPaperAndWinners(panels, shown);
+    for (QCPAxisRect* rect : {completion, distance}) logTimeAxis(rect, shown);
     return true;
 }
 

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "app/figures/FigureLayout.h"
-#include "core/stats/Intervals.h"
 #include "core/run/ExperimentRun.h"
+#include "core/stats/Intervals.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
@@ -128,23 +128,83 @@ QString classifierTitleNote(const RunResult& r, bool following) {
     return note;
 }
 
+namespace {
+
+/// A colour scale for `map` beside `rect` in `grid` at `column` + 1, its top fixed so that runs
+/// compare by eye, its height the panel's; cells without data blank.
+void addHeatScale(QCustomPlot& plot, QCPLayoutGrid* grid, int column, bool oneColumn,
+                  QCPAxisRect* rect, QCPColorMap* map, const QString& unit, double top) {
+    map->setInterpolate(false);
+    map->setTightBoundary(false);
+    auto* scale = new QCPColorScale(&plot);
+    grid->addElement(0, column + 1, scale);
+    if (oneColumn) grid->setColumnStretchFactors({1.0, 0.05});
+    scale->setType(QCPAxis::atRight);
+    scale->axis()->setLabel(unit);
+    map->setColorScale(scale);
+    QCPColorGradient gradient = heatGradient();
+    gradient.setNanHandling(QCPColorGradient::nhTransparent);
+    map->setGradient(gradient);
+    map->setDataRange(QCPRange(0, top));
+    auto* margins = new QCPMarginGroup(&plot);
+    rect->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
+    scale->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
+}
+
+/// A map over the class grid (position across, orientation up) of one value per class.
+template <typename Value>
+void fillClassMap(QCPAxisRect* rect, QCPColorMap* map, const RunResult& r, Value value) {
+    const ClassSet& cs = r.classes;
+    const int O = static_cast<int>(cs.orientationsDeg.size()), P = cs.positions;
+    map->data()->setSize(P, O);
+    map->data()->setRange(QCPRange(1, P), QCPRange(0, O - 1));
+    for (const auto& e : r.validation.byClass)
+        map->data()->setCell(e.position - 1, e.orientationIndex, value(e));
+    rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
+    rect->axis(QCPAxis::atLeft)->setRange(-0.5, O - 0.5);
+    rect->axis(QCPAxis::atLeft)->setTicker(orientationTicker(cs));
+}
+
+/// Panels C and D of Figure 6: an error by position, mean over orientations ± 1 s.d., the
+/// valid range shaded.
+void fillErrorLine(QCustomPlot& plot, QCPAxisRect* rect, const RunResult& r, bool angle) {
+    const int P = r.classes.positions;
+    const auto& mean = angle ? r.validation.angleMean : r.validation.positionMean;
+    const auto& sd = angle ? r.validation.angleStd : r.validation.positionStd;
+    rect->axis(QCPAxis::atBottom)->setLabel("position (mm; 1 = plane, 18 = air)");
+    rect->axis(QCPAxis::atLeft)->setLabel(angle ? "angle error (°)" : "position error (mm)");
+    setPanelTitle(rect, angle ? "C  angle error, mean over orientations ± 1 s.d."
+                              : "D  position error, mean over orientations ± 1 s.d.");
+    auto* g = plot.addGraph(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+    QVector<double> x, y, e;
+    double top = 0.0;
+    for (int p = 1; p <= P; ++p) {
+        x << p;
+        y << mean[static_cast<std::size_t>(p - 1)];
+        e << sd[static_cast<std::size_t>(p - 1)];
+        top = std::max(top, y.back() + e.back());
+    }
+    g->setData(x, y, true);
+    g->setPen(QPen(QColor(31, 119, 180), 2));
+    g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, 6));
+    auto* bars = new QCPErrorBars(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+    bars->setDataPlottable(g);
+    bars->setData(e);
+    bars->setPen(QPen(QColor(31, 119, 180)));
+    const double yMax = std::max(top * 1.15, angle ? 10.0 : 1.0);
+    rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
+    integerTicks(rect->axis(QCPAxis::atBottom), 1.0);
+    rect->axis(QCPAxis::atLeft)->setRange(0.0, yMax);
+    shadeValidRange(rect, r, yMax);
+}
+
+}  // namespace
+
 void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
     const ClassSet& cs = r.classes;
-    const int O = static_cast<int>(cs.orientationsDeg.size());
-    const int P = cs.positions;
-    const double maxAngle = 180.0;
     // Fixed scales so that runs compare by eye; position errors above a third of the window are
     // all "far off" and share the top colour.
-    const double maxPosition = std::ceil((P - 1) * cs.positionStep_mm / 3.0);
-
-    struct Heat {
-        const char* title;
-        double max;
-        bool angle;
-        const char* unit;
-    };
-    const Heat heats[2] = {{"A  angle error", maxAngle, true, "angle error (°)"},
-                           {"B  position error", maxPosition, false, "position error (mm)"}};
+    const double maxPosition = std::ceil((cs.positions - 1) * cs.positionStep_mm / 3.0);
     startFigure(plot, "Figure 6 - offline validation" + classifierTitleNote(r, false),
                 QString("Over %1 test taps: angle error %2°, position error %3 mm;\nnoise "
                         "floor %4 counts. In B, errors of %5 mm or more share the top colour.")
@@ -159,98 +219,47 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
     const bool oneColumn = plot.height() > plot.width();
     auto* left = new QCPMarginGroup(&plot);
     QCPLayoutGrid* heatRow = oneColumn ? nullptr : addFigureRow(plot, 1.0);
-    QCPLayoutGrid* lineRow = nullptr;
     for (int h = 0; h < 2; ++h) {
+        const bool angle = h == 0;
         QCPLayoutGrid* upper = oneColumn ? addFigureRow(plot, 0.6) : heatRow;
         const int column = oneColumn ? 0 : 2 * h;
         auto* rect =
             addPanel(upper, 0, column, "position (mm; 1 = plane, 18 = air)", "edge orientation");
         rect->setMarginGroup(QCP::msLeft, left);
-        rect->axis(QCPAxis::atLeft)->setTicker(orientationTicker(cs));
-        setPanelTitle(rect, heats[h].title);
+        setPanelTitle(rect, angle ? "A  angle error" : "B  position error");
         auto* map = new QCPColorMap(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
-        map->data()->setSize(P, O);
-        map->data()->setRange(QCPRange(1, P), QCPRange(0, O - 1));
-        for (const auto& e : r.validation.byClass)
-            map->data()->setCell(e.position - 1, e.orientationIndex,
-                                 heats[h].angle ? e.angleError_deg : e.positionError_mm);
-        map->setInterpolate(false);
-        map->setTightBoundary(false);
-        auto* scale = new QCPColorScale(&plot);
-        upper->addElement(0, column + 1, scale);
-        if (oneColumn) upper->setColumnStretchFactors({1.0, 0.05});
-        scale->setType(QCPAxis::atRight);
-        scale->axis()->setLabel(heats[h].unit);
-        map->setColorScale(scale);
-        map->setGradient(heatGradient());
-        map->setDataRange(QCPRange(0, heats[h].max));  // fixed scale: runs compare by eye
-        auto* margins = new QCPMarginGroup(&plot);
-        rect->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
-        scale->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
-        rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
+        fillClassMap(rect, map, r, [&](const ClassError& e) {
+            return angle ? e.angleError_deg : e.positionError_mm;
+        });
         integerTicks(rect->axis(QCPAxis::atBottom), 1.0);
-        rect->axis(QCPAxis::atLeft)->setRange(-0.5, O - 0.5);
+        addHeatScale(plot, upper, column, oneColumn, rect, map,
+                     angle ? "angle error (°)" : "position error (mm)",
+                     angle ? 180.0 : maxPosition);
     }
-    // Heatmaps and their scales sit in row 0, columns 0..3; each line panel has a row of its own
-    // below, the whole width (18 positions with their error bars read well in a single column).
-    struct Line {
-        const char* title;
-        const std::vector<double>* mean;
-        const std::vector<double>* sd;
-        const char* unit;
-    };
-    const Line lines[2] = {
-        {"C  angle error, mean over orientations ± 1 s.d.", &r.validation.angleMean,
-         &r.validation.angleStd, "angle error (°)"},
-        {"D  position error, mean over orientations ± 1 s.d.", &r.validation.positionMean,
-         &r.validation.positionStd, "position error (mm)"}};
+    // Each line panel has a row of its own below the heatmaps (or both in one row, on a wide
+    // plot): 18 positions with their error bars read well in a single column.
+    QCPLayoutGrid* lineRow = oneColumn ? nullptr : addFigureRow(plot, 1.0);
     for (int l = 0; l < 2; ++l) {
         auto* rect = new QCPAxisRect(&plot);
-        if (oneColumn) {
+        if (oneColumn)
             addFigureRow(plot, 0.75)->addElement(0, 0, rect);
-        } else {
-            if (!lineRow) lineRow = addFigureRow(plot, 1.0);
+        else
             lineRow->addElement(0, l, rect);
-        }
         if (l == 0 || oneColumn) rect->setMarginGroup(QCP::msLeft, left);
-        rect->axis(QCPAxis::atBottom)->setLabel("position (mm; 1 = plane, 18 = air)");
-        rect->axis(QCPAxis::atLeft)->setLabel(lines[l].unit);
-        setPanelTitle(rect, lines[l].title);
-        auto* g = plot.addGraph(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
-        QVector<double> x, y, e;
-        double top = 0.0;
-        for (int p = 1; p <= P; ++p) {
-            x << p;
-            y << (*lines[l].mean)[static_cast<std::size_t>(p - 1)];
-            e << (*lines[l].sd)[static_cast<std::size_t>(p - 1)];
-            top = std::max(top, y.back() + e.back());
-        }
-        g->setData(x, y, true);
-        g->setPen(QPen(QColor(31, 119, 180), 2));
-        g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, 6));
-        auto* bars = new QCPErrorBars(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
-        bars->setDataPlottable(g);
-        bars->setData(e);
-        bars->setPen(QPen(QColor(31, 119, 180)));
-        const double yMax = std::max(top * 1.15, l == 0 ? 10.0 : 1.0);
-        rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
-        integerTicks(rect->axis(QCPAxis::atBottom), 1.0);
-        rect->axis(QCPAxis::atLeft)->setRange(0.0, yMax);
-        shadeValidRange(rect, r, yMax);
+        fillErrorLine(plot, rect, r, l == 0);
     }
     if (heatRow) heatRow->setColumnStretchFactors({1.0, 0.06, 1.0, 0.06});
 }
 
-bool buildContinuousAngleFigure(QCustomPlot& plot, const RunResult& r) {
-    const ValidationResult& v = r.validation;
-    if (!v.continuousValidated) return false;
-    const ClassSet& cs = r.classes;
-    const int O = static_cast<int>(cs.orientationsDeg.size()), P = cs.positions;
-    constexpr double kTop = 20.0;  // degrees: the colour scale's top, fixed so runs compare
-    // B: following taps perceived as an edge, binned by the true edge angle and offset.
-    constexpr int kAngleBins = 36, kOffsetBins = 9;  // 10 degrees; -4.5..4.5 mm
+namespace {
+
+constexpr int kAngleBins = 36, kOffsetBins = 9;  // 10 degrees; -4.5..4.5 mm
+
+/// Following taps perceived as an edge, binned by the true edge angle and offset: each cell's
+/// angle errors; the taps binned into `taps`.
+std::vector<std::vector<double>> followingCells(const RunResult& r, int& taps) {
     std::vector<std::vector<double>> cells(static_cast<std::size_t>(kAngleBins * kOffsetBins));
-    int followingTaps = 0;
+    taps = 0;
     for (const TrialRun& t : r.trials)
         for (const FollowedTap& f : t.result.taps) {
             if (!f.percept.continuous || f.percept.region != Region::Edge) continue;
@@ -260,8 +269,33 @@ bool buildContinuousAngleFigure(QCustomPlot& plot, const RunResult& r) {
             if (o < 0 || o >= kOffsetBins) continue;
             cells[static_cast<std::size_t>(a * kOffsetBins + o)].push_back(
                 angleDifferenceDeg(f.percept.orientationDeg, f.trueEdgeDeg));
-            ++followingTaps;
+            ++taps;
         }
+    return cells;
+}
+
+void fillFollowingMap(QCPAxisRect* rect, QCPColorMap* map,
+                      const std::vector<std::vector<double>>& cells) {
+    map->data()->setSize(kOffsetBins, kAngleBins);
+    map->data()->setRange(QCPRange(-4.0, 4.0), QCPRange(5.0, 355.0));
+    for (int a = 0; a < kAngleBins; ++a)
+        for (int o = 0; o < kOffsetBins; ++o) {
+            const auto& c = cells[static_cast<std::size_t>(a * kOffsetBins + o)];
+            map->data()->setCell(o, a, stats::medianOr(c, std::nan("")));
+        }
+    rect->axis(QCPAxis::atBottom)->setRange(-4.5, 4.5);
+    rect->axis(QCPAxis::atLeft)->setRange(0.0, 360.0);
+    integerTicks(rect->axis(QCPAxis::atLeft), 90.0);
+}
+
+}  // namespace
+
+bool buildContinuousAngleFigure(QCustomPlot& plot, const RunResult& r) {
+    const ValidationResult& v = r.validation;
+    if (!v.continuousValidated) return false;
+    constexpr double kTop = 20.0;  // degrees: the colour scale's top, fixed so runs compare
+    int followingTaps = 0;
+    const auto cells = followingCells(r, followingTaps);
     auto text = [](double x) { return x >= 0.0 ? QString::number(x, 'f', 2) : QString("-"); };
     startFigure(
         plot, "Continuous edge percept - angle error" + classifierTitleNote(r, false),
@@ -287,43 +321,13 @@ bool buildContinuousAngleFigure(QCustomPlot& plot, const RunResult& r) {
         setPanelTitle(rect, panel == 0 ? "A  test taps, median per class"
                                        : "B  following taps, median per cell");
         auto* map = new QCPColorMap(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
-        if (panel == 0) {
-            map->data()->setSize(P, O);
-            map->data()->setRange(QCPRange(1, P), QCPRange(0, O - 1));
-            for (const auto& e : v.byClass)
-                map->data()->setCell(
-                    e.position - 1, e.orientationIndex,
-                    e.continuousTaps > 0 ? e.continuousAngleError_deg : std::nan(""));
-            rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
-            rect->axis(QCPAxis::atLeft)->setRange(-0.5, O - 0.5);
-            rect->axis(QCPAxis::atLeft)->setTicker(orientationTicker(cs));
-        } else {
-            map->data()->setSize(kOffsetBins, kAngleBins);
-            map->data()->setRange(QCPRange(-4.0, 4.0), QCPRange(5.0, 355.0));
-            for (int a = 0; a < kAngleBins; ++a)
-                for (int o = 0; o < kOffsetBins; ++o) {
-                    const auto& c = cells[static_cast<std::size_t>(a * kOffsetBins + o)];
-                    map->data()->setCell(o, a, stats::medianOr(c, std::nan("")));
-                }
-            rect->axis(QCPAxis::atBottom)->setRange(-4.5, 4.5);
-            rect->axis(QCPAxis::atLeft)->setRange(0.0, 360.0);
-            integerTicks(rect->axis(QCPAxis::atLeft), 90.0);
-        }
-        map->setInterpolate(false);
-        map->setTightBoundary(false);
-        auto* scale = new QCPColorScale(&plot);
-        grid->addElement(0, column + 1, scale);
-        if (oneColumn) grid->setColumnStretchFactors({1.0, 0.05});
-        scale->setType(QCPAxis::atRight);
-        scale->axis()->setLabel("angle error (°)");
-        map->setColorScale(scale);
-        QCPColorGradient gradient = heatGradient();
-        gradient.setNanHandling(QCPColorGradient::nhTransparent);  // cells without taps: blank
-        map->setGradient(gradient);
-        map->setDataRange(QCPRange(0, kTop));
-        auto* margins = new QCPMarginGroup(&plot);
-        rect->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
-        scale->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
+        if (panel == 0)
+            fillClassMap(rect, map, r, [](const ClassError& e) {
+                return e.continuousTaps > 0 ? e.continuousAngleError_deg : std::nan("");
+            });
+        else
+            fillFollowingMap(rect, map, cells);
+        addHeatScale(plot, grid, column, oneColumn, rect, map, "angle error (°)", kTop);
     }
     if (row) row->setColumnStretchFactors({1.0, 0.06, 1.0, 0.06});
     return true;
