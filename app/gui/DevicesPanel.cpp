@@ -196,6 +196,11 @@ void DevicesPanel::addStageBox(QVBoxLayout* layout) {
     sf->addRow(tr("State"), stageState_);
     sf->addRow(tr("Position"), position_);
     sf->addRow(tr("Soft limits"), limits_);
+    addStageMoves(sf);
+    layout->addWidget(stage);
+}
+
+void DevicesPanel::addStageMoves(QFormLayout* sf) {
     step_ = new QDoubleSpinBox;
     step_->setRange(0.01, 100);
     step_->setValue(1.0);
@@ -245,7 +250,6 @@ void DevicesPanel::addStageBox(QVBoxLayout* layout) {
         QMetaObject::invokeMethod(
             session_, [s = session_, x, y] { s->goTo(x, y); }, Qt::QueuedConnection);
     });
-    layout->addWidget(stage);
 }
 
 void DevicesPanel::addTapperBox(QVBoxLayout* layout) {

@@ -9,6 +9,7 @@
 #include "app/gui/DeviceSession.h"
 
 class QVBoxLayout;
+class QFormLayout;
 class QLabel;
 class QDoubleSpinBox;
 class QComboBox;
@@ -49,6 +50,7 @@ private:
     // The constructor's parts, in the order shown, then the session's signals.
     void addConnectionButtons(QVBoxLayout* layout);
     void addStageBox(QVBoxLayout* layout);
+    void addStageMoves(QFormLayout* form);  ///< jog, home and go-to
     void addTapperBox(QVBoxLayout* layout);
     void addFingertipBox(QVBoxLayout* layout);
     void addRawLog(QVBoxLayout* layout);

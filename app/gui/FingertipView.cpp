@@ -80,19 +80,7 @@ double FingertipView::discRadius() const {
     return kTaxelRadius_mm * std::abs(toWidget(0, 1).x() - toWidget(0, 0).x());
 }
 
-void FingertipView::paintEvent(QPaintEvent*) {
-    QPainter p(this);
-    p.setRenderHint(QPainter::Antialiasing);
-    p.fillRect(rect(), palette().base());
-    QFont title = font();
-    title.setBold(true);
-    p.setFont(title);
-    p.setPen(palette().text().color());
-    p.drawText(QRectF(8, 2, width() - 16, 18), Qt::AlignLeft | Qt::AlignVCenter,
-               tr("Fingertip (pad view)"));
-    p.setFont(font());
-    if (fingertip_.taxels.empty()) return;
-
+void FingertipView::paintPad(QPainter& p) const {
     // The outline: the cylinder's last stretch, then the cap to the tip.
     const double r = fingertip_.radius;
     QPainterPath outline;
@@ -121,7 +109,9 @@ void FingertipView::paintEvent(QPaintEvent*) {
         p.drawText(QRectF(c.x() - disc, c.y() - disc, 2 * disc, 2 * disc), Qt::AlignCenter,
                    QString::number(k));
     }
+}
 
+void FingertipView::paintScale(QPainter& p) const {
     // The colour scale, under the fingertip.
     const QRectF area = outlineArea();
     const QRectF bar(area.left(), height() - 18, area.width() * 0.7, 8);
@@ -131,7 +121,9 @@ void FingertipView::paintEvent(QPaintEvent*) {
     p.setPen(palette().text().color());
     p.drawText(QRectF(bar.right() + 4, bar.top() - 5, area.width() * 0.3, 18),
                Qt::AlignLeft | Qt::AlignVCenter, tr("0-255"));
+}
 
+void FingertipView::paintHistory(QPainter& p) const {
     // The total over the last seconds, and the contact threshold.
     const QRectF h(width() * 0.6 + 4, 30, width() * 0.4 - 14, height() - 60);
     p.setBrush(Qt::NoBrush);
@@ -169,6 +161,24 @@ void FingertipView::paintEvent(QPaintEvent*) {
                                     .arg(threshold_, 0, 'f', 0)
                                     .arg(contact ? tr(": in contact") : QString())
                               : tr("no threshold"));
+}
+
+void FingertipView::paintEvent(QPaintEvent*) {
+    QPainter p(this);
+    p.setRenderHint(QPainter::Antialiasing);
+    p.fillRect(rect(), palette().base());
+    QFont title = font();
+    title.setBold(true);
+    p.setFont(title);
+    p.setPen(palette().text().color());
+    p.drawText(QRectF(8, 2, width() - 16, 18), Qt::AlignLeft | Qt::AlignVCenter,
+               tr("Fingertip (pad view)"));
+    p.setFont(font());
+    if (fingertip_.taxels.empty()) return;
+
+    paintPad(p);
+    paintScale(p);
+    paintHistory(p);
 }
 
 }  // namespace activetouch

@@ -9,6 +9,8 @@
 
 #include "core/fingertip/FingertipSpec.h"
 
+class QPainter;
+
 namespace activetouch {
 
 class FingertipView : public QWidget {
@@ -40,6 +42,11 @@ protected:
     void paintEvent(QPaintEvent* event) override;
 
 private:
+    /// paintEvent()'s parts: the pad's outline with its taxels in their colours, the colour
+    /// scale under it, and the total over the last seconds against the contact threshold.
+    void paintPad(QPainter& p) const;
+    void paintScale(QPainter& p) const;
+    void paintHistory(QPainter& p) const;
     /// The rectangle the fingertip is drawn in and the mm -> pixel map onto it.
     QRectF outlineArea() const;
     QPointF toWidget(double axial, double lateral) const;

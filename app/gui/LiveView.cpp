@@ -19,6 +19,31 @@ LiveView::LiveView(LiveFeed& feed, QWidget* parent)
       traces_(new PlotPanel("last_tap_traces", this)),
       fingertip_(new FingertipView(this)) {
     auto* layout = new QVBoxLayout(this);
+    layout->addLayout(buildReadouts());
+    auto* top = new QSplitter(Qt::Horizontal);
+    top->addWidget(fingertip_);
+    top->addWidget(bars_);
+    top->setChildrenCollapsible(false);
+    top->setStretchFactor(0, 1);
+    top->setStretchFactor(1, 2);
+    top->setSizes({320, 640});
+    auto* split = new QSplitter(Qt::Vertical);
+    split->addWidget(top);
+    split->addWidget(traces_);
+    split->setChildrenCollapsible(false);
+    split->setStretchFactor(0, 1);
+    split->setStretchFactor(1, 1);
+    split->setSizes({400, 400});
+    layout->addWidget(split, 1);
+
+    buildBars();
+    buildTraces();
+    timer_.setInterval(20);
+    connect(&timer_, &QTimer::timeout, this, &LiveView::tick);
+    timer_.start();
+}
+
+QGridLayout* LiveView::buildReadouts() {
     auto* info = new QGridLayout;
     pose_ = new QLabel(tr("Stage: -"));
     pose_->setObjectName("livePose");
@@ -45,23 +70,10 @@ LiveView::LiveView(LiveFeed& feed, QWidget* parent)
     info->addWidget(pause_, 0, 2);
     info->addWidget(percept_, 1, 0, 1, 3);
     info->setColumnStretch(1, 1);
-    layout->addLayout(info);
-    auto* top = new QSplitter(Qt::Horizontal);
-    top->addWidget(fingertip_);
-    top->addWidget(bars_);
-    top->setChildrenCollapsible(false);
-    top->setStretchFactor(0, 1);
-    top->setStretchFactor(1, 2);
-    top->setSizes({320, 640});
-    auto* split = new QSplitter(Qt::Vertical);
-    split->addWidget(top);
-    split->addWidget(traces_);
-    split->setChildrenCollapsible(false);
-    split->setStretchFactor(0, 1);
-    split->setStretchFactor(1, 1);
-    split->setSizes({400, 400});
-    layout->addWidget(split, 1);
+    return info;
+}
 
+void LiveView::buildBars() {
     QCustomPlot& b = bars_->plot();
     b.plotLayout()->insertRow(0);
     b.plotLayout()->addElement(0, 0,
@@ -99,7 +111,9 @@ LiveView::LiveView(LiveFeed& feed, QWidget* parent)
     b.yAxis->setLabel(tr("pressure (counts)"));
     b.xAxis->setRange(-0.6, kFingertipTaxels - 0.4);
     b.yAxis->setRange(0, 255);  // fixed: the fingertip's whole range
+}
 
+void LiveView::buildTraces() {
     QCustomPlot& t = traces_->plot();
     t.plotLayout()->insertRow(0);
     t.plotLayout()->addElement(
@@ -120,10 +134,6 @@ LiveView::LiveView(LiveFeed& feed, QWidget* parent)
     t.yAxis->setLabel(tr("pressure (counts)"));
     t.xAxis->setRange(0, kSamplesPerTap / kSampleRateHz);
     t.yAxis->setRange(0, 255);
-
-    timer_.setInterval(20);
-    connect(&timer_, &QTimer::timeout, this, &LiveView::tick);
-    timer_.start();
 }
 
 void LiveView::setFingertip(const FingertipSpec& fingertip, double contactThreshold) {

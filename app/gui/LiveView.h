@@ -18,6 +18,8 @@ class QCPLayer;
 class QCPItemText;
 class QPushButton;
 
+class QGridLayout;
+
 namespace activetouch {
 
 class FingertipView;
@@ -46,6 +48,11 @@ signals:
     void pausedChanged(bool paused);
 
 private:
+    /// The constructor's parts: the stage, tap and percept read-outs with the pause button; the
+    /// live taxel bars; the last tap's traces.
+    QGridLayout* buildReadouts();
+    void buildBars();
+    void buildTraces();
     void tick();
     /// Takes the newest tap and frame from the feed into the plots' data; whether the bars changed.
     bool takeNewest();

@@ -159,6 +159,10 @@ private:
     void buildToolBar(const QSettings& settings);
     void buildStatusBar();
     void buildMenus();
+    void buildFileMenu();  // the menu bar's parts (MainWindowMenuBar.cpp)
+    void buildRunMenu();
+    void buildViewMenu();
+    void buildHelpMenu();
     void connectRuns();
     // The menus' parts (MainWindowMenus.cpp).
     void fillRecentMenu();

@@ -139,81 +139,90 @@ QString numberText(double v) {
 }
 }  // namespace
 
+/// "name value unit" for a value on `axis`, the name and unit read from its label.
+static QString axisValueText(QCPAxis* axis, double v) {
+    const auto [name, unit] = quantityOf(axis->label());
+    return QString("%1 %2%3").arg(name.isEmpty() ? QString("x") : name, numberText(v),
+                                  unit.isEmpty() ? QString() : " " + unit);
+}
+
+void PlotPanel::ensureTracer() {
+    if (tracer_) return;
+    tracer_ = new QCPItemTracer(plot_);
+    tracer_->setObjectName("valueTracer");
+    tracer_->setLayer("overlay");
+    tracer_->setStyle(QCPItemTracer::tsCircle);
+    tracer_->setSize(9);
+    tracer_->setPen(QPen(QColor(20, 20, 20), 1.5));
+    tracer_->setBrush(Qt::NoBrush);
+    tracer_->setInterpolating(false);
+    tracer_->setSelectable(false);
+    cursorLabel_ = new QCPItemText(plot_);
+    cursorLabel_->setObjectName("valueLabel");
+    cursorLabel_->setLayer("overlay");
+    cursorLabel_->setPadding(QMargins(4, 2, 4, 2));
+    cursorLabel_->setBrush(QColor(255, 255, 255, 230));
+    cursorLabel_->setPen(QPen(QColor(120, 120, 120)));
+    cursorLabel_->setPositionAlignment(Qt::AlignLeft | Qt::AlignBottom);
+    cursorLabel_->position->setType(QCPItemPosition::ptAbsolute);
+    cursorLabel_->setSelectable(false);
+}
+
+QString PlotPanel::describePoint(QCPAbstractPlottable* p, int index, const QPointF& pos) {
+    double key = 0, value = 0;
+    QString extra;
+    if (auto* g = qobject_cast<QCPGraph*>(p); g && index < g->dataCount()) {
+        key = g->dataMainKey(index);
+        value = g->dataMainValue(index);
+        tracer_->setGraph(g);
+        tracer_->setGraphKey(key);
+    } else if (auto* m = qobject_cast<QCPColorMap*>(p)) {
+        key = p->keyAxis()->pixelToCoord(pos.x());
+        value = p->valueAxis()->pixelToCoord(pos.y());
+        int kx = 0, vy = 0;
+        m->data()->coordToCell(key, value, &kx, &vy);
+        m->data()->cellToCoord(kx, vy, &key, &value);
+        const double cell = m->data()->cell(kx, vy);
+        const QString scale = m->colorScale() ? m->colorScale()->axis()->label() : QString();
+        const auto [name, unit] = quantityOf(scale);
+        extra = QString("\n%1 %2%3")
+                    .arg(name.isEmpty() ? tr("value") : name, numberText(cell),
+                         unit.isEmpty() ? QString() : " " + unit);
+    } else if (auto* d = dynamic_cast<QCPPlottableInterface1D*>(p); d && index < d->dataCount()) {
+        key = d->dataMainKey(index);
+        value = d->dataMainValue(index);
+    } else {
+        key = p->keyAxis()->pixelToCoord(pos.x());
+        value = p->valueAxis()->pixelToCoord(pos.y());
+    }
+    if (!tracer_->graph()) tracer_->position->setCoords(key, value);
+    const QString series = p->name().isEmpty() ? QString() : p->name() + "\n";
+    return series + axisValueText(p->keyAxis(), key) + "\n" + axisValueText(p->valueAxis(), value) +
+           extra;
+}
+
 QString PlotPanel::traceAt(const QPointF& pos) {
     QCPAxisRect* rect = plot_->axisRectAt(pos);
     if (!rect || waitsForData()) {
         hideTracer();
         return {};
     }
-    if (!tracer_) {
-        tracer_ = new QCPItemTracer(plot_);
-        tracer_->setObjectName("valueTracer");
-        tracer_->setLayer("overlay");
-        tracer_->setStyle(QCPItemTracer::tsCircle);
-        tracer_->setSize(9);
-        tracer_->setPen(QPen(QColor(20, 20, 20), 1.5));
-        tracer_->setBrush(Qt::NoBrush);
-        tracer_->setInterpolating(false);
-        tracer_->setSelectable(false);
-        cursorLabel_ = new QCPItemText(plot_);
-        cursorLabel_->setObjectName("valueLabel");
-        cursorLabel_->setLayer("overlay");
-        cursorLabel_->setPadding(QMargins(4, 2, 4, 2));
-        cursorLabel_->setBrush(QColor(255, 255, 255, 230));
-        cursorLabel_->setPen(QPen(QColor(120, 120, 120)));
-        cursorLabel_->setPositionAlignment(Qt::AlignLeft | Qt::AlignBottom);
-        cursorLabel_->position->setType(QCPItemPosition::ptAbsolute);
-        cursorLabel_->setSelectable(false);
-    }
+    ensureTracer();
     QCPAxis* xAxis = rect->axis(QCPAxis::atBottom);
     QCPAxis* yAxis = rect->axis(QCPAxis::atLeft);
     tracer_->setClipAxisRect(rect);
     tracer_->position->setAxes(xAxis, yAxis);
     tracer_->setGraph(nullptr);
-    auto named = [](QCPAxis* axis, double v) {
-        const auto [name, unit] = quantityOf(axis->label());
-        return QString("%1 %2%3").arg(name.isEmpty() ? QString("x") : name, numberText(v),
-                                      unit.isEmpty() ? QString() : " " + unit);
-    };
     QString text;
     int index = -1;
     QCPAbstractPlottable* p = plot_->plottableAt(pos, false, &index);
     if (p && p->keyAxis() && p->keyAxis()->axisRect() == rect && index >= 0) {
-        double key = 0, value = 0;
-        QString extra;
-        if (auto* g = qobject_cast<QCPGraph*>(p); g && index < g->dataCount()) {
-            key = g->dataMainKey(index);
-            value = g->dataMainValue(index);
-            tracer_->setGraph(g);
-            tracer_->setGraphKey(key);
-        } else if (auto* m = qobject_cast<QCPColorMap*>(p)) {
-            key = p->keyAxis()->pixelToCoord(pos.x());
-            value = p->valueAxis()->pixelToCoord(pos.y());
-            int kx = 0, vy = 0;
-            m->data()->coordToCell(key, value, &kx, &vy);
-            m->data()->cellToCoord(kx, vy, &key, &value);
-            const double cell = m->data()->cell(kx, vy);
-            const QString scale = m->colorScale() ? m->colorScale()->axis()->label() : QString();
-            const auto [name, unit] = quantityOf(scale);
-            extra = QString("\n%1 %2%3")
-                        .arg(name.isEmpty() ? tr("value") : name, numberText(cell),
-                             unit.isEmpty() ? QString() : " " + unit);
-        } else if (auto* d = dynamic_cast<QCPPlottableInterface1D*>(p);
-                   d && index < d->dataCount()) {
-            key = d->dataMainKey(index);
-            value = d->dataMainValue(index);
-        } else {
-            key = p->keyAxis()->pixelToCoord(pos.x());
-            value = p->valueAxis()->pixelToCoord(pos.y());
-        }
-        if (!tracer_->graph()) tracer_->position->setCoords(key, value);
-        const QString series = p->name().isEmpty() ? QString() : p->name() + "\n";
-        text = series + named(p->keyAxis(), key) + "\n" + named(p->valueAxis(), value) + extra;
+        text = describePoint(p, index, pos);
         tracer_->setVisible(true);
     } else {
         // Nothing within reach: the axes' values under the cursor.
-        text = named(xAxis, xAxis->pixelToCoord(pos.x())) + "\n" +
-               named(yAxis, yAxis->pixelToCoord(pos.y()));
+        text = axisValueText(xAxis, xAxis->pixelToCoord(pos.x())) + "\n" +
+               axisValueText(yAxis, yAxis->pixelToCoord(pos.y()));
         tracer_->setVisible(false);
     }
     cursorLabel_->setText(text);

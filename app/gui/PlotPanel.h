@@ -14,6 +14,7 @@
 #include "app/figures/FigureExport.h"
 
 class QCustomPlot;
+class QCPAbstractPlottable;
 class QCPItemTracer;
 class QCPItemText;
 class QCPRange;
@@ -71,6 +72,10 @@ private:
     /// Before the first zoom or pan: keeps the plot's own ranges for resetView().
     void rememberHome();
     void hideTracer();
+    /// traceAt()'s parts: the tracer and its label made once; the plottable's point under the
+    /// cursor, the tracer put on it, as text.
+    void ensureTracer();
+    QString describePoint(QCPAbstractPlottable* p, int index, const QPointF& pos);
     void showMenu(const QPoint& where);
     void exportWithDialog();
     void updateEmptyHint();

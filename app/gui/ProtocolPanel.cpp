@@ -163,65 +163,87 @@ void ProtocolPanel::addTrainingFields(QVBoxLayout* layout) {
               Kind::Integer, 1, 200, 1, [](E e) { return double(e.validRangeWidth); }});
 }
 
+namespace {
+
+/// A following number's label, tooltip and spin-box step.
+struct Step {
+    QString label, tip;
+    double step;
+};
+
+/// The following section's numbers (followingNumbers gives them with their ranges), labelled.
+std::map<std::string, Step> followingSteps() {
+    return {
+        {"follow_step_mm",
+         {ProtocolPanel::tr("Follow step (mm)"),
+          ProtocolPanel::tr("Along the perceived edge, every tap (paper: 2)"), 0.5}},
+        {"reposition_step_mm",
+         {ProtocolPanel::tr("Reposition step (mm)"),
+          ProtocolPanel::tr("Active: along the edge normal toward the valid range (paper: 1)"),
+          0.5}},
+        {"plane_step_mm",
+         {ProtocolPanel::tr("Plane: outward (mm)"),
+          ProtocolPanel::tr("Active, plane percept: outward along the last edge's normal"), 0.5}},
+        {"plane_retreat_step_mm",
+         {ProtocolPanel::tr("Plane: back (mm)"),
+          ProtocolPanel::tr("Active, plane percept: back against the heading"), 0.5}},
+        {"air_inward_step_mm",
+         {ProtocolPanel::tr("Air: inward (mm)"),
+          ProtocolPanel::tr("Active, air percept: inward along the last edge's normal"), 0.5}},
+        {"air_retreat_step_mm",
+         {ProtocolPanel::tr("Air: back (mm)"),
+          ProtocolPanel::tr("Active, air percept: back against the heading"), 0.5}},
+        {"orientation_trust_max_error_deg",
+         {ProtocolPanel::tr("Orientation trusted up to (deg)"),
+          ProtocolPanel::tr(
+              "Active: use a percept's orientation only at positions whose mean validation angle "
+              "error is at most this; 180 trusts every edge percept, as the paper does"),
+          5.0}},
+        {"belief_threshold",
+         {ProtocolPanel::tr("Belief threshold"),
+          ProtocolPanel::tr(
+              "Sequential perception: 0 decides from each tap alone (the paper); a value in (0, "
+              "1) taps again in place until the belief reaches it"),
+          0.01}},
+        {"completion_radius_mm",
+         {ProtocolPanel::tr("Completed within (mm)"),
+          ProtocolPanel::tr("Completed: back within this of the start after a full perimeter"),
+          0.5}},
+        {"lost_outside_mm",
+         {ProtocolPanel::tr("Lost outside (mm)"),
+          ProtocolPanel::tr("Lost when this far outside the contour"), 1.0}},
+        {"lost_inside_mm",
+         {ProtocolPanel::tr("Lost inside (mm)"),
+          ProtocolPanel::tr("Lost when this far inside the object"), 1.0}},
+        {"tap_cap_perimeters",
+         {ProtocolPanel::tr("Tap cap (perimeters)"),
+          ProtocolPanel::tr("A trial ends after this many perimeters' worth of follow steps"),
+          0.5}},
+        {"coverage_radius_mm",
+         {ProtocolPanel::tr("Coverage radius (mm)"),
+          ProtocolPanel::tr("A point of the contour is covered by a tap this close"), 0.5}},
+        {"percept_temperature",
+         {ProtocolPanel::tr("Percept temperature"),
+          ProtocolPanel::tr(
+              "Continuous percept: log-likelihoods are divided by this before the posterior is "
+              "formed; 0 takes the tap's samples per taxel"),
+          1.0}},
+        {"same_edge_tolerance_deg",
+         {ProtocolPanel::tr("Same edge within (deg)"),
+          ProtocolPanel::tr(
+              "Continuous percept: edge angles this close count as the same edge when confirming "
+              "it"),
+          1.0}},
+    };
+}
+
+}  // namespace
+
 void ProtocolPanel::addFollowingFields(QVBoxLayout* layout) {
     using E = const ExperimentSpec&;
     const QString following = tr("Following");
     auto* followingBox = addGroup(layout, following);
-    // The file's numbers, with the ranges it may give (followingNumbers); here their labels.
-    struct Step {
-        QString label, tip;
-        double step;
-    };
-    const std::map<std::string, Step> steps{
-        {"follow_step_mm",
-         {tr("Follow step (mm)"), tr("Along the perceived edge, every tap (paper: 2)"), 0.5}},
-        {"reposition_step_mm",
-         {tr("Reposition step (mm)"),
-          tr("Active: along the edge normal toward the valid range (paper: 1)"), 0.5}},
-        {"plane_step_mm",
-         {tr("Plane: outward (mm)"),
-          tr("Active, plane percept: outward along the last edge's normal"), 0.5}},
-        {"plane_retreat_step_mm",
-         {tr("Plane: back (mm)"), tr("Active, plane percept: back against the heading"), 0.5}},
-        {"air_inward_step_mm",
-         {tr("Air: inward (mm)"), tr("Active, air percept: inward along the last edge's normal"),
-          0.5}},
-        {"air_retreat_step_mm",
-         {tr("Air: back (mm)"), tr("Active, air percept: back against the heading"), 0.5}},
-        {"orientation_trust_max_error_deg",
-         {tr("Orientation trusted up to (deg)"),
-          tr("Active: use a percept's orientation only at positions whose mean validation angle "
-             "error is at most this; 180 trusts every edge percept, as the paper does"),
-          5.0}},
-        {"belief_threshold",
-         {tr("Belief threshold"),
-          tr("Sequential perception: 0 decides from each tap alone (the paper); a value in (0, "
-             "1) taps again in place until the belief reaches it"),
-          0.01}},
-        {"completion_radius_mm",
-         {tr("Completed within (mm)"),
-          tr("Completed: back within this of the start after a full perimeter"), 0.5}},
-        {"lost_outside_mm",
-         {tr("Lost outside (mm)"), tr("Lost when this far outside the contour"), 1.0}},
-        {"lost_inside_mm",
-         {tr("Lost inside (mm)"), tr("Lost when this far inside the object"), 1.0}},
-        {"tap_cap_perimeters",
-         {tr("Tap cap (perimeters)"),
-          tr("A trial ends after this many perimeters' worth of follow steps"), 0.5}},
-        {"coverage_radius_mm",
-         {tr("Coverage radius (mm)"), tr("A point of the contour is covered by a tap this close"),
-          0.5}},
-        {"percept_temperature",
-         {tr("Percept temperature"),
-          tr("Continuous percept: log-likelihoods are divided by this before the posterior is "
-             "formed; 0 takes the tap's samples per taxel"),
-          1.0}},
-        {"same_edge_tolerance_deg",
-         {tr("Same edge within (deg)"),
-          tr("Continuous percept: edge angles this close count as the same edge when confirming "
-             "it"),
-          1.0}},
-    };
+    const std::map<std::string, Step> steps = followingSteps();
     for (const FollowingNumber& n : followingNumbers()) {
         const auto it = steps.find(n.key);
         const Step s = it != steps.end() ? it->second : Step{QString(n.key), QString(), 1.0};

@@ -1,12 +1,7 @@
 // test_sizes: no production file (core/, devices/, app/; .cpp and .h) over 500 lines and no
 // function in one over 80 (docs/design.md §1). Names every file and function past its bound.
-//   check_sizes <repository> [<still over>]   checks the tree; exit 1 naming what is over
-//   check_sizes --self-test                   shows that it finds a long file and a long function
-//
-// <still over> lists, one a line, what is over its bound today and is being split ("path" for a
-// file, "path: function" for a function): those are reported but pass. Anything over that the
-// list does not name fails, and so does a name on the list that is no longer over, so the list
-// only ever shrinks.
+//   check_sizes <repository>    checks the tree; exit 1 naming what is over
+//   check_sizes --self-test     shows that it finds a long file and a long function
 //
 // A function is found as a brace block opened where only namespaces, classes and linkage blocks
 // enclose it, after a head with a parameter list and no '=' outside parentheses (so aggregate
@@ -33,7 +28,6 @@ constexpr int kMaxFunctionLines = 80;
 struct Finding {
     std::string where;  ///< "file:line"
     std::string what;
-    std::string key;  ///< "file", or "file: function", as the list of what is still over names it
 };
 
 /// `text` with comments and literals blanked (newlines kept, so lines still count).
@@ -109,8 +103,7 @@ void checkFileLength(const std::string& file, const std::string& text, std::vect
     if (lines > kMaxFileLines)
         out.push_back({file,
                        std::to_string(lines) + " lines, over " + std::to_string(kMaxFileLines) +
-                           ": split it where its responsibilities divide",
-                       file});
+                           ": split it where its responsibilities divide"});
 }
 
 /// Functions over kMaxFunctionLines in `text` (preprocessor lines already blanked).
@@ -148,8 +141,7 @@ void checkFunctions(const std::string& file, const std::string& text, std::vecto
                     out.push_back({file + ":" + std::to_string(s.firstLine),
                                    s.name + " is " + std::to_string(length) + " lines, over " +
                                        std::to_string(kMaxFunctionLines) +
-                                       ": split it into named steps",
-                                   file + ": " + s.name});
+                                       ": split it into named steps"});
             }
             head.clear();
             headStarted = false;
@@ -224,44 +216,18 @@ int selfTest() {
     return ok ? 0 : 1;
 }
 
-std::vector<std::string> stillOver(const char* path) {
-    std::vector<std::string> keys;
-    if (!path) return keys;
-    std::ifstream in(path);
-    std::string l;
-    while (std::getline(in, l)) {
-        if (l.empty() || l[0] == '#') continue;
-        keys.push_back(l);
-    }
-    return keys;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
     if (argc == 2 && std::string(argv[1]) == "--self-test") return selfTest();
-    if (argc != 2 && argc != 3) {
-        std::fprintf(stderr, "usage: check_sizes <repository> [<still over>] | --self-test\n");
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: check_sizes <repository> | --self-test\n");
         return 2;
     }
     const std::vector<Finding> findings = checkTree(argv[1]);
-    const std::vector<std::string> listed = stillOver(argc == 3 ? argv[2] : nullptr);
-    int failures = 0, known = 0;
-    std::vector<std::string> seen;
-    for (const Finding& x : findings) {
-        const bool onList = std::find(listed.begin(), listed.end(), x.key) != listed.end();
-        std::printf("%s%s: %s\n", onList ? "still over: " : "", x.where.c_str(), x.what.c_str());
-        (onList ? known : failures) += 1;
-        seen.push_back(x.key);
-    }
-    for (const std::string& key : listed)
-        if (std::find(seen.begin(), seen.end(), key) == seen.end()) {
-            std::printf("%s: within its bound now; take it off %s\n", key.c_str(), argv[2]);
-            ++failures;
-        }
-    std::printf(
-        "%d production files or functions over their bounds (%d lines a file, %d a "
-        "function) and not listed; %d listed as still being split\n",
-        failures, kMaxFileLines, kMaxFunctionLines, known);
-    return failures == 0 ? 0 : 1;
+    for (const Finding& x : findings) std::printf("%s: %s\n", x.where.c_str(), x.what.c_str());
+    std::printf("%zu production files or functions over their bounds (%d lines a file, %d a "
+                "function)\n",
+                findings.size(), kMaxFileLines, kMaxFunctionLines);
+    return findings.empty() ? 0 : 1;
 }
