@@ -1,8 +1,3 @@
-#include "app/cli/Commands.h"
-#include "app/cli/CliSupport.h"
-#include "core/analysis/ComparisonShards.h"
-#include "app/cli/CommandLine.h"
-
 #include <QApplication>
 #include <algorithm>
 #include <atomic>
@@ -20,16 +15,15 @@
 #include <variant>
 #include <vector>
 
+#include "app/cli/CliSupport.h"
+#include "app/cli/CommandLine.h"
+#include "app/cli/Commands.h"
 #include "app/figures/ComparisonFigures.h"
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
-#include "core/run/ExperimentFiles.h"
-#include "core/run/RunArtefacts.h"
-#include "core/run/ExperimentRun.h"
-#include "core/run/RecordedRuns.h"
+#include "core/analysis/ComparisonShards.h"
 #include "core/analysis/PairedComparison.h"
-#include "core/run/RunFolder.h"
 #include "core/analysis/SeedRates.h"
 #include "core/analysis/SeedShards.h"
 #include "core/experiment/Experiment.h"
@@ -38,6 +32,11 @@
 #include "core/records/FollowingRecording.h"
 #include "core/records/TapCsv.h"
 #include "core/rig/Rig.h"
+#include "core/run/ExperimentFiles.h"
+#include "core/run/ExperimentRun.h"
+#include "core/run/RecordedRuns.h"
+#include "core/run/RunArtefacts.h"
+#include "core/run/RunFolder.h"
 #include "devices/rigs/RigAssembly.h"
 #include "devices/rigs/RigFile.h"
 #include "devices/simulated/SimulatedWorld.h"
@@ -48,12 +47,23 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// A refusal of shards to run again, with a line a script can read: "rerun shards: 3,7".
+int refuseShards(const ShardsToRerun& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    std::string list;
+    for (const int k : e.shards()) list += (list.empty() ? "" : ",") + std::to_string(k);
+    std::fprintf(stderr, "rerun shards: %s\n", list.c_str());
+    return kBadInput;
+}
+
 /// merge over the folders of a compare run's shards.
 int mergeComparisons(const std::vector<std::string>& folders, const std::string& outDir,
                      bool figures, bool replace, int argc, char** argv) {
     ComparisonShardFile merged;
     try {
         merged = mergeComparisonShards(folders);
+    } catch (const ShardsToRerun& e) {
+        return refuseShards(e);
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return kBadInput;
@@ -101,6 +111,8 @@ int commandMerge(const std::vector<std::string>& args, int argc, char** argv) {
     SeedShardFile merged;
     try {
         merged = mergeSeedShards(folders);
+    } catch (const ShardsToRerun& e) {
+        return refuseShards(e);
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return kBadInput;

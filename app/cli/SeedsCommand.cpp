@@ -1,6 +1,3 @@
-#include "app/cli/Commands.h"
-#include "app/cli/CliSupport.h"
-
 #include <QApplication>
 #include <algorithm>
 #include <atomic>
@@ -18,16 +15,14 @@
 #include <variant>
 #include <vector>
 
+#include "app/cli/CliSupport.h"
+#include "app/cli/Commands.h"
 #include "app/figures/ComparisonFigures.h"
 #include "app/figures/FigureExport.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
-#include "core/run/ExperimentFiles.h"
-#include "core/run/RunArtefacts.h"
-#include "core/run/ExperimentRun.h"
-#include "core/run/RecordedRuns.h"
 #include "core/analysis/PairedComparison.h"
-#include "core/run/RunFolder.h"
+#include "core/analysis/SeedJournal.h"
 #include "core/analysis/SeedRates.h"
 #include "core/analysis/SeedShards.h"
 #include "core/experiment/Experiment.h"
@@ -36,6 +31,11 @@
 #include "core/records/FollowingRecording.h"
 #include "core/records/TapCsv.h"
 #include "core/rig/Rig.h"
+#include "core/run/ExperimentFiles.h"
+#include "core/run/ExperimentRun.h"
+#include "core/run/RecordedRuns.h"
+#include "core/run/RunArtefacts.h"
+#include "core/run/RunFolder.h"
 #include "devices/rigs/RigAssembly.h"
 #include "devices/rigs/RigFile.h"
 #include "devices/simulated/SimulatedWorld.h"
@@ -43,6 +43,37 @@
 namespace activetouch::cli {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+/// A seeds run of this experiment, range and shard that was cut short in `outDir` (killed,
+/// pre-empted or stopped): what its journal holds. Nothing where the folder holds no such run
+/// (the claim then says what it holds) or --replace starts afresh.
+std::optional<JournalResume> cutShortRun(const std::string& outDir, const SeedShardFile& run,
+                                         const SeedRange& range, bool replace) {
+    if (replace || !range.seeds || !holdsRun(outDir)) return std::nullopt;
+    return readSeedJournal(outDir, run, range.seeds->first, range.seeds->second);
+}
+
+void printResume(const JournalResume& r) {
+    const std::uint64_t done = r.outcomes.size();
+    if (done == 0)
+        std::printf("resuming a run cut short before its first seed: running seeds %llu-%llu\n",
+                    static_cast<unsigned long long>(r.blockFirst),
+                    static_cast<unsigned long long>(r.blockLast));
+    else
+        std::printf("resuming a run cut short: seeds %llu-%llu were done (from its journal), %s\n",
+                    static_cast<unsigned long long>(r.blockFirst),
+                    static_cast<unsigned long long>(r.blockFirst + done - 1),
+                    r.blockFirst + done > r.blockLast
+                        ? "none left to run"
+                        : ("running " + std::to_string(r.blockFirst + done) + "-" +
+                           std::to_string(r.blockLast))
+                              .c_str());
+    std::fflush(stdout);
+}
+
+}  // namespace
 
 int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     const RunArguments parsed =
@@ -60,23 +91,50 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     const double runs = range.runs();
     if (!planAccepted(spec, runs, parsed.allowLongPlan)) return kBadInput;
     if (outDir.empty()) outDir = (fs::path("results") / (spec.name + "_seeds")).string();
-    const auto claimed = claimOrSay(outDir, "seeds", spec, runFactsOf(spec), parsed.replace);
+    const SeedShardFile run{spec.name,   experimentFingerprint(experimentPath, spec),
+                            range.first, range.last,
+                            range.shard, {}};
+    std::optional<JournalResume> resumed;
+    try {
+        resumed = cutShortRun(outDir, run, range, parsed.replace);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    }
+    if (resumed) printResume(*resumed);
+    const auto claimed =
+        claimOrSay(outDir, "seeds", spec, runFactsOf(spec), parsed.replace || resumed);
     if (!claimed) return kBadInput;
+    const std::vector<SeedOutcome> before =
+        resumed ? resumed->outcomes : std::vector<SeedOutcome>{};
     int failedRuns = 0;
     const int code = overSeeds(
         "run failed", outDir, "rates.csv", parsed.figures, range.jobs, argc, argv,
         [&] {
-            const SeedRates rates =
-                seeds ? runSeeds(simulatedRigs(), spec, seeds->first, seeds->second, outDir, printSeedOutcome,
-                                 range.jobs)
-                      : runSeeds(simulatedRigs(), spec, 1, 0, outDir);
+            if (!seeds) {
+                const SeedRates rates = runSeeds(simulatedRigs(), spec, 1, 0, outDir);
+                writeSeedShardFile(outDir, {run.experiment, run.fingerprint, range.first,
+                                            range.last, range.shard, rates.seeds});
+                printShardBlock(range);
+                printSeedRates(spec.name, rates, range.first, range.first);
+                return rates;
+            }
+            // Each seed's outcome journalled as it finishes: a run cut short resumes from there.
+            SeedJournal journal(outDir, run, before);
+            const SeedRates rates = runSeeds(
+                simulatedRigs(), spec, seeds->first + before.size(), seeds->second, outDir,
+                [&](const SeedOutcome& o) {
+                    journal.append(o);
+                    return printSeedOutcome(o);
+                },
+                range.jobs, before);
             failedRuns = rates.runsFailed().count;
+            if (rates.seeds.size() == seeds->second - seeds->first + 1) journal.finish();
             // Every seed's whole outcome, so that shards merge into exactly one run's files.
-            writeSeedShardFile(outDir, {spec.name, experimentFingerprint(experimentPath, spec),
-                                        range.first, range.last, range.shard, rates.seeds});
+            writeSeedShardFile(outDir, {run.experiment, run.fingerprint, range.first, range.last,
+                                        range.shard, rates.seeds});
             printShardBlock(range);
-            printSeedRates(spec.name, rates, seeds ? seeds->first : range.first,
-                           seeds ? seeds->second : range.first);
+            printSeedRates(spec.name, rates, seeds->first, seeds->second);
             return rates;
         },
         [&](const SeedRates& rates) {

@@ -214,11 +214,13 @@ struct SeedRates {
 /// (forEachSeed: the results are the same for any number). With `outDir`, each seed's row is
 /// appended to <outDir>/rates.csv as it finishes, in seed order, and <outDir>/rates.json is
 /// written at the end. `seedDone` sees each outcome in seed order; returning false stops after
-/// that seed.
+/// that seed. `before` are the outcomes of seeds before `first` that an earlier run of the same
+/// block finished (a run resumed from its journal, SeedJournal.h): they lead the rates and the
+/// table as if run here.
 SeedRates runSeeds(const SimulatedRigs& rigs, const ExperimentSpec& spec, std::uint64_t first,
                    std::uint64_t last, const std::string& outDir,
                    const std::function<bool(const SeedOutcome&)>& seedDone = {},
-                   int jobs = defaultSeedJobs());
+                   int jobs = defaultSeedJobs(), const std::vector<SeedOutcome>& before = {});
 
 /// The rates, and with them the sweeps over seeds where the runs measured any.
 Json seedRatesJson(const SeedRates& rates);

@@ -329,10 +329,15 @@ void appendRatesRow(OutputFile& file, const SeedOutcome& o) {
 
 SeedRates runSeeds(const SimulatedRigs& rigs, const ExperimentSpec& spec, std::uint64_t first,
                    std::uint64_t last, const std::string& outDir,
-                   const std::function<bool(const SeedOutcome&)>& seedDone, int jobs) {
+                   const std::function<bool(const SeedOutcome&)>& seedDone, int jobs,
+                   const std::vector<SeedOutcome>& before) {
     SeedRates rates;
     std::optional<OutputFile> file;
     if (!outDir.empty()) startRatesTable(file, outDir);
+    for (const SeedOutcome& o : before) {
+        rates.seeds.push_back(o);
+        if (file) appendRatesRow(*file, o);
+    }
     const auto run = [&spec, &rigs](std::uint64_t seed) {
         RunOptions options;
         options.simulated = &rigs;

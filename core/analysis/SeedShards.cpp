@@ -5,12 +5,13 @@
 #include <filesystem>
 #include <map>
 
+#include "core/analysis/OutcomeChecks.h"
+#include "core/analysis/SeedJournal.h"
+#include "core/analysis/SweepRates.h"
 #include "core/common/InputError.h"
 #include "core/io/JsonFields.h"
-#include "core/analysis/OutcomeChecks.h"
 #include "core/run/OutputFiles.h"
 #include "core/run/RunFolder.h"
-#include "core/analysis/SweepRates.h"
 
 namespace activetouch {
 namespace fs = std::filesystem;
@@ -340,18 +341,54 @@ void checkShardsCover(const std::vector<ShardPart>& parts, const std::string& co
         if (!holder.count(s)) missing.push_back(s);
         if (s == first.last) break;
     }
-    if (!missing.empty())
-        throw InputError("merge", "",
-                         "seeds " + seedList(missing) + " of " + std::to_string(first.first) + "-" +
-                             std::to_string(first.last) + " are in no shard given; run their " +
-                             "shards (" + command + " --shard K/" +
-                             std::to_string(first.shard.count) + ") and give their folders too");
+    if (missing.empty()) return;
+    std::vector<int> shards;
+    for (int k = 1; k <= first.shard.count; ++k)
+        if (const auto block = shardSeeds(first.first, first.last, {k, first.shard.count}))
+            for (const std::uint64_t s : missing)
+                if (s >= block->first && s <= block->second) {
+                    shards.push_back(k);
+                    break;
+                }
+    std::string named;
+    for (const int k : shards)
+        named += (named.empty() ? "" : ", ") + std::to_string(k) + "/" +
+                 std::to_string(first.shard.count);
+    throw ShardsToRerun("seeds " + seedList(missing) + " of " + std::to_string(first.first) + "-" +
+                            std::to_string(first.last) + " are in no shard given: shards " + named +
+                            "; run them (" + command + " --shard K/" +
+                            std::to_string(first.shard.count) + ") and give their folders too",
+                        shards);
 }
+
+namespace {
+
+/// Refuses, naming every one, shard folders whose run was cut short (their journal is still
+/// there): rerunning each with the command that started it finishes it.
+void refuseCutShort(const std::vector<std::string>& dirs) {
+    std::string named;
+    std::vector<int> shards;
+    for (const std::string& d : dirs)
+        if (const auto c = cutShortShard(d)) {
+            shards.push_back(c->shard.index);
+            named += (named.empty() ? "" : "; ") + d + " (shard " + std::to_string(c->shard.index) +
+                     "/" + std::to_string(c->shard.count) + ", " + std::to_string(c->seedsDone) +
+                     " seeds done)";
+        }
+    if (!shards.empty())
+        throw ShardsToRerun("these shards were cut short: " + named +
+                                "; rerun each with the command that started it, which resumes "
+                                "it where it stopped",
+                            shards);
+}
+
+}  // namespace
 
 SeedShardFile mergeSeedShards(const std::vector<std::string>& dirs) {
     if (dirs.empty()) throw InputError("merge", "", "give the folders of the shards to merge");
     std::vector<SeedShardFile> parts;
     std::vector<ShardPart> cover;
+    refuseCutShort(dirs);
     for (const std::string& d : dirs) {
         checkProvenRun(d, kShardFile);
         parts.push_back(readSeedShardFile(d));

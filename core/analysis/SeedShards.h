@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/io/JsonFields.h"
 #include "core/analysis/SeedRates.h"
+#include "core/io/JsonFields.h"
 
 namespace activetouch {
 
@@ -25,8 +25,8 @@ std::optional<Shard> parseShard(const std::string& text, std::string* error);
 /// The seeds of `shard` of first..last: the range cut into N contiguous blocks as even as can be,
 /// in order. Empty (nothing) for a shard with no seed (more shards than seeds).
 std::optional<std::pair<std::uint64_t, std::uint64_t>> shardSeeds(std::uint64_t first,
-                                                                   std::uint64_t last,
-                                                                   const Shard& shard);
+                                                                  std::uint64_t last,
+                                                                  const Shard& shard);
 
 /// What a seeds folder holds beside its rates: the experiment (its name and a fingerprint of its
 /// resolved settings), the whole range and the shard, and every seed's outcome.
@@ -61,6 +61,18 @@ struct ShardPart {
     std::uint64_t first = 0, last = 0;  ///< the whole range
     Shard shard;
     std::vector<std::uint64_t> seeds;  ///< the seeds it holds
+};
+
+/// A merge refused because shards are missing or were cut short: which shards (K of N) to run
+/// again, with the command that started them (a seeds shard cut short resumes where it stopped).
+class ShardsToRerun : public InputError {
+public:
+    ShardsToRerun(std::string problem, std::vector<int> shards)
+        : InputError("merge", "", std::move(problem)), shards_(std::move(shards)) {}
+    const std::vector<int>& shards() const { return shards_; }
+
+private:
+    std::vector<int> shards_;
 };
 
 /// Refuses (InputError naming the seeds and the folders) shards that ran other settings, another

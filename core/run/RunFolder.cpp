@@ -5,12 +5,12 @@
 #include <filesystem>
 #include <random>
 
-#include "core/run/OutputFiles.h"
 #include "core/common/InputError.h"
 #include "core/experiment/Experiment.h"
 #include "core/io/FileDigest.h"
 #include "core/io/InputFile.h"
 #include "core/io/JsonFields.h"
+#include "core/run/OutputFiles.h"
 #include "core/validation/TrainingProtocol.h"
 
 namespace activetouch {
@@ -79,8 +79,7 @@ std::map<std::string, FileStamp> artefactsIn(const std::string& dir, bool digest
 }
 
 bool isHexDigest(const std::string& text) {
-    return text.size() == 64 &&
-           text.find_first_not_of("0123456789abcdef") == std::string::npos;
+    return text.size() == 64 && text.find_first_not_of("0123456789abcdef") == std::string::npos;
 }
 
 // A file's entry in run.json: {"bytes": N, "sha256": "..."}, or a bare size as run folders
@@ -101,10 +100,19 @@ FileStamp stampOf(Json::const_iterator entry, const std::string& file) {
 }  // namespace
 
 bool isRunArtefact(const std::string& name) {
-    static const char* const kNames[] = {
-        "run.json",     "summary.json",       "rates.csv",          "rates.json",
-        "compare.csv",  "compare_so_far.csv", "compare.json",       "import.json",
-        "data",         "figures",            "seed_outcomes.json", "compare_seeds.json"};
+    static const char* const kNames[] = {"run.json",
+                                         "summary.json",
+                                         "rates.csv",
+                                         "rates.json",
+                                         "compare.csv",
+                                         "compare_so_far.csv",
+                                         "compare.json",
+                                         "import.json",
+                                         "data",
+                                         "figures",
+                                         "seed_outcomes.json",
+                                         "compare_seeds.json",
+                                         "seed_outcomes.journal"};
     for (const char* n : kNames)
         if (name == n) return true;
     const auto endsWith = [&](const char* tail) {
@@ -210,8 +218,8 @@ RunFolderClaim::~RunFolderClaim() {
 RunFacts runFactsOf(const ExperimentSpec& spec, const std::vector<CollectedTap>* recorded) {
     RunFacts facts;
     const bool fromRecording = recorded && !recorded->empty();
-    facts.samplesPerTap = fromRecording ? recorded->front().record.tap.sampleCount()
-                                        : spec.scene.tap.samples;
+    facts.samplesPerTap =
+        fromRecording ? recorded->front().record.tap.sampleCount() : spec.scene.tap.samples;
     facts.taxels = fromRecording ? recorded->front().record.tap.taxels
                                  : static_cast<int>(spec.scene.fingertip.taxels.size());
     facts.stageTravel_mm = spec.scene.stage.travel_mm;
@@ -243,13 +251,13 @@ void checkOneRun(const std::string& dir, const std::vector<std::string>& read, s
     std::error_code ec;
     if (fs::exists(summary, ec)) {
         const Json s = readJsonFile(summary.string());
-        const std::string id =
-            s.is_object() && s.contains("run_id") && s["run_id"].is_string() ? s["run_id"].get<std::string>() : "";
+        const std::string id = s.is_object() && s.contains("run_id") && s["run_id"].is_string()
+                                   ? s["run_id"].get<std::string>()
+                                   : "";
         if (id != m->runId)
             throw InputError(summary.string(), "/run_id",
                              "this summary belongs to " +
-                                 (id.empty() ? std::string("a run without an id")
-                                             : "run " + id) +
+                                 (id.empty() ? std::string("a run without an id") : "run " + id) +
                                  ", not to run " + m->runId + " that " + manifest +
                                  " names: the folder mixes two runs' files; rerun into an empty "
                                  "folder");
@@ -297,7 +305,8 @@ void checkProvenRun(const std::string& dir, const std::string& file) {
     if (!m->finished)
         throw InputError(manifest, "/finished",
                          "the run did not finish listing its files (it was stopped or killed), "
-                         "so its " + file + " cannot be proven whole; run it again");
+                         "so its " +
+                             file + " cannot be proven whole; run it again");
     checkOneRun(dir, {file});
     if (const auto listed = m->files.find(file); listed->second.sha256.empty())
         throw InputError(manifest, "/files/" + file,
