@@ -349,9 +349,11 @@ void printReport(const RunResult& result, double wall, double figures_s,
             "local edge (%d taps inside the valid range, away from corners)\n",
             result.pathMedianAngleError_deg, result.pathAngleTaps);
     if (!result.templates.empty())
-        std::printf("recognition: %.0f %% of %s paths (smoothed histograms: %.0f %%)\n",
-                    100.0 * result.recognitionAccuracy, modeName(spec.recognition.ofMode),
-                    100.0 * result.recognitionAccuracySmoothed);
+        std::printf(
+            "recognition: %.0f %% of %s paths by the paper's rule, templates at each shape's "
+            "stated pose (smoothed histograms: %.0f %%)\n",
+            100.0 * result.recognitionAccuracy, modeName(spec.recognition.ofMode),
+            100.0 * result.recognitionAccuracySmoothed);
     if (!result.poseTemplates.empty())
         std::printf(
             "recognition at any pose: %.0f %% of %s paths; recovered turn off by %.2f deg, place "

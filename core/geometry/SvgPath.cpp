@@ -279,6 +279,12 @@ private:
         switch (C) {
             case 'M':
                 if (!first) return lineTo(point());  // further pairs after a move are lines
+                if (begun && points.size() == 1) {
+                    // A move right after a move draws nothing: the subpath starts at the second.
+                    current_ = point();
+                    points.back() = start = current_;
+                    return;
+                }
                 if (begun) in_.fail("a second move (M): give one closed outline per object");
                 begun = true;
                 lineTo(point());

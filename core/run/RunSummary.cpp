@@ -150,6 +150,10 @@ Json recognitionJson(const RunResult& r) {
             {"of_mode", modeName(r.spec.recognition.ofMode)},
             {"bins", r.spec.recognition.bins},
             {"smoothing_sigma_bins", r.spec.recognition.smoothingSigmaBins},
+            {"templates_pose",
+             "each shape at the pose the experiment file states for it; where each trial draws "
+             "its own turn, unturned (the shape's own frame): the rule is never handed a "
+             "trial's turn"},
             {"trials", trials},
             {"confusion", confusion},
             {"confusion_smoothed", confusionSmoothed},

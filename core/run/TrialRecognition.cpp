@@ -17,11 +17,33 @@ void summarisePathAngles(RunResult& result) {
     result.pathMedianAngleError_deg = stats::medianOr(angleErrors, -1.0);
 }
 
+namespace {
+
+/// Each distinct object the experiment follows (its first trial's label) at the pose the
+/// experiment states for it: where and turned as the file places it, or, where each trial draws
+/// its own turn, unturned (the shape's own frame). Never a pose a trial drew.
+std::vector<std::pair<std::string, Polygon>> statedOutlines(const ExperimentSpec& spec) {
+    std::vector<std::pair<std::string, Polygon>> outlines;
+    for (const TrialSpec& ts : spec.trials) {
+        const bool known = std::any_of(outlines.begin(), outlines.end(),
+                                       [&](const auto& o) { return o.first == ts.label; });
+        if (known) continue;
+        ObjectSpec stated = ts.object;
+        if (stated.rotationDrawn) stated.rotationDeg = 0.0;
+        outlines.emplace_back(ts.label, stated.outline());
+    }
+    return outlines;
+}
+
+}  // namespace
+
 void recogniseTrialPaths(RunResult& result) {
     const ExperimentSpec& spec = result.spec;
-    // Templates at the centre of the valid range, one per distinct object followed.
+    // The paper's rule: templates at the centre of the valid range, one per distinct object, at
+    // the pose the experiment states (statedOutlines), so that no trial hands it its own turn.
+    const auto outlines = statedOutlines(spec);
     std::vector<NamedOutline> shapes;
-    for (const TrialRun& run : result.trials) shapes.push_back({run.label, &run.outline});
+    for (const auto& [label, outline] : outlines) shapes.push_back({label, &outline});
     result.templates = shapeTemplates(
         shapes, 0.5 * (result.validOffsets.low + result.validOffsets.high),
         spec.following.followStep_mm, spec.recognition.bins, spec.recognition.smoothingSigmaBins);

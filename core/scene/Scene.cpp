@@ -101,6 +101,25 @@ FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& re
     return spec;
 }
 
+namespace {
+
+/// A library shape's sizes as the file gives them. One of width and height alone scales the
+/// whole shape (its arms and opening too, unless given) and keeps its aspect; both set each.
+ShapeSize scaledShapeSize(const std::string& shape, const JsonFields& f) {
+    ShapeSize size = defaultShapeSize(shape);
+    double scale = 1.0;
+    if (f.has("width_mm") != f.has("height_mm"))
+        scale = f.has("width_mm") ? f.number("width_mm", 1.0, 1000.0) / size.width
+                                  : f.number("height_mm", 1.0, 1000.0) / size.height;
+    size.width = f.number("width_mm", 1.0, 1000.0, scale * size.width);
+    size.height = f.number("height_mm", 1.0, 1000.0, scale * size.height);
+    size.arm = f.number("arm_mm", 1.0, 1000.0, shapeHasArms(shape) ? scale * size.arm : 1.0);
+    size.opening = f.number("opening_mm", 1.0, 1000.0, shape == "C" ? scale * size.opening : 1.0);
+    return size;
+}
+
+}  // namespace
+
 ObjectSpec parseObject(const JsonFields& f) {
     ObjectSpec o;
     f.rejectUnknownKeys({"shape", "width_mm", "height_mm", "arm_mm", "opening_mm", "polygon_mm",
@@ -148,11 +167,7 @@ ObjectSpec parseObject(const JsonFields& f) {
                                 "), polygon with polygon_mm, regular_polygon with sides and "
                                 "across_corners_mm, or svg with svg_path");
         o.shape = *name;
-        o.size = defaultShapeSize(o.shape);
-        o.size.width = f.number("width_mm", 1.0, 1000.0, o.size.width);
-        o.size.height = f.number("height_mm", 1.0, 1000.0, o.size.height);
-        o.size.arm = f.number("arm_mm", 1.0, 1000.0, shapeHasArms(o.shape) ? o.size.arm : 1.0);
-        o.size.opening = f.number("opening_mm", 1.0, 1000.0, o.shape == "C" ? o.size.opening : 1.0);
+        o.size = scaledShapeSize(o.shape, f);
         try {
             libraryShape(o.shape, o.size);
         } catch (const std::invalid_argument& e) {

@@ -1,5 +1,6 @@
 // Microseconds to simulate one tap on the paper rectangle, across the lower edge: the ideal
-// scene and with every effect listed. Budgets (docs/benchmarks.md): ideal <= 10 us, all effects <= 50 us.
+// scene, with every effect listed, and with each effect alone (what each costs). Budgets
+// (docs/benchmarks.md): ideal <= 10 us, all effects <= 50 us; an effect alone has none.
 #include <cstdio>
 
 #include "bench/BenchHarness.h"
@@ -39,5 +40,11 @@ int main() {
         all.effects.push_back({d.name, p, "/effects"});
     }
     bench::report("simulate one tap, every effect on", microsecondsPerTap(all, model), "us", 50.0);
+    for (const EffectSpec& e : all.effects) {
+        SceneSpec alone = ideal;
+        alone.effects = {e};
+        const std::string what = "simulate one tap, ideal + " + e.name;
+        std::printf("%-52s %10.3f us\n", what.c_str(), microsecondsPerTap(alone, model));
+    }
     return 0;
 }

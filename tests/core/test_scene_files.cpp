@@ -151,6 +151,34 @@ private slots:
         QCOMPARE(sceneToJson(s)["object"]["shape"].get<std::string>(), std::string("L"));
     }
 
+    void oneDimensionScalesALibraryShapeWholeAndBothSetEach() {
+        // A lab gives the size it measured: one dimension keeps the shape's aspect (its arms and
+        // opening too); both dimensions set each; an arm given is kept.
+        auto object = [](const char* json) {
+            return parseObject(JsonFields(Json::parse(json), "test", "/object"));
+        };
+        const ShapeSize ellipse = defaultShapeSize("ellipse");
+        const ObjectSpec wide = object(R"({"shape": "ellipse", "width_mm": 144})");
+        QCOMPARE(wide.size.width, 144.0);
+        QCOMPARE(wide.size.height, 2.0 * ellipse.height);
+        const ObjectSpec tall = object(R"({"shape": "C", "height_mm": 90})");
+        QCOMPARE(tall.size.width, 90.0);
+        QCOMPARE(tall.size.arm, 1.5 * defaultShapeSize("C").arm);
+        QCOMPARE(tall.size.opening, 1.5 * defaultShapeSize("C").opening);
+        const ObjectSpec armed = object(R"({"shape": "cross", "width_mm": 120, "arm_mm": 25})");
+        QCOMPARE(armed.size.height, 120.0);
+        QCOMPARE(armed.size.arm, 25.0);
+        const ObjectSpec both = object(R"({"shape": "ellipse", "width_mm": 100, "height_mm": 30})");
+        QCOMPARE(both.size.width, 100.0);
+        QCOMPARE(both.size.height, 30.0);
+        // The outline the scaled size draws is the default's, scaled: twice the area over 1.4142.
+        const double area = libraryShape("ellipse", ellipse).area();
+        QVERIFY(std::abs(object(R"({"shape": "ellipse", "width_mm": 101.82337649086285})")
+                             .outline()
+                             .area() -
+                         2.0 * area) < 1e-6 * area);
+    }
+
     void anObjectDrawnAsSvgPathData() {
         // A triangle drawn in SVG's frame (y down, apex at the top): centred on its bounding box,
         // the right way up, placed at the offset; its curves flattened within the tolerance.

@@ -153,18 +153,20 @@ private slots:
         // radii too small to reach: the half circle of radius 20 about (20,40), below the chord
         // (y down in SVG's sense of sweep: the positive-angle direction).
         for (const double r : {1e-12, 1e-154, 1e-155, 1e-200, 1e-300, 4.9e-324}) {
-            const std::string d = "M 0,40 A " + QByteArray::number(r, 'g', 17).toStdString() +
-                                  " " + QByteArray::number(r, 'g', 17).toStdString() +
-                                  " 0 0 1 40 40 Z";
+            const std::string d = "M 0,40 A " + QByteArray::number(r, 'g', 17).toStdString() + " " +
+                                  QByteArray::number(r, 'g', 17).toStdString() + " 0 0 1 40 40 Z";
             const Polygon half = parse(d);
             QVERIFY2(half.size() > 20, d.c_str());
             for (const Vec2& v : half.vertices())
                 QVERIFY2(std::abs(std::hypot(v.x - 20, v.y - 40) - 20) < 1e-9, d.c_str());
             QVERIFY2(std::abs(half.area() - 0.5 * M_PI * 400) < M_PI * 20 * 0.05, d.c_str());
-            QVERIFY2(deviation(half, [](double t) {
-                         return Vec2{20 - 20 * std::cos(M_PI * t), 40 - 20 * std::sin(M_PI * t)};
-                     }) <= 0.05 + 1e-9,
-                     d.c_str());
+            QVERIFY2(
+                deviation(
+                    half,
+                    [](double t) {
+                        return Vec2{20 - 20 * std::cos(M_PI * t), 40 - 20 * std::sin(M_PI * t)};
+                    }) <= 0.05 + 1e-9,
+                d.c_str());
         }
         // An ellipse of aspect 2 at a tiny scale grows with its aspect kept: half an ellipse of
         // radii 20 and 40 through both ends.
@@ -179,6 +181,50 @@ private slots:
         // A flatness past doubles along the chord is the chord, as the flat ellipse is.
         const Polygon flat = parse("M 0,0 A 1000 4.9e-324 0 0 1 40 0 L 20 20 Z");
         QCOMPARE(flat.size(), std::size_t(3));
+    }
+
+    void aMoveAfterAMoveStartsTheOutlineThere() {
+        // SVG: a second moveto before anything is drawn moves the start; "m" after "M" is
+        // relative to the first point, and its further pairs are relative lines.
+        const Polygon p = parse("M 40,40 m -6,-4 l 20,0 0,10 -20,0 z");
+        QCOMPARE(p.size(), std::size_t(4));
+        for (const Vec2 v : std::vector<Vec2>{{34, 36}, {54, 36}, {54, 46}, {34, 46}})
+            QVERIFY(distanceToOutline(p, v) < 1e-12);
+        QCOMPARE(parse("M0 0 M5 5 L15 5 L15 15 Z").area(), 50.0);
+        QVERIFY(refusal("M0 0 L10 0 M20 20 L30 30 Z").contains("a second move"));
+    }
+
+    void everyCommandRepeatsOverItsParameterGroups() {
+        // Each command letter takes as many parameter groups as follow it; a moveto's further
+        // pairs are linetos (absolute after M, relative after m).
+        struct Case {
+            std::string repeated, spelled;
+        };
+        const QList<Case> cases{
+            {"M0 0 10 0 10 10 0 10 Z", "M0 0 L10 0 L10 10 L0 10 Z"},
+            {"m0 0 10 0 0 10 -10 0 z", "M0 0 l10 0 l0 10 l-10 0 z"},
+            {"M0 0 L10 0 10 10 0 10 Z", "M0 0 L10 0 L10 10 L0 10 Z"},
+            {"M0 0 l10 0 0 10 -10 0 z", "M0 0 l10 0 l0 10 l-10 0 z"},
+            {"M0 0 H10 20 V10 20 H0 Z", "M0 0 H10 H20 V10 V20 H0 Z"},
+            {"M0 0 h10 10 v10 10 h-20 z", "M0 0 h10 h10 v10 v10 h-20 z"},
+            {"M0 0 C0 5 5 10 10 10 15 10 20 5 20 0 Z", "M0 0 C0 5 5 10 10 10 C15 10 20 5 20 0 Z"},
+            {"M0 0 c0 5 5 10 10 10 5 0 10 -5 10 -10 z", "M0 0 c0 5 5 10 10 10 c5 0 10 -5 10 -10 z"},
+            {"M0 0 C0 5 5 10 10 10 S20 5 20 0 30 -5 30 0 V-30 H0 Z",
+             "M0 0 C0 5 5 10 10 10 S20 5 20 0 S30 -5 30 0 V-30 H0 Z"},
+            {"M0 0 Q5 10 10 0 15 -10 20 0 V-30 H0 Z", "M0 0 Q5 10 10 0 Q15 -10 20 0 V-30 H0 Z"},
+            {"M0 0 Q5 10 10 0 T20 0 30 0 V-30 H0 Z", "M0 0 Q5 10 10 0 T20 0 T30 0 V-30 H0 Z"},
+            {"M0 0 q5 10 10 0 t10 0 10 0 v-30 h-30 z", "M0 0 q5 10 10 0 t10 0 t10 0 v-30 h-30 z"},
+            {"M0 0 A5 5 0 0 1 10 0 5 5 0 0 1 0 0 Z", "M0 0 A5 5 0 0 1 10 0 A5 5 0 0 1 0 0 Z"},
+            {"M0 0 a5 5 0 0 1 10 0 5 5 0 0 1 -10 0 z", "M0 0 a5 5 0 0 1 10 0 a5 5 0 0 1 -10 0 z"},
+        };
+        for (const Case& c : cases) {
+            const Polygon a = parse(c.repeated), b = parse(c.spelled);
+            QVERIFY2(a.size() == b.size(), c.repeated.c_str());
+            for (std::size_t i = 0; i < a.size(); ++i)
+                QVERIFY2(std::hypot(a.vertex(i).x - b.vertex(i).x, a.vertex(i).y - b.vertex(i).y) <
+                             1e-12,
+                         c.repeated.c_str());
+        }
     }
 
     void badPathDataIsRefusedByPlace() {
