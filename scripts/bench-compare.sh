@@ -32,9 +32,15 @@ trap 'rm -rf "$out"' EXIT
 seeds_per_core_second() {
     local cli=$1 folder="$out/seeds"
     rm -rf "$folder"
-    read -r user sys < <( { /usr/bin/time -f '%U %S' "$cli" seeds "$top/experiments/paper.json" \
-        --from 1 --to 20 --jobs 1 --out "$folder" --no-figures >/dev/null 2>/dev/null; } 2>&1 )
-    awk -v u="$user" -v s="$sys" 'BEGIN { printf "seeds of paper.json per core-second %14.3f seeds/s\n", 20 / (u + s) }'
+    python3 - "$cli" "$top/experiments/paper.json" "$folder" <<'PY'
+import resource, subprocess, sys
+cli, experiment, folder = sys.argv[1:4]
+subprocess.run([cli, "seeds", experiment, "--from", "1", "--to", "20", "--jobs", "1",
+                "--out", folder, "--no-figures"], stdout=subprocess.DEVNULL,
+               stderr=subprocess.DEVNULL, check=True)
+used = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(f"{'seeds of paper.json per core-second':52} {20 / (used.ru_utime + used.ru_stime):10.3f} seeds/s")
+PY
 }
 # One round of one build: every figure as "label<TAB>value<TAB>unit".
 round() {
