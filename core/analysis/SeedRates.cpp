@@ -9,8 +9,8 @@
 #include <optional>
 #include <utility>
 
-#include "core/stats/Intervals.h"
 #include "core/run/OutputFiles.h"
+#include "core/stats/Intervals.h"
 
 namespace activetouch {
 
@@ -316,6 +316,19 @@ double SeedRates::medianPlaceError_mm() const {
 
 Rate SeedRates::recognisedRaw() const {
     return sumOver(seeds, recognisedRawIn);
+}
+RatesByLabel SeedRates::recognisedRawByTrial() const {
+    std::map<int, Rate> byTrial;
+    for (const SeedOutcome& s : seeds)
+        for (const PathNaming& n : s.namings) {
+            Rate& r = byTrial[n.trial];
+            ++r.total;
+            r.count += n.raw == n.label;
+        }
+    RatesByLabel out;
+    for (const auto& [trial, rate] : byTrial)
+        out.emplace_back("trial " + std::to_string(trial), rate);
+    return out;
 }
 Rate SeedRates::recognisedSmoothed() const {
     return sumOver(seeds, recognisedSmoothedIn);

@@ -186,6 +186,9 @@ struct SeedRates {
     Rate passiveLostAtCorner() const;  ///< of passive trials
     Rate activeCompleted() const;
     Rate recognisedRaw() const;       ///< of completed active paths
+    /// The same per trial number ("trial 1", "trial 2", ...): a rule handed the pose of one
+    /// trial would name that trial's paths better than the others.
+    RatesByLabel recognisedRawByTrial() const;
     Rate recognisedSmoothed() const;  ///< of completed active paths
     Rate recognisedAnyPose() const;   ///< of completed active paths
     /// Over the paths named right at any pose: the median error of the recovered turn (shapes

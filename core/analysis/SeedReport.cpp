@@ -93,6 +93,7 @@ static Json seedRatesCoreJson(const SeedRates& r) {
             {"active_completed_by_label", byLabel(r.activeCompletedByLabel())},
             {"active_completed_by_valid_range", byValidRange(r)},
             {"recognised_raw", rateJson(r.recognisedRaw())},
+            {"recognised_raw_by_trial", byLabel(r.recognisedRawByTrial())},
             {"recognised_smoothed", rateJson(r.recognisedSmoothed())},
             {"recognised_any_pose", rateJson(r.recognisedAnyPose())},
             {"any_pose_median_turn_error_deg",
@@ -216,6 +217,7 @@ void reportTrials(ReportRows& lines, const SeedRates& r) {
 void reportRecognition(ReportRows& lines, const SeedRates& r) {
     const RecognitionConfusion confusion = r.confusion();
     lines.line("recognised, paper's rule", r.recognisedRaw());
+    lines.perLabel(r.recognisedRawByTrial());
     if (const std::string m = confusion.misnamed(false); !m.empty())
         lines.push_back("  misnamed: " + m);
     lines.line("recognised, smoothed histograms", r.recognisedSmoothed());

@@ -29,12 +29,13 @@ FollowingMode parseMode(const JsonFields& f, const std::string& key, const std::
 }
 
 /// One trial of the following section's list, at `place`.
-TrialSpec parseTrial(const JsonFields& t, const std::string& place, const ExperimentSpec& e) {
+TrialSpec parseTrial(const JsonFields& t, const std::string& place, const ExperimentSpec& e,
+                     const std::string& baseDirectory) {
     t.rejectUnknownKeys({"label", "mode", "object", "repeats", "start_mm"});
     TrialSpec spec;
     spec.place = place;
     spec.mode = parseMode(t, "mode", "active");
-    spec.object = parseObject(t.object("object"));
+    spec.object = parseObject(t.object("object"), baseDirectory);
     spec.label = t.text("label", spec.object.shape);
     const bool control = std::any_of(spec.label.begin(), spec.label.end(), [](char c) {
         return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
@@ -125,7 +126,7 @@ void parseFollowingSettings(const JsonFields& f, FollowingSettings& s) {
         f.fail("curvature_taps", "a turn needs two angles: give 0 (no anticipation) or 2 or more");
 }
 
-void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
+void parseFollowing(const JsonFields& f, ExperimentSpec& e, const std::string& baseDirectory) {
     parseFollowingSettings(f, e.following);
     if (!f.has("trials")) return;
     const Json& list = f.raw("trials");
@@ -135,7 +136,8 @@ void parseFollowing(const JsonFields& f, ExperimentSpec& e) {
                "\"cross\"}, \"repeats\": 2}]");
     for (std::size_t i = 0; i < list.size(); ++i) {
         const std::string place = f.placeOf("trials") + "/" + std::to_string(i);
-        e.trials.push_back(parseTrial(JsonFields(list[i], f.source(), place), place, e));
+        e.trials.push_back(
+            parseTrial(JsonFields(list[i], f.source(), place), place, e, baseDirectory));
     }
 }
 
@@ -264,7 +266,7 @@ ExperimentSpec parseExperiment(const Json& json, const std::string& source,
         e.validRangeWidth =
             v.integer("valid_range_positions", 1, e.classes.positions, e.validRangeWidth);
     }
-    if (f.has("following")) parseFollowing(f.object("following"), e);
+    if (f.has("following")) parseFollowing(f.object("following"), e, baseDirectory);
     if (f.has("recognition")) parseRecognition(f.object("recognition"), e);
     if (f.has("sweeps")) parseSweeps(f.object("sweeps"), e);
     if (const std::string problem = trainingObjectProblem(e); !problem.empty())

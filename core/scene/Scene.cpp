@@ -7,6 +7,7 @@
 
 #include "core/common/NumberText.h"
 #include "core/geometry/SvgPath.h"
+#include "core/scene/MeshObject.h"
 
 #ifndef ACTIVETOUCH_RESOURCE_DIR
 #define ACTIVETOUCH_RESOURCE_DIR "resources"
@@ -118,15 +119,40 @@ ShapeSize scaledShapeSize(const std::string& shape, const JsonFields& f) {
     return size;
 }
 
+/// An outline drawn as SVG path data: flattened within the tolerance, centred on its bounding
+/// box and turned the right way up (SVG's y axis points down).
+std::vector<Vec2> svgOutline(const JsonFields& f) {
+    if (!f.has("svg_path") || !f.raw("svg_path").is_string())
+        f.fail("svg_path", "an svg object needs 'svg_path': the d of one closed SVG path, mm");
+    const double tolerance = f.number("svg_tolerance_mm", 0.001, 5.0, kDefaultSvgTolerance_mm);
+    const Polygon drawn = polygonFromSvgPath(f.raw("svg_path").get<std::string>(), tolerance,
+                                             f.source(), f.placeOf("svg_path"));
+    Vec2 lo = drawn.vertex(0), hi = lo;
+    for (const Vec2& v : drawn.vertices()) {
+        lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
+        hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
+    }
+    const Vec2 centre = 0.5 * (lo + hi);
+    std::vector<Vec2> outline;
+    for (const Vec2& v : drawn.vertices()) outline.push_back({v.x - centre.x, centre.y - v.y});
+    return outline;
+}
+
 }  // namespace
 
-ObjectSpec parseObject(const JsonFields& f) {
+ObjectSpec parseObject(const JsonFields& f, const std::string& baseDirectory) {
     ObjectSpec o;
     f.rejectUnknownKeys({"shape", "width_mm", "height_mm", "arm_mm", "opening_mm", "polygon_mm",
                          "svg_path", "svg_tolerance_mm", "sides", "across_corners_mm",
-                         "rotation_deg", "offset_mm", "top_height_mm"});
+                         "rotation_deg", "offset_mm", "top_height_mm", "file", "units",
+                         "slice_height_mm"});
     o.shape = f.text("shape");
-    if (o.shape == "regular_polygon") {
+    if (o.shape == "mesh") {
+        const MeshOutline mesh = meshOutline(f, baseDirectory);
+        o.polygon = mesh.outline;
+        o.height_mm = mesh.height_mm;
+        o.shape = "polygon";
+    } else if (o.shape == "regular_polygon") {
         // A many-sided training object: one edge facing straight down (outward normal 270 deg),
         // the others every 360 / sides degrees from it.
         const int sides = f.integer("sides", 3, 360);
@@ -138,21 +164,7 @@ ObjectSpec parseObject(const JsonFields& f) {
         }
         o.shape = "polygon";
     } else if (o.shape == "svg") {
-        // An outline drawn as SVG path data: flattened within the tolerance, centred on its
-        // bounding box and turned the right way up (SVG's y axis points down).
-        if (!f.has("svg_path") || !f.raw("svg_path").is_string())
-            f.fail("svg_path", "an svg object needs 'svg_path': the d of one closed SVG path, mm");
-        const double tolerance = f.number("svg_tolerance_mm", 0.001, 5.0, kDefaultSvgTolerance_mm);
-        const Polygon drawn = polygonFromSvgPath(f.raw("svg_path").get<std::string>(), tolerance,
-                                                 f.source(), f.placeOf("svg_path"));
-        Vec2 lo = drawn.vertex(0), hi = lo;
-        for (const Vec2& v : drawn.vertices()) {
-            lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
-            hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
-        }
-        const Vec2 centre = 0.5 * (lo + hi);
-        for (const Vec2& v : drawn.vertices())
-            o.polygon.push_back({v.x - centre.x, centre.y - v.y});
+        o.polygon = svgOutline(f);
         o.shape = "polygon";
     } else if (o.shape == "polygon") {
         if (!f.has("polygon_mm") || !f.raw("polygon_mm").is_array())
@@ -289,7 +301,7 @@ SceneSpec parseScene(const Json& json, const std::string& source, const std::str
     SceneSpec s;
     s.source = source;
     s.description = f.text("description", "");
-    s.object = parseObject(f.object("object"));
+    s.object = parseObject(f.object("object"), baseDirectory);
     s.fingertipName = f.text("fingertip", s.fingertipName);
     s.fingertip = loadFingertip(s.fingertipName, baseDirectory, source, f.placeOf("fingertip"));
     if (f.has("tap"))

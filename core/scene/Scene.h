@@ -88,8 +88,9 @@ std::string resourceDirectory();
 FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& relativeTo,
                             const std::string& source, const std::string& place);
 
-/// Parses an object description (shape or polygon, pose, top height). Throws InputError.
-ObjectSpec parseObject(const JsonFields& fields);
+/// Parses an object description (shape or polygon, pose, top height). A mesh's file is found
+/// relative to `baseDirectory` (the folder of the file that names it). Throws InputError.
+ObjectSpec parseObject(const JsonFields& fields, const std::string& baseDirectory = "");
 
 /// Reads `list`, a list of [x, y] vertices in mm, as an outline. Throws InputError naming
 /// `source` and the vertex at `place` + "/i", or `place`, if it is not a usable outline.
