@@ -8,6 +8,7 @@
 #include "core/common/NumberText.h"
 #include "core/geometry/SvgPath.h"
 #include "core/scene/MeshObject.h"
+#include "core/scene/SvgObject.h"
 
 #ifndef ACTIVETOUCH_RESOURCE_DIR
 #define ACTIVETOUCH_RESOURCE_DIR "resources"
@@ -145,12 +146,15 @@ ObjectSpec parseObject(const JsonFields& f, const std::string& baseDirectory) {
     f.rejectUnknownKeys({"shape", "width_mm", "height_mm", "arm_mm", "opening_mm", "polygon_mm",
                          "svg_path", "svg_tolerance_mm", "sides", "across_corners_mm",
                          "rotation_deg", "offset_mm", "top_height_mm", "file", "units",
-                         "slice_height_mm"});
+                         "slice_height_mm", "element"});
     o.shape = f.text("shape");
     if (o.shape == "mesh") {
         const MeshOutline mesh = meshOutline(f, baseDirectory);
         o.polygon = mesh.outline;
         o.height_mm = mesh.height_mm;
+        o.shape = "polygon";
+    } else if (o.shape == "svg_file") {
+        o.polygon = svgFileOutline(f, baseDirectory).outline;
         o.shape = "polygon";
     } else if (o.shape == "regular_polygon") {
         // A many-sided training object: one edge facing straight down (outward normal 270 deg),

@@ -1,0 +1,32 @@
+#pragma once
+// Whole SVG documents as drawing programs write them (Inkscape, CAD exports), read with SVG++
+// (Debian's libsvgpp-dev) over libxml2: the viewBox and the document's physical size, nested
+// transforms and the basic shapes (rect with rounded corners, circle, ellipse, polygon,
+// polyline, line) as well as paths, every coordinate mapped into mm. Arcs come out as cubic
+// Béziers (SVG++'s minimal path policy), which an affine transform maps exactly.
+#include <string>
+#include <vector>
+
+namespace activetouch {
+
+/// One drawn element: its kind ("path", "rect", ...), id (empty if none) and line in the file,
+/// and its subpaths as SVG path data in mm (absolute M, L, C and Z; y down, as drawn).
+struct SvgElement {
+    std::string kind, id;
+    int line = 0;
+    std::vector<std::string> subpaths;
+    /// "rect 'r' (line 4)" or "path (line 9)", for messages.
+    std::string name() const;
+};
+
+/// A document larger than this is refused before it is read.
+inline constexpr unsigned long long kMaxSvgFileBytes = 16ull << 20;
+
+/// Every drawn element of the document at `path`, in document order (elements inside defs,
+/// symbol, clipPath and the like are not drawn and not read). Throws InputError naming `source`
+/// and `place` (the setting that named the file) with the file and line where it is not an SVG
+/// document SVG++ can read.
+std::vector<SvgElement> readSvgDocument(const std::string& path, const std::string& source,
+                                        const std::string& place);
+
+}  // namespace activetouch

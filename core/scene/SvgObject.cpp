@@ -1,0 +1,90 @@
+#include "core/scene/SvgObject.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+
+#include "core/common/InputError.h"
+#include "core/geometry/Polygon.h"
+#include "core/geometry/SvgPath.h"
+#include "core/io/SvgDocument.h"
+
+namespace activetouch {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Closed {
+    Polygon polygon;
+    std::string name;
+};
+
+/// The closed outlines `e` draws, flattened within `tolerance`; with `refusal`, the first
+/// reason one of its subpaths is not a usable outline.
+std::vector<Closed> closedOutlines(const SvgElement& e, double tolerance, const std::string& file,
+                                   std::string* refusal) {
+    std::vector<Closed> out;
+    for (std::size_t i = 0; i < e.subpaths.size(); ++i) {
+        const std::string name =
+            e.name() + (e.subpaths.size() > 1 ? ", subpath " + std::to_string(i + 1) : "");
+        try {
+            out.push_back({polygonFromSvgPath(e.subpaths[i], tolerance, file, name), name});
+        } catch (const InputError& err) {
+            if (refusal && refusal->empty()) *refusal = name + ": " + err.problem();
+        }
+    }
+    return out;
+}
+
+std::vector<Vec2> centredUpright(const Polygon& drawn) {
+    Vec2 lo = drawn.vertex(0), hi = lo;
+    for (const Vec2& v : drawn.vertices()) {
+        lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
+        hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
+    }
+    const Vec2 centre = 0.5 * (lo + hi);
+    std::vector<Vec2> outline;
+    for (const Vec2& v : drawn.vertices()) outline.push_back({v.x - centre.x, centre.y - v.y});
+    return outline;
+}
+
+}  // namespace
+
+SvgFileOutline svgFileOutline(const JsonFields& f, const std::string& baseDirectory) {
+    fs::path file(f.text("file"));
+    if (file.is_relative() && !baseDirectory.empty()) file = fs::path(baseDirectory) / file;
+    const double tolerance = f.number("svg_tolerance_mm", 0.001, 5.0, kDefaultSvgTolerance_mm);
+    const std::vector<SvgElement> elements =
+        readSvgDocument(file.string(), f.source(), f.placeOf("file"));
+    const std::string wanted = f.has("element") ? f.text("element") : std::string();
+    std::vector<Closed> all;
+    std::string refusal, ids;
+    bool found = false;
+    for (const SvgElement& e : elements) {
+        if (!e.id.empty()) ids += (ids.empty() ? "" : ", ") + e.id;
+        const bool chosen = !wanted.empty() && e.id == wanted;
+        found = found || chosen;
+        if (!wanted.empty() && !chosen) continue;
+        auto closed = closedOutlines(e, tolerance, file.string(), &refusal);
+        if (chosen && closed.empty())
+            f.fail("element", "the element " + (refusal.empty() ? e.name() : refusal) +
+                                  " draws no closed outline the fingertip can follow");
+        for (auto& c : closed) all.push_back(std::move(c));
+    }
+    if (!wanted.empty() && !found)
+        f.fail("element", "'" + file.string() + "' has no element with id '" + wanted + "'" +
+                              (ids.empty() ? "; it names none" : "; its ids: " + ids));
+    if (all.empty())
+        f.fail("file", "'" + file.string() + "' draws no closed outline" +
+                           (refusal.empty() ? std::string() : " (" + refusal + ")"));
+    std::sort(all.begin(), all.end(), [](const Closed& a, const Closed& b) {
+        return std::abs(a.polygon.area()) > std::abs(b.polygon.area());
+    });
+    SvgFileOutline out{centredUpright(all.front().polygon), all.front().name, {}};
+    for (std::size_t i = 1; i < all.size(); ++i) out.others.push_back(all[i].name);
+    return out;
+}
+
+}  // namespace activetouch
