@@ -1,5 +1,5 @@
 // Meshes as an object's outline ("shape": "mesh"), as a scene reads them: the first byte picks the
-// file's extension (STL, OBJ or PLY, which Assimp reads by it), the rest is the file.
+// file's extension (STL, OBJ, or PLY, which is refused), the rest is the file.
 #include "core/common/InputError.h"
 #include "core/scene/Scene.h"
 #include "fuzz/FuzzInput.h"

@@ -1,8 +1,7 @@
 #pragma once
-// Triangle meshes as labs keep their 3D-printed objects (STL, binary or ASCII, OBJ, PLY), read
-// with Assimp (Debian's libassimp-dev): every mesh of the file, node transforms applied,
-// triangulated, in mm, vertices at one place welded into one so that the surface's edges are
-// shared (an STL repeats each vertex for every triangle).
+// Triangle meshes as labs keep their 3D-printed objects: STL (binary or ASCII) and OBJ, read
+// here (docs/design.md says why not with a mesh library), vertices at one place welded into one
+// so that the surface's edges are shared (an STL repeats each vertex for every triangle).
 #include <string>
 
 #include "core/geometry/MeshSlice.h"
@@ -14,8 +13,9 @@ namespace activetouch {
 inline constexpr unsigned long long kMaxMeshFileBytes = 256ull << 20;
 
 /// Reads `path`, its coordinates in `unitsToMm` mm each (1000 for metres, 1 for mm). Throws
-/// InputError naming the file (and `place`, the setting that named it) if it cannot be read, is
-/// no mesh Assimp knows, holds no triangle, or is over kMaxMeshFileBytes.
+/// InputError naming the file (and `place`, the setting that named it), and the line or
+/// triangle, if it is no .stl or .obj file, cannot be read, is malformed, holds no triangle, has
+/// a coordinate beyond 100 m, or is over kMaxMeshFileBytes.
 TriangleMesh readMeshFile(const std::string& path, double unitsToMm, const std::string& source,
                           const std::string& place);
 

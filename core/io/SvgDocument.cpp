@@ -1,8 +1,5 @@
 #include "core/io/SvgDocument.h"
 
-// SVG++'s arc-to-Bézier iterator reads members GCC cannot prove set (they are, before use).
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-
 #include <libxml/parser.h>
 #include <libxml/tree.h>
 
@@ -56,9 +53,7 @@ public:
     explicit Context(Collected& c) : collected_(c), index_(c.entered++) {}
     /// Each drawn child, in document order as SVG++ enters it.
     Context(Context& parent)
-        : collected_(parent.collected_),
-          matrix_(parent.matrix_),
-          index_(collected_.entered++) {}
+        : collected_(parent.collected_), matrix_(parent.matrix_), index_(collected_.entered++) {}
 
     template <class ElementTag>
     void on_enter_element(ElementTag) {}
@@ -72,6 +67,8 @@ public:
         }
         e.id = id_;
         e.subpaths = std::move(subpaths_);
+        e.toMm = matrix_;
+        for (double& v : e.toMm) v *= kMmPerUserUnit;
         collected_.elements.push_back(std::move(e));
     }
     void transform_matrix(const boost::array<double, 6>& t) {
@@ -87,30 +84,38 @@ public:
 
     void path_move_to(double x, double y, tag::coordinate::absolute) {
         endSubpath();
-        point('M', x, y);
+        add("M", {x, y});
     }
-    void path_line_to(double x, double y, tag::coordinate::absolute) { point('L', x, y); }
+    void path_line_to(double x, double y, tag::coordinate::absolute) { add("L", {x, y}); }
+    void path_quadratic_bezier_to(double x1, double y1, double x, double y,
+                                  tag::coordinate::absolute) {
+        add("Q", {x1, y1, x, y});
+    }
     void path_cubic_bezier_to(double x1, double y1, double x2, double y2, double x, double y,
                               tag::coordinate::absolute) {
-        point('C', x1, y1);
-        point(' ', x2, y2);
-        point(' ', x, y);
+        add("C", {x1, y1, x2, y2, x, y});
+    }
+    void path_elliptical_arc_to(double rx, double ry, double rotation, bool large, bool sweep,
+                                double x, double y, tag::coordinate::absolute) {
+        add("A", {rx, ry, rotation, large ? 1.0 : 0.0, sweep ? 1.0 : 0.0, x, y});
     }
     void path_close_subpath() {
-        current_ += " Z";
+        if (!disabled_) current_ += " Z";
         endSubpath();
     }
     void path_exit() {}
 
 private:
-    void point(char command, double x, double y) {
+    /// A command in the element's own user space, written as SVG path data reads it.
+    void add(const char* command, std::initializer_list<double> numbers) {
         if (disabled_) return;
-        const Matrix& m = matrix_;
-        char text[96];
-        std::snprintf(text, sizeof text, " %c%.17g,%.17g", command,
-                      (m[0] * x + m[2] * y + m[4]) * kMmPerUserUnit,
-                      (m[1] * x + m[3] * y + m[5]) * kMmPerUserUnit);
-        current_ += command == ' ' ? std::string(" ") + (text + 2) : std::string(text);
+        current_ += current_.empty() ? "" : " ";
+        current_ += command;
+        char text[40];
+        for (double v : numbers) {
+            std::snprintf(text, sizeof text, " %.17g", v);
+            current_ += text;
+        }
     }
     void endSubpath() {
         if (!current_.empty()) subpaths_.push_back(std::move(current_));
@@ -202,7 +207,7 @@ std::vector<SvgElement> readSvgDocument(const std::string& path, const std::stri
             svgpp::processed_elements<DrawnElements>, svgpp::processed_attributes<ReadAttributes>,
             svgpp::context_factories<ChildContextFactories>,
             svgpp::basic_shapes_policy<svgpp::policy::basic_shapes::all_to_path>,
-            svgpp::path_policy<svgpp::policy::path::minimal>,
+            svgpp::path_policy<svgpp::policy::path::no_shorthands>,
             svgpp::viewport_policy<svgpp::policy::viewport::as_transform>>::load_document(root,
                                                                                           context);
     } catch (const boost::exception& e) {

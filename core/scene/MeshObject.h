@@ -1,5 +1,5 @@
 #pragma once
-// An object given as a triangle mesh (a 3D-printed part's STL, OBJ or PLY): the outline where a
+// An object given as a triangle mesh (a 3D-printed part's STL or OBJ): the outline where a
 // horizontal plane near its top cuts it, and its height (docs/file-formats.md, "mesh").
 #include <string>
 #include <vector>

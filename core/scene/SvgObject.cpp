@@ -21,6 +21,30 @@ struct Closed {
     std::string name;
 };
 
+/// How far the element's map into mm stretches any length at most (its largest singular value).
+double largestStretch(const std::array<double, 6>& m) {
+    const double t = m[0] * m[0] + m[1] * m[1] + m[2] * m[2] + m[3] * m[3];
+    const double det = m[0] * m[3] - m[1] * m[2];
+    return std::sqrt(0.5 * (t + std::sqrt(std::max(0.0, t * t - 4.0 * det * det))));
+}
+
+/// A subpath of `e` flattened in the element's own user space (within `tolerance` mm once mapped)
+/// and mapped into mm; throws InputError naming `name` if it is no usable outline.
+Polygon outlineOf(const SvgElement& e, const std::string& subpath, double tolerance,
+                  const std::string& file, const std::string& name) {
+    const double stretch = largestStretch(e.toMm);
+    if (!(stretch > 0.0) || !std::isfinite(stretch))
+        throw InputError(file, name, "its transforms collapse it to nothing");
+    const Polygon local = polygonFromSvgPath(subpath, tolerance / stretch, file, name);
+    const auto& m = e.toMm;
+    std::vector<Vec2> mapped;
+    for (const Vec2& v : local.vertices())
+        mapped.push_back({m[0] * v.x + m[2] * v.y + m[4], m[1] * v.x + m[3] * v.y + m[5]});
+    if (const auto problem = Polygon::problemWith(mapped))
+        throw InputError(file, name, "the outline it draws cannot be an object: " + *problem);
+    return Polygon(std::move(mapped));
+}
+
 /// The closed outlines `e` draws, flattened within `tolerance`; with `refusal`, the first
 /// reason one of its subpaths is not a usable outline.
 std::vector<Closed> closedOutlines(const SvgElement& e, double tolerance, const std::string& file,
@@ -30,7 +54,7 @@ std::vector<Closed> closedOutlines(const SvgElement& e, double tolerance, const 
         const std::string name =
             e.name() + (e.subpaths.size() > 1 ? ", subpath " + std::to_string(i + 1) : "");
         try {
-            out.push_back({polygonFromSvgPath(e.subpaths[i], tolerance, file, name), name});
+            out.push_back({outlineOf(e, e.subpaths[i], tolerance, file, name), name});
         } catch (const InputError& err) {
             if (refusal && refusal->empty()) *refusal = name + ": " + err.problem();
         }

@@ -66,6 +66,31 @@ void writeObj(const std::string& path, const std::vector<Triangle>& tris, double
         out << "f " << 3 * i + 1 << ' ' << 3 * i + 2 << ' ' << 3 * i + 3 << '\n';
 }
 
+void writeAsciiStl(const std::string& path, const std::vector<Triangle>& tris) {
+    std::ofstream out(path);
+    out.precision(17);
+    out << "solid cross\n";
+    for (const Triangle& t : tris) {
+        out << "  facet normal 0 0 0\n    outer loop\n";
+        for (const Point& p : t)
+            out << "      vertex " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+        out << "    endloop\n  endfacet\n";
+    }
+    out << "endsolid cross\n";
+}
+
+/// An OBJ as CAD programs write it: faces naming vertices, texture and normal indices, counted
+/// back from the last vertex ("f -3/1/1 -2/2/2 -1/3/3").
+void writeObjRelative(const std::string& path, const std::vector<Triangle>& tris) {
+    std::ofstream out(path);
+    out.precision(17);
+    out << "o cross\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n";
+    for (const Triangle& t : tris) {
+        for (const Point& p : t) out << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+        out << "f -3/1/1 -2/2/1 -1/3/1\n";
+    }
+}
+
 /// The largest distance from a vertex of `a` to the nearest vertex of `b`.
 double farthest(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
     double worst = 0.0;
@@ -108,6 +133,9 @@ private slots:
         writeObj(d + "cross_m.obj", solid, 0.001);
         writeObj(d + "cross_mm.obj", solid, 1.0);
         writeBinaryStl(d + "open.stl", extruded(cross_, 12.0, true), 1.0);
+        writeAsciiStl(d + "cross_ascii.stl", solid);
+        writeObjRelative(d + "cross_relative.obj", solid);
+        std::ofstream(d + "cross.ply") << "ply\nformat ascii 1.0\nend_header\n";
         std::ofstream(d + "notes.stl") << "these are notes, not a mesh\n";
     }
 
@@ -146,8 +174,10 @@ private slots:
         QVERIFY(refusal(R"({"shape": "mesh", "file": "cross_mm.stl", "units": "furlong"})")
                     .contains("none of mm, cm, m, in"));
         const QString notes = refusal(R"({"shape": "mesh", "file": "notes.stl", "units": "mm"})");
-        QVERIFY2(notes.startsWith("/object/file") && notes.contains("cannot be read as a mesh"),
+        QVERIFY2(notes.startsWith("/object/file") && notes.contains("neither a binary STL"),
                  qPrintable(notes));
+        QVERIFY(refusal(R"({"shape": "mesh", "file": "cross.ply", "units": "mm"})")
+                    .contains("no .stl or .obj file"));
         QVERIFY(refusal(R"({"shape": "mesh", "file": "absent.stl", "units": "mm"})")
                     .contains("absent.stl"));
         QVERIFY(refusal(R"({"shape": "mesh", "file": ".", "units": "mm"})")
