@@ -1,14 +1,14 @@
 // The classifier's per-tap scoring: a tap's distinct (taxel, bin) cells and their counts, the
 // exact log-likelihoods from them, and the integer screen that leaves out classes that cannot
 // win. The kernels and the members that call them share this file so that they inline together.
-#include "core/classify/HistogramClassifier.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+
+#include "core/classify/HistogramClassifier.h"
 
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -307,6 +307,9 @@ public:
             if (const std::size_t words = (padded / 32 + 7) / 8 * 8; marks_.size() != words)
                 marks_.assign(words, 0);
             touchedGroups32(n, padded / 32, marks_.data());
+            // The padding words are read too: clear what an earlier, larger table left there,
+            // or its groups would be read back as cells of this one.
+            std::fill(marks_.begin() + static_cast<std::ptrdiff_t>(padded / 32), marks_.end(), 0u);
             return gatherTouched(n, reinterpret_cast<const std::uint8_t*>(marks_.data()),
                                  marks_.size() * 4, cells, counts);
         }

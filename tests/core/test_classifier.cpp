@@ -375,6 +375,23 @@ private slots:
         }
     }
 
+    void countCellsForgetALargerTablesCells() {
+        // A tap of a larger table (five groups of 32 cells) counted first, then one of a small
+        // table (one group) on the same thread: none of the first tap's cells comes back, on the
+        // vector path (whose marks are padded to whole words) or the portable one.
+        for (const bool portable : {false, true}) {
+            std::vector<std::uint32_t> big{0, 40, 100, 150}, small{3, 5, 5}, cells(256);
+            std::vector<std::int32_t> counts(256);
+            detail::countCells(big.data(), big.size(), 160, cells.data(), counts.data(), portable);
+            const std::size_t n = detail::countCells(small.data(), small.size(), 24, cells.data(),
+                                                     counts.data(), portable);
+            QCOMPARE(n, std::size_t(2));
+            QCOMPARE(cells[0], 3u);
+            QCOMPARE(cells[1], 5u);
+            QCOMPARE(counts[1], 2);
+        }
+    }
+
     void countCellsAgreeBetweenTheVectorAndPortableReadings() {
         // Tables of every size around the counters' groups, sparse and dense taps, the last cell,
         // and counts whose low 8 or 16 bits are zero (65,536 and 256 samples in one cell): both
