@@ -105,8 +105,8 @@ int commandSeeds(const std::vector<std::string>& args, int argc, char** argv) {
     const auto claimed =
         claimOrSay(outDir, "seeds", spec, runFactsOf(spec), parsed.replace || resumed);
     if (!claimed) return kBadInput;
-    const std::vector<SeedOutcome> before =
-        resumed ? resumed->outcomes : std::vector<SeedOutcome>{};
+    std::vector<SeedOutcome> before;  // the seeds a cut-short run finished, run no more
+    if (resumed) before = std::move(resumed->outcomes);
     int failedRuns = 0;
     const int code = overSeeds(
         "run failed", outDir, "rates.csv", parsed.figures, range.jobs, argc, argv,

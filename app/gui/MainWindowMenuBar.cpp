@@ -34,6 +34,12 @@ QAction* addMenuAction(MainWindow* window, QMenu* menu, const QString& text,
     return a;
 }
 
+/// One of the window's own actions put in `menu`, with its shortcut.
+void addWithShortcut(QMenu* menu, QAction* action, const QKeySequence& keys) {
+    menu->addAction(action);
+    action->setShortcut(keys);
+}
+
 }  // namespace
 
 void MainWindow::buildMenus() {
@@ -86,12 +92,9 @@ void MainWindow::buildFileMenu() {
 void MainWindow::buildRunMenu() {
     auto add = [this](auto... a) { return addMenuAction(this, a...); };
     QMenu* run = menuBar()->addMenu(tr("&Run"));
-    run->addAction(runAll_);
-    runAll_->setShortcut(QKeySequence(Qt::Key_F5));
-    run->addAction(runTraining_);
-    runTraining_->setShortcut(QKeySequence(Qt::Key_F6));
-    run->addAction(runFollowing_);
-    runFollowing_->setShortcut(QKeySequence(Qt::Key_F7));
+    addWithShortcut(run, runAll_, QKeySequence(Qt::Key_F5));
+    addWithShortcut(run, runTraining_, QKeySequence(Qt::Key_F6));
+    addWithShortcut(run, runFollowing_, QKeySequence(Qt::Key_F7));
     runSeeds_ = add(
         run, tr("Run over &seeds"), QKeySequence(Qt::Key_F8),
         [this] {
@@ -107,26 +110,24 @@ void MainWindow::buildRunMenu() {
         },
         "menuCompare");
     run->addSeparator();
-    run->addAction(analyse_);
-    analyse_->setShortcut(QKeySequence(tr("Ctrl+Shift+A")));
-    run->addAction(replay_);
-    replay_->setShortcut(QKeySequence(tr("Ctrl+Shift+P")));
-    calibrate_ = run->addAction(tr("Calibrate..."), this, [this] {
-        const QString path = QFileDialog::getOpenFileName(
-            this, tr("Fit the scene to recorded training and test taps"), lastOutDir_,
-            tr("Tap recordings (taps.csv *.csv)"));
-        if (!path.isEmpty()) calibrateRecording(path);
-    });
-    calibrate_->setObjectName("calibrate");
-    calibrate_->setShortcut(QKeySequence(tr("Ctrl+Shift+K")));
+    addWithShortcut(run, analyse_, QKeySequence(tr("Ctrl+Shift+A")));
+    addWithShortcut(run, replay_, QKeySequence(tr("Ctrl+Shift+P")));
+    calibrate_ = add(
+        run, tr("Calibrate..."), QKeySequence(tr("Ctrl+Shift+K")),
+        [this] {
+            const QString path = QFileDialog::getOpenFileName(
+                this, tr("Fit the scene to recorded training and test taps"), lastOutDir_,
+                tr("Tap recordings (taps.csv *.csv)"));
+            if (!path.isEmpty()) calibrateRecording(path);
+        },
+        "calibrate");
     calibrate_->setToolTip(
         tr("Fit the experiment's scene to recorded taps (from the real rig or a simulated one): "
            "noise, drift, dead taxels and gains with their uncertainties, the effects the taps "
            "call for, and how well the fitted scene reproduces them"));
     updateActions();
     run->addSeparator();
-    run->addAction(cancel_);
-    cancel_->setShortcut(QKeySequence(Qt::Key_Escape));
+    addWithShortcut(run, cancel_, QKeySequence(Qt::Key_Escape));
 }
 
 void MainWindow::buildViewMenu() {

@@ -26,9 +26,20 @@ void writeLine(OutputFile& file, const Json& j) {
     file.flush();
 }
 
-/// The journal's first line, held to `run`: a journal of another run is refused, naming what
-/// differs.
-void checkHeader(const std::string& line, const std::string& path, const SeedShardFile& run) {
+/// The journal in `dir`, line by line, and its path; nothing where there is none.
+std::optional<std::vector<std::string>> journalLines(const std::string& dir, std::string& path) {
+    path = (fs::path(dir) / kSeedJournal).string();
+    std::error_code ec;
+    if (!fs::exists(path, ec)) return std::nullopt;
+    std::ifstream in = openInputFile(path);
+    BoundedLines lines(in, path, kMaxJsonFileBytes, "this is not a seeds journal");
+    std::vector<std::string> all;
+    for (std::string line; lines.next(line);) all.push_back(std::move(line));
+    return all;
+}
+
+/// What the run a journal belongs to is, from its first line (the outcomes left empty).
+SeedShardFile headerOf(const std::string& line, const std::string& path) {
     Json j;
     try {
         checkJsonText(line, path);
@@ -43,6 +54,11 @@ void checkHeader(const std::string& line, const std::string& path, const SeedSha
     was.experiment = f.text("experiment");
     was.fingerprint = f.text("fingerprint");
     readShardPlace(f, &was.first, &was.last, &was.shard);
+    return was;
+}
+
+/// A journal of another run than `run` is refused, naming what differs.
+void checkSameRun(const SeedShardFile& was, const SeedShardFile& run, const std::string& path) {
     std::string differs;
     if (was.experiment != run.experiment || was.fingerprint != run.fingerprint)
         differs = "experiment '" + was.experiment + "' with other settings";
@@ -62,26 +78,21 @@ void checkHeader(const std::string& line, const std::string& path, const SeedSha
 
 std::optional<JournalResume> readSeedJournal(const std::string& dir, const SeedShardFile& run,
                                              std::uint64_t first, std::uint64_t last) {
-    const std::string path = (fs::path(dir) / kSeedJournal).string();
-    std::error_code ec;
-    if (!fs::exists(path, ec)) return std::nullopt;
-    std::ifstream in = openInputFile(path);
-    BoundedLines lines(in, path, kMaxJsonFileBytes, "this is not a seeds journal");
-    std::string line;
-    if (!lines.next(line))
+    std::string path;
+    const auto lines = journalLines(dir, path);
+    if (!lines) return std::nullopt;
+    if (lines->empty())
         throw InputError(path, "", "the journal is empty; start the run afresh with --replace");
-    checkHeader(line, path, run);
+    checkSameRun(headerOf(lines->front(), path), run, path);
     JournalResume resume{{}, first, last};
-    std::vector<std::string> rest;
-    while (lines.next(line)) rest.push_back(line);
-    for (std::size_t i = 0; i < rest.size(); ++i) {
-        const std::string place = "line " + std::to_string(i + 2);
+    for (std::size_t i = 1; i < lines->size(); ++i) {
+        const std::string place = "line " + std::to_string(i + 1);
         Json j;
         try {
-            checkJsonText(rest[i], path + ", " + place);
-            j = Json::parse(rest[i]);
+            checkJsonText((*lines)[i], path + ", " + place);
+            j = Json::parse((*lines)[i]);
         } catch (const std::exception&) {
-            if (i + 1 == rest.size()) break;  // the line the run was writing when it was cut
+            if (i + 1 == lines->size()) break;  // the line the run was writing when it was cut
             throw InputError(path, place, "damaged; start the run afresh with --replace");
         }
         SeedOutcome o = seedOutcomeFromJson(j, path, place);
@@ -98,24 +109,17 @@ std::optional<JournalResume> readSeedJournal(const std::string& dir, const SeedS
 }
 
 std::optional<CutShortShard> cutShortShard(const std::string& dir) {
-    const std::string path = (fs::path(dir) / kSeedJournal).string();
-    std::error_code ec;
-    if (!fs::exists(path, ec)) return std::nullopt;
-    std::ifstream in = openInputFile(path);
-    BoundedLines lines(in, path, kMaxJsonFileBytes, "this is not a seeds journal");
-    std::string line;
+    std::string path;
+    const auto lines = journalLines(dir, path);
+    if (!lines) return std::nullopt;
     CutShortShard c;
-    if (!lines.next(line)) return c;
-    Json j;
-    try {
-        checkJsonText(line, path);
-        j = Json::parse(line);
-    } catch (const Json::exception&) {
-        throw InputError(path, "line 1", "the journal's first line is damaged");
-    }
-    readShardPlace(JsonFields(j, path, "line 1"), &c.first, &c.last, &c.shard);
-    while (lines.next(line))
-        if (!line.empty() && line.back() == '}') ++c.seedsDone;
+    if (lines->empty()) return c;
+    const SeedShardFile was = headerOf(lines->front(), path);
+    c.first = was.first;
+    c.last = was.last;
+    c.shard = was.shard;
+    for (std::size_t i = 1; i < lines->size(); ++i)
+        c.seedsDone += !(*lines)[i].empty() && (*lines)[i].back() == '}';
     return c;
 }
 

@@ -109,13 +109,4 @@ std::vector<std::vector<Vec2>> sliceMesh(const TriangleMesh& mesh, double z) {
     return loops;
 }
 
-double loopArea(const std::vector<Vec2>& loop) {
-    double twice = 0.0;
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-        const Vec2 a = loop[i], b = loop[(i + 1) % loop.size()];
-        twice += a.x * b.y - b.x * a.y;
-    }
-    return 0.5 * twice;
-}
-
 }  // namespace activetouch

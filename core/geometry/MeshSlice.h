@@ -30,7 +30,4 @@ std::optional<std::string> meshProblem(const TriangleMesh& mesh);
 /// that every loop is cut through edges. Empty where the plane misses the mesh.
 std::vector<std::vector<Vec2>> sliceMesh(const TriangleMesh& mesh, double z);
 
-/// The signed area of a loop (positive counter-clockwise).
-double loopArea(const std::vector<Vec2>& loop);
-
 }  // namespace activetouch

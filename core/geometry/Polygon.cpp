@@ -4,17 +4,32 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
-#include <utility>
 #include <stdexcept>
+#include <utility>
 
 namespace activetouch {
-namespace {
-
-double signedArea(const std::vector<Vec2>& v) {
+double Polygon::signedArea(const std::vector<Vec2>& v) {
     double a = 0.0;
     for (std::size_t i = 0; i < v.size(); ++i) a += cross(v[i], v[(i + 1) % v.size()]);
     return 0.5 * a;
 }
+
+std::vector<Vec2> centredOnBox(const std::vector<Vec2>& vertices, bool flipY) {
+    if (vertices.empty()) return {};
+    Vec2 lo = vertices.front(), hi = lo;
+    for (const Vec2& v : vertices) {
+        lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
+        hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
+    }
+    const Vec2 centre = 0.5 * (lo + hi);
+    std::vector<Vec2> out;
+    out.reserve(vertices.size());
+    for (const Vec2& v : vertices)
+        out.push_back({v.x - centre.x, flipY ? centre.y - v.y : v.y - centre.y});
+    return out;
+}
+
+namespace {
 
 int orientation(Vec2 a, Vec2 b, Vec2 c) {
     const double v = cross(b - a, c - a);

@@ -13,6 +13,10 @@ namespace activetouch {
 /// is 3,000; a fingertip resolves nothing finer.
 inline constexpr std::size_t kMaxOutlineVertices = 10000;
 
+/// `vertices` moved so that their bounding box is centred on the origin, y turned over where
+/// `flipY` (a drawing's y axis points down): an outline drawn elsewhere, as an object keeps it.
+std::vector<Vec2> centredOnBox(const std::vector<Vec2>& vertices, bool flipY = false);
+
 class Polygon {
 public:
     Polygon() = default;
@@ -24,6 +28,9 @@ public:
 
     /// Why `vertices` cannot be an object outline, or nothing if they can.
     static std::optional<std::string> problemWith(const std::vector<Vec2>& vertices);
+
+    /// The area `vertices` enclose, positive where they run counter-clockwise.
+    static double signedArea(const std::vector<Vec2>& vertices);
 
     const std::vector<Vec2>& vertices() const { return vertices_; }
     std::size_t size() const { return vertices_.size(); }

@@ -80,31 +80,45 @@ void readBinaryStl(const std::string& bytes, const Reading& r, Welder& weld, Tri
     }
 }
 
-void readAsciiStl(const std::string& text, const Reading& r, Welder& weld, TriangleMesh& mesh) {
+/// Each line of a text mesh file that holds a word: the word, the rest of the line, and
+/// "line N" for messages.
+template <typename Read>
+void forEachLine(const std::string& text, Read read) {
     std::istringstream in(text);
     std::string line;
-    int lineNo = 0, inFacet = 0;
-    std::array<std::uint32_t, 3> tri{};
+    int lineNo = 0;
     while (std::getline(in, line)) {
         ++lineNo;
         std::istringstream words(line);
         std::string word;
-        if (!(words >> word)) continue;
-        const std::string where = "line " + std::to_string(lineNo);
-        if (word == "facet") {
-            inFacet = 0;
-        } else if (word == "vertex") {
-            double x, y, z;
-            if (!(words >> x >> y >> z)) r.fail(where, "a vertex needs three numbers");
-            if (inFacet == 3) r.fail(where, "a facet with more than three vertices");
-            tri[static_cast<std::size_t>(inFacet++)] = weld.index(
-                coordinate(x, r, where), coordinate(y, r, where), coordinate(z, r, where));
-        } else if (word == "endfacet") {
-            if (inFacet != 3) r.fail(where, "a facet ends without three vertices");
-            mesh.triangles.push_back(tri);
-            inFacet = 0;
-        }
+        if (words >> word) read(word, words, "line " + std::to_string(lineNo));
     }
+}
+
+/// The three coordinates that follow on the line, welded.
+std::uint32_t vertexOf(std::istringstream& words, const Reading& r, const std::string& where,
+                       Welder& weld) {
+    double x, y, z;
+    if (!(words >> x >> y >> z)) r.fail(where, "a vertex needs three numbers");
+    return weld.index(coordinate(x, r, where), coordinate(y, r, where), coordinate(z, r, where));
+}
+
+void readAsciiStl(const std::string& text, const Reading& r, Welder& weld, TriangleMesh& mesh) {
+    int inFacet = 0;
+    std::array<std::uint32_t, 3> tri{};
+    forEachLine(text,
+                [&](const std::string& word, std::istringstream& words, const std::string& where) {
+                    if (word == "facet") {
+                        inFacet = 0;
+                    } else if (word == "vertex") {
+                        if (inFacet == 3) r.fail(where, "a facet with more than three vertices");
+                        tri[static_cast<std::size_t>(inFacet++)] = vertexOf(words, r, where, weld);
+                    } else if (word == "endfacet") {
+                        if (inFacet != 3) r.fail(where, "a facet ends without three vertices");
+                        mesh.triangles.push_back(tri);
+                        inFacet = 0;
+                    }
+                });
 }
 
 /// An OBJ face's vertex reference ("7", "7/2", "7//3", "-1/2/3") as an index into `count`
@@ -121,31 +135,21 @@ std::uint32_t objIndex(const std::string& token, std::size_t count, const Readin
 }
 
 void readObj(const std::string& text, const Reading& r, Welder& weld, TriangleMesh& mesh) {
-    std::istringstream in(text);
-    std::string line;
-    int lineNo = 0;
     std::vector<std::uint32_t> vertices;  // the file's vertex numbers, welded
-    while (std::getline(in, line)) {
-        ++lineNo;
-        std::istringstream words(line);
-        std::string word;
-        if (!(words >> word)) continue;
-        const std::string where = "line " + std::to_string(lineNo);
-        if (word == "v") {
-            double x, y, z;
-            if (!(words >> x >> y >> z)) r.fail(where, "a vertex needs three numbers");
-            vertices.push_back(weld.index(coordinate(x, r, where), coordinate(y, r, where),
-                                          coordinate(z, r, where)));
-        } else if (word == "f") {
-            std::vector<std::uint32_t> face;
-            std::string token;
-            while (words >> token)
-                face.push_back(vertices[objIndex(token, vertices.size(), r, where)]);
-            if (face.size() < 3) r.fail(where, "a face needs three vertices or more");
-            for (std::size_t k = 1; k + 1 < face.size(); ++k)  // a polygon, as a fan
-                mesh.triangles.push_back({face[0], face[k], face[k + 1]});
-        }  // normals, texture coordinates, groups and materials do not shape the surface
-    }
+    forEachLine(
+        text, [&](const std::string& word, std::istringstream& words, const std::string& where) {
+            if (word == "v") {
+                vertices.push_back(vertexOf(words, r, where, weld));
+            } else if (word == "f") {
+                std::vector<std::uint32_t> face;
+                std::string token;
+                while (words >> token)
+                    face.push_back(vertices[objIndex(token, vertices.size(), r, where)]);
+                if (face.size() < 3) r.fail(where, "a face needs three vertices or more");
+                for (std::size_t k = 1; k + 1 < face.size(); ++k)  // a polygon, as a fan
+                    mesh.triangles.push_back({face[0], face[k], face[k + 1]});
+            }  // normals, texture coordinates, groups and materials do not shape the surface
+        });
 }
 
 }  // namespace
@@ -154,10 +158,11 @@ TriangleMesh readMeshFile(const std::string& path, double unitsToMm, const std::
                           const std::string& place) {
     std::string extension = fs::path(path).extension().string();
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    const std::string bytes = readBoundedFile(path, kMaxMeshFileBytes, "a mesh file");
+    openInputFile(path);  // a folder, device or missing file is named as such first
     if (extension != ".stl" && extension != ".obj")
         throw InputError(source, place,
                          "'" + path + "' is no .stl or .obj file; export the object as STL or OBJ");
+    const std::string bytes = readBoundedFile(path, kMaxMeshFileBytes, "a mesh file");
     const Reading r{path, source, place, unitsToMm};
     TriangleMesh mesh;
     Welder weld(mesh, unitsToMm);

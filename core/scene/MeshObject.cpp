@@ -2,17 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 
 #include "core/common/InputError.h"
 #include "core/common/NumberText.h"
 #include "core/geometry/MeshSlice.h"
 #include "core/geometry/Polygon.h"
 #include "core/io/MeshFile.h"
+#include "core/scene/Scene.h"
 
 namespace activetouch {
-
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -49,11 +47,10 @@ double unitsToMm(const JsonFields& f) {
 MeshOutline meshOutline(const JsonFields& f, const std::string& baseDirectory) {
     if (f.has("top_height_mm"))
         f.fail("top_height_mm", "a mesh's top height comes from the mesh; leave it out");
-    fs::path file(f.text("file"));
-    if (file.is_relative() && !baseDirectory.empty()) file = fs::path(baseDirectory) / file;
-    TriangleMesh mesh = readMeshFile(file.string(), unitsToMm(f), f.source(), f.placeOf("file"));
+    const std::string file = objectFilePath(f, baseDirectory);
+    TriangleMesh mesh = readMeshFile(file, unitsToMm(f), f.source(), f.placeOf("file"));
     if (const auto problem = meshProblem(mesh))
-        throw InputError(f.source(), f.placeOf("file"), "'" + file.string() + "': " + *problem);
+        throw InputError(f.source(), f.placeOf("file"), "'" + file + "': " + *problem);
     const double bottom = mesh.lowestZ(), height = mesh.highestZ() - bottom;
     if (!(height > 0.1))
         f.fail("file", "the mesh is flat (" + numberText(height) + " mm high): no edge to follow");
@@ -70,19 +67,11 @@ MeshOutline meshOutline(const JsonFields& f, const std::string& baseDirectory) {
         f.fail("slice_height_mm",
                "the slice at " + numberText(slice) + " mm meets no surface of the mesh");
     // The outer loop: the largest; the others are holes or separate parts.
-    std::sort(loops.begin(), loops.end(), [](const auto& a, const auto& b) {
-        return std::abs(loopArea(a)) > std::abs(loopArea(b));
-    });
-    std::vector<Vec2> outer = withoutCollinear(loops.front());
-    out.otherLoops = static_cast<int>(loops.size()) - 1;
-    if (loopArea(outer) < 0) std::reverse(outer.begin(), outer.end());
-    Vec2 lo = outer.front(), hi = lo;
-    for (const Vec2& v : outer) {
-        lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
-        hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
-    }
-    const Vec2 centre = 0.5 * (lo + hi);
-    for (const Vec2& v : outer) out.outline.push_back(v - centre);
+    const auto outer =
+        std::max_element(loops.begin(), loops.end(), [](const auto& a, const auto& b) {
+            return std::abs(Polygon::signedArea(a)) < std::abs(Polygon::signedArea(b));
+        });
+    out.outline = centredOnBox(withoutCollinear(*outer));
     if (const auto problem = Polygon::problemWith(out.outline))
         f.fail("slice_height_mm",
                "the slice at " + numberText(slice) + " mm gives no usable outline: " + *problem);

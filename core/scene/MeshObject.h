@@ -14,9 +14,8 @@ namespace activetouch {
 inline constexpr double kDefaultSliceDepth_mm = 0.5;
 
 struct MeshOutline {
-    std::vector<Vec2> outline;  ///< the outer loop, centred on its bounding box, counter-clockwise
+    std::vector<Vec2> outline;  ///< the outer loop, centred on its bounding box
     double height_mm = 0.0;     ///< the mesh's top above its lowest point (on the table)
-    int otherLoops = 0;         ///< holes and disjoint parts the slice also met (not followed)
 };
 
 /// Reads the object fields "file", "units" ("mm", "cm", "m" or "in") and "slice_height_mm"

@@ -128,18 +128,16 @@ std::vector<Vec2> svgOutline(const JsonFields& f) {
     const double tolerance = f.number("svg_tolerance_mm", 0.001, 5.0, kDefaultSvgTolerance_mm);
     const Polygon drawn = polygonFromSvgPath(f.raw("svg_path").get<std::string>(), tolerance,
                                              f.source(), f.placeOf("svg_path"));
-    Vec2 lo = drawn.vertex(0), hi = lo;
-    for (const Vec2& v : drawn.vertices()) {
-        lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
-        hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
-    }
-    const Vec2 centre = 0.5 * (lo + hi);
-    std::vector<Vec2> outline;
-    for (const Vec2& v : drawn.vertices()) outline.push_back({v.x - centre.x, centre.y - v.y});
-    return outline;
+    return centredOnBox(drawn.vertices(), true);
 }
 
 }  // namespace
+
+std::string objectFilePath(const JsonFields& f, const std::string& baseDirectory) {
+    fs::path file(f.text("file"));
+    if (file.is_relative() && !baseDirectory.empty()) file = fs::path(baseDirectory) / file;
+    return file.string();
+}
 
 ObjectSpec parseObject(const JsonFields& f, const std::string& baseDirectory) {
     ObjectSpec o;

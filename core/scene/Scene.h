@@ -92,6 +92,9 @@ FingertipSpec loadFingertip(const std::string& nameOrPath, const std::string& re
 /// relative to `baseDirectory` (the folder of the file that names it). Throws InputError.
 ObjectSpec parseObject(const JsonFields& fields, const std::string& baseDirectory = "");
 
+/// An object's "file" (a mesh, a drawing): relative to `baseDirectory` unless it is absolute.
+std::string objectFilePath(const JsonFields& fields, const std::string& baseDirectory);
+
 /// Reads `list`, a list of [x, y] vertices in mm, as an outline. Throws InputError naming
 /// `source` and the vertex at `place` + "/i", or `place`, if it is not a usable outline.
 std::vector<Vec2> parseVertexList(const Json& list, const std::string& source,

@@ -2,17 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <optional>
 
 #include "core/common/InputError.h"
 #include "core/geometry/Polygon.h"
 #include "core/geometry/SvgPath.h"
 #include "core/io/SvgDocument.h"
+#include "core/scene/Scene.h"
 
 namespace activetouch {
-
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -62,26 +60,12 @@ std::vector<Closed> closedOutlines(const SvgElement& e, double tolerance, const 
     return out;
 }
 
-std::vector<Vec2> centredUpright(const Polygon& drawn) {
-    Vec2 lo = drawn.vertex(0), hi = lo;
-    for (const Vec2& v : drawn.vertices()) {
-        lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
-        hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
-    }
-    const Vec2 centre = 0.5 * (lo + hi);
-    std::vector<Vec2> outline;
-    for (const Vec2& v : drawn.vertices()) outline.push_back({v.x - centre.x, centre.y - v.y});
-    return outline;
-}
-
 }  // namespace
 
 SvgFileOutline svgFileOutline(const JsonFields& f, const std::string& baseDirectory) {
-    fs::path file(f.text("file"));
-    if (file.is_relative() && !baseDirectory.empty()) file = fs::path(baseDirectory) / file;
+    const std::string file = objectFilePath(f, baseDirectory);
     const double tolerance = f.number("svg_tolerance_mm", 0.001, 5.0, kDefaultSvgTolerance_mm);
-    const std::vector<SvgElement> elements =
-        readSvgDocument(file.string(), f.source(), f.placeOf("file"));
+    const std::vector<SvgElement> elements = readSvgDocument(file, f.source(), f.placeOf("file"));
     const std::string wanted = f.has("element") ? f.text("element") : std::string();
     std::vector<Closed> all;
     std::string refusal, ids;
@@ -91,22 +75,22 @@ SvgFileOutline svgFileOutline(const JsonFields& f, const std::string& baseDirect
         const bool chosen = !wanted.empty() && e.id == wanted;
         found = found || chosen;
         if (!wanted.empty() && !chosen) continue;
-        auto closed = closedOutlines(e, tolerance, file.string(), &refusal);
+        auto closed = closedOutlines(e, tolerance, file, &refusal);
         if (chosen && closed.empty())
             f.fail("element", "the element " + (refusal.empty() ? e.name() : refusal) +
                                   " draws no closed outline the fingertip can follow");
         for (auto& c : closed) all.push_back(std::move(c));
     }
     if (!wanted.empty() && !found)
-        f.fail("element", "'" + file.string() + "' has no element with id '" + wanted + "'" +
+        f.fail("element", "'" + file + "' has no element with id '" + wanted + "'" +
                               (ids.empty() ? "; it names none" : "; its ids: " + ids));
     if (all.empty())
-        f.fail("file", "'" + file.string() + "' draws no closed outline" +
+        f.fail("file", "'" + file + "' draws no closed outline" +
                            (refusal.empty() ? std::string() : " (" + refusal + ")"));
     std::sort(all.begin(), all.end(), [](const Closed& a, const Closed& b) {
         return std::abs(a.polygon.area()) > std::abs(b.polygon.area());
     });
-    SvgFileOutline out{centredUpright(all.front().polygon), all.front().name, {}};
+    SvgFileOutline out{centredOnBox(all.front().polygon.vertices(), true), all.front().name, {}};
     for (std::size_t i = 1; i < all.size(); ++i) out.others.push_back(all[i].name);
     return out;
 }

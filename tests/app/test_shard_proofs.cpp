@@ -15,18 +15,15 @@
 #include <functional>
 
 #include "support/Cli.h"
+#include "support/Files.h"
 #include "support/Paths.h"
 
+using activetouch::test::bytesOf;
+using activetouch::test::copyFolder;
 using activetouch::test::runCli;
 using activetouch::test::sourceFile;
 
 namespace {
-
-QByteArray readAll(const QString& path) {
-    QFile f(path);
-    f.open(QIODevice::ReadOnly);
-    return f.readAll();
-}
 
 void writeAll(const QString& path, const QByteArray& bytes) {
     QFile f(path);
@@ -34,23 +31,11 @@ void writeAll(const QString& path, const QByteArray& bytes) {
     f.write(bytes);
 }
 
-/// Copies folder `from` to `to`, files only, one level of subfolders.
-void copyFolder(const QString& from, const QString& to) {
-    QDir().mkpath(to);
-    for (const QFileInfo& e :
-         QDir(from).entryInfoList(QDir::Files | QDir::Dirs | QDir::NoDotAndDotDot)) {
-        if (e.isDir())
-            copyFolder(e.filePath(), to + "/" + e.fileName());
-        else
-            QFile::copy(e.filePath(), to + "/" + e.fileName());
-    }
-}
-
 /// Records `file`'s new size and digest in `folder`'s run.json, as a forger who knows the format
 /// would.
 void rehash(const QString& folder, const QString& file) {
-    const QByteArray bytes = readAll(folder + "/" + file);
-    QJsonObject m = QJsonDocument::fromJson(readAll(folder + "/run.json")).object();
+    const QByteArray bytes = bytesOf(folder + "/" + file);
+    QJsonObject m = QJsonDocument::fromJson(bytesOf(folder + "/run.json")).object();
     QJsonObject files = m["files"].toObject();
     files[file] = QJsonObject{
         {"bytes", bytes.size()},
@@ -71,7 +56,7 @@ class TestShardProofs : public QObject {
     QString tampered(const std::function<void(QJsonObject&)>& edit, bool rehashed) {
         const QString folder = dir_.filePath("tampered_" + QString::number(++copies_));
         copyFolder(shard1_, folder);
-        QJsonObject j = QJsonDocument::fromJson(readAll(folder + "/seed_outcomes.json")).object();
+        QJsonObject j = QJsonDocument::fromJson(bytesOf(folder + "/seed_outcomes.json")).object();
         edit(j);
         writeAll(folder + "/seed_outcomes.json", QJsonDocument(j).toJson(QJsonDocument::Compact));
         if (rehashed) rehash(folder, "seed_outcomes.json");
@@ -113,9 +98,9 @@ private slots:
     }
 
     void everyFileIsRecordedWithItsDigest() {
-        const QJsonObject m = QJsonDocument::fromJson(readAll(shard1_ + "/run.json")).object();
+        const QJsonObject m = QJsonDocument::fromJson(bytesOf(shard1_ + "/run.json")).object();
         const QJsonObject entry = m["files"].toObject()["seed_outcomes.json"].toObject();
-        const QByteArray bytes = readAll(shard1_ + "/seed_outcomes.json");
+        const QByteArray bytes = bytesOf(shard1_ + "/seed_outcomes.json");
         QCOMPARE(entry["bytes"].toInteger(), qint64(bytes.size()));
         QCOMPARE(entry["sha256"].toString(),
                  QString(QCryptographicHash::hash(bytes, QCryptographicHash::Sha256).toHex()));
@@ -126,14 +111,14 @@ private slots:
         const auto o = runCli({"merge", shard2_, shard1_, "--out", merged, "--no-figures"});
         QVERIFY2(o.exitCode == 0, qPrintable(o.err));
         for (const char* f : {"rates.csv", "rates.json", "seed_outcomes.json"})
-            QVERIFY2(readAll(merged + "/" + f) == readAll(whole_ + "/" + f), f);
+            QVERIFY2(bytesOf(merged + "/" + f) == bytesOf(whole_ + "/" + f), f);
     }
 
     void anEditedShardFileIsRefusedByItsDigest() {
         // One digit of a count changed in place: the same size, another digest.
         const QString folder = dir_.filePath("edited");
         copyFolder(shard1_, folder);
-        QByteArray text = readAll(folder + "/seed_outcomes.json");
+        QByteArray text = bytesOf(folder + "/seed_outcomes.json");
         const int key = text.indexOf("\"active_completed\":");
         QVERIFY(key > 0);
         int digit = key + int(qstrlen("\"active_completed\":"));
@@ -210,7 +195,7 @@ private slots:
         // A run.json that records bare sizes, as folders written before digests were kept do: a
         // recording in it is still read (its sizes checked), a shard is not merged.
         auto bareSizes = [](const QString& folder) {
-            QJsonObject m = QJsonDocument::fromJson(readAll(folder + "/run.json")).object();
+            QJsonObject m = QJsonDocument::fromJson(bytesOf(folder + "/run.json")).object();
             QJsonObject files = m["files"].toObject();
             for (const QString& k : files.keys()) files[k] = files[k].toObject()["bytes"];
             m["files"] = files;
@@ -235,7 +220,7 @@ private slots:
         const auto made =
             runCli({"run", sourceFile("experiments/paper.json"), "--out", run, "--no-figures"});
         QVERIFY2(made.exitCode == 0, qPrintable(made.err));
-        QByteArray taps = readAll(run + "/data/taps.csv");
+        QByteArray taps = bytesOf(run + "/data/taps.csv");
         // The last digit of the first row: the last place of its last taxel's reading.
         const int rowEnd = taps.indexOf('\n', taps.indexOf('\n') + 1);
         QVERIFY(rowEnd > 0 && std::isdigit(static_cast<unsigned char>(taps[rowEnd - 1])));

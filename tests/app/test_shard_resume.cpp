@@ -12,31 +12,14 @@
 #include <QtTest>
 
 #include "support/Cli.h"
+#include "support/Files.h"
 #include "support/Paths.h"
 
+using activetouch::test::bytesOf;
+using activetouch::test::copyFolder;
+using activetouch::test::linesIn;
 using activetouch::test::runCli;
 using activetouch::test::sourceFile;
-
-namespace {
-
-QByteArray readAll(const QString& path) {
-    QFile f(path);
-    f.open(QIODevice::ReadOnly);
-    return f.readAll();
-}
-
-int lineCount(const QString& path) {
-    return static_cast<int>(readAll(path).count('\n'));
-}
-
-/// Copies the files of folder `from` (no subfolders) to `to`.
-void copyFiles(const QString& from, const QString& to) {
-    QDir().mkpath(to);
-    for (const QFileInfo& e : QDir(from).entryInfoList(QDir::Files))
-        QFile::copy(e.filePath(), to + "/" + e.fileName());
-}
-
-}  // namespace
 
 class TestShardResume : public QObject {
     Q_OBJECT
@@ -60,25 +43,25 @@ private slots:
         p.start(qEnvironmentVariable("ACTIVETOUCH_CLI"), shardArgs("1/2", live));
         QVERIFY(p.waitForStarted());
         const QString journal = live + "/seed_outcomes.journal";
-        while (p.state() == QProcess::Running && lineCount(journal) < 3) QTest::qWait(5);
+        while (p.state() == QProcess::Running && linesIn(journal) < 3) QTest::qWait(5);
         QVERIFY2(p.state() == QProcess::Running, "the shard ended before it could be cut short");
         p.kill();
         QVERIFY(p.waitForFinished());
         cut_ = dir_.filePath("cut");
-        copyFiles(live, cut_);
+        copyFolder(live, cut_);
         // Whole lines only (a line the kill cut is tried on its own below).
-        const QByteArray journalText = readAll(cut_ + "/seed_outcomes.journal");
+        const QByteArray journalText = bytesOf(cut_ + "/seed_outcomes.journal");
         QFile whole(cut_ + "/seed_outcomes.journal");
         QVERIFY(whole.open(QIODevice::WriteOnly | QIODevice::Truncate));
         whole.write(journalText.left(journalText.lastIndexOf('\n') + 1));
         whole.close();
-        done_ = lineCount(cut_ + "/seed_outcomes.journal") - 1;
+        done_ = linesIn(cut_ + "/seed_outcomes.journal") - 1;
         QVERIFY(done_ >= 2 && done_ < 20);
     }
 
     void aKilledShardResumesWithoutRedoingItsSeeds() {
         const QString shard1 = dir_.filePath("shard1");
-        copyFiles(cut_, shard1);
+        copyFolder(cut_, shard1);
         const auto o = runCli(shardArgs("1/2", shard1));
         QVERIFY2(o.exitCode == 0, qPrintable(o.err));
         QVERIFY2(
@@ -103,7 +86,7 @@ private slots:
         const auto m = runCli({"merge", shard1, shard2, "--out", merged, "--no-figures"});
         QVERIFY2(m.exitCode == 0, qPrintable(m.err));
         for (const char* f : {"rates.csv", "rates.json", "seed_outcomes.json"})
-            QVERIFY2(readAll(merged + "/" + f) == readAll(whole + "/" + f), f);
+            QVERIFY2(bytesOf(merged + "/" + f) == bytesOf(whole + "/" + f), f);
     }
 
     void mergeNamesTheShardsToRerun() {
@@ -124,21 +107,21 @@ private slots:
 
     void aCutShortRunOfAnotherRangeIsNotResumed() {
         const QString folder = dir_.filePath("other_range");
-        copyFiles(cut_, folder);
+        copyFolder(cut_, folder);
         const auto o = runCli(shardArgs("1/2", folder, "41"));
         QCOMPARE(o.exitCode, 2);
         QVERIFY2(o.err.contains("seed_outcomes.journal") && o.err.contains("seeds 1-40") &&
                      o.err.contains("--replace"),
                  qPrintable(o.err));
-        QCOMPARE(lineCount(folder + "/seed_outcomes.journal"), done_ + 1);  // nothing lost
+        QCOMPARE(linesIn(folder + "/seed_outcomes.journal"), done_ + 1);  // nothing lost
     }
 
     void aDamagedJournalLineIsRefusedAndACutLastLineIsDropped() {
-        const QByteArray journal = readAll(cut_ + "/seed_outcomes.journal");
+        const QByteArray journal = bytesOf(cut_ + "/seed_outcomes.journal");
         const QList<QByteArray> lines = journal.split('\n');
         // The last outcome cut in the middle, as a kill while writing leaves it: resumed before it.
         const QString cutLine = dir_.filePath("cut_line");
-        copyFiles(cut_, cutLine);
+        copyFolder(cut_, cutLine);
         {
             QFile f(cutLine + "/seed_outcomes.journal");
             QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
@@ -153,7 +136,7 @@ private slots:
             qPrintable(resumed.out));
         // A line before the last damaged: refused by its line, nothing run.
         const QString damaged = dir_.filePath("damaged");
-        copyFiles(cut_, damaged);
+        copyFolder(cut_, damaged);
         {
             QFile f(damaged + "/seed_outcomes.journal");
             QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));

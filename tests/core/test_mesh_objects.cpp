@@ -12,6 +12,7 @@
 #include "core/common/InputError.h"
 #include "core/geometry/ShapeLibrary.h"
 #include "core/scene/Scene.h"
+#include "support/Refusals.h"
 
 using namespace activetouch;
 
@@ -114,12 +115,7 @@ class TestMeshObjects : public QObject {
                            dir_.path().toStdString());
     }
     QString refusal(const std::string& json) {
-        try {
-            object(json);
-        } catch (const InputError& e) {
-            return QString::fromStdString(e.place() + " | " + e.problem() + " | " + e.what());
-        }
-        return {};
+        return test::refusalOf([&] { object(json); });
     }
 
 private slots:

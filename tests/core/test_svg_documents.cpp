@@ -12,6 +12,7 @@
 #include "core/scene/Scene.h"
 #include "core/scene/SvgObject.h"
 #include "core/test_svg_drawings.h"  // the documents read here
+#include "support/Refusals.h"
 
 using namespace activetouch;
 
@@ -56,12 +57,7 @@ class TestSvgDocuments : public QObject {
         return svgFileOutline(JsonFields(object, "lab.json", "/object"), dir_.path().toStdString());
     }
     QString refusal(const Json& object) {
-        try {
-            read(object);
-        } catch (const InputError& e) {
-            return QString::fromStdString(e.place() + " | " + e.problem() + " | " + e.what());
-        }
-        return {};
+        return test::refusalOf([&] { read(object); });
     }
 
 private slots:

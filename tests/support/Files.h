@@ -1,5 +1,6 @@
 #pragma once
 // Reading back what a run wrote.
+#include <QDir>
 #include <QFile>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -7,6 +8,25 @@
 #include <QStringList>
 
 namespace activetouch::test {
+
+/// The file's bytes (empty if it cannot be read).
+inline QByteArray bytesOf(const QString& path) {
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly)) return {};
+    return f.readAll();
+}
+
+/// Copies folder `from` to `to`, files and subfolders.
+inline void copyFolder(const QString& from, const QString& to) {
+    QDir().mkpath(to);
+    for (const QFileInfo& e :
+         QDir(from).entryInfoList(QDir::Files | QDir::Dirs | QDir::NoDotAndDotDot)) {
+        if (e.isDir())
+            copyFolder(e.filePath(), to + "/" + e.fileName());
+        else
+            QFile::copy(e.filePath(), to + "/" + e.fileName());
+    }
+}
 
 /// How many lines the file holds (-1 if it cannot be read): a recording's header and rows.
 inline int linesIn(const QString& path) {

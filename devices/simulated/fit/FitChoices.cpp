@@ -10,7 +10,6 @@ Replicates bootstrapMoments(const FitRun& run, const SceneSpec& fittedAll) {
     const int K = run.taxels();
     Replicates reps;
     reps.logGains.resize(static_cast<std::size_t>(K));
-    const EffectSpec blinkEffect = blinkEffectOf(run.blinking);
     const double period = 1.0 / c.base.tap.sampleRate_hz;
     for (int b = 0; b < settings.bootstrapReplicates; ++b) {
         const auto replicate = simulateAt(fittedAll, c.model, c.poses,
@@ -18,11 +17,12 @@ Replicates bootstrapMoments(const FitRun& run, const SceneSpec& fittedAll) {
         // A replicate's blinks are read again, so that the gains' spread carries theirs.
         FitContext rc = c;
         Blinking again;
-        EffectSpec againEffect = blinkEffect;
+        EffectSpec againEffect;  // the blinking the fit lists (c.blink), as this replicate reads it
         if (run.blinking.listed) {
             again = readBlinking(c.base, c.model, replicate, run.idealTaps, c.skip, period,
                                  settings.seed + 40000 + 100 * static_cast<std::uint64_t>(b),
                                  run.blinking.taxels);
+            againEffect = *c.blink;
             againEffect.parameters["off_fraction"] = again.offFraction;
             againEffect.parameters["mean_off_s"] = again.meanOff_s;
             rc.blink = &againEffect;
