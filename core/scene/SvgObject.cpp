@@ -77,8 +77,9 @@ SvgFileOutline svgFileOutline(const JsonFields& f, const std::string& baseDirect
         if (!wanted.empty() && !chosen) continue;
         auto closed = closedOutlines(e, tolerance, file, &refusal);
         if (chosen && closed.empty())
-            f.fail("element", "the element " + (refusal.empty() ? e.name() : refusal) +
-                                  " draws no closed outline the fingertip can follow");
+            f.fail("element", "the element " + e.name() +
+                                  " draws no closed outline the fingertip can follow" +
+                                  (refusal.empty() ? std::string() : " (" + refusal + ")"));
         for (auto& c : closed) all.push_back(std::move(c));
     }
     if (!wanted.empty() && !found)
