@@ -27,6 +27,7 @@
 #include "core/analysis/SeedShards.h"
 #include "core/analysis/SweepRates.h"
 #include "core/experiment/Experiment.h"
+#include "core/experiment/ReachCautions.h"
 #include "core/experiment/RunPlan.h"
 #include "core/io/Csv.h"
 #include "core/records/FollowingRecording.h"
@@ -65,6 +66,8 @@ int usageError(const std::string& message) {
 /// Says, before any tap, what an experiment will run but cannot do well.
 void printCautions(const ExperimentSpec& spec) {
     for (const std::string& c : untrainedEdgeCautions(spec))
+        std::fprintf(stderr, "caution: %s\n", c.c_str());
+    for (const std::string& c : unresolvedFeatureCautions(spec))
         std::fprintf(stderr, "caution: %s\n", c.c_str());
 }
 

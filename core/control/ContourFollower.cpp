@@ -10,6 +10,7 @@
 #include "core/common/NumberText.h"
 #include "core/control/ContactDetection.h"
 #include "core/control/MotorCommand.h"
+#include "core/geometry/ContourReach.h"
 
 namespace activetouch {
 
@@ -241,9 +242,11 @@ std::string startProblem(const Polygon& outline, Vec2 start, const FollowingSett
 }
 
 void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double coverageRadius,
-                 TrialResult& r) {
+                 double contactRadius, TrialResult& r) {
     r.coverage = 0.0;
     r.meanContourDistance_mm = r.maxContourDistance_mm = 0.0;
+    const ContourReach reach(outline, contactRadius);
+    r.reachable = reach.reachableFraction();
     if (path.empty()) return;
     double sum = 0.0;
     for (Vec2 p : path) {
@@ -252,19 +255,21 @@ void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double c
         r.maxContourDistance_mm = std::max(r.maxContourDistance_mm, d);
     }
     r.meanContourDistance_mm = sum / static_cast<double>(path.size());
-    // Coverage: perimeter points every 0.5 mm with a tap within the radius.
-    const double step = 0.5;
-    const int samples = std::max(1, static_cast<int>(std::ceil(outline.perimeter() / step)));
-    int covered = 0;
-    for (int i = 0; i < samples; ++i) {
-        const Vec2 q = outline.pointAtArcLength(i * outline.perimeter() / samples);
+    // Coverage: contour points within reach, every half millimetre, with a tap within the radius.
+    const std::size_t samples = reach.samples();
+    std::size_t inReach = 0, covered = 0;
+    for (std::size_t i = 0; i < samples; ++i) {
+        if (!reach.reachable(i)) continue;
+        ++inReach;
+        const Vec2 q = outline.pointAtArcLength(static_cast<double>(i) * outline.perimeter() /
+                                                static_cast<double>(samples));
         for (Vec2 p : path)
             if (distance(p, q) <= coverageRadius) {
                 ++covered;
                 break;
             }
     }
-    r.coverage = static_cast<double>(covered) / samples;
+    r.coverage = inReach > 0 ? static_cast<double>(covered) / static_cast<double>(inReach) : 0.0;
 }
 
 namespace {
@@ -476,7 +481,8 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
     if (result.detail.empty())
         result.detail = trialDetail(result, loop.progress(), loop.perimeter());
     result.robotTime_s = rig.clock.now_s() - startTime;
-    measurePath(outline, result.path(), setup.settings.coverageRadius_mm, result);
+    measurePath(outline, result.path(), setup.settings.coverageRadius_mm, setup.contactRadius_mm,
+                result);
     return result;
 }
 

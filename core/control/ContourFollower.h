@@ -84,7 +84,10 @@ struct TrialResult {
     std::string detail;  ///< the sentence behind `end`
     std::vector<FollowedTap> taps;
     double robotTime_s = 0.0;
-    double coverage = 0.0;  ///< fraction of the perimeter with a tap within the coverage radius
+    /// Fraction of the contour within the contact patch's reach (core/geometry/ContourReach.h),
+    /// and of that part, the fraction with a tap within the coverage radius.
+    double reachable = 1.0;
+    double coverage = 0.0;
     double meanContourDistance_mm = 0.0;
     double maxContourDistance_mm = 0.0;
     double progress_mm = 0.0;
@@ -115,6 +118,9 @@ struct TrialSetup {
     /// discrete percept: the run's calibration of one tap's belief. The identity leaves the
     /// naive-Bayes log-likelihoods as they are.
     BeliefScaling beliefScaling;
+    /// The contact patch's radius on an edge (FingertipContactModel::edgeContactRadius): the
+    /// contour it cannot resolve does not count toward coverage. 0: every point counts.
+    double contactRadius_mm = 0.0;
 };
 
 /// The start pose the paper uses: on the lower edge (the one facing most nearly down, the lowest
@@ -148,8 +154,9 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
 void judgePlaces(const Polygon& outline, double startArc, const CornerCriteria& criteria,
                  TrialResult& result);
 
-/// Coverage and contour distances of a path against an outline.
+/// Coverage and contour distances of a path against an outline: coverage over the part of the
+/// contour a patch of `contactRadius` can resolve (all of it for 0).
 void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double coverageRadius,
-                 TrialResult& result);
+                 double contactRadius, TrialResult& result);
 
 }  // namespace activetouch

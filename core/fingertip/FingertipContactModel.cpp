@@ -177,6 +177,34 @@ double FingertipContactModel::surfaceHeightAt(Vec2 offset) const {
     return lowestBodyHeight(body.x, body.y + lowestY_) - lowestZ_;
 }
 
+double FingertipContactModel::footprintHalfWidth(double depth) const {
+    const auto pressed = static_cast<std::size_t>(
+        std::upper_bound(heights_.begin(), heights_.end(), static_cast<float>(depth)) -
+        heights_.begin());
+    if (pressed == 0) return 0.0;
+    double narrowest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 180; k += 5) {  // the footprint's extent along each direction
+        const Vec2 d = directionFromDegrees(k);
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (std::size_t q = 0; q < pressed; ++q) {
+            const double t = dot(points_[q].offset, d);
+            lo = std::min(lo, t);
+            hi = std::max(hi, t);
+        }
+        narrowest = std::min(narrowest, hi - lo);
+    }
+    // Each patch point stands for a cell a grid step across.
+    return 0.5 * (narrowest + spec_.gridStep);
+}
+
+double FingertipContactModel::edgeContactRadius(double threshold, double maxDepth) const {
+    // A square far larger than the patch, the tip centred on its lower edge.
+    const double side = 4.0 * (patchRadius_ + spec_.gridStep);
+    const Polygon object({{-side, 0.0}, {side, 0.0}, {side, 2.0 * side}, {-side, 2.0 * side}});
+    auto contact = contactAt(object, {0.0, 0.0});
+    return footprintHalfWidth(contact.depthReaching(threshold, maxDepth).value_or(maxDepth));
+}
+
 FingertipContactModel::Contact FingertipContactModel::contactAt(const Polygon& object,
                                                                 Vec2 centre) const {
     return Contact(*this, object, centre);

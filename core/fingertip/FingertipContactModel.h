@@ -1,6 +1,6 @@
 #pragma once
-// Contact physics of the ideal fingertip (docs/simulated-rig.md): the tilted rounded tip pressed into a
-// compliant pad on a flat object's top face. Each taxel reads the mean indentation over its
+// Contact physics of the ideal fingertip (docs/simulated-rig.md): the tilted rounded tip pressed
+// into a compliant pad on a flat object's top face. Each taxel reads the mean indentation over its
 // receptive field, counted only where the object's top face lies under the tip, so edges,
 // corners and concavities come out of geometry alone.
 //
@@ -37,6 +37,16 @@ public:
     /// Body surface height above the first-contact point at a planar offset (infinite where
     /// the body never reaches within maxIndentation).
     double surfaceHeightAt(Vec2 offset) const;
+
+    /// Half the width of the body's footprint pressed `depth` mm in (the patch points within
+    /// `depth` of the first-contact point), across its narrowest direction, mm: a feature
+    /// narrower than twice this lies under the footprint whichever way the finger points.
+    double footprintHalfWidth(double depth) const;
+    /// The contact patch of a tap centred on a long straight edge, as a radius: the footprint's
+    /// half-width at the depth where the total pressure reaches `threshold` counts (`maxDepth`
+    /// if it does not). What the patch spans as it follows a contour
+    /// (core/geometry/ContourReach.h).
+    double edgeContactRadius(double threshold, double maxDepth) const;
 
     /// What lies under the tip for one stage pose: the object's coverage of each patch point,
     /// computed lazily in order of surface height.

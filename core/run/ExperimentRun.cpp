@@ -74,6 +74,7 @@ TrialSetup trialSetupFor(const RunResult& trained, FollowingMode mode,
     setup.settings = settings;
     setup.valid = trained.validOffsets;
     setup.noiseFloor = trained.noiseFloor_counts;
+    setup.contactRadius_mm = trained.contactRadius_mm;
     setup.start = start ? *start : lowerEdgeStart(outline, trained.validOffsets);
     if (trained.beliefCalibration.measured && settings.calibratedBelief)
         setup.beliefScaling = trained.beliefCalibration.sequential;
@@ -146,6 +147,8 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
                const RunOptions& options, RunProgress& progress,
                const std::vector<const RecordedTrial*>& replayed = {}) {
     const ExperimentSpec& spec = result.spec;
+    result.contactRadius_mm =
+        model->edgeContactRadius(spec.scene.tap.contactThreshold, spec.scene.strokeLimitDepth());
     if (spec.trials.empty()) return;
     std::unique_ptr<FollowingRecording> recording;
     if (!options.outDir.empty())

@@ -106,6 +106,9 @@ struct RunResult {
     BeliefCalibration beliefCalibration;
     ValidOffsets
         validOffsets;  ///< the valid range as offsets from the edge, used by the controller
+    /// The fingertip's contact patch on an edge, as a radius (core/geometry/ContourReach.h): the
+    /// contour it cannot resolve does not count toward a trial's coverage.
+    double contactRadius_mm = 0.0;
     std::pair<int, int> trustedPositions{1,
                                          1};  ///< positions whose orientation the controller uses
     std::vector<TrialRun> trials;

@@ -100,6 +100,7 @@ Json followingJson(const RunResult& r) {
                              {"detail", t.result.detail},
                              {"taps", t.result.taps.size()},
                              {"robot_time_s", t.result.robotTime_s},
+                             {"reachable", t.result.reachable},
                              {"coverage", t.result.coverage},
                              {"mean_contour_distance_mm", t.result.meanContourDistance_mm},
                              {"max_contour_distance_mm", t.result.maxContourDistance_mm},

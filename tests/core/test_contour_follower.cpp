@@ -315,11 +315,11 @@ private slots:
     void pathMetrics() {
         const Polygon square({{0, 0}, {10, 0}, {10, 10}, {0, 10}});
         TrialResult r;
-        measurePath(square, {{5, -1}, {5, 11}}, 3.0, r);
+        measurePath(square, {{5, -1}, {5, 11}}, 3.0, 0.0, r);
         QCOMPARE(r.meanContourDistance_mm, 1.0);
         QCOMPARE(r.maxContourDistance_mm, 1.0);
         QVERIFY(r.coverage > 0.2 && r.coverage < 0.4);  // two 5.7 mm stretches of 40 mm
-        measurePath(square, {}, 3.0, r);
+        measurePath(square, {}, 3.0, 0.0, r);
         QCOMPARE(r.coverage, 0.0);
     }
 };
