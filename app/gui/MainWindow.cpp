@@ -43,6 +43,7 @@
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
 #include "app/gui/WholeFile.h"
+#include "core/experiment/ReachCautions.h"
 #include "core/experiment/RunPlan.h"
 #include "core/records/FollowingRecording.h"
 #include "core/records/TapCsv.h"
@@ -140,6 +141,7 @@ void MainWindow::buildDocks() {
     sceneDock->setWidget(scene_);
     addDockWidget(Qt::LeftDockWidgetArea, sceneDock);
     connect(scene_, &ScenePanel::failed, this, &MainWindow::showError);
+    connect(scene_, &ScenePanel::noted, this, &MainWindow::log);
     devicesPanel_ = new DevicesPanel(devices_.session());
     auto* devicesDock = new QDockWidget(tr("Devices"));
     devicesDock->setObjectName("devicesDock");
@@ -337,7 +339,9 @@ bool MainWindow::openExperiment(const QString& path) {
         savedDocument_ = documentAsShown();
         setWindowModified(false);
         log(tr("opened %1 (%2)").arg(path, QString::fromStdString(spec_.name)));
-        for (const std::string& c : untrainedEdgeCautions(spec_))
+        for (const auto& c : untrainedEdgeCautions(spec_))
+            log(tr("caution: %1").arg(QString::fromStdString(c)));
+        for (const auto& c : unresolvedFeatureCautions(spec_))
             log(tr("caution: %1").arg(QString::fromStdString(c)));
         updateActions();
         return true;

@@ -3,15 +3,19 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFileDialog>
+#include <QFileInfo>
 #include <QFormLayout>
 #include <QGroupBox>
+#include <QInputDialog>
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
 #include <QVBoxLayout>
 
 #include "app/gui/ScrolledColumn.h"
+#include "core/experiment/ReachCautions.h"
 #include "core/geometry/ShapeLibrary.h"
+#include "core/scene/OutlineFile.h"
 #include "devices/simulated/effects/Effect.h"
 
 namespace activetouch {
@@ -62,7 +66,26 @@ QDoubleSpinBox* spin(double lo, double hi, double value, const QString& suffix, 
 
 ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
     QVBoxLayout* layout = scrolledColumn(this);
+    layout->addWidget(buildObjectBox());
+    layout->addWidget(buildEffectsBox());
+    layout->addStretch();
+    for (auto* s : {width_, height_, arm_, opening_, x_, y_, rotation_, top_})
+        connect(s, &QDoubleSpinBox::valueChanged, this, &ScenePanel::changed);
+    connect(shape_, &QComboBox::currentTextChanged, this, &ScenePanel::changed);
+    // Only the sizes the chosen shape has are editable.
+    auto enableSizes = [this](const QString& shape) {
+        const bool library = shape != "polygon";
+        width_->setEnabled(library);
+        height_->setEnabled(library);
+        arm_->setEnabled(shape == "cross" || shape == "C" || shape == "L");
+        opening_->setEnabled(shape == "C");
+    };
+    connect(shape_, &QComboBox::currentTextChanged, this, enableSizes);
+    enableSizes(shape_->currentText());
+    connect(this, &ScenePanel::changed, this, &ScenePanel::updateReach);
+}
 
+QGroupBox* ScenePanel::buildObjectBox() {
     auto* object = new QGroupBox(tr("Object"));
     auto* form = new QFormLayout(object);
     shape_ = new QComboBox;
@@ -79,8 +102,17 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
     y_->setObjectName("objectCentreY");
     rotation_ = spin(-360, 360, 0, " °");
     top_ = spin(0.1, 500, 10, " mm");
-    polygonLabel_ = new QLabel(tr("no polygon loaded"));
-    auto* loadButton = new QPushButton(tr("Load polygon..."));
+    polygonLabel_ = new QLabel(tr("no outline loaded"));
+    polygonLabel_->setWordWrap(true);
+    auto* loadButton = new QPushButton(tr("Load outline..."));
+    loadButton->setToolTip(
+        tr("A polygon (.json), an SVG drawing (.svg: its largest closed "
+           "outline) or a 3D-printed object's mesh (.stl, .obj: sliced under "
+           "its top)"));
+    reachLabel_ = new QLabel;
+    reachLabel_->setObjectName("reachNote");
+    reachLabel_->setWordWrap(true);
+    reachLabel_->setVisible(false);
     connect(loadButton, &QPushButton::clicked, this, &ScenePanel::loadPolygon);
     form->addRow(tr("Shape"), shape_);
     form->addRow(tr("Width"), width_);
@@ -92,8 +124,11 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
     form->addRow(tr("Rotation"), rotation_);
     form->addRow(tr("Top height"), top_);
     form->addRow(polygonLabel_, loadButton);
-    layout->addWidget(object);
+    form->addRow(reachLabel_);
+    return object;
+}
 
+QGroupBox* ScenePanel::buildEffectsBox() {
     auto* effectsBox = new QGroupBox(tr("Effects (each runs only when ticked)"));
     auto* effectsLayout = new QVBoxLayout(effectsBox);
     for (const EffectDescription& d : effectCatalogue()) {
@@ -122,21 +157,7 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
         effectsLayout->addWidget(w.box);
         effects_[d.name] = w;
     }
-    layout->addWidget(effectsBox);
-    layout->addStretch();
-    for (auto* s : {width_, height_, arm_, opening_, x_, y_, rotation_, top_})
-        connect(s, &QDoubleSpinBox::valueChanged, this, &ScenePanel::changed);
-    connect(shape_, &QComboBox::currentTextChanged, this, &ScenePanel::changed);
-    // Only the sizes the chosen shape has are editable.
-    auto enableSizes = [this](const QString& shape) {
-        const bool library = shape != "polygon";
-        width_->setEnabled(library);
-        height_->setEnabled(library);
-        arm_->setEnabled(shape == "cross" || shape == "C" || shape == "L");
-        opening_->setEnabled(shape == "C");
-    };
-    connect(shape_, &QComboBox::currentTextChanged, this, enableSizes);
-    enableSizes(shape_->currentText());
+    return effectsBox;
 }
 
 void ScenePanel::showScene(const SceneSpec& scene) {
@@ -152,8 +173,10 @@ void ScenePanel::showScene(const SceneSpec& scene) {
     rotation_->setValue(o.rotationDeg);
     top_->setValue(o.height_mm);
     polygon_ = o.polygon;
-    polygonLabel_->setText(polygon_.empty() ? tr("no polygon loaded")
+    polygonLabel_->setText(polygon_.empty() ? tr("no outline loaded")
                                             : tr("polygon of %1 vertices").arg(polygon_.size()));
+    base_ = scene;
+    contactRadius_mm_ = sceneContactRadius(scene);
     for (auto& [name, w] : effects_) {
         w.box->setChecked(false);
         w.gains.clear();
@@ -184,6 +207,7 @@ void ScenePanel::showScene(const SceneSpec& scene) {
             it->second.taxels->setText(list.join(", "));
         }
     }
+    updateReach();
 }
 
 SceneSpec ScenePanel::sceneFromPanel(const SceneSpec& base) const {
@@ -232,22 +256,65 @@ SceneSpec ScenePanel::sceneFromPanel(const SceneSpec& base) const {
 }
 
 void ScenePanel::loadPolygon() {
-    const QString path =
-        QFileDialog::getOpenFileName(this, tr("Load a polygon"), QString(), tr("JSON (*.json)"));
-    if (!path.isEmpty()) loadPolygonFrom(path);
+    const QString path = QFileDialog::getOpenFileName(
+        this, tr("Load an outline"), QString(),
+        tr("Outlines (*.json *.svg *.stl *.obj);;Polygons (*.json);;SVG drawings (*.svg);;"
+           "Meshes (*.stl *.obj)"));
+    if (path.isEmpty()) return;
+    QString units;
+    if (isMeshFileName(path.toStdString())) {
+        bool ok = false;
+        // STL and OBJ files do not say their units: printing software mostly writes mm, CAD
+        // exports often m.
+        units = QInputDialog::getItem(
+            this, tr("Mesh units"), tr("The units %1 is drawn in:").arg(QFileInfo(path).fileName()),
+            {"mm", "cm", "m", "in"}, 0, false, &ok);
+        if (!ok) return;
+    }
+    loadOutlineFrom(path, units);
 }
 
-bool ScenePanel::loadPolygonFrom(const QString& path) {
+bool ScenePanel::loadOutlineFrom(const QString& path, const QString& meshUnits) {
+    OutlineFile loaded;
     try {
-        polygon_ = loadPolygonFile(path.toStdString());
+        if (isMeshFileName(path.toStdString()) && meshUnits.isEmpty())
+            throw InputError(path.toStdString(), "",
+                             "a mesh does not say its units; give them (mm, cm, m or in)");
+        loaded = loadOutlineFile(path.toStdString(), meshUnits.toStdString());
     } catch (const InputError& e) {
         emit failed(QString::fromStdString(e.what()));
         return false;
     }
-    shape_->setCurrentText("polygon");
-    polygonLabel_->setText(tr("polygon of %1 vertices").arg(polygon_.size()));
+    {
+        const QSignalBlocker block(this);
+        polygon_ = loaded.polygon;
+        shape_->setCurrentText("polygon");
+        if (loaded.height_mm) top_->setValue(*loaded.height_mm);
+    }
+    polygonLabel_->setText(
+        tr("%1, %2 vertices").arg(QString::fromStdString(loaded.description)).arg(polygon_.size()));
+    for (const std::string& note : loaded.notes)
+        emit noted(tr("%1: %2").arg(path, QString::fromStdString(note)));
     emit changed();
     return true;
+}
+
+QString ScenePanel::reachNote() const {
+    return reachLabel_->text();
+}
+
+void ScenePanel::updateReach() {
+    QString note;
+    try {
+        const Polygon outline = sceneFromPanel(base_).object.outline();
+        note = QString::fromStdString(
+            reachCaution(outline, ContourReach(outline, contactRadius_mm_), "The object"));
+    } catch (const std::exception&) {
+        // A panel mid-edit (no polygon yet, sizes that make no outline): nothing to judge; the
+        // run refuses such a scene by name.
+    }
+    reachLabel_->setText(note);
+    reachLabel_->setVisible(!note.isEmpty());
 }
 
 }  // namespace activetouch

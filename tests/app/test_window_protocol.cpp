@@ -369,6 +369,44 @@ private slots:
         QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
     }
 
+    void drawingsAndMeshesLoadAsOutlinesAndTheirUnresolvedFeaturesAreShown() {
+        auto* panel = window_->findChild<ScenePanel*>();
+        QVERIFY(panel);
+        QSignalSpy failed(panel, &ScenePanel::failed);
+        // The paper's rectangle: every part of it within the patch's reach, nothing said.
+        QVERIFY(panel->reachNote().isEmpty());
+        const SceneSpec base = window_->experimentAsShown().scene;
+        // The lab's drawing: its largest closed outline becomes the object (one a run would
+        // refuse to train on, its edges facing no trained orientation; it is shown all the same).
+        QVERIFY(panel->loadOutlineFrom(sourceFile("experiments/objects/plate.svg")));
+        QCOMPARE(panel->sceneFromPanel(base).object.shape, std::string("polygon"));
+        QVERIFY(panel->sceneFromPanel(base).object.outline().area() > 1000.0);
+        // A printed part: its units must be given; its height becomes the top height.
+        const QString knob = sourceFile("experiments/objects/knob.stl");
+        QVERIFY(!panel->loadOutlineFrom(knob));
+        QVERIFY2(failed.takeFirst().at(0).toString().contains("does not say its units"),
+                 "a mesh without units is refused");
+        closeErrorDialogs(*window_);
+        QVERIFY(!panel->loadOutlineFrom(knob, "mm"));  // drawn in metres: 0.01 mm high
+        QVERIFY2(failed.takeFirst().at(0).toString().contains("the mesh is flat"), "too flat");
+        closeErrorDialogs(*window_);
+        QVERIFY(panel->loadOutlineFrom(knob, "m"));
+        QVERIFY(std::abs(panel->sceneFromPanel(base).object.height_mm - 10.0) < 1e-3);
+        // A comb whose teeth are narrower than the fingertip's patch: the panel says where.
+        const QString comb = dir_.filePath("comb.json");
+        QFile c(comb);
+        QVERIFY(c.open(QIODevice::WriteOnly));
+        c.write("[[-30,0],[30,0],[30,20],[5,20],[5,26],[3,26],[3,20],[1,20],[1,26],[-1,26],"
+                "[-1,20],[-3,20],[-3,26],[-5,26],[-5,20],[-30,20]]");
+        c.close();
+        QVERIFY(panel->loadOutlineFrom(comb));
+        const QString note = panel->reachNote();
+        QVERIFY2(note.contains("cannot resolve") && note.contains("tooth"), qPrintable(note));
+        QCOMPARE(failed.count(), 0);
+        QVERIFY(window_->openExperiment(sourceFile("experiments/paper.json")));
+        QVERIFY(panel->reachNote().isEmpty());
+    }
+
     void cleanupTestCase() { closeWindow(); }
 };
 
