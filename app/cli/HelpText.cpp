@@ -101,6 +101,18 @@ const CommandHelp kHelp[] = {
         "      total pressure crosses the reflex threshold (the scene's, or --threshold).\n"
         "      A bad line in any file is refused, naming it. --out defaults to\n"
         "      results/<experiment name>_import.\n"},
+    {"import-frames",
+        "  activetouch-cli import-frames <layout.json> <recording>... --out <dir> [--replace]\n"
+        "      Reads real skin recordings in a frames-table layout (one frame per line or per\n"
+        "      group of lines; the layout names each finger's taxels, inverted 8-bit readings\n"
+        "      and any time stamp; docs/real-fingertips.md) into <dir>/frames.csv and\n"
+        "      frames.json. A line that does not fit the layout is refused, naming it.\n"},
+    {"fingertip-stats",
+        "  activetouch-cli fingertip-stats <import dir> [--out <dir>] [--rest-margin N]\n"
+        "      What the imported frames say of each finger's taxels where poses are unknown:\n"
+        "      resting offset, noise, quantisation step, drift over a recording, dead and stuck\n"
+        "      taxels, the range reached under contact, the fingers' common movement at rest,\n"
+        "      with 95 % intervals over the recordings; --out writes fingertip_stats.json.\n"},
     {"dump",
         "  activetouch-cli dump <experiment.json> <taps.csv> --taxel-map <map> --out <dir>\n"
         "      Writes a recording's taps as YARP's data dumper logs a skin port (<dir>/data.log,\n"

@@ -48,9 +48,11 @@ int main(int argc, char** argv) {
     if (command == "check") return commandCheck(args);
     if (command == "merge") return commandMerge(args, argc, argv);
     if (command == "import") return commandImport(args);
+    if (command == "import-frames") return commandImportFrames(args);
+    if (command == "fingertip-stats") return commandFingertipStats(args);
     if (command == "dump") return commandDump(args);
     if (command == "calibrate") return commandCalibrate(args, argc, argv);
     return usageError("unknown command '" + command +
                       "'; use run, seeds, merge, compare, analyse, replay, import, dump,\n"
-                      "calibrate or check");
+                      "calibrate, import-frames, fingertip-stats or check");
 }

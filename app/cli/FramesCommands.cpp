@@ -1,0 +1,167 @@
+// import-frames and fingertip-stats: real skin recordings in other layouts read in, and what they
+// say of the fingertips' taxels (docs/real-fingertips.md).
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/cli/CliSupport.h"
+#include "app/cli/CommandLine.h"
+#include "app/cli/Commands.h"
+#include "core/analysis/FingertipStats.h"
+#include "core/common/InputError.h"
+#include "core/io/FileDigest.h"
+#include "core/io/OutputFile.h"
+#include "core/records/FramesImport.h"
+#include "core/run/OutputFiles.h"
+
+namespace activetouch::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Whether `dir` may be written: new or empty, or holding `marker` and --replace given.
+std::string folderProblem(const std::string& dir, const char* marker, bool replace) {
+    if (!fs::exists(dir)) return {};
+    if (!fs::is_directory(dir)) return dir + " is a file, not a folder";
+    if (fs::is_empty(dir)) return {};
+    if (!fs::exists(fs::path(dir) / marker))
+        return dir + " holds other files; choose an empty or new folder";
+    if (!replace) return dir + " already holds " + marker + "; give --replace to write it again";
+    return {};
+}
+
+Json statsJson(const FingertipStatsReport& r) {
+    auto interval = [](const stats::MeanInterval& m) {
+        return Json{{"mean", m.mean}, {"low", m.low}, {"high", m.high}};
+    };
+    Json taxels = Json::array(), fingers = Json::array();
+    for (const TaxelStats& t : r.taxels)
+        taxels.push_back({{"finger", t.finger},
+                          {"taxel", t.taxel},
+                          {"rest_frames", t.restFrames},
+                          {"contact_frames", t.contactFrames},
+                          {"offset_counts", interval(t.offset)},
+                          {"sigma_counts", interval(t.sigma)},
+                          {"quantum_counts", t.quantum},
+                          {"drift_counts", interval(t.drift)},
+                          {"dead", t.dead},
+                          {"stuck", t.stuck},
+                          {"max_counts", t.maxPressure},
+                          {"contact_p99_counts", t.contactP99},
+                          {"at_full_scale", t.atFullScale}});
+    for (const FingerStats& f : r.fingers)
+        fingers.push_back(
+            {{"finger", f.finger}, {"rest_correlation", interval(f.restCorrelation)}});
+    return {{"files", r.files},
+            {"frames", r.frames},
+            {"rest_margin_counts", r.restMargin},
+            {"taxels", taxels},
+            {"fingers", fingers}};
+}
+
+void printStats(const FingertipStatsReport& r) {
+    std::printf(
+        "%d recordings, %d frames; at rest: every taxel of the finger within %g counts of "
+        "its resting level (95 %% intervals over the recordings)\n",
+        r.files, r.frames, r.restMargin);
+    std::printf("%-8s %5s %6s %-22s %-20s %5s %-20s %6s %6s %s\n", "finger", "taxel", "rest",
+                "offset (counts)", "sigma (counts)", "step", "drift (counts)", "max", "p99",
+                "state");
+    for (const TaxelStats& t : r.taxels) {
+        char offset[64], sigma[64], drift[64];
+        std::snprintf(offset, sizeof offset, "%.2f (%.2f-%.2f)", t.offset.mean, t.offset.low,
+                      t.offset.high);
+        std::snprintf(sigma, sizeof sigma, "%.3f (%.3f-%.3f)", t.sigma.mean, t.sigma.low,
+                      t.sigma.high);
+        std::snprintf(drift, sizeof drift, "%+.2f (%+.2f..%+.2f)", t.drift.mean, t.drift.low,
+                      t.drift.high);
+        std::printf("%-8s %5d %6d %-22s %-20s %5g %-20s %6g %6g %s\n", t.finger.c_str(), t.taxel,
+                    t.restFrames, offset, sigma, t.quantum, drift, t.maxPressure, t.contactP99,
+                    t.dead              ? "dead"
+                    : t.stuck           ? "stuck"
+                    : t.atFullScale > 0 ? "saturates"
+                                        : "ok");
+    }
+    for (const FingerStats& f : r.fingers)
+        std::printf(
+            "%s: resting taxels move together with a mean correlation of %.2f "
+            "(%.2f-%.2f)\n",
+            f.finger.c_str(), f.restCorrelation.mean, f.restCorrelation.low,
+            f.restCorrelation.high);
+}
+
+}  // namespace
+
+int commandImportFrames(const std::vector<std::string>& args) {
+    const CommandLine line = parseCommandLine(
+        {{{"--out", "a folder for frames.csv and frames.json"}}, {"--replace"}}, args);
+    if (!line.error.empty()) return usageError(line.error);
+    if (line.positional.size() < 2)
+        return usageError("import-frames takes a layout file and one or more recordings");
+    const std::string out = line.value("--out");
+    if (out.empty()) return usageError("import-frames needs --out <folder>");
+    if (const std::string p = folderProblem(out, "frames.json", line.has("--replace")); !p.empty())
+        return usageError(p);
+    try {
+        FramesImport frames;
+        frames.layoutDocument = readJsonFile(line.positional[0]);
+        frames.layout = parseFramesLayout(frames.layoutDocument, line.positional[0]);
+        std::vector<std::string> digests;
+        long long count = 0;
+        for (std::size_t i = 1; i < line.positional.size(); ++i) {
+            frames.files.push_back(readFramesFile(frames.layout, line.positional[i]));
+            digests.push_back(sha256OfFile(line.positional[i]));
+            count += frames.files.back().frames;
+        }
+        ensureOutputDirectory(out);
+        writeFramesImport(out, frames, digests);
+        std::printf("%lld frames of %d taxels (%zu fingers) from %zu files; wrote %s\n", count,
+                    frames.layout.taxelCount(), frames.layout.fingers.size(), frames.files.size(),
+                    (fs::path(out) / "frames.csv").string().c_str());
+        return kOk;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    }
+}
+
+int commandFingertipStats(const std::vector<std::string>& args) {
+    const CommandLine line = parseCommandLine(
+        {{{"--out", "a folder for the statistics"}, {"--rest-margin", "counts"}}, {"--replace"}},
+        args);
+    if (!line.error.empty()) return usageError(line.error);
+    if (line.positional.size() != 1)
+        return usageError("fingertip-stats takes one folder that import-frames wrote");
+    const std::string out = line.value("--out");
+    if (!out.empty())
+        if (const std::string p = folderProblem(out, "fingertip_stats.json", line.has("--replace"));
+            !p.empty())
+            return usageError(p);
+    double margin = 3.0;
+    if (!line.value("--rest-margin").empty()) {
+        char* end = nullptr;
+        const std::string& text = line.value("--rest-margin");
+        margin = std::strtod(text.c_str(), &end);
+        if (end != text.c_str() + text.size() || !(margin > 0.0 && margin < 1e6))
+            return usageError("--rest-margin takes a number of counts above 0");
+    }
+    try {
+        const FramesImport frames = readFramesImport(line.positional[0]);
+        const FingertipStatsReport report = fingertipStats(frames, margin);
+        printStats(report);
+        if (!out.empty()) {
+            ensureOutputDirectory(out);
+            writeJsonAtomically((fs::path(out) / "fingertip_stats.json").string(),
+                                statsJson(report));
+            std::printf("wrote %s\n", (fs::path(out) / "fingertip_stats.json").string().c_str());
+        }
+        return kOk;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    }
+}
+
+}  // namespace activetouch::cli
