@@ -7,8 +7,10 @@
 
 #include "app/cli/CliSupport.h"
 #include "app/cli/CommandLine.h"
+#include "app/cli/FingertipComparison.h"
 #include "app/cli/Commands.h"
 #include "core/analysis/FingertipStats.h"
+#include "app/figures/Installation.h"
 #include "core/common/InputError.h"
 #include "core/io/FileDigest.h"
 #include "core/io/OutputFile.h"
@@ -127,9 +129,67 @@ int commandImportFrames(const std::vector<std::string>& args) {
     }
 }
 
+namespace {
+
+/// The scenes to compare with: --scenes (comma-separated), else the paper's.
+std::vector<std::string> scenesToCompare(const CommandLine& line) {
+    std::vector<std::string> out;
+    std::string list = line.value("--scenes");
+    if (list.empty())
+        list = (fs::path(experimentsDirectory().toStdString()) / "scenes" / "paper_rectangle.json")
+                   .string();
+    std::size_t start = 0;
+    while (start <= list.size()) {
+        const std::size_t comma = std::min(list.find(',', start), list.size());
+        if (comma > start) out.push_back(list.substr(start, comma - start));
+        start = comma + 1;
+    }
+    return out;
+}
+
+/// `path` relative to the working folder where it lies inside it (as a command names it).
+std::string shownPath(const std::string& path) {
+    std::error_code error;
+    const fs::path relative = fs::relative(path, fs::current_path(), error);
+    return error || relative.empty() || *relative.begin() == ".." ? path : relative.string();
+}
+
+/// Writes the scene `report`'s finger calls for to `path`, from the first scene compared.
+void writeMeasuredScene(const std::string& path, const std::string& base,
+                        const FramesImport& frames, const FingertipStatsReport& report,
+                        const std::string& finger, const std::string& importDir) {
+    const std::string provenance =
+        frames.layout.about + " Measured from " + std::to_string(report.files) +
+        " recordings (" + std::to_string(report.frames) + " frames; the files and their SHA-256 "
+        "in the import's frames.json) by: activetouch-cli import-frames " +
+        frames.layout.source + " <recordings> --out " + importDir +
+        "; activetouch-cli fingertip-stats " + importDir + " --finger " + finger +
+        " --write-scene " + path + ". Everything not measured is as in " + shownPath(base) + ".";
+    const Json scene = measuredScene(readJsonFile(base), report, finger, provenance);
+    parseScene(scene, path, "", fs::path(base).parent_path().string());  // it must read back
+    writeJsonAtomically(path, scene);
+    std::printf("wrote %s\n", path.c_str());
+}
+
+double restMarginOf(const CommandLine& line) {
+    const std::string& text = line.value("--rest-margin");
+    if (text.empty()) return 3.0;
+    char* end = nullptr;
+    const double margin = std::strtod(text.c_str(), &end);
+    if (end != text.c_str() + text.size() || !(margin > 0.0 && margin < 1e6)) return -1.0;
+    return margin;
+}
+
+}  // namespace
+
 int commandFingertipStats(const std::vector<std::string>& args) {
     const CommandLine line = parseCommandLine(
-        {{{"--out", "a folder for the statistics"}, {"--rest-margin", "counts"}}, {"--replace"}},
+        {{{"--out", "a folder for the statistics"},
+          {"--rest-margin", "counts"},
+          {"--finger", "the finger to compare with simulated fingertips"},
+          {"--scenes", "scene files, separated by commas"},
+          {"--write-scene", "a scene file to write"}},
+         {"--replace"}},
         args);
     if (!line.error.empty()) return usageError(line.error);
     if (line.positional.size() != 1)
@@ -139,18 +199,20 @@ int commandFingertipStats(const std::vector<std::string>& args) {
         if (const std::string p = folderProblem(out, "fingertip_stats.json", line.has("--replace"));
             !p.empty())
             return usageError(p);
-    double margin = 3.0;
-    if (!line.value("--rest-margin").empty()) {
-        char* end = nullptr;
-        const std::string& text = line.value("--rest-margin");
-        margin = std::strtod(text.c_str(), &end);
-        if (end != text.c_str() + text.size() || !(margin > 0.0 && margin < 1e6))
-            return usageError("--rest-margin takes a number of counts above 0");
-    }
+    const double margin = restMarginOf(line);
+    if (margin < 0.0) return usageError("--rest-margin takes a number of counts above 0");
+    const std::string finger = line.value("--finger").empty() ? "index" : line.value("--finger");
     try {
         const FramesImport frames = readFramesImport(line.positional[0]);
         const FingertipStatsReport report = fingertipStats(frames, margin);
         printStats(report);
+        std::vector<std::string> scenes = scenesToCompare(line);
+        const std::string written = line.value("--write-scene");
+        if (!written.empty()) {
+            writeMeasuredScene(written, scenes.front(), frames, report, finger, line.positional[0]);
+            scenes.push_back(written);
+        }
+        printComparison(compareWithScenes(report, finger, scenes), finger);
         if (!out.empty()) {
             ensureOutputDirectory(out);
             writeJsonAtomically((fs::path(out) / "fingertip_stats.json").string(),

@@ -78,7 +78,7 @@ FingerInFile splitFinger(const FramesFile& f, int offset, int taxels, int all, d
 
 /// Per recording, what each taxel's statistics are built from.
 struct TaxelSamples {
-    std::vector<double> offsets, sigmas, drifts, contact;
+    std::vector<double> offsets, sigmas, drifts, contact, restAbove;
     std::set<double> seen;
     double most = 0.0, least = kInf;
     long long readings = 0, fullScale = 0;
@@ -88,7 +88,11 @@ struct TaxelSamples {
 void addFile(TaxelSamples& s, const std::vector<double>& rest, const std::vector<double>& contact,
              double fullScale) {
     s.restFrames += static_cast<int>(rest.size());
-    if (!rest.empty()) s.offsets.push_back(mean(rest));
+    if (!rest.empty()) {
+        s.offsets.push_back(mean(rest));
+        const double level = std::round(s.offsets.back());
+        for (double x : rest) s.restAbove.push_back(std::max(0.0, x - level));
+    }
     if (rest.size() >= 2) s.sigmas.push_back(standardDeviation(rest));
     if (rest.size() >= 3) {
         const std::size_t third = rest.size() / 3;
@@ -127,6 +131,7 @@ TaxelStats summarise(const TaxelSamples& s, const std::string& finger, int k, do
     t.maxPressure = s.most;
     t.contactP99 = quantile(s.contact, 0.99);
     t.atFullScale = s.readings > 0 ? double(s.fullScale) / double(s.readings) : 0.0;
+    t.restAbove = s.restAbove;
     return t;
 }
 

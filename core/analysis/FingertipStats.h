@@ -25,6 +25,9 @@ struct TaxelStats {
     double maxPressure = 0.0;    ///< the most it read, counts
     double contactP99 = 0.0;     ///< the 99th percentile under contact, counts
     double atFullScale = 0.0;    ///< share of its readings at the converter's full scale
+    /// Its resting frames as a compensated fingertip reports them: each above its recording's
+    /// resting level (the rest mean, rounded to the converter's step), clipped at 0.
+    std::vector<double> restAbove;
 };
 
 struct FingerStats {

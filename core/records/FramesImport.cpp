@@ -43,7 +43,11 @@ void writeFramesImport(const std::string& folder, const FramesImport& frames,
     }
     csv.close();
     OutputFile json((fs::path(folder) / "frames.json").string());
-    json.print("%s\n", Json{{"layout", frames.layoutDocument}, {"files", files}}.dump(2).c_str());
+    json.print("%s\n", Json{{"layout_file", frames.layout.source},
+                            {"layout", frames.layoutDocument},
+                            {"files", files}}
+                           .dump(2)
+                           .c_str());
     json.close();
 }
 
@@ -58,6 +62,8 @@ FramesImport readFramesImport(const std::string& folder) {
         throw InputError(jsonPath, "", "is not a frames import (it needs 'layout' and 'files')");
     out.layoutDocument = f.raw("layout");
     out.layout = parseFramesLayout(out.layoutDocument, jsonPath + " (its layout)");
+    if (f.has("layout_file") && f.raw("layout_file").is_string())
+        out.layout.source = f.raw("layout_file").get<std::string>();
     const int taxels = out.layout.taxelCount();
     for (const Json& file : f.raw("files")) {
         FramesFile ff;

@@ -299,7 +299,9 @@ TapSpec parseTap(const JsonFields& f) {
 SceneSpec parseScene(const Json& json, const std::string& source, const std::string& pointer,
                      const std::string& baseDirectory) {
     JsonFields f(json, source, pointer);
-    f.rejectUnknownKeys({"description", "object", "fingertip", "tap", "stage", "seed", "effects"});
+    // "provenance": where a measured scene's values came from (free form, for people).
+    f.rejectUnknownKeys(
+        {"description", "provenance", "object", "fingertip", "tap", "stage", "seed", "effects"});
     SceneSpec s;
     s.source = source;
     s.description = f.text("description", "");

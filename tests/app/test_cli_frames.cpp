@@ -2,6 +2,7 @@
 // its layout, every number checked against the file's own text; lines that do not fit the layout
 // refused by line; per-taxel statistics that find a dead taxel and a taxel's noise.
 #include <QRegularExpression>
+#include <algorithm>
 
 #include "CliFixture.h"
 
@@ -144,6 +145,58 @@ private slots:
         QCOMPARE(thumb0["max_counts"].toDouble(), 105.0);
         QCOMPARE(thumb0["contact_frames"].toInt(), 60);
         QCOMPARE(taxels[13].toObject()["dead"].toBool(), true);
+    }
+
+    void aMeasuredSceneIsWrittenAndComparedWithTheRealFingertip() {
+        // The kept excerpt: the index finger's resting noise becomes the scene's, and the scene's
+        // simulated fingertip at rest lies closer to the real one than the paper scene's does.
+        QStringList files;
+        for (const char* name : {"book_1", "none_1", "blue_bear_1"})
+            files << sourceFile(QString("experiments/recordings/icub_grasp_2012/%1.txt").arg(name));
+        const QString in = dir_.filePath("excerpt");
+        QCOMPARE(runCli(QStringList{"import-frames",
+                                    sourceFile("experiments/layouts/icub_grasp_2012.json")} +
+                        files + QStringList{"--out", in})
+                     .exitCode,
+                 0);
+        const QString scene = dir_.filePath("measured.json");
+        const QString paper = sourceFile("experiments/scenes/paper_rectangle.json");
+        const Outcome o = runCli({"fingertip-stats", in, "--out", dir_.filePath("excerpt_stats"),
+                                  "--scenes", paper, "--write-scene", scene});
+        QVERIFY2(o.exitCode == 0, qPrintable(o.err));
+        const QJsonObject written = readJson(scene);
+        QVERIFY(written["provenance"].toString().contains("clear-nus/icub_grasp_dataset"));
+        double sigma = -1.0;
+        for (const auto& e : written["effects"].toArray())
+            if (e.toObject()["name"].toString() == "taxel_noise")
+                sigma = e.toObject()["sigma_counts"].toDouble();
+        std::vector<double> measured;
+        for (const auto& t : readJson(dir_.filePath("excerpt_stats/fingertip_stats.json"))["taxels"].toArray())
+            if (t.toObject()["finger"].toString() == "index")
+                measured.push_back(t.toObject()["sigma_counts"].toObject()["mean"].toDouble());
+        QCOMPARE(int(measured.size()), 12);
+        std::sort(measured.begin(), measured.end());
+        QVERIFY2(std::abs(sigma - 0.5 * (measured[5] + measured[6])) < 1e-3,
+                 qPrintable(QString::number(sigma)));
+        QCOMPARE(runCli({"check", scene}).exitCode, 0);
+        // One line per scene compared, the measured one closer on most taxels.
+        const QRegularExpression line("resting KS distance, index finger vs (\\S+), per taxel:"
+                                      "(( [0-9.]+){12}) \\(([0-9]+) of 12 within 0\\.1\\)");
+        auto it = line.globalMatch(o.out);
+        QStringList scenes;
+        std::vector<int> within;
+        while (it.hasNext()) {
+            const auto m = it.next();
+            scenes << m.captured(1);
+            within.push_back(m.captured(4).toInt());
+        }
+        QCOMPARE(scenes, (QStringList{paper, scene}));
+        QVERIFY2(within[1] >= 10 && within[1] > within[0], qPrintable(o.out));
+        // A finger the recordings do not have is refused naming those they have.
+        const Outcome bad = runCli({"fingertip-stats", in, "--finger", "pinky"});
+        QCOMPARE(bad.exitCode, 2);
+        QVERIFY2(bad.err.contains("no finger 'pinky'") && bad.err.contains("thumb, index"),
+                 qPrintable(bad.err));
     }
 };
 
