@@ -1,11 +1,12 @@
+#include <unistd.h>
+
 #include <QStringList>
 #include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <unistd.h>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -58,6 +59,20 @@ Json holdGainsJson(const SceneFit& fit) {
             {"moment_fit_statistic", fit.momentGainsQ}};
 }
 
+/// What the recording shows that the fitted scene does not, as the report keeps it.
+Json unmodelledJson(const SceneFit& fit) {
+    Json out = Json::array();
+    for (const Unmodelled& u : fit.unmodelled)
+        out.push_back(
+            {{"statistic", u.statistic},
+             {"recorded", u.recorded},
+             {"simulated",
+              {{"mean", u.simulatedMean}, {"min", u.simulatedLeast}, {"max", u.simulatedLargest}}},
+             {"z", u.z},
+             {"suggests", u.explanation}});
+    return out;
+}
+
 /// The report written beside the fitted scene.
 Json calibrationReport(const std::string& recording, const SceneSpec& base, const SceneFit& fit,
                        const SceneFitSettings& settings, const Figure6Comparison& figure6,
@@ -102,12 +117,15 @@ Json calibrationReport(const std::string& recording, const SceneSpec& base, cons
         {"choices", choices},
         {"gains_from_holds", holdGainsJson(fit)},
         {"goodness_of_fit", taxels},
+        {"unmodelled", unmodelledJson(fit)},
         {"figure6",
          {{"recorded", validationJson(figure6.recorded)},
           {"simulated_first", validationJson(figure6.simulated.front())},
           {"simulated_recordings", figure6.simulated.size()},
           {"simulated_angle_error_deg",
-           {{"mean", figure6.angleMean}, {"min", figure6.angleLeast}, {"max", figure6.angleLargest}}},
+           {{"mean", figure6.angleMean},
+            {"min", figure6.angleLeast},
+            {"max", figure6.angleLargest}}},
           {"simulated_position_error_mm",
            {{"mean", figure6.positionMean},
             {"min", figure6.positionLeast},
@@ -179,6 +197,21 @@ void printGoodness(const SceneFit& fit, const Figure6Comparison& figure6) {
         figure6.simulated.size(), figure6.angleMean, figure6.angleLeast, figure6.angleLargest,
         figure6.positionMean, figure6.positionLeast, figure6.positionLargest,
         figure6.recordedInsideRange ? "inside" : "outside");
+    if (fit.unmodelled.empty()) {
+        std::printf(
+            "the recording shows nothing the fitted scene does not produce (on the pile at "
+            "each taxel's top, the upper tail, what is held after the top, the resting "
+            "level's persistence)\n");
+        return;
+    }
+    for (const Unmodelled& u : fit.unmodelled)
+        std::printf(
+            "caution: the recording shows what the fitted scene does not model: %s is "
+            "%.4g, where twenty recordings simulated with the fitted scene give %.4g "
+            "(%.4g to %.4g; %+.1f standard deviations): %s. The intervals above assume "
+            "the scene's effects; read them with care\n",
+            u.statistic.c_str(), u.recorded, u.simulatedMean, u.simulatedLeast, u.simulatedLargest,
+            u.z, u.explanation.c_str());
 }
 
 /// Empty, or why the files calibrate writes cannot be written: checked before the fit, so that
@@ -191,7 +224,8 @@ std::string unwritable(const std::vector<std::string>& paths) {
     } catch (const std::exception& e) {
         return e.what();
     }
-    const std::string probe = (fs::path(dir) / (".calibrate-probe-" + std::to_string(::getpid()))).string();
+    const std::string probe =
+        (fs::path(dir) / (".calibrate-probe-" + std::to_string(::getpid()))).string();
     std::FILE* f = std::fopen(probe.c_str(), "w");
     if (!f)
         return dir + ": cannot write in this folder (" + std::strerror(errno) +
@@ -275,7 +309,8 @@ int commandCalibrate(const std::vector<std::string>& args, int argc, char** argv
             if (fs::is_directory(path))
                 throw InputError(path, "", "this is a folder; --out names the fitted scene's file");
             if (fs::exists(path) && !parsed.replace)
-                throw InputError(path, "", "already exists; choose another --out, or give --replace");
+                throw InputError(path, "",
+                                 "already exists; choose another --out, or give --replace");
         }
         if (const std::string why = unwritable({parsed.outDir, reportPath, simulatedPath});
             !why.empty()) {
@@ -291,19 +326,18 @@ int commandCalibrate(const std::vector<std::string>& args, int argc, char** argv
         const Figure6Comparison figure6 = compareFigure6(spec, taps, fit);
         writeFittedScene(parsed.outDir, simulatedPath, recording, reportPath, base, fit, spec,
                          figure6.firstSimulated);
-        writeJsonAtomically(reportPath, calibrationReport(recording, base, fit, settings, figure6,
-                                                          simulatedPath));
+        writeJsonAtomically(
+            reportPath, calibrationReport(recording, base, fit, settings, figure6, simulatedPath));
         std::printf("%s: %d taps, %ld samples over nothing; fitted from %s\n", recording.c_str(),
                     fit.taps, fit.nothingSamples,
                     base.source.empty() ? "the experiment's scene" : base.source.c_str());
         printEstimates(fit);
         printGoodness(fit, figure6);
         const bool drawn = parsed.figures && drawCalibrationFigure(argc, argv, fit, figure6, stem);
-        std::printf("wrote %s, %s and %s (analyse it for its Figure 6)%s\n", parsed.outDir.c_str(),
-                    reportPath.c_str(), simulatedPath.c_str(),
-                    !drawn
-                        ? ""
-                        : (", and the figure " + (stem + ".calibration.{png,pdf,svg}")).c_str());
+        std::printf(
+            "wrote %s, %s and %s (analyse it for its Figure 6)%s\n", parsed.outDir.c_str(),
+            reportPath.c_str(), simulatedPath.c_str(),
+            !drawn ? "" : (", and the figure " + (stem + ".calibration.{png,pdf,svg}")).c_str());
         return kOk;
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

@@ -44,8 +44,8 @@ std::vector<const TaxelStats*> taxelsOf(const FingertipStatsReport& report,
         if (t.finger == finger) out.push_back(&t);
     for (const FingerStats& f : report.fingers) names += (names.empty() ? "" : ", ") + f.finger;
     if (out.empty())
-        throw InputError("--finger", "", "the recordings have no finger '" + finger +
-                                             "'; their fingers: " + names);
+        throw InputError("--finger", "",
+                         "the recordings have no finger '" + finger + "'; their fingers: " + names);
     return out;
 }
 
@@ -111,7 +111,8 @@ Json measuredScene(const Json& baseScene, const FingertipStatsReport& report,
     const double sigma =
         std::round(medianOver(taxels, [](const TaxelStats& t) { return t.sigma.mean; }) * 1000.0) /
         1000.0;
-    const double drift = medianOver(taxels, [](const TaxelStats& t) { return std::abs(t.drift.mean); });
+    const double drift =
+        medianOver(taxels, [](const TaxelStats& t) { return std::abs(t.drift.mean); });
     const double step = medianOver(taxels, [](const TaxelStats& t) { return t.quantum; });
     // A resting level that moves less than half a converter step within a recording: no drift
     // to simulate.
@@ -128,17 +129,23 @@ Json measuredScene(const Json& baseScene, const FingertipStatsReport& report,
     scene["effects"] = effects;
     scene["description"] =
         "The paper's rig with the noise of a real iCub fingertip: taxel_noise's sigma is the "
-        "median over the " + finger + " finger's taxels of the resting standard deviation "
-        "measured by fingertip-stats (" + numberText(sigma) + " counts); readings come in whole "
+        "median over the " +
+        finger +
+        " finger's taxels of the resting standard deviation "
+        "measured by fingertip-stats (" +
+        numberText(sigma) +
+        " counts); readings come in whole "
         "counts (adc_quantisation, as measured); " +
-        (drifts ? "the resting level drifts within a recording (median " + numberText(drift) +
-                      " counts), but the recordings carry no time stamps, so the drift's rate is "
-                      "the base scene's; "
-                : "the resting level moves by a median " + numberText(std::round(drift * 100) / 100) +
-                      " counts within a recording, under half a step, so baseline_drift is not "
-                      "listed; ") +
+        (drifts
+             ? "the resting level drifts within a recording (median " + numberText(drift) +
+                   " counts), but the recordings carry no time stamps, so the drift's rate is "
+                   "the base scene's; "
+             : "the resting level moves by a median " + numberText(std::round(drift * 100) / 100) +
+                   " counts within a recording, under half a step, so baseline_drift is not "
+                   "listed; ") +
         "no taxel was dead (" + std::to_string(dead) + ") or reached full scale (" +
-        std::to_string(saturating) + "), so neither effect is listed. Everything else as the "
+        std::to_string(saturating) +
+        "), so neither effect is listed. Everything else as the "
         "base scene.";
     scene["provenance"] = provenance;
     return scene;

@@ -7,10 +7,10 @@
 
 #include "app/cli/CliSupport.h"
 #include "app/cli/CommandLine.h"
-#include "app/cli/FingertipComparison.h"
 #include "app/cli/Commands.h"
-#include "core/analysis/FingertipStats.h"
+#include "app/cli/FingertipComparison.h"
 #include "app/figures/Installation.h"
+#include "core/analysis/FingertipStats.h"
 #include "core/common/InputError.h"
 #include "core/io/FileDigest.h"
 #include "core/io/OutputFile.h"
@@ -159,8 +159,9 @@ void writeMeasuredScene(const std::string& path, const std::string& base,
                         const FramesImport& frames, const FingertipStatsReport& report,
                         const std::string& finger, const std::string& importDir) {
     const std::string provenance =
-        frames.layout.about + " Measured from " + std::to_string(report.files) +
-        " recordings (" + std::to_string(report.frames) + " frames; the files and their SHA-256 "
+        frames.layout.about + " Measured from " + std::to_string(report.files) + " recordings (" +
+        std::to_string(report.frames) +
+        " frames; the files and their SHA-256 "
         "in the import's frames.json) by: activetouch-cli import-frames " +
         frames.layout.source + " <recordings> --out " + importDir +
         "; activetouch-cli fingertip-stats " + importDir + " --finger " + finger +
@@ -183,14 +184,14 @@ double restMarginOf(const CommandLine& line) {
 }  // namespace
 
 int commandFingertipStats(const std::vector<std::string>& args) {
-    const CommandLine line = parseCommandLine(
-        {{{"--out", "a folder for the statistics"},
-          {"--rest-margin", "counts"},
-          {"--finger", "the finger to compare with simulated fingertips"},
-          {"--scenes", "scene files, separated by commas"},
-          {"--write-scene", "a scene file to write"}},
-         {"--replace"}},
-        args);
+    const CommandLine line =
+        parseCommandLine({{{"--out", "a folder for the statistics"},
+                           {"--rest-margin", "counts"},
+                           {"--finger", "the finger to compare with simulated fingertips"},
+                           {"--scenes", "scene files, separated by commas"},
+                           {"--write-scene", "a scene file to write"}},
+                          {"--replace"}},
+                         args);
     if (!line.error.empty()) return usageError(line.error);
     if (line.positional.size() != 1)
         return usageError("fingertip-stats takes one folder that import-frames wrote");

@@ -81,6 +81,7 @@ SceneFit fitScene(const SceneSpec& given, const std::vector<TapRecord>& recorded
                                                converter.maxCounts, settings, z, fit))
         fit.fitted = withEffect(fit.fitted, "stage_error", Json{{"sigma_mm", *stageSigma}});
     measureGoodness(run, fit);
+    lookForUnmodelled(run, recorded, fit);
     return fit;
 }
 

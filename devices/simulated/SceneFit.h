@@ -56,11 +56,23 @@ struct TaxelFit {
     bool matches = false;
 };
 
+/// Something the recording shows that the fitted scene does not produce, on a statistic the fit
+/// did not use (devices/simulated/fit/FitUnmodelled.cpp): the recording's value against twenty
+/// recordings simulated with the fitted scene.
+struct Unmodelled {
+    std::string statistic;  ///< "readings piled at one level", ...
+    double recorded = 0.0, simulatedMean = 0.0, simulatedLeast = 0.0, simulatedLargest = 0.0;
+    double z = 0.0;            ///< (recorded - simulated mean) / their standard deviation
+    std::string explanation;  ///< what it suggests the scene lacks
+};
+
 struct SceneFit {
     SceneSpec fitted;  ///< the base scene with the fitted effects listed, the others as in the base
     std::vector<FittedParameter> parameters;
     std::vector<EffectChoice> choices;
     std::vector<TaxelFit> taxels;
+    /// What the recording shows that the fitted scene does not (empty where nothing does).
+    std::vector<Unmodelled> unmodelled;
     /// Whether the fitted scene lists `effect` (its choice says so).
     bool lists(const std::string& effect) const;
     /// The taps' pressure level against the fitted scene's, over every live taxel: a tapper that

@@ -171,7 +171,8 @@ private slots:
             if (e.toObject()["name"].toString() == "taxel_noise")
                 sigma = e.toObject()["sigma_counts"].toDouble();
         std::vector<double> measured;
-        for (const auto& t : readJson(dir_.filePath("excerpt_stats/fingertip_stats.json"))["taxels"].toArray())
+        for (const auto& t :
+             readJson(dir_.filePath("excerpt_stats/fingertip_stats.json"))["taxels"].toArray())
             if (t.toObject()["finger"].toString() == "index")
                 measured.push_back(t.toObject()["sigma_counts"].toObject()["mean"].toDouble());
         QCOMPARE(int(measured.size()), 12);
@@ -180,8 +181,9 @@ private slots:
                  qPrintable(QString::number(sigma)));
         QCOMPARE(runCli({"check", scene}).exitCode, 0);
         // One line per scene compared, the measured one closer on most taxels.
-        const QRegularExpression line("resting KS distance, index finger vs (\\S+), per taxel:"
-                                      "(( [0-9.]+){12}) \\(([0-9]+) of 12 within 0\\.1\\)");
+        const QRegularExpression line(
+            "resting KS distance, index finger vs (\\S+), per taxel:"
+            "(( [0-9.]+){12}) \\(([0-9]+) of 12 within 0\\.1\\)");
         auto it = line.globalMatch(o.out);
         QStringList scenes;
         std::vector<int> within;

@@ -78,5 +78,8 @@ void reportReadChoices(const FitRun& run, const Replicates& reps, SceneFit& fit)
 /// Per taxel, recorded readings against those of `fit.fitted` (twenty simulations into
 /// `fit.simulated`).
 void measureGoodness(const FitRun& run, SceneFit& fit);
+/// The recording against `fit.simulated` on statistics the fit did not use, into
+/// `fit.unmodelled` where it lies far outside them.
+void lookForUnmodelled(const FitRun& run, const std::vector<TapRecord>& recorded, SceneFit& fit);
 
 }  // namespace activetouch::scenefit
