@@ -15,7 +15,7 @@ int commandCompare(const std::vector<std::string>& args, int argc, char** argv);
 int commandCheck(const std::vector<std::string>& args);
 int commandImport(const std::vector<std::string>& args);
 int commandImportFrames(const std::vector<std::string>& args);
-int commandFingertipStats(const std::vector<std::string>& args);
+int commandFingertipStats(const std::vector<std::string>& args, int argc, char** argv);
 int commandDump(const std::vector<std::string>& args);
 int commandCalibrate(const std::vector<std::string>& args, int argc, char** argv);
 

@@ -62,7 +62,9 @@ std::vector<SceneComparison> compareWithScenes(const FingertipStatsReport& repor
                              "its fingertip has " + std::to_string(simulated.taxels.size()) +
                                  " taxels and the " + finger + " finger " +
                                  std::to_string(taxels.size()) + ": compare like with like");
-        SceneComparison c{path, {}};
+        SceneComparison c{path, 0.0, {}};
+        for (const EffectSpec& e : scene.effects)
+            if (e.name == "taxel_noise") c.sigma = e.parameters.value("sigma_counts", 0.0);
         for (std::size_t k = 0; k < taxels.size(); ++k)
             c.ks.push_back(stats::ksDistance(
                 taxels[k]->restAbove,

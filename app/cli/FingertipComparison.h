@@ -11,6 +11,7 @@ namespace activetouch::cli {
 
 struct SceneComparison {
     std::string scene;
+    double sigma = 0.0;      ///< the scene's taxel_noise, counts (0: it lists none)
     std::vector<double> ks;  ///< per taxel of the finger compared
 };
 

@@ -9,6 +9,8 @@
 #include "app/cli/CommandLine.h"
 #include "app/cli/Commands.h"
 #include "app/cli/FingertipComparison.h"
+#include "app/figures/FigureExport.h"
+#include "app/figures/FingertipFigures.h"
 #include "app/figures/Installation.h"
 #include "core/analysis/FingertipStats.h"
 #include "core/common/InputError.h"
@@ -16,6 +18,7 @@
 #include "core/io/OutputFile.h"
 #include "core/records/FramesImport.h"
 #include "core/run/OutputFiles.h"
+#include "qcustomplot.h"
 
 namespace activetouch::cli {
 
@@ -172,6 +175,45 @@ void writeMeasuredScene(const std::string& path, const std::string& base,
     std::printf("wrote %s\n", path.c_str());
 }
 
+/// figures/fingertip_stats.{png,pdf,svg} in `out`; whether they were written.
+bool drawFingertipFigure(int argc, char** argv, const std::string& out,
+                         const FingertipStatsReport& report, const std::string& finger,
+                         const std::vector<SceneComparison>& comparisons) {
+    FingertipFigureData data;
+    data.finger = QString::fromStdString(finger);
+    for (const TaxelStats* t : taxelsOf(report, finger)) {
+        data.sigma.push_back(t->sigma.mean);
+        data.sigmaLow.push_back(t->sigma.low);
+        data.sigmaHigh.push_back(t->sigma.high);
+    }
+    QString close;
+    for (const SceneComparison& c : comparisons) {
+        int within = 0;
+        for (double d : c.ks) within += d <= 0.1;
+        const QString name = QString::fromStdString(fs::path(c.scene).stem().string());
+        data.scenes.push_back({QString("%1 (sigma %2)").arg(name).arg(c.sigma), c.sigma, c.ks});
+        close += QString("%1%2: %3 of %4 within 0.1")
+                     .arg(close.isEmpty() ? "" : "; ", name)
+                     .arg(within)
+                     .arg(c.ks.size());
+    }
+    data.caption = QString(
+                       "%1 recordings, %2 frames; resting readings above each recording's (or "
+                       "tap's) resting level, clipped at 0. %3.")
+                       .arg(report.files)
+                       .arg(report.frames)
+                       .arg(close);
+    QStringList written;
+    drawFigures(argc, argv, [&] {
+        QCustomPlot plot;
+        if (buildFingertipFigure(plot, data))
+            written = exportFigure(
+                plot, figuresDirectory(QString::fromStdString(out)) + "/fingertip_stats",
+                {"png", "pdf", "svg"}, FigureSize::physical(kDoubleColumn_mm, 80, kFigureDpi));
+    });
+    return !written.isEmpty();
+}
+
 double restMarginOf(const CommandLine& line) {
     const std::string& text = line.value("--rest-margin");
     if (text.empty()) return 3.0;
@@ -183,7 +225,7 @@ double restMarginOf(const CommandLine& line) {
 
 }  // namespace
 
-int commandFingertipStats(const std::vector<std::string>& args) {
+int commandFingertipStats(const std::vector<std::string>& args, int argc, char** argv) {
     const CommandLine line =
         parseCommandLine({{{"--out", "a folder for the statistics"},
                            {"--rest-margin", "counts"},
@@ -213,12 +255,16 @@ int commandFingertipStats(const std::vector<std::string>& args) {
             writeMeasuredScene(written, scenes.front(), frames, report, finger, line.positional[0]);
             scenes.push_back(written);
         }
-        printComparison(compareWithScenes(report, finger, scenes), finger);
+        const std::vector<SceneComparison> comparisons = compareWithScenes(report, finger, scenes);
+        printComparison(comparisons, finger);
         if (!out.empty()) {
             ensureOutputDirectory(out);
             writeJsonAtomically((fs::path(out) / "fingertip_stats.json").string(),
                                 statsJson(report));
-            std::printf("wrote %s\n", (fs::path(out) / "fingertip_stats.json").string().c_str());
+            const bool drawn = !line.has("--no-figures") &&
+                               drawFingertipFigure(argc, argv, out, report, finger, comparisons);
+            std::printf("wrote %s%s\n", (fs::path(out) / "fingertip_stats.json").string().c_str(),
+                        drawn ? " and figures/fingertip_stats.{png,pdf,svg}" : "");
         }
         return kOk;
     } catch (const InputError& e) {

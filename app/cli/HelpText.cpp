@@ -108,11 +108,15 @@ const CommandHelp kHelp[] = {
         "      and any time stamp; docs/real-fingertips.md) into <dir>/frames.csv and\n"
         "      frames.json. A line that does not fit the layout is refused, naming it.\n"},
     {"fingertip-stats",
-        "  activetouch-cli fingertip-stats <import dir> [--out <dir>] [--rest-margin N]\n"
+        "  activetouch-cli fingertip-stats <import dir> [--out <dir>] [--finger F] [--scenes a,b]\n"
+        "                                  [--write-scene F] [--rest-margin N] [--no-figures]\n"
         "      What the imported frames say of each finger's taxels where poses are unknown:\n"
         "      resting offset, noise, quantisation step, drift over a recording, dead and stuck\n"
         "      taxels, the range reached under contact, the fingers' common movement at rest,\n"
-        "      with 95 % intervals over the recordings; --out writes fingertip_stats.json.\n"},
+        "      with 95 % intervals over the recordings. Compares the finger's (--finger, index)\n"
+        "      resting readings with each scene's simulated fingertip (--scenes, the paper's)\n"
+        "      by the Kolmogorov-Smirnov distance; --write-scene writes the scene they call\n"
+        "      for. --out writes fingertip_stats.json and figures/fingertip_stats.*.\n"},
     {"dump",
         "  activetouch-cli dump <experiment.json> <taps.csv> --taxel-map <map> --out <dir>\n"
         "      Writes a recording's taps as YARP's data dumper logs a skin port (<dir>/data.log,\n"

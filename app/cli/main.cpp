@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
     if (command == "merge") return commandMerge(args, argc, argv);
     if (command == "import") return commandImport(args);
     if (command == "import-frames") return commandImportFrames(args);
-    if (command == "fingertip-stats") return commandFingertipStats(args);
+    if (command == "fingertip-stats") return commandFingertipStats(args, argc, argv);
     if (command == "dump") return commandDump(args);
     if (command == "calibrate") return commandCalibrate(args, argc, argv);
     return usageError("unknown command '" + command +

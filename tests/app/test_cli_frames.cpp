@@ -180,6 +180,10 @@ private slots:
         QVERIFY2(std::abs(sigma - 0.5 * (measured[5] + measured[6])) < 1e-3,
                  qPrintable(QString::number(sigma)));
         QCOMPARE(runCli({"check", scene}).exitCode, 0);
+        for (const char* format : {"png", "pdf", "svg"})
+            QVERIFY(
+                QFileInfo(dir_.filePath("excerpt_stats/figures/fingertip_stats.") + format).size() >
+                0);
         // One line per scene compared, the measured one closer on most taxels.
         const QRegularExpression line(
             "resting KS distance, index finger vs (\\S+), per taxel:"
