@@ -34,7 +34,28 @@ std::vector<double> aboveEachTapsLevel(const std::vector<double>& readings, int 
     return out;
 }
 
+/// The quantiles at kPressedLevels of the values of `all` over kPressed_counts; empty if none.
+std::vector<double> pressedQuantiles(const std::vector<std::vector<double>>& all) {
+    std::vector<double> pressed;
+    for (const auto& v : all)
+        for (double x : v)
+            if (x > kPressed_counts) pressed.push_back(x);
+    std::vector<double> out;
+    if (pressed.empty()) return out;
+    std::sort(pressed.begin(), pressed.end());
+    for (double level : kPressedLevels)
+        out.push_back(pressed[std::size_t(level * double(pressed.size() - 1))]);
+    return out;
+}
+
 }  // namespace
+
+std::vector<double> realPressedQuantiles(const FingertipStatsReport& report,
+                                         const std::string& finger) {
+    std::vector<std::vector<double>> all;
+    for (const TaxelStats* t : taxelsOf(report, finger)) all.push_back(t->contactAbove);
+    return pressedQuantiles(all);
+}
 
 std::vector<const TaxelStats*> taxelsOf(const FingertipStatsReport& report,
                                         const std::string& finger) {
@@ -62,7 +83,7 @@ std::vector<SceneComparison> compareWithScenes(const FingertipStatsReport& repor
                              "its fingertip has " + std::to_string(simulated.taxels.size()) +
                                  " taxels and the " + finger + " finger " +
                                  std::to_string(taxels.size()) + ": compare like with like");
-        SceneComparison c{path, 0.0, {}};
+        SceneComparison c{path, 0.0, {}, pressedQuantiles(edgeReadings(scene, 2))};
         for (const EffectSpec& e : scene.effects)
             if (e.name == "taxel_noise") c.sigma = e.parameters.value("sigma_counts", 0.0);
         for (std::size_t k = 0; k < taxels.size(); ++k)
@@ -74,7 +95,29 @@ std::vector<SceneComparison> compareWithScenes(const FingertipStatsReport& repor
     return out;
 }
 
-void printComparison(const std::vector<SceneComparison>& comparisons, const std::string& finger) {
+namespace {
+
+std::string quantileText(const std::vector<double>& q) {
+    if (q.empty()) return "no reading pressed";
+    std::string text;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+        char cell[48];
+        std::snprintf(cell, sizeof cell, "%s%g %%: %.4g", i ? ", " : "", kPressedLevels[i] * 100,
+                      q[i]);
+        text += cell;
+    }
+    return text + " counts";
+}
+
+}  // namespace
+
+void printComparison(const std::vector<SceneComparison>& comparisons, const std::string& finger,
+                     const std::vector<double>& realPressed) {
+    std::printf("under contact (readings over %g counts above rest), the %s finger grasping: %s\n",
+                kPressed_counts, finger.c_str(), quantileText(realPressed).c_str());
+    for (const SceneComparison& c : comparisons)
+        std::printf("  %s's fingertip tapping across its object's edge: %s\n", c.scene.c_str(),
+                    quantileText(c.pressedQuantiles).c_str());
     for (const SceneComparison& c : comparisons) {
         int close = 0;
         std::string row;

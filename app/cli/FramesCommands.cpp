@@ -43,19 +43,21 @@ Json statsJson(const FingertipStatsReport& r) {
     };
     Json taxels = Json::array(), fingers = Json::array();
     for (const TaxelStats& t : r.taxels)
-        taxels.push_back({{"finger", t.finger},
-                          {"taxel", t.taxel},
-                          {"rest_frames", t.restFrames},
-                          {"contact_frames", t.contactFrames},
-                          {"offset_counts", interval(t.offset)},
-                          {"sigma_counts", interval(t.sigma)},
-                          {"quantum_counts", t.quantum},
-                          {"drift_counts", interval(t.drift)},
-                          {"dead", t.dead},
-                          {"stuck", t.stuck},
-                          {"max_counts", t.maxPressure},
-                          {"contact_p99_counts", t.contactP99},
-                          {"at_full_scale", t.atFullScale}});
+        taxels.push_back(
+            {{"finger", t.finger},
+             {"taxel", t.taxel},
+             {"rest_frames", t.restFrames},
+             {"contact_frames", t.contactFrames},
+             {"offset_counts", interval(t.offset)},
+             {"sigma_counts", interval(t.sigma)},
+             {"quantum_counts", t.quantum},
+             {"drift_counts", interval(t.drift)},
+             {"dead", t.dead},
+             {"stuck", t.stuck},
+             {"max_counts", t.maxPressure},
+             {"contact_p99_counts",
+              {{"value", t.contactP99}, {"low", t.contactP99Low}, {"high", t.contactP99High}}},
+             {"at_full_scale", t.atFullScale}});
     for (const FingerStats& f : r.fingers)
         fingers.push_back(
             {{"finger", f.finger}, {"rest_correlation", interval(f.restCorrelation)}});
@@ -71,19 +73,21 @@ void printStats(const FingertipStatsReport& r) {
         "%d recordings, %d frames; at rest: every taxel of the finger within %g counts of "
         "its resting level (95 %% intervals over the recordings)\n",
         r.files, r.frames, r.restMargin);
-    std::printf("%-8s %5s %6s %-22s %-20s %5s %-20s %6s %6s %s\n", "finger", "taxel", "rest",
-                "offset (counts)", "sigma (counts)", "step", "drift (counts)", "max", "p99",
-                "state");
+    std::printf("%-8s %5s %6s %-22s %-20s %5s %-20s %6s %-18s %s\n", "finger", "taxel", "rest",
+                "offset (counts)", "sigma (counts)", "step", "drift (counts)", "max",
+                "p99 under contact", "state");
     for (const TaxelStats& t : r.taxels) {
-        char offset[64], sigma[64], drift[64];
+        char offset[64], sigma[64], drift[64], p99[64];
+        std::snprintf(p99, sizeof p99, "%.0f (%.0f-%.0f)", t.contactP99, t.contactP99Low,
+                      t.contactP99High);
         std::snprintf(offset, sizeof offset, "%.2f (%.2f-%.2f)", t.offset.mean, t.offset.low,
                       t.offset.high);
         std::snprintf(sigma, sizeof sigma, "%.3f (%.3f-%.3f)", t.sigma.mean, t.sigma.low,
                       t.sigma.high);
         std::snprintf(drift, sizeof drift, "%+.2f (%+.2f..%+.2f)", t.drift.mean, t.drift.low,
                       t.drift.high);
-        std::printf("%-8s %5d %6d %-22s %-20s %5g %-20s %6g %6g %s\n", t.finger.c_str(), t.taxel,
-                    t.restFrames, offset, sigma, t.quantum, drift, t.maxPressure, t.contactP99,
+        std::printf("%-8s %5d %6d %-22s %-20s %5g %-20s %6g %-18s %s\n", t.finger.c_str(), t.taxel,
+                    t.restFrames, offset, sigma, t.quantum, drift, t.maxPressure, p99,
                     t.dead              ? "dead"
                     : t.stuck           ? "stuck"
                     : t.atFullScale > 0 ? "saturates"
@@ -256,7 +260,7 @@ int commandFingertipStats(const std::vector<std::string>& args, int argc, char**
             scenes.push_back(written);
         }
         const std::vector<SceneComparison> comparisons = compareWithScenes(report, finger, scenes);
-        printComparison(comparisons, finger);
+        printComparison(comparisons, finger, realPressedQuantiles(report, finger));
         if (!out.empty()) {
             ensureOutputDirectory(out);
             writeJsonAtomically((fs::path(out) / "fingertip_stats.json").string(),

@@ -5,6 +5,8 @@
 #include <limits>
 #include <set>
 
+#include "core/stats/Resampling.h"
+
 namespace activetouch {
 
 namespace {
@@ -78,7 +80,8 @@ FingerInFile splitFinger(const FramesFile& f, int offset, int taxels, int all, d
 
 /// Per recording, what each taxel's statistics are built from.
 struct TaxelSamples {
-    std::vector<double> offsets, sigmas, drifts, contact, restAbove;
+    std::vector<double> offsets, sigmas, drifts, contact, restAbove, contactAbove;
+    std::vector<std::vector<double>> contactByFile;  ///< each recording's readings under contact
     std::set<double> seen;
     double most = 0.0, least = kInf;
     long long readings = 0, fullScale = 0;
@@ -92,6 +95,7 @@ void addFile(TaxelSamples& s, const std::vector<double>& rest, const std::vector
         s.offsets.push_back(mean(rest));
         const double level = std::round(s.offsets.back());
         for (double x : rest) s.restAbove.push_back(std::max(0.0, x - level));
+        for (double x : contact) s.contactAbove.push_back(std::max(0.0, x - level));
     }
     if (rest.size() >= 2) s.sigmas.push_back(standardDeviation(rest));
     if (rest.size() >= 3) {
@@ -101,6 +105,7 @@ void addFile(TaxelSamples& s, const std::vector<double>& rest, const std::vector
         s.drifts.push_back(mean(last) - mean(first));
     }
     s.contact.insert(s.contact.end(), contact.begin(), contact.end());
+    if (!contact.empty()) s.contactByFile.push_back(contact);
     for (const auto* v : {&rest, &contact})
         for (double x : *v) {
             s.seen.insert(x);
@@ -129,9 +134,25 @@ TaxelStats summarise(const TaxelSamples& s, const std::string& finger, int k, do
     t.dead = s.most <= 0.0;
     t.stuck = !t.dead && s.least == s.most;
     t.maxPressure = s.most;
-    t.contactP99 = quantile(s.contact, 0.99);
+    t.contactP99 = t.contactP99Low = t.contactP99High = quantile(s.contact, 0.99);
+    if (s.contactByFile.size() >= 2) {
+        stats::ResamplingGenerator draw(0x5eed + static_cast<std::uint64_t>(k));
+        std::vector<double> resampled;
+        for (int b = 0; b < 200; ++b) {
+            std::vector<double> pooled;
+            for (std::size_t i = 0; i < s.contactByFile.size(); ++i) {
+                const auto& file = s.contactByFile[draw.below(s.contactByFile.size())];
+                pooled.insert(pooled.end(), file.begin(), file.end());
+            }
+            resampled.push_back(quantile(pooled, 0.99));
+        }
+        const stats::Interval ci = stats::percentileInterval(resampled);
+        t.contactP99Low = ci.low;
+        t.contactP99High = ci.high;
+    }
     t.atFullScale = s.readings > 0 ? double(s.fullScale) / double(s.readings) : 0.0;
     t.restAbove = s.restAbove;
+    t.contactAbove = s.contactAbove;
     return t;
 }
 

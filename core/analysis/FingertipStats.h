@@ -23,11 +23,15 @@ struct TaxelStats {
     bool dead = false;           ///< reads no pressure in any frame
     bool stuck = false;          ///< one reading, not zero, in every frame
     double maxPressure = 0.0;    ///< the most it read, counts
-    double contactP99 = 0.0;     ///< the 99th percentile under contact, counts
-    double atFullScale = 0.0;    ///< share of its readings at the converter's full scale
+    /// The 99th percentile under contact, counts, with a 95 % interval from resampling the
+    /// recordings (200 resamples).
+    double contactP99 = 0.0, contactP99Low = 0.0, contactP99High = 0.0;
+    double atFullScale = 0.0;  ///< share of its readings at the converter's full scale
     /// Its resting frames as a compensated fingertip reports them: each above its recording's
     /// resting level (the rest mean, rounded to the converter's step), clipped at 0.
     std::vector<double> restAbove;
+    /// Its readings in frames not at rest, above the same level (clipped at 0): under contact.
+    std::vector<double> contactAbove;
 };
 
 struct FingerStats {

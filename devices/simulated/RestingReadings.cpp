@@ -28,4 +28,26 @@ RestingReadings restingReadings(const SceneSpec& scene, int taps) {
     return out;
 }
 
+std::vector<std::vector<double>> edgeReadings(const SceneSpec& scene, int rounds) {
+    auto model = std::make_shared<const FingertipContactModel>(scene.fingertip);
+    SimulatedWorld world(scene, model);
+    const Polygon& object = world.object();
+    // The edge whose outward normal points most nearly down, at its middle.
+    std::size_t lowest = 0;
+    for (std::size_t e = 0; e < object.size(); ++e)
+        if (object.outwardNormal(e).y < object.outwardNormal(lowest).y) lowest = e;
+    const Vec2 middle = 0.5 * (object.vertex(lowest) + object.vertex(lowest + 1));
+    const Vec2 normal = object.outwardNormal(lowest);
+    std::vector<std::vector<double>> out(static_cast<std::size_t>(model->taxelCount()));
+    for (int round = 0; round < rounds; ++round)
+        for (double d = -6.0; d <= 6.0 + 1e-9; d += 0.5) {
+            world.moveStage(middle + d * normal);
+            const TapRecord r = world.tap();
+            for (int t = 0; t < r.tap.sampleCount(); ++t)
+                for (int k = 0; k < model->taxelCount(); ++k)
+                    out[std::size_t(k)].push_back(r.tap.at(t, k));
+        }
+    return out;
+}
+
 }  // namespace activetouch

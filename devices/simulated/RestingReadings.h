@@ -16,4 +16,9 @@ struct RestingReadings {
 /// simulated fingertip reports them.
 RestingReadings restingReadings(const SceneSpec& scene, int taps);
 
+/// The readings of taps across the scene's object's lowest edge (at its middle, every half
+/// millimetre from 6 mm outside to 6 mm inside, `rounds` times over): what its fingertip reads
+/// under contact, per taxel, every sample.
+std::vector<std::vector<double>> edgeReadings(const SceneSpec& scene, int rounds);
+
 }  // namespace activetouch
