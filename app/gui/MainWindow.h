@@ -215,6 +215,7 @@ private:
     bool countingSeeds_ = false;  ///< the run going counts seeds, not taps
 
     QTabWidget* tabs_;
+    class HelpBrowser* help_ = nullptr;  ///< made when first asked for
     LiveView* live_;
     ValidationTab* validation_;
     FollowingTab* following_;

@@ -28,16 +28,17 @@
 #include <QUrl>
 
 #include "app/figures/Installation.h"
-#include "core/common/InputError.h"
-#include "core/io/InputFile.h"
-#include "core/io/JsonText.h"
 #include "app/gui/ComparisonTab.h"
 #include "app/gui/DevicesPanel.h"
+#include "app/gui/HelpBrowser.h"
 #include "app/gui/LiveView.h"
 #include "app/gui/MainWindow.h"
 #include "app/gui/ProtocolPanel.h"
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
+#include "core/common/InputError.h"
+#include "core/io/InputFile.h"
+#include "core/io/JsonText.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
@@ -129,7 +130,6 @@ void MainWindow::showPreferences() {
     setResultsFolder(folder->text().trimmed());
     log(tr("results folder: %1").arg(resultsFolder_));
 }
-
 
 void MainWindow::fillRecentMenu() {
     recentMenu_->clear();
@@ -319,11 +319,17 @@ void MainWindow::resetLayout() {
 
 void MainWindow::openDocumentation() {
     const QString docs = documentationDirectory();
-    const QString window = QDir(docs).filePath("window.md");
-    const QString target = QFileInfo::exists(window) ? window : docs;
-    if (docs.isEmpty() || !QDesktopServices::openUrl(QUrl::fromLocalFile(target)))
-        showError(tr("The documentation was not found beside the workbench (looked in %1).")
+    if (docs.isEmpty() || !QFileInfo::exists(QDir(docs).filePath("window.md"))) {
+        showError(tr("The documentation is not installed beside the workbench (looked in %1); "
+                     "reinstall it, or read docs/ in the source tree.")
                       .arg(docs.isEmpty() ? tr("its share folder") : docs));
+        return;
+    }
+    if (!help_) help_ = new HelpBrowser(docs, this);
+    // The section of docs/window.md about the tab in front: "- **Live**: ...".
+    QString tab = tabs_->tabText(tabs_->currentIndex());
+    tab.replace("&&", "\x01").remove('&').replace("\x01", "&");
+    help_->showTopic("window.md", tab + ":");
 }
 
 void MainWindow::showAbout() {

@@ -5,12 +5,15 @@
 #include <QDockWidget>
 #include <QMenuBar>
 #include <QMimeData>
+#include <QTabWidget>
+#include <QTextBrowser>
 #include <QToolBar>
 #include <QUrl>
 #include <QWheelEvent>
 
 #include "WindowFixture.h"
 #include "app/gui/FingertipView.h"
+#include "app/gui/HelpBrowser.h"
 
 /// Records the file URLs the window asks the desktop to open, instead of opening them.
 class UrlCatcher : public QObject {
@@ -65,6 +68,47 @@ private slots:
     void cleanupTestCase() {
         closeWindow();
         QDesktopServices::unsetUrlHandler("file");
+    }
+
+    void helpInsideTheWindow() {
+        // F1 on a tab opens docs/window.md at that tab's section, rendered from its Markdown.
+        auto* tabs = window_->findChild<QTabWidget*>();
+        QVERIFY(tabs);
+        int validation = -1;
+        for (int i = 0; i < tabs->count(); ++i)
+            if (tabs->tabText(i).startsWith("Training")) validation = i;
+        QVERIFY(validation >= 0);
+        tabs->setCurrentIndex(validation);
+        press(QKeySequence::HelpContents);
+        auto* help = window_->findChild<HelpBrowser*>("helpBrowser");
+        QVERIFY(help && help->isVisible());
+        QTextBrowser* text = help->browser();
+        QVERIFY(text->source().toLocalFile().endsWith("docs/window.md"));
+        QVERIFY(!text->toPlainText().contains("**"));  // rendered, not shown as source
+        QCOMPARE(text->textCursor().selectedText(), QString("Training & validation:"));
+        // A link followed in place: the keyboard selects the first link and opens it.
+        text->setFocus();
+        QTextCursor start(text->document());
+        text->setTextCursor(start);
+        QTest::keyClick(text, Qt::Key_Tab);
+        const QString link = text->textCursor().charFormat().anchorHref();
+        QVERIFY2(link.endsWith(".md"), qPrintable(link));
+        QTest::keyClick(text, Qt::Key_Return);
+        QTRY_VERIFY(text->source().toLocalFile().endsWith(QFileInfo(link).fileName()));
+        QVERIFY(text->isBackwardAvailable());
+        // A search over every document lists its hits and opens the first, found in place.
+        auto* search = help->findChild<QLineEdit*>("helpSearch");
+        QVERIFY(search);
+        QTest::keyClicks(search, "Kolmogorov");
+        QTest::keyClick(search, Qt::Key_Return);
+        QVERIFY(help->hits()->count() >= 3);
+        QVERIFY(help->hits()->item(0)->text().contains(".md:"));
+        QCOMPARE(text->textCursor().selectedText().toLower(), QString("kolmogorov"));
+        QCOMPARE(help->search("no such words anywhere at all"), 0);
+        help->close();
+        window_->activateWindow();
+        QVERIFY(QTest::qWaitForWindowActive(window_.get()));
+        tabs->setFocus();
     }
 
     void theWindowFitsA1280x720Screen() {
@@ -156,7 +200,8 @@ private slots:
         QCOMPARE(dialogOf("menuCompare"), QString("Compare with the experiment (B)"));
         QCOMPARE(dialogOf("analyseRecording"), QString("Analyse recorded training and test taps"));
         QCOMPARE(dialogOf("replayRun"), QString("Replay the run recorded in (a run's folder)"));
-        QCOMPARE(dialogOf("calibrate"), QString("Fit the scene to recorded training and test taps"));
+        QCOMPARE(dialogOf("calibrate"),
+                 QString("Fit the scene to recorded training and test taps"));
         QCOMPARE(dialogOf("menuExportAll"), QString("Export all figures into"));  // a run now
 
         // View: each dock and the tool bar hide and come back; the live view pauses.
@@ -181,11 +226,15 @@ private slots:
         QVERIFY(!bar->isHidden());
         for (QDockWidget* dock : window_->findChildren<QDockWidget*>()) QVERIFY(!dock->isHidden());
 
-        // Help
+        // Help: the documentation inside the window, at the section on the tab in front
+        // (helpInsideTheWindow follows its links and searches it).
         urls_.opened.clear();
         press(key("menuDocs"));
-        QCOMPARE(urls_.opened.size(), 1);
-        QVERIFY(urls_.opened.front().toLocalFile().endsWith("docs/window.md"));
+        QVERIFY(urls_.opened.isEmpty());
+        auto* help = window_->findChild<HelpBrowser*>("helpBrowser");
+        QVERIFY(help && help->isVisible());
+        QVERIFY(help->browser()->source().toLocalFile().endsWith("docs/window.md"));
+        help->close();
         QCOMPARE(dialogOf("menuAbout"), QString("About ActiveTouch Workbench"));
         QCOMPARE(dialogOf("menuAboutQt"), QString("About Qt"));
 
