@@ -279,10 +279,20 @@ QStringList PlotPanel::exportTo(const QString& basePath, const QStringList& form
         plot_->resize(shape);
         rebuild_(*plot_);
     };
+    const QRect viewport = plot_->viewport();
+    const double ratio = plot_->bufferDevicePixelRatio();
     auto back = [&] {
         drawnFor(shown);
+        // The export laid the plot out on a page of its own: its size, viewport and paint
+        // buffers go back to the screen's.
         plot_->resize(shown);
+        plot_->setViewport(viewport);
+        plot_->setBufferDevicePixelRatio(ratio);
         plot_->replot(QCustomPlot::rpImmediateRefresh);
+        // Legends and equal-aspect panels refitted to the screen's shape, as a resize does.
+        for (int round = 0; round < 3 && !zoomed_ && fitToLayout(*plot_); ++round)
+            plot_->replot(QCustomPlot::rpImmediateRefresh);
+        plot_->update();
     };
     QStringList files;
     try {

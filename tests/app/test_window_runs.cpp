@@ -3,6 +3,7 @@
 // every figure in every format, keeps paths and histograms at one scale through resizes and no
 // legend over a value, draws the live view only in front, and runs sweeps.
 #include <QSpinBox>
+#include <QTabWidget>
 
 #include "WindowFixture.h"
 #include "app/gui/PlotPanel.h"
@@ -167,7 +168,7 @@ private slots:
         QCOMPARE(listed["adc_quantisation"], "yes");
         QCOMPARE(listed["taxel_gain"], "no");
         QCOMPARE(listed["viscoelastic_memory"], "yes");  // the paper scene's pad remembers
-        QCOMPARE(listed["contact_latency"], "yes");  // read from the stop depths
+        QCOMPARE(listed["contact_latency"], "yes");      // read from the stop depths
         QCOMPARE(listed["stage_error"], "kept");
         bool sigma = false;
         QTableWidget* estimates = dialog->estimatesTable();
@@ -289,6 +290,35 @@ private slots:
         QTest::qWait(100);
         QCOMPARE(live->framesDrawn(), drawn + 1);  // and nothing again until the feed moves
         QCOMPARE(shownValues(), frame);
+    }
+
+    void exportingLeavesThePlotOnScreenItsShape() {
+        // Each figure of a run, shown on its tab, exported at a single column and at a pixel size
+        // of another shape: the plot on screen keeps its size, and draws over the whole of it
+        // again (no viewport or paint buffer of the export's size left behind).
+        auto* tabs = window_->findChild<QTabWidget*>();
+        QVERIFY(tabs);
+        QDir().mkpath(dir_.filePath("unchanged"));
+        int compared = 0;
+        for (PlotPanel* p : window_->plotPanels()) {
+            if (!filledByARun(p)) continue;
+            for (QWidget* w = p; w; w = w->parentWidget())
+                if (const int i = tabs->indexOf(w); i >= 0) tabs->setCurrentIndex(i);
+            if (!p->isVisible() || p->plot().width() < 50) continue;
+            QTest::qWait(100);
+            const QSize shown = p->plot().size();
+            const double ratio = p->plot().bufferDevicePixelRatio();
+            const QString base = dir_.filePath("unchanged/" + p->name());
+            p->exportTo(base, {"png", "pdf"}, FigureSize::physical(kSingleColumn_mm, 75, 300));
+            p->exportTo(base + "_px", {"png"}, {700, 1100, 100});
+            QTest::qWait(100);
+            QCOMPARE(p->plot().size(), shown);
+            QCOMPARE(p->plot().viewport(), p->plot().rect());
+            QCOMPARE(p->plot().bufferDevicePixelRatio(), ratio);
+            QCOMPARE(p->plot().grab().toImage().size(), shown);
+            ++compared;
+        }
+        QVERIFY(compared >= 4);
     }
 
     void everyFigureExportsInEveryFormat() {
