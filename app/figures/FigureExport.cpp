@@ -7,6 +7,7 @@
 #include <QSvgGenerator>
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -224,53 +225,56 @@ double pointsOf(const QFont& font, double dpi) {
 
 std::function<void()> setJournalText(QCustomPlot& plot) {
     const double dpi = logicalDpi(plot);
-    // Every font a figure draws text with, as a getter and a setter.
+    // Every font a figure draws text with, as a getter and a setter, each once: a legend inside a
+    // panel is reached through the panel and again through the layout's elements.
     struct Text {
         std::function<QFont()> get;
         std::function<void(const QFont&)> set;
     };
     std::vector<Text> texts;
+    std::set<std::pair<const void*, int>> seen;
+    auto add = [&](const void* owner, int which, Text t) {
+        if (seen.insert({owner, which}).second) texts.push_back(std::move(t));
+    };
     auto axis = [&](QCPAxis* a) {
-        texts.push_back(
-            {[a] { return a->labelFont(); }, [a](const QFont& f) { a->setLabelFont(f); }});
-        texts.push_back(
+        add(a, 0, {[a] { return a->labelFont(); }, [a](const QFont& f) { a->setLabelFont(f); }});
+        add(a, 1,
             {[a] { return a->tickLabelFont(); }, [a](const QFont& f) { a->setTickLabelFont(f); }});
-        texts.push_back({[a] { return a->selectedLabelFont(); },
-                         [a](const QFont& f) { a->setSelectedLabelFont(f); }});
-        texts.push_back({[a] { return a->selectedTickLabelFont(); },
-                         [a](const QFont& f) { a->setSelectedTickLabelFont(f); }});
+        add(a, 2,
+            {[a] { return a->selectedLabelFont(); },
+             [a](const QFont& f) { a->setSelectedLabelFont(f); }});
+        add(a, 3,
+            {[a] { return a->selectedTickLabelFont(); },
+             [a](const QFont& f) { a->setSelectedTickLabelFont(f); }});
+    };
+    auto legendItems = [&](QCPLegend* legend) {
+        for (int i = 0; i < legend->itemCount(); ++i)
+            if (QCPAbstractLegendItem* item = legend->item(i))
+                add(item, 0,
+                    {[item] { return item->font(); },
+                     [item](const QFont& f) { item->setFont(f); }});
     };
     for (QCPLayoutElement* e : plot.plotLayout()->elements(true)) {
         if (auto* rect = qobject_cast<QCPAxisRect*>(e)) {
             for (QCPAxis* a : rect->axes()) axis(a);
             for (QCPLayoutElement* inset : rect->insetLayout()->elements(true))
-                if (auto* legend = qobject_cast<QCPLegend*>(inset))
-                    for (int i = 0; i < legend->itemCount(); ++i)
-                        if (QCPAbstractLegendItem* item = legend->item(i))
-                            texts.push_back({[item] { return item->font(); },
-                                             [item](const QFont& f) { item->setFont(f); }});
+                if (auto* legend = qobject_cast<QCPLegend*>(inset)) legendItems(legend);
         } else if (auto* scale = qobject_cast<QCPColorScale*>(e)) {
             axis(scale->axis());
         } else if (auto* title = qobject_cast<QCPTextElement*>(e)) {
-            texts.push_back({[title] { return title->font(); },
-                             [title](const QFont& f) { title->setFont(f); }});
+            add(title, 0,
+                {[title] { return title->font(); },
+                 [title](const QFont& f) { title->setFont(f); }});
         } else if (auto* legend = qobject_cast<QCPLegend*>(e)) {
-            for (int i = 0; i < legend->itemCount(); ++i)
-                if (QCPAbstractLegendItem* item = legend->item(i))
-                    texts.push_back({[item] { return item->font(); },
-                                     [item](const QFont& f) { item->setFont(f); }});
+            legendItems(legend);
         }
     }
     // Legends inside panels are in the panels' inset layouts, and so reached above; the plot's
     // own legend may be anywhere.
-    if (plot.legend)
-        for (int i = 0; i < plot.legend->itemCount(); ++i)
-            if (QCPAbstractLegendItem* item = plot.legend->item(i))
-                texts.push_back({[item] { return item->font(); },
-                                 [item](const QFont& f) { item->setFont(f); }});
+    if (plot.legend) legendItems(plot.legend);
     for (int i = 0; i < plot.itemCount(); ++i)
         if (auto* text = qobject_cast<QCPItemText*>(plot.item(i)))
-            texts.push_back(
+            add(text, 0,
                 {[text] { return text->font(); }, [text](const QFont& f) { text->setFont(f); }});
 
     double largest = 0.0;
