@@ -33,6 +33,7 @@
 #include "app/gui/HelpBrowser.h"
 #include "app/gui/LiveView.h"
 #include "app/gui/MainWindow.h"
+#include "app/gui/PlotPanel.h"
 #include "app/gui/ProtocolPanel.h"
 #include "app/gui/ScenePanel.h"
 #include "app/gui/SeedsTab.h"
@@ -66,6 +67,7 @@ void MainWindow::setOutputBase(const QString& dir) {
 }
 
 void MainWindow::showResultsFolder() {
+    PlotPanel::setExportFolder(outputBase_);
     if (!resultsLabel_) return;
     resultsLabel_->setText(tr("Results: <a href=\"open\">%1</a>").arg(outputBase_.toHtmlEscaped()));
     resultsLabel_->setToolTip(

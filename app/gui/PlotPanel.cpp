@@ -2,6 +2,7 @@
 
 #include <QApplication>
 #include <QClipboard>
+#include <QDir>
 #include <QFileDialog>
 #include <QMenu>
 #include <QMouseEvent>
@@ -375,6 +376,23 @@ void PlotPanel::copyToClipboard() {
     QApplication::clipboard()->setPixmap(plot_->toPixmap());
 }
 
+namespace {
+QString& exportFolder() {
+    static QString folder;
+    return folder;
+}
+}  // namespace
+
+void PlotPanel::setExportFolder(const QString& folder) {
+    exportFolder() = folder;
+}
+
+QString PlotPanel::suggestedPath(const QString& extension) const {
+    const QString file = name_ + "." + extension;
+    const QString& folder = exportFolder();
+    return folder.isEmpty() ? file : QDir(folder).filePath(file);
+}
+
 void PlotPanel::showMenu(const QPoint& where) {
     QMenu menu(this);
     menu.addAction(tr("Export figure..."), this, &PlotPanel::exportWithDialog);
@@ -383,8 +401,9 @@ void PlotPanel::showMenu(const QPoint& where) {
         emit exported(tr("%1 copied to the clipboard").arg(name_));
     });
     menu.addAction(tr("Export data as CSV..."), this, [this] {
-        const QString path = QFileDialog::getSaveFileName(
-            this, tr("Export the data behind %1").arg(name_), name_ + ".csv", tr("CSV (*.csv)"));
+        const QString path =
+            QFileDialog::getSaveFileName(this, tr("Export the data behind %1").arg(name_),
+                                         suggestedPath("csv"), tr("CSV (*.csv)"));
         if (path.isEmpty()) return;
         try {
             exportCsv(path);
@@ -402,7 +421,7 @@ void PlotPanel::exportWithDialog() {
     if (dialog.exec() != QDialog::Accepted) return;
     const QString format = dialog.format();
     const QString path =
-        QFileDialog::getSaveFileName(this, tr("Export %1").arg(name_), name_ + "." + format);
+        QFileDialog::getSaveFileName(this, tr("Export %1").arg(name_), suggestedPath(format));
     if (path.isEmpty()) return;
     QString base = path;
     if (base.endsWith("." + format)) base.chop(format.size() + 1);

@@ -28,6 +28,12 @@ public:
     explicit PlotPanel(const QString& name, QWidget* parent = nullptr);
 
     QCustomPlot& plot() { return *plot_; }
+    /// Where the export dialogs start: the window's results folder (docs/window.md), shared by
+    /// every plot; empty leaves them in the working folder.
+    static void setExportFolder(const QString& folder);
+    /// The file an export dialog offers first: this plot's name with `extension`, in the export
+    /// folder.
+    QString suggestedPath(const QString& extension) const;
     const QString& name() const { return name_; }
 
     /// What a person does to fill this plot, shown over it while it has no data.

@@ -322,6 +322,10 @@ private slots:
             ++compared;
         }
         QVERIFY(compared >= 4);
+        // The export dialogs start in the results folder, not where the workbench was launched.
+        const QString folder = QDir(window_->outputBase()).absolutePath();
+        for (PlotPanel* p : window_->plotPanels())
+            QCOMPARE(QFileInfo(p->suggestedPath("pdf")).absolutePath(), folder);
     }
 
     void everyFigureExportsInEveryFormat() {
