@@ -14,8 +14,10 @@ std::string tenth(double v) {
     return numberText(std::round(v * 10.0) / 10.0);
 }
 
+/// "12 %", or "0.2 %" under one per cent, so that a small stretch does not read as none.
 std::string percent(double fraction) {
-    return numberText(std::round(fraction * 100.0)) + " %";
+    const double p = fraction * 100.0;
+    return numberText(p < 1.0 ? std::round(p * 10.0) / 10.0 : std::round(p)) + " %";
 }
 
 /// "a notch, gap or inside corner at (150.2, 121) mm, 3.1 mm across, ...".
