@@ -14,12 +14,14 @@
 #include "app/cli/Commands.h"
 #include "app/cli/HelpText.h"
 #include "app/figures/Installation.h"
+#include "core/common/HeapTuning.h"
 
 using namespace activetouch;
 using namespace activetouch::cli;
 
 int main(int argc, char** argv) {
     useInstalledResources();  // an installed binary reads the resources installed beside it
+    keepHeapBetweenRuns();
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty()) {
         printHelp();
@@ -41,8 +43,7 @@ int main(int argc, char** argv) {
     }
     if (command == "run") return commandRun(args, argc, argv);
     if (command == "seeds") return commandSeeds(args, argc, argv);
-    if (command == "analyse")
-        return commandAnalyse(args, argc, argv, false);
+    if (command == "analyse") return commandAnalyse(args, argc, argv, false);
     if (command == "replay") return commandAnalyse(args, argc, argv, true);
     if (command == "compare") return commandCompare(args, argc, argv);
     if (command == "check") return commandCheck(args);

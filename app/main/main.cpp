@@ -12,10 +12,12 @@
 #include "app/figures/Installation.h"
 #include "app/gui/MainWindow.h"
 #include "app/gui/ScreenshotTour.h"
+#include "core/common/HeapTuning.h"
 
 using namespace activetouch;
 
 int main(int argc, char** argv) {
+    keepHeapBetweenRuns();  // the window runs sweeps over seeds as the command line does
     // --help and --version print and quit: they need no display.
     bool textOnly = false;
     for (int i = 1; i < argc; ++i)

@@ -108,28 +108,59 @@ double goldenMinimum(F f, double a, double b, double tolerance) {
     return 0.5 * (a + b);
 }
 
-// Each tap's log posterior of its true class with the log-likelihoods scaled by `scale` (NaN
-// rules a class out), into `out`.
-void trueClassLogPosteriors(const std::vector<std::vector<double>>& ll,
-                            const std::vector<int>& truth, double scale, std::vector<double>& out) {
-    thread_local std::vector<double> v;
-    out.resize(ll.size());
-    for (std::size_t t = 0; t < ll.size(); ++t) {
-        v.assign(ll[t].begin(), ll[t].end());
-        for (double& x : v)
-            x = std::isnan(x) ? -std::numeric_limits<double>::infinity() : scale * x;
-        out[t] =
-            v[static_cast<std::size_t>(truth[t])] - logSumExp(v.data(), static_cast<int>(v.size()));
-    }
-}
+// The held-out taps made ready for many scales: each tap's log-likelihoods less its largest (NaN
+// ruling a class out), and its true class's. Under a scale s > 0 the true class's log posterior
+// is then s * gap[true] - log sum exp(s * gap), with nothing to copy or search for per scale.
+struct ScaledTaps {
+    std::vector<double> gaps;   // tap by tap, classes each
+    std::vector<double> truth;  // the true class's gap
+    std::vector<char> plain;    // a tap with no finite largest value: the general path
+    const std::vector<std::vector<double>>* ll = nullptr;
+    const std::vector<int>* truthClass = nullptr;
+    int classes = 0;
 
-double meanNegativeLogPosterior(const std::vector<std::vector<double>>& ll,
-                                const std::vector<int>& truth, double scale) {
+    ScaledTaps(const std::vector<std::vector<double>>& lls, const std::vector<int>& t)
+        : ll(&lls), truthClass(&t), classes(lls.empty() ? 0 : static_cast<int>(lls[0].size())) {
+        for (std::size_t k = 0; k < lls.size(); ++k) {
+            double top = -std::numeric_limits<double>::infinity();
+            for (double x : lls[k])
+                if (!std::isnan(x)) top = std::max(top, x);
+            plain.push_back(std::isfinite(top) ? 0 : 1);
+            for (double x : lls[k])
+                gaps.push_back(std::isnan(x) || !std::isfinite(top)
+                                   ? -std::numeric_limits<double>::infinity()
+                                   : x - top);
+            truth.push_back(
+                gaps[k * static_cast<std::size_t>(classes) + static_cast<std::size_t>(t[k])]);
+        }
+    }
+
+    // Each tap's log posterior of its true class under `scale`, into `out`.
+    void logPosteriors(double scale, std::vector<double>& out) const {
+        thread_local std::vector<double> v;
+        out.resize(truth.size());
+        for (std::size_t k = 0; k < truth.size(); ++k) {
+            if (!plain[k]) {
+                out[k] = scale * truth[k] -
+                         std::log(sumExpScaled(gaps.data() + k * static_cast<std::size_t>(classes),
+                                               classes, scale));
+                continue;
+            }
+            v.assign((*ll)[k].begin(), (*ll)[k].end());
+            for (double& x : v)
+                x = std::isnan(x) ? -std::numeric_limits<double>::infinity() : scale * x;
+            out[k] = v[static_cast<std::size_t>((*truthClass)[k])] -
+                     logSumExp(v.data(), static_cast<int>(v.size()));
+        }
+    }
+};
+
+double meanNegativeLogPosterior(const ScaledTaps& taps, double scale) {
     thread_local std::vector<double> lp;
-    trueClassLogPosteriors(ll, truth, scale, lp);
+    taps.logPosteriors(scale, lp);
     double sum = 0.0;
     for (double x : lp) sum -= x;
-    return ll.empty() ? 0.0 : sum / static_cast<double>(ll.size());
+    return lp.empty() ? 0.0 : sum / static_cast<double>(lp.size());
 }
 
 }  // namespace
@@ -138,10 +169,11 @@ double fitLogLikelihoodScale(const std::vector<std::vector<double>>& ll,
                              const std::vector<int>& truth) {
     // Over log10(scale) in [-8, 0]: the held-out negative log-likelihood of a temperature is
     // unimodal in it.
+    const ScaledTaps taps(ll, truth);
     return std::pow(
-        10.0, goldenMinimum(
-                  [&](double x) { return meanNegativeLogPosterior(ll, truth, std::pow(10.0, x)); },
-                  -8.0, 0.0, 1e-6));
+        10.0,
+        goldenMinimum([&](double x) { return meanNegativeLogPosterior(taps, std::pow(10.0, x)); },
+                      -8.0, 0.0, 1e-6));
 }
 
 BeliefScaling fitBeliefScaling(const std::vector<std::vector<double>>& ll,
@@ -151,8 +183,9 @@ BeliefScaling fitBeliefScaling(const std::vector<std::vector<double>>& ll,
     // For a given scale, the true classes' softmax probabilities; the floor's negative
     // log-likelihood, -mean log((1 - e) p + e / C), is convex in e.
     std::vector<double> p;
+    const ScaledTaps taps(ll, truth);
     auto floorFor = [&](double scale, double* cost) {
-        trueClassLogPosteriors(ll, truth, scale, p);
+        taps.logPosteriors(scale, p);
         for (double& x : p) x = std::isfinite(x) ? std::exp(x) : 0.0;
         const double evenShare = 1.0 / static_cast<double>(ll.front().size());
         auto nll = [&](double e) {

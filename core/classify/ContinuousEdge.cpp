@@ -5,7 +5,48 @@
 #include <limits>
 #include <vector>
 
+#include "core/common/Avx2Clones.h"
+#include "core/common/FastExp.h"
+
 namespace activetouch {
+
+namespace {
+
+// Each class's e^(ll / temperature - top), 0 where that is below e^-50 (a class ruled out reads
+// -infinity and gets 0): several classes to an instruction, the same in either clone.
+ACTIVETOUCH_AVX2_CLONES void edgeWeights(const double* ll, int n, double temperature, double top,
+                                         double* out) {
+    for (int c = 0; c < n; ++c) {
+        const double x = ll[c] / temperature - top;
+        const double e = expNonPositive(x);
+        out[c] = x < -50.0 ? 0.0 : e;
+    }
+}
+
+// The largest value over `temperature`: the same as the largest of the values each over it (a
+// division by a positive number keeps their order). NaN where a value is NaN or +infinity.
+ACTIVETOUCH_AVX2_CLONES double temperedTop(const double* ll, int n, double temperature) {
+    double top = -std::numeric_limits<double>::infinity();
+    int bad = 0;
+    for (int c = 0; c < n; ++c) {
+        const double v = ll[c];
+        bad |= (v != v) | (v == std::numeric_limits<double>::infinity());
+        top = v > top ? v : top;
+    }
+    return bad ? std::numeric_limits<double>::quiet_NaN() : top / temperature;
+}
+
+// The weights' sum, in four running sums added in a fixed order.
+ACTIVETOUCH_AVX2_CLONES double weightSum(const double* w, int n) {
+    double sums[4] = {0.0, 0.0, 0.0, 0.0};
+    int k = 0;
+    for (; k + 4 <= n; k += 4)
+        for (int j = 0; j < 4; ++j) sums[j] += w[k + j];
+    for (; k < n; ++k) sums[0] += w[k];
+    return (sums[0] + sums[1]) + (sums[2] + sums[3]);
+}
+
+}  // namespace
 
 ContinuousEdge continuousEdge(const ClassSet& classes, const double* logLikelihoods,
                               double temperature) {
@@ -13,41 +54,41 @@ ContinuousEdge continuousEdge(const ClassSet& classes, const double* logLikeliho
     const int n = classes.classCount();
     if (n <= 0 || !logLikelihoods || !(temperature > 0.0) || !std::isfinite(temperature))
         return percept;
-    // Normalise in the log domain (log-sum-exp), so that sums of hundreds of log-probabilities
-    // neither overflow nor all round to zero.
-    double top = -std::numeric_limits<double>::infinity();
-    for (int c = 0; c < n; ++c) {
-        const double v = logLikelihoods[c];
-        if (std::isnan(v) || v == std::numeric_limits<double>::infinity()) return percept;
-        top = std::max(top, v / temperature);
-    }
-    if (!std::isfinite(top)) return percept;  // every class ruled out
-    std::vector<double> weight(static_cast<std::size_t>(n));
-    double total = 0.0;
-    for (int c = 0; c < n; ++c) {
-        // Terms e^-50 below the winner's change no sum a double holds beside it: skip the exp.
-        const double x = logLikelihoods[c] / temperature - top;
-        weight[std::size_t(c)] = x < -50.0 ? 0.0 : std::exp(x);
-        total += weight[std::size_t(c)];
-    }
-    // Each orientation's unit normal, once: many classes share it.
-    std::vector<double> normalX(classes.orientationsDeg.size()), normalY(normalX.size());
-    for (std::size_t o = 0; o < normalX.size(); ++o) {
-        const double a = classes.orientationsDeg[o] * M_PI / 180.0;
-        normalX[o] = std::cos(a);
-        normalY[o] = std::sin(a);
-    }
+    // Normalised in the log domain (less the largest), so that sums of hundreds of
+    // log-probabilities neither overflow nor all round to zero.
+    const double top = temperedTop(logLikelihoods, n, temperature);
+    if (!std::isfinite(top)) return percept;  // a NaN or +infinity, or every class ruled out
+    thread_local std::vector<double> weight;
+    weight.resize(static_cast<std::size_t>(n));
+    // Terms e^-50 below the winner's carry no weight; a class ruled out reads -infinity, 0.
+    const double* w = weight.data();
+    edgeWeights(logLikelihoods, n, temperature, top, weight.data());
     // The winner's term is exp(0) = 1, so total >= 1: no division by zero.
+    const double total = weightSum(w, n);
+    // Each orientation's edge weight and its positions' weighted sum (class = orientation *
+    // positions + position - 1), then its unit normal once; normalised by the total at the end.
     double edge = 0.0, sx = 0.0, sy = 0.0, sp = 0.0;
-    for (int c = 0; c < n; ++c) {
-        const double w = weight[std::size_t(c)] / total;
-        if (classes.regionOf(c) != Region::Edge || w <= 0.0) continue;
-        const auto o = static_cast<std::size_t>(classes.orientationIndexOf(c));
-        edge += w;
-        sx += w * normalX[o];
-        sy += w * normalY[o];
-        sp += w * classes.positionOf(c);
+    const int positions = std::max(1, classes.positions);
+    const bool allEdges = classes.regions.empty();
+    for (int c0 = 0, o = 0; c0 < n; c0 += positions, ++o) {
+        double orientationWeight = 0.0, positionSum = 0.0;
+        for (int c = c0, position = 1; c < std::min(n, c0 + positions); ++c, ++position) {
+            const bool isEdge = allEdges || classes.regions[std::size_t(c)] == Region::Edge;
+            const double wc = isEdge ? w[c] : 0.0;
+            orientationWeight += wc;
+            positionSum += wc * position;
+        }
+        if (orientationWeight <= 0.0) continue;
+        const double a = classes.orientationsDeg[static_cast<std::size_t>(o)] * M_PI / 180.0;
+        edge += orientationWeight;
+        sx += orientationWeight * std::cos(a);
+        sy += orientationWeight * std::sin(a);
+        sp += positionSum;
     }
+    edge /= total;
+    sx /= total;
+    sy /= total;
+    sp /= total;
     percept.edgeWeight = std::clamp(edge, 0.0, 1.0);
     if (edge <= 0.0) return percept;
     percept.positionValid = true;

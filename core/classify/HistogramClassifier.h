@@ -103,6 +103,16 @@ public:
     /// classes within the bound of the best (none when one class alone is within it).
     int classify(const Tap& tap) const;
 
+    /// Every class's log-likelihood as a percept that weighs all classes reads them (the
+    /// continuous percept): exact, as logLikelihoods() gives them, for the classes that could be
+    /// within kPerceptMarginNats of the best; the 16-bit screening score for the rest, within
+    /// screeningBound(tap) of their exact sums. A fraction of logLikelihoods()' cost: the screen
+    /// reads a quarter of the table's bytes.
+    void perceptScores(const Tap& tap, double* out) const;
+    static constexpr double kPerceptMarginNats = 60.0;
+    /// How far a screening score can lie from the exact log-likelihood for `tap`, nats.
+    double screeningBound(const Tap& tap) const;
+
     struct Decision {
         int cls = 0;
         double posterior = 0.0;  ///< of the winner, flat prior, normalised with log-sum-exp
@@ -173,5 +183,9 @@ int argmaxLowestIndex(const double* values, int count);
 
 /// log(sum exp(values)), stable for any finite values.
 double logSumExp(const double* values, int count);
+
+/// sum exp(scale * gaps) for gaps <= 0 and scale > 0 (a term below e^-708 left out): the sum a
+/// log-sum-exp takes once its largest value is subtracted, for many scales of the same values.
+double sumExpScaled(const double* gaps, int count, double scale);
 
 }  // namespace activetouch

@@ -419,6 +419,15 @@ void HistogramClassifier::logLikelihoods(const Tap& tap, double* out) const {
     accumulateRows(rows.data(), weights.data(), distinct, C, out);
 }
 
+double HistogramClassifier::screeningBound(const Tap& tap) const {
+    const auto samples = static_cast<double>(tap.samples.size());
+    return screenStep_ * samples + 2e-12 * samples * maxAbsLog_;
+}
+
+void HistogramClassifier::perceptScores(const Tap& tap, double* out) const {
+    screenedScores(tap, kPerceptMarginNats, true, out);
+}
+
 int HistogramClassifier::screenedScores(const Tap& tap, double marginNats, bool posterior,
                                         double* out) const {
     const std::size_t C = static_cast<std::size_t>(classes_);
@@ -438,7 +447,7 @@ int HistogramClassifier::screenedScores(const Tap& tap, double marginNats, bool 
     // step/2 per sample of the exact one, plus the rounding of the double sums (far below 1e-12
     // of the terms' magnitudes, at most samples * max |log P|); the bound takes twice both.
     const auto samples = static_cast<double>(tap.samples.size());
-    const double bound = screenStep_ * samples + 2e-12 * samples * maxAbsLog_;
+    const double bound = screeningBound(tap);
     // Classes that could be within `marginNats` of the exact maximum, or of a tie with it, are
     // those whose screening score is within twice the bound, the margin and a tie's width (of
     // the largest magnitude a score can have) of the best: counted in levels, rounded up.

@@ -2,6 +2,7 @@
 // Deterministic random numbers, identical on every platform and standard library: the simulated
 // rig promises bit-identical taps for a seed, which std::normal_distribution does not guarantee.
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 
@@ -72,7 +73,16 @@ public:
 
     double normal(double mean, double sigma) { return mean + sigma * normal(); }
 
+    /// `count` standard normals into `out`, for the simulated rig's per-sample effects: the
+    /// ziggurat method (128 layers, one 64-bit draw for nearly every value, exact in
+    /// distribution), several times faster than normal(). A separate sequence from normal()'s:
+    /// the two are not interchangeable for a given seed.
+    void normals(double* out, std::size_t count);
+
 private:
+    /// The ziggurat's value for a draw outside its layer's inner rectangle (the wedge or the
+    /// tail), drawing further as it needs.
+    double zigguratSlow(std::uint64_t bits);
     static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
     std::uint64_t state_[4]{};
     bool hasSpareNormal_ = false;

@@ -10,7 +10,6 @@
 #include "core/common/NumberText.h"
 #include "core/control/ContactDetection.h"
 #include "core/control/MotorCommand.h"
-#include "core/geometry/ContourReach.h"
 
 namespace activetouch {
 
@@ -241,37 +240,6 @@ std::string startProblem(const Polygon& outline, Vec2 start, const FollowingSett
     return buf;
 }
 
-void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double coverageRadius,
-                 double contactRadius, TrialResult& r) {
-    r.coverage = 0.0;
-    r.meanContourDistance_mm = r.maxContourDistance_mm = 0.0;
-    const ContourReach reach(outline, contactRadius);
-    r.reachable = reach.reachableFraction();
-    if (path.empty()) return;
-    double sum = 0.0;
-    for (Vec2 p : path) {
-        const double d = outline.nearestOutlinePoint(p).distance;
-        sum += d;
-        r.maxContourDistance_mm = std::max(r.maxContourDistance_mm, d);
-    }
-    r.meanContourDistance_mm = sum / static_cast<double>(path.size());
-    // Coverage: contour points within reach, every half millimetre, with a tap within the radius.
-    const std::size_t samples = reach.samples();
-    std::size_t inReach = 0, covered = 0;
-    for (std::size_t i = 0; i < samples; ++i) {
-        if (!reach.reachable(i)) continue;
-        ++inReach;
-        const Vec2 q = outline.pointAtArcLength(static_cast<double>(i) * outline.perimeter() /
-                                                static_cast<double>(samples));
-        for (Vec2 p : path)
-            if (distance(p, q) <= coverageRadius) {
-                ++covered;
-                break;
-            }
-    }
-    r.coverage = inReach > 0 ? static_cast<double>(covered) / static_cast<double>(inReach) : 0.0;
-}
-
 namespace {
 
 /// One trial's perception-action loop: its settings, the short-term memory, the belief over the
@@ -320,7 +288,7 @@ public:
         if (sequential_)
             decisionMade = perceiveSequentially(t);
         else if (continuous_) {
-            classifier_.logLikelihoods(t.record.tap, logLikelihoods_.data());
+            classifier_.perceptScores(t.record.tap, logLikelihoods_.data());
             t.percept =
                 perceiveContinuous(classes_, logLikelihoods_.data(),
                                    perceptTemperatureFor(s_.perceptTemperature, t.record.tap));

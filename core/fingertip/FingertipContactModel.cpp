@@ -168,6 +168,8 @@ void FingertipContactModel::buildPatch(double reach) {
         }
         points_.push_back({grid[q].offset, grid[q].height, sum});
         heights_.push_back(static_cast<float>(grid[q].height));
+        offsetX_.push_back(grid[q].offset.x);
+        offsetY_.push_back(grid[q].offset.y);
         patchRadius_ = std::max(patchRadius_, norm(grid[q].offset));
     }
 }
@@ -233,51 +235,68 @@ FingertipContactModel::Contact::Contact(const FingertipContactModel& model, cons
             centreSide_ = dot(centre - e.a, lineNormal_);
         }
     }
-    coverage_.resize(model.points_.size(), 0.0f);
+    // Only the points covered so far are ever read: no need to clear the buffers.
+    coverage_.reset(new float[model.points_.size()]);
+    touched_.reset(new std::uint32_t[model.points_.size()]);
 }
 
-float FingertipContactModel::Contact::coverageOf(std::size_t q) const {
-    if (nearEdges_.empty()) return centreInside_ ? 1.0f : 0.0f;
-    const double halfCell = 0.5 * model_->spec_.gridStep;
-    if (singleLine_) {
-        const double side = centreSide_ + dot(model_->points_[q].offset, lineNormal_);
-        const bool inside = (side > 0.0) == (centreSide_ > 0.0) ? centreInside_ : !centreInside_;
+namespace {
+
+// Coverage of `count` patch points (offsets ox, oy from the centre) by an object bounded near the
+// patch by one straight line (unit normal n, the centre `centreSide` from it): 1 or 0 by side
+// beyond half a cell, a linear ramp within it. Written without branches, so that it runs several
+// points to an instruction; cloned for AVX2, each clone giving the same values (no FMA).
+ACTIVETOUCH_AVX2_CLONES void coverAcrossLine(const double* ox, const double* oy, std::size_t count,
+                                             Vec2 n, double centreSide, bool centreInside,
+                                             double halfCell, float* out) {
+    const double towardCentre = centreSide > 0.0 ? 1.0 : -1.0;
+    const double inFull = centreInside ? 1.0 : 0.0;  // a point on the centre's side
+    const double outFull = 1.0 - inFull;
+    // (A point exactly on the line gets 0.5 whichever side it is counted on.)
+    for (std::size_t q = 0; q < count; ++q) {
+        const double side = centreSide + (ox[q] * n.x + oy[q] * n.y);
+        const double full = side * towardCentre > 0.0 ? inFull : outFull;
         const double d = std::abs(side);
-        if (d >= halfCell) return inside ? 1.0f : 0.0f;
         const double frac = 0.5 + 0.5 * d / halfCell;
-        return static_cast<float>(inside ? frac : 1.0 - frac);
+        // full is exactly 1 or 0: the ramp is frac on the object's side, 1 - frac off it.
+        const double ramp = full * frac + (1.0 - full) * (1.0 - frac);
+        out[q] = static_cast<float>(d >= halfCell ? full : ramp);
     }
-    const Vec2 cp = model_->points_[q].offset;  // from the centre to the point
-    const Vec2 p = centre_ + cp;
-    bool inside = centreInside_;
-    double nearest2 = kInf;
-    for (const NearEdge& e : nearEdges_) {
-        // Crossing of the segment centre -> p with the edge flips the side.
-        const double den = cross(cp, e.ab);
-        if (den != 0.0) {
-            const Vec2 ac = e.a - centre_;
-            const double u = cross(ac, e.ab) / den;  // along centre -> p
-            const double v = cross(ac, cp) / den;    // along the edge
-            if (u > 0.0 && u <= 1.0 && v >= 0.0 && v < 1.0) inside = !inside;
-        }
-        const Vec2 ap = p - e.a;
-        const double t = std::clamp(dot(ap, e.ab) * e.inverseLength2, 0.0, 1.0);
-        const Vec2 d = ap - t * e.ab;
-        nearest2 = std::min(nearest2, dot(d, d));
-    }
-    // Area-weighted coverage of the grid cell: a linear ramp across the outline, so that taps
-    // vary continuously with pose instead of jumping by whole cells.
-    if (nearest2 >= halfCell * halfCell) return inside ? 1.0f : 0.0f;
-    const double frac = 0.5 + 0.5 * std::sqrt(nearest2) / halfCell;
-    return static_cast<float>(inside ? frac : 1.0 - frac);
 }
 
-void FingertipContactModel::Contact::coverUpTo(double height) {
+}  // namespace
+
+std::size_t FingertipContactModel::Contact::coverUpTo(double height) {
     const auto& pts = model_->points_;
-    while (covered_ < pts.size() && pts[covered_].height < height) {
-        coverage_[covered_] = coverageOf(covered_);
-        ++covered_;
+    std::size_t end = covered_;
+    while (end < pts.size() && pts[end].height < height) ++end;
+    if (end > covered_) coverRange(end);
+    return end;
+}
+
+void FingertipContactModel::Contact::coverRange(std::size_t end) {
+    const std::size_t from = covered_;
+    float* c = coverage_.get();
+    if (nearEdges_.empty()) {
+        std::fill(c + from, c + end, centreInside_ ? 1.0f : 0.0f);
+    } else if (singleLine_) {
+        // One straight edge crosses the patch: a point's side and distance are one dot product.
+        coverAcrossLine(model_->offsetX_.data() + from, model_->offsetY_.data() + from, end - from,
+                        lineNormal_, centreSide_, centreInside_, 0.5 * model_->spec_.gridStep,
+                        c + from);
+    } else {
+        coverage::nearEdges(model_->offsetX_.data() + from, model_->offsetY_.data() + from,
+                            end - from, centre_, nearEdges_.data(), nearEdges_.size(),
+                            centreInside_, 0.5 * model_->spec_.gridStep, c + from);
     }
+    std::uint32_t* listed = touched_.get();
+    std::size_t n = touchedCount_;
+    for (std::size_t q = from; q < end; ++q) {  // each point written, kept where it counts
+        listed[n] = static_cast<std::uint32_t>(q);
+        n += c[q] != 0.0f ? 1 : 0;
+    }
+    touchedCount_ = n;
+    covered_ = end;
 }
 
 double FingertipContactModel::Contact::totalPressure(double depth) {
@@ -292,17 +311,22 @@ double FingertipContactModel::Contact::totalPressure(double depth) {
 std::optional<double> FingertipContactModel::Contact::depthReaching(double threshold,
                                                                     double maxDepth) {
     // F(d) = sum_q c_q W_q (d - h_q) over h_q < d is piecewise linear and increasing: walk the
-    // breakpoints with running sums S0 = sum c W and S1 = sum c W h.
+    // breakpoints with running sums S0 = sum c W and S1 = sum c W h. Points off the object add
+    // nothing: only those on it are walked, covered a run at a time as the walk needs them.
+    constexpr std::size_t kRun = 64;
     const auto& pts = model_->points_;
     double s0 = 0.0, s1 = 0.0;
-    for (std::size_t q = 0; q < pts.size(); ++q) {
+    for (std::size_t i = 0;; ++i) {
+        while (i == touchedCount_ && covered_ < pts.size() && pts[covered_].height < maxDepth) {
+            std::size_t end = covered_;
+            while (end < pts.size() && end < covered_ + kRun && pts[end].height < maxDepth) ++end;
+            coverRange(end);
+        }
+        if (i == touchedCount_) break;
+        const std::size_t q = touched_[i];
         const double h = pts[q].height;
         if (h >= maxDepth) break;
         if (s0 > 0.0 && h * s0 - s1 >= threshold) return (threshold + s1) / s0;
-        if (q >= covered_) {
-            coverage_[q] = coverageOf(q);
-            covered_ = q + 1;
-        }
         const double cw = coverage_[q] * pts[q].weightSum;
         s0 += cw;
         s1 += cw * h;
@@ -313,25 +337,37 @@ std::optional<double> FingertipContactModel::Contact::depthReaching(double thres
 
 namespace {
 
-using Float16 = float __attribute__((vector_size(64)));
+using Float8 = float __attribute__((vector_size(32)));
 
-// Running sums over patch points in height order: A += c w and B += c w h, sixteen taxel lanes
-// (zero-padded) per point. Cloned for AVX2; each lane sees the same operations in either clone.
+// Running sums over the listed patch points (those on the object) in height order: A += c w and
+// B += c w h, sixteen taxel lanes (zero-padded) per point. Cloned for AVX2; each lane sees the
+// same operations in either clone.
 ACTIVETOUCH_AVX2_CLONES void sweepPatch(const float* weights, const float* coverage,
-                                        const float* heights, std::size_t from, std::size_t to,
-                                        float* sumA, float* sumB) {
-    Float16 a, b;
-    std::memcpy(&a, sumA, sizeof a);
-    std::memcpy(&b, sumB, sizeof b);
-    for (std::size_t q = from; q < to; ++q) {
-        Float16 row;
-        std::memcpy(&row, weights + q * 16, sizeof row);
-        const Float16 cw = coverage[q] * row;
-        a += cw;
-        b += heights[q] * cw;
+                                        const float* heights, const std::uint32_t* listed,
+                                        std::size_t from, std::size_t to, float* sumA,
+                                        float* sumB) {
+    // Two halves of eight lanes each, so that the sums stay in registers.
+    Float8 a0, a1, b0, b1;
+    std::memcpy(&a0, sumA, sizeof a0);
+    std::memcpy(&a1, sumA + 8, sizeof a1);
+    std::memcpy(&b0, sumB, sizeof b0);
+    std::memcpy(&b1, sumB + 8, sizeof b1);
+    for (std::size_t i = from; i < to; ++i) {
+        const std::size_t q = listed[i];
+        Float8 r0, r1;
+        std::memcpy(&r0, weights + q * 16, sizeof r0);
+        std::memcpy(&r1, weights + q * 16 + 8, sizeof r1);
+        const float c = coverage[q], h = heights[q];
+        const Float8 cw0 = c * r0, cw1 = c * r1;
+        a0 += cw0;
+        a1 += cw1;
+        b0 += h * cw0;
+        b1 += h * cw1;
     }
-    std::memcpy(sumA, &a, sizeof a);
-    std::memcpy(sumB, &b, sizeof b);
+    std::memcpy(sumA, &a0, sizeof a0);
+    std::memcpy(sumA + 8, &a1, sizeof a1);
+    std::memcpy(sumB, &b0, sizeof b0);
+    std::memcpy(sumB + 8, &b1, sizeof b1);
 }
 
 }  // namespace
@@ -342,20 +378,20 @@ void FingertipContactModel::Contact::taxelPressuresAtDepths(const double* depths
     const int K = model_->taxelCount_;
     const auto& pts = model_->points_;
     alignas(64) float sumA[kLanes] = {}, sumB[kLanes] = {};
-    std::size_t q = 0;
-    for (std::size_t i = 0; i < count; ++i) {
-        const double depth = depths[i];
-        double* o = out + i * static_cast<std::size_t>(K);
+    std::size_t i = 0;  // into touched_: the points on the object summed so far
+    for (std::size_t d = 0; d < count; ++d) {
+        const double depth = depths[d];
+        double* o = out + d * static_cast<std::size_t>(K);
         if (depth <= 0.0) {
             std::fill(o, o + K, 0.0);
             continue;
         }
         coverUpTo(depth);
-        std::size_t end = q;
-        while (end < pts.size() && pts[end].height < depth) ++end;
-        sweepPatch(model_->weights_.data(), coverage_.data(), model_->heights_.data(), q, end, sumA,
-                   sumB);
-        q = end;
+        std::size_t end = i;
+        while (end < touchedCount_ && pts[touched_[end]].height < depth) ++end;
+        sweepPatch(model_->weights_.data(), coverage_.get(), model_->heights_.data(),
+                   touched_.get(), i, end, sumA, sumB);
+        i = end;
         for (int k = 0; k < K; ++k)
             o[k] = std::max(0.0, depth * sumA[k] - static_cast<double>(sumB[k]));
     }

@@ -8,9 +8,11 @@
 // classifier uses with any rig. It is built once; a tap costs one coverage pass over the patch
 // and a few weighted sums.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
+#include "core/fingertip/CoverageKernels.h"
 #include "core/fingertip/FingertipSpec.h"
 #include "core/geometry/Polygon.h"
 
@@ -69,13 +71,12 @@ public:
     private:
         friend class FingertipContactModel;
         Contact(const FingertipContactModel& model, const Polygon& object, Vec2 centre);
-        void coverUpTo(double height);
-        float coverageOf(std::size_t point) const;
+        /// Covers every point below `height`; returns how many points lie below it.
+        std::size_t coverUpTo(double height);
+        /// Covers points [covered_, end): their coverage, and those on the object listed.
+        void coverRange(std::size_t end);
 
-        struct NearEdge {
-            Vec2 a, ab;
-            double inverseLength2;
-        };
+        using NearEdge = coverage::Edge;
         const FingertipContactModel* model_;
         Vec2 centre_;
         bool centreInside_ = false;
@@ -85,8 +86,11 @@ public:
         bool singleLine_ = false;
         Vec2 lineNormal_;
         double centreSide_ = 0.0;
-        std::vector<float> coverage_;  // per patch point, filled in height order
-        std::size_t covered_ = 0;      // points [0, covered_) have coverage
+        // Per patch point, filled in height order: points [0, covered_) have coverage, and
+        // touched_ lists those of them whose coverage is not 0 (what the sums need), in order.
+        std::unique_ptr<float[]> coverage_;
+        std::unique_ptr<std::uint32_t[]> touched_;
+        std::size_t covered_ = 0, touchedCount_ = 0;
     };
 
     /// The contact of the tip centred at `centre` over `object`.
@@ -114,7 +118,8 @@ private:
     // Receptive-field weights scaled by countsPerMm, one padded row of kLanes floats per point.
     static constexpr int kLanes = 16;
     std::vector<float> weights_;
-    std::vector<float> heights_;  // points_[q].height, as float for the sweep
+    std::vector<float> heights_;             // points_[q].height, as float for the sweep
+    std::vector<double> offsetX_, offsetY_;  // points_[q].offset, one array per axis
     double patchRadius_ = 0.0;
 };
 

@@ -71,7 +71,7 @@ std::optional<std::pair<int, double>> continuousError(const HistogramClassifier&
                                                       const CollectedTap& t, double temperature,
                                                       std::vector<double>& ll,
                                                       ValidationResult& r) {
-    classifier.logLikelihoods(t.record.tap, ll.data());
+    classifier.perceptScores(t.record.tap, ll.data());
     const Percept c =
         perceiveContinuous(classes, ll.data(), perceptTemperatureFor(temperature, t.record.tap));
     if (c.region != Region::Edge) return std::nullopt;

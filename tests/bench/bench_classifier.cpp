@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
     const double continuous = bench::medianMicroseconds(
         [&] {
             const Tap& tap = *gTests[i++ % gTests.size()];
-            g.classifier.logLikelihoods(tap, gl.data());
+            g.classifier.perceptScores(tap, gl.data());
             sink += perceiveContinuous(g.classes, gl.data(), tap.sampleCount()).position;
         },
         5000);

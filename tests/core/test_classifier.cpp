@@ -1,11 +1,13 @@
 // The histogram classifier's hard cases (docs/design.md §3): every degenerate input stays finite
 // and decides exactly as an independent long-double implementation of eq. 1-2 does.
 #include <QtTest>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
 
+#include "core/classify/ContinuousEdge.h"
 #include "core/classify/HistogramClassifier.h"
 #include "core/common/Random.h"
 
@@ -303,6 +305,45 @@ private slots:
         for (int i = 0; i < 10; ++i)
             verifyFiniteAndMatchesReference(clf, ref,
                                             randomTap(r, 50, 12, r.uniform(40, 160), 6.0));
+    }
+
+    void perceptScoresAreExactNearTheBestAndBoundedElsewhere() {
+        // 648 classes, as general_shapes.json has: the continuous percept reads every class, the
+        // ones near the best exactly and the rest from the 16-bit screen.
+        const Problem p = makeProblem(648, 50, 12, 0.2, 37);
+        const auto clf = trainOn(p);
+        ClassSet classes;
+        classes.orientationsDeg.clear();
+        for (int o = 0; o < 36; ++o) classes.orientationsDeg.push_back(10.0 * o);
+        classes.positions = 18;
+        RandomStream r(41);
+        std::vector<double> exact(648), read(648);
+        int screened = 0;
+        for (int i = 0; i < 20; ++i) {
+            const Tap tap = randomTap(r, 50, 12, r.uniform(40, 160), 6.0);
+            clf.logLikelihoods(tap, exact.data());
+            clf.perceptScores(tap, read.data());
+            const double best = *std::max_element(exact.begin(), exact.end());
+            const double bound = clf.screeningBound(tap);
+            QVERIFY(bound > 0.0 && bound < 1.0);
+            for (std::size_t c = 0; c < exact.size(); ++c) {
+                if (exact[c] >= best - HistogramClassifier::kPerceptMarginNats)
+                    QCOMPARE(read[c], exact[c]);
+                QVERIFY2(std::abs(read[c] - exact[c]) <= bound,
+                         qPrintable(
+                             QString("class %1: %2 against %3").arg(c).arg(read[c]).arg(exact[c])));
+                screened += read[c] != exact[c];
+            }
+            // The percept at the default temperature (the tap's samples) moves by a small
+            // fraction of a class: weights change by at most e^(bound / 50).
+            const ContinuousEdge a = continuousEdge(classes, exact.data(), 50.0);
+            const ContinuousEdge b = continuousEdge(classes, read.data(), 50.0);
+            QCOMPARE(a.angleValid, b.angleValid);
+            QVERIFY(std::abs(a.position - b.position) < 0.05);
+            if (a.angleValid)
+                QVERIFY(std::abs(std::remainder(a.angleDeg - b.angleDeg, 360.0)) < 0.5);
+        }
+        QVERIFY(screened > 0);  // the screen was read, not only the exact sums
     }
 
     void screeningKeepsDecisionsBetweenNearTwins() {

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <mutex>
 
+#include "core/common/Avx2Clones.h"
 #include "core/rig/Rig.h"
 #include "devices/simulated/effects/Effect.h"
+#include "devices/simulated/effects/EffectSets.h"
 
 namespace activetouch {
 namespace {
@@ -73,18 +76,22 @@ public:
           tau_(tau),
           lastHold_(static_cast<std::size_t>(taxels), 0.0) {}
     void shapeSignal(Tap& tap, const SignalContext& c) override {
+        // Both residuals decay by the same factor from one sample to the next: three exp() a
+        // tap rather than two a sample.
         const int K = tap.taxels;
-        for (int t = 0; t < tap.sampleCount(); ++t) {
-            const double now = c.startTime_s + t * c.samplePeriod_s;
-            const double sincePrev = now - lastRelease_;
-            const double prev =
-                std::isfinite(lastRelease_) ? fraction_ * std::exp(-sincePrev / tau_) : 0.0;
+        const double step = std::exp(-c.samplePeriod_s / tau_);
+        double prev = std::isfinite(lastRelease_)
+                          ? fraction_ * std::exp(-(c.startTime_s - lastRelease_) / tau_)
+                          : 0.0;
+        double own = -1.0;  // not yet released
+        for (int t = 0; t < tap.sampleCount(); ++t, prev *= step) {
             const double local = t * c.samplePeriod_s;
-            const double own =
-                local > c.release_s ? fraction_ * std::exp(-(local - c.release_s) / tau_) : 0.0;
+            if (local > c.release_s)
+                own = own < 0.0 ? fraction_ * std::exp(-(local - c.release_s) / tau_) : own * step;
+            const double ownNow = own < 0.0 ? 0.0 : own;
             for (int k = 0; k < K; ++k)
                 tap.at(t, k) +=
-                    prev * lastHold_[static_cast<std::size_t>(k)] + own * c.holdPressures[k];
+                    prev * lastHold_[static_cast<std::size_t>(k)] + ownNow * c.holdPressures[k];
         }
         for (int k = 0; k < K; ++k) lastHold_[static_cast<std::size_t>(k)] = c.holdPressures[k];
         lastRelease_ = c.startTime_s + c.release_s;
@@ -96,147 +103,26 @@ private:
     double lastRelease_ = -INFINITY;
 };
 
-/// Capacitive coupling: each taxel also reads a fraction of its neighbours within a radius.
-class Crosstalk final : public Effect {
-public:
-    Crosstalk(double coupling, double radius, const FingertipContactModel& model)
-        : Effect("crosstalk", Acts::Signal, 20), K_(model.taxelCount()) {
-        const auto& p = model.projectedTaxels();
-        for (int i = 0; i < K_; ++i)
-            for (int j = 0; j < K_; ++j)
-                if (i != j && distance(p[static_cast<std::size_t>(i)],
-                                       p[static_cast<std::size_t>(j)]) <= radius)
-                    pairs_.push_back({i, j});
-        coupling_ = coupling;
-    }
-    void shapeSignal(Tap& tap, const SignalContext&) override {
-        std::vector<double> frame(static_cast<std::size_t>(K_));
-        for (int t = 0; t < tap.sampleCount(); ++t) {
-            std::copy(tap.frame(t), tap.frame(t) + K_, frame.begin());
-            for (const auto& [to, from] : pairs_)
-                tap.at(t, to) += coupling_ * frame[static_cast<std::size_t>(from)];
+/// BaselineDrift's walk over `frames` frames of K taxels: each taxel's drift takes its step
+/// (scale * z), the reading is the pressure plus the drift less the compensation's estimate, and
+/// the estimate closes the fraction `touch` (above the threshold) or `free` of the gap. Taxels are
+/// independent: cloned for AVX2, several taxels to an instruction, the same values in either
+/// clone (no FMA).
+ACTIVETOUCH_AVX2_CLONES void driftFrames(double* __restrict pressures, const double* __restrict z,
+                                         std::size_t frames, std::size_t K, double scale,
+                                         double threshold, double touch, double free,
+                                         double* __restrict drift, double* __restrict estimate) {
+    for (std::size_t t = 0; t < frames; ++t) {
+        double* __restrict p = pressures + t * K;
+        const double* __restrict zt = z + t * K;
+        for (std::size_t k = 0; k < K; ++k) {
+            drift[k] += scale * zt[k];
+            const double d = p[k] + drift[k] - estimate[k];
+            estimate[k] += (d > threshold ? touch : free) * d;
+            p[k] = d > 0.0 ? d : 0.0;
         }
     }
-
-private:
-    int K_;
-    double coupling_ = 0.0;
-    std::vector<std::pair<int, int>> pairs_;  // (reader, neighbour)
-};
-
-/// Each taxel's own sensitivity: real skins differ taxel to taxel, so the same pressure reads
-/// higher on some than on others. The gains are log-normal around 1 (the log's standard
-/// deviation is `spread`) and belong to the fingertip, not to a tap or a trial: they are drawn
-/// from `fingertip_seed`, so training and trials, and every seed of a sweep, use the same
-/// fingertip unless the scene names another.
-class TaxelGain final : public Effect {
-public:
-    TaxelGain(double spread, double fingertipSeed, int taxels)
-        : Effect("taxel_gain", Acts::Signal, 25) {
-        RandomStream draw =
-            RandomStream::derived(static_cast<std::uint64_t>(fingertipSeed), "taxel_gain");
-        for (int k = 0; k < taxels; ++k) gains_.push_back(std::exp(spread * draw.normal()));
-    }
-    explicit TaxelGain(std::vector<double> gains)
-        : Effect("taxel_gain", Acts::Signal, 25), gains_(std::move(gains)) {}
-    void shapeSignal(Tap& tap, const SignalContext&) override {
-        for (int t = 0; t < tap.sampleCount(); ++t)
-            for (int k = 0; k < tap.taxels; ++k)
-                tap.at(t, k) *= gains_[static_cast<std::size_t>(k)];
-    }
-
-private:
-    std::vector<double> gains_;
-};
-
-/// A taxel that saturates and then recovers slowly: above `level` it reads `level`, and once
-/// the pressure falls back its reading decays from the level with time constant `tau` instead
-/// of following at once, across taps too (the lingering reading of an overloaded skin).
-class SaturationRecovery final : public Effect {
-public:
-    SaturationRecovery(double level, double tau, int taxels)
-        : Effect("saturation_recovery", Acts::Signal, 27),
-          level_(level),
-          tau_(tau),
-          lastSaturated_(static_cast<std::size_t>(taxels), -INFINITY) {}
-    void shapeSignal(Tap& tap, const SignalContext& c) override {
-        for (int t = 0; t < tap.sampleCount(); ++t) {
-            const double now = c.startTime_s + t * c.samplePeriod_s;
-            for (int k = 0; k < tap.taxels; ++k) {
-                double& since = lastSaturated_[static_cast<std::size_t>(k)];
-                double& v = tap.at(t, k);
-                if (v >= level_) {
-                    v = level_;
-                    since = now;
-                } else if (std::isfinite(since)) {
-                    v = std::max(v, level_ * std::exp(-(now - since) / tau_));
-                }
-            }
-        }
-    }
-
-private:
-    double level_, tau_;
-    std::vector<double> lastSaturated_;  ///< robot time each taxel was last saturated
-};
-
-/// Taxels that blink: each listed taxel switches between working and reading a fixed value
-/// (0: dropping out; a high value: a spurious activation) as a two-state Markov process in
-/// robot time, off a long-run `off_fraction` of the time for `mean_off_s` on average.
-class IntermittentTaxel final : public Effect {
-public:
-    IntermittentTaxel(std::vector<int> taxels, double offFraction, double meanOff, double reading,
-                      RandomStream rng)
-        : Effect("intermittent_taxel", Acts::Signal, 35),
-          taxels_(std::move(taxels)),
-          onRate_(1.0 / meanOff),
-          offRate_(offFraction >= 1.0 ? INFINITY : offFraction / (1.0 - offFraction) / meanOff),
-          stationaryOff_(offFraction),
-          reading_(reading),
-          off_(taxels_.size(), false),
-          rng_(rng) {}
-    void shapeSignal(Tap& tap, const SignalContext& c) override {
-        // Between taps the chain runs on unobserved: the chance of being off after a gap is the
-        // two-state chain's, relaxing to the long-run fraction at rate on + off.
-        const double gap = std::isfinite(lastTime_) ? c.startTime_s - lastTime_ : INFINITY;
-        const double relax = std::isfinite(offRate_) ? std::exp(-(onRate_ + offRate_) * gap) : 0.0;
-        for (std::size_t i = 0; i < taxels_.size(); ++i) {
-            const double start = off_[i] ? 1.0 : 0.0;
-            off_[i] = rng_.uniform() < stationaryOff_ + (start - stationaryOff_) * relax;
-        }
-        const double dt = c.samplePeriod_s;
-        const double pOff = std::isfinite(offRate_) ? 1.0 - std::exp(-offRate_ * dt) : 1.0;
-        const double pOn = 1.0 - std::exp(-onRate_ * dt);
-        for (int t = 0; t < tap.sampleCount(); ++t)
-            for (std::size_t i = 0; i < taxels_.size(); ++i) {
-                if (t > 0) off_[i] = off_[i] ? !(rng_.uniform() < pOn) : rng_.uniform() < pOff;
-                if (off_[i]) tap.at(t, taxels_[i]) = reading_;
-            }
-        lastTime_ = c.startTime_s + tap.sampleCount() * dt;
-    }
-
-private:
-    std::vector<int> taxels_;
-    double onRate_, offRate_, stationaryOff_, reading_;
-    std::vector<bool> off_;
-    RandomStream rng_;
-    double lastTime_ = -INFINITY;
-};
-
-/// Taxels that never respond (or are stuck at a reading).
-class DeadTaxel final : public Effect {
-public:
-    DeadTaxel(std::vector<int> taxels, double reading)
-        : Effect("dead_taxel", Acts::Signal, 30), taxels_(std::move(taxels)), reading_(reading) {}
-    void shapeSignal(Tap& tap, const SignalContext&) override {
-        for (int t = 0; t < tap.sampleCount(); ++t)
-            for (int k : taxels_) tap.at(t, k) = reading_;
-    }
-
-private:
-    std::vector<int> taxels_;
-    double reading_;
-};
+}
 
 /// Thermal drift of each taxel's baseline (a random walk) and skinManager's compensation, which
 /// nudges its baseline estimate toward the reading by gain * 0.02 * d / threshold per sample
@@ -260,25 +146,29 @@ public:
         if (std::isfinite(lastTime_)) {
             const double gap = c.startTime_s - lastTime_;
             const int steps = std::clamp(static_cast<int>(std::ceil(gap / 0.25)), 0, 400);
-            const double dt = steps > 0 ? gap / steps : 0.0;
-            for (int s = 0; s < steps; ++s)
-                for (std::size_t k = 0; k < drift_.size(); ++k) step(k, 0.0, dt);
+            if (steps > 0) {
+                idle_.assign(drift_.size() * static_cast<std::size_t>(steps), 0.0);
+                walk(idle_.data(), static_cast<std::size_t>(steps), gap / steps);
+            }
         }
-        for (int t = 0; t < tap.sampleCount(); ++t)
-            for (int k = 0; k < tap.taxels; ++k)
-                tap.at(t, k) = step(static_cast<std::size_t>(k), tap.at(t, k), c.samplePeriod_s);
+        walk(tap.samples.data(), static_cast<std::size_t>(tap.sampleCount()), c.samplePeriod_s);
         lastTime_ = c.startTime_s + tap.sampleCount() * c.samplePeriod_s;
     }
 
 private:
-    double step(std::size_t k, double pressure, double dt) {
-        drift_[k] += rate_ * std::sqrt(dt) * rng_.normal();
-        const double d = pressure + drift_[k] - estimate_[k];
-        const double gain = d > threshold_ ? touchGain_ : freeGain_;
-        // skinManager nudges by gain * 0.02 * d / threshold every 20 ms; over dt that compounds
-        // to a fraction 1 - (1 - rate)^(dt / 0.02) of the gap, never overshooting it.
-        estimate_[k] += nudge(gain, dt) * d;
-        return std::max(0.0, d);
+    /// `frames` frames of every taxel's pressure, dt apart, in place: the drift's random walk
+    /// added, the compensation's estimate taken off and nudged toward the reading. skinManager
+    /// nudges by gain * 0.02 * d / threshold every 20 ms (the touch gain while d is above the
+    /// threshold); over dt that compounds to a fraction 1 - (1 - rate)^(dt / 0.02) of the gap,
+    /// never overshooting it.
+    void walk(double* pressures, std::size_t frames, double dt) {
+        const std::size_t K = drift_.size();
+        steps_.resize(frames * K);
+        rng_.normals(steps_.data(), steps_.size());
+        const double scale = rate_ * std::sqrt(dt);
+        const double touch = nudge(touchGain_, dt), free = nudge(freeGain_, dt);
+        driftFrames(pressures, steps_.data(), frames, K, scale, threshold_, touch, free,
+                    drift_.data(), estimate_.data());
     }
     /// The fraction of the gap closed over dt: skinManager's per-20-ms nudge compounded.
     double nudge(double gain, double dt) {
@@ -292,7 +182,7 @@ private:
     }
     double rate_, threshold_, freeGain_, touchGain_;
     double freeNudge_ = 0, touchNudge_ = 0, freeDt_ = -1, touchDt_ = -1;
-    std::vector<double> drift_, estimate_;
+    std::vector<double> drift_, estimate_, steps_, idle_;
     RandomStream rng_;
     double lastTime_ = -INFINITY;
 };
@@ -303,12 +193,17 @@ public:
     TaxelNoise(double sigma, RandomStream rng)
         : Effect("taxel_noise", Acts::Signal, 50), sigma_(sigma), rng_(rng) {}
     void shapeSignal(Tap& tap, const SignalContext&) override {
-        for (double& v : tap.samples) v = std::max(0.0, v + sigma_ * rng_.normal());
+        draws_.resize(tap.samples.size());
+        rng_.normals(draws_.data(), draws_.size());
+        double* v = tap.samples.data();
+        for (std::size_t i = 0; i < draws_.size(); ++i)
+            v[i] = std::max(0.0, v[i] + sigma_ * draws_[i]);
     }
 
 private:
     double sigma_;
     RandomStream rng_;
+    std::vector<double> draws_;
 };
 
 /// The 8-bit converter: whole counts, saturating at the top of the range.
@@ -317,7 +212,13 @@ public:
     explicit AdcQuantisation(double maxCounts)
         : Effect("adc_quantisation", Acts::Signal, 60), max_(maxCounts) {}
     void shapeSignal(Tap& tap, const SignalContext&) override {
-        for (double& v : tap.samples) v = std::clamp(std::round(v), 0.0, max_);
+        // Clamped to the range, then rounded to the nearest count by adding and taking off 2^52
+        // (a double has no fraction bits there; a tie goes to the even count): no library
+        // call per sample, several samples to an instruction.
+        for (double& v : tap.samples) {
+            const double x = std::min(v > 0.0 ? v : 0.0, max_);
+            v = std::min((x + 0x1p52) - 0x1p52, max_);
+        }
     }
 
 private:
@@ -349,14 +250,12 @@ void addSignalEffects(std::vector<EffectDescription>& c) {
                  {{"sigma_counts", "standard deviation, counts", 0.0, 50.0, 1.5}},
                  false,
                  [](const JsonFields& f, const M&, RandomStream r) {
-                     return std::make_unique<TaxelNoise>(f.number("sigma_counts", 0.0, 50.0),
-                                                         r);
+                     return std::make_unique<TaxelNoise>(f.number("sigma_counts", 0.0, 50.0), r);
                  }});
     c.push_back(
         {"baseline_drift",
          "Random-walk drift of each taxel's baseline with skinManager-style compensation.",
-         {{"rate_counts_per_sqrt_s", "random-walk drift, counts per sqrt(second)", 0.0, 20.0,
-           0.5},
+         {{"rate_counts_per_sqrt_s", "random-walk drift, counts per sqrt(second)", 0.0, 20.0, 0.5},
           {"touch_threshold_counts", "compensation's touch threshold, counts", 0.1, 100.0, 2.0},
           {"free_gain", "compensation gain without touch", 0.0, 1.0, 0.2},
           {"touch_gain", "compensation gain in touch", 0.0, 1.0, 0.05}},
@@ -364,17 +263,15 @@ void addSignalEffects(std::vector<EffectDescription>& c) {
          [](const JsonFields& f, const M& m, RandomStream r) {
              return std::make_unique<BaselineDrift>(
                  f.number("rate_counts_per_sqrt_s", 0.0, 20.0),
-                 f.number("touch_threshold_counts", 0.1, 100.0),
-                 f.number("free_gain", 0.0, 1.0), f.number("touch_gain", 0.0, 1.0),
-                 m.taxelCount(), r);
+                 f.number("touch_threshold_counts", 0.1, 100.0), f.number("free_gain", 0.0, 1.0),
+                 f.number("touch_gain", 0.0, 1.0), m.taxelCount(), r);
          }});
     c.push_back({"adc_quantisation",
                  "8-bit conversion: readings rounded to whole counts and saturated.",
                  {{"max_counts", "saturation level, counts", 1.0, 255.0, 255.0}},
                  false,
                  [](const JsonFields& f, const M&, RandomStream) {
-                     return std::make_unique<AdcQuantisation>(
-                         f.number("max_counts", 1.0, 255.0));
+                     return std::make_unique<AdcQuantisation>(f.number("max_counts", 1.0, 255.0));
                  }});
     c.push_back({"contact_latency",
                  "The contact reflex stops the tapper only after a latency.",
@@ -392,87 +289,27 @@ void addSignalEffects(std::vector<EffectDescription>& c) {
                  }});
     c.push_back({"viscoelastic_memory",
                  "The pad keeps a decaying residual of recent presses.",
-                 {{"fraction", "residual right after release, fraction of the held pressure",
-                   0.0, 1.0, 0.1},
+                 {{"fraction", "residual right after release, fraction of the held pressure", 0.0,
+                   1.0, 0.1},
                   {"time_constant_s", "decay time constant, seconds", 0.01, 60.0, 0.5}},
                  false,
                  [](const JsonFields& f, const M& m, RandomStream) {
                      return std::make_unique<ViscoelasticMemory>(
-                         f.number("fraction", 0.0, 1.0),
-                         f.number("time_constant_s", 0.01, 60.0), m.taxelCount());
+                         f.number("fraction", 0.0, 1.0), f.number("time_constant_s", 0.01, 60.0),
+                         m.taxelCount());
                  }});
 }
 
-/// The effects of single taxels and of the link: crosstalk, dead taxels, per-taxel gains,
-/// saturation with recovery, intermittent taxels and dropouts.
-void addTaxelEffects(std::vector<EffectDescription>& c) {
-    c.push_back({"crosstalk",
-                 "Each taxel also reads a fraction of its neighbours' pressure.",
-                 {{"coupling", "fraction of each neighbour's pressure", 0.0, 0.5, 0.05},
-                  {"radius_mm", "neighbours within this distance on the contact plane, mm", 0.0,
-                   30.0, 4.5}},
-                 false,
-                 [](const JsonFields& f, const M& m, RandomStream) {
-                     return std::make_unique<Crosstalk>(f.number("coupling", 0.0, 0.5),
-                                                        f.number("radius_mm", 0.0, 30.0), m);
-                 }});
-    c.push_back({"dead_taxel",
-                 "Listed taxels read a fixed value (0 = dead) whatever the contact.",
-                 {{"reading_counts", "the stuck reading, counts", 0.0, 255.0, 0.0}},
-                 true,
-                 [](const JsonFields& f, const M& m, RandomStream) {
-                     return std::make_unique<DeadTaxel>(effectTaxelList(f, m.taxelCount()),
-                                                        f.number("reading_counts", 0.0, 255.0));
-                 }});
-    c.push_back(
-        {"taxel_gain",
-         "Each taxel's own sensitivity: gains log-normal around 1, fixed for the "
-         "fingertip (or 'gains', one per taxel, as measured).",
-         {{"spread", "standard deviation of the gains' logarithm", 0.0, 1.0, 0.2},
-          {"fingertip_seed", "which fingertip's gains (any whole number)", 0.0, 1e9, 1.0}},
-         false,
-         [](const JsonFields& f, const M& m, RandomStream) -> std::unique_ptr<Effect> {
-             if (f.has("gains"))
-                 return std::make_unique<TaxelGain>(effectGainList(f, m.taxelCount()));
-             const double seed = f.number("fingertip_seed", 0.0, 1e9);
-             if (seed != std::floor(seed)) f.fail("fingertip_seed", "give a whole number");
-             return std::make_unique<TaxelGain>(f.number("spread", 0.0, 1.0), seed,
-                                                m.taxelCount());
-         }});
-    c.back().takesGainList = true;
-    c.push_back(
-        {"saturation_recovery",
-         "Taxels saturate at a level and, once released, recover from it slowly.",
-         {{"saturation_counts", "the level a taxel saturates at, counts", 1.0, 1000.0, 150.0},
-          {"recovery_s", "time constant of the recovery, seconds", 0.001, 60.0, 1.0}},
-         false,
-         [](const JsonFields& f, const M& m, RandomStream) {
-             return std::make_unique<SaturationRecovery>(
-                 f.number("saturation_counts", 1.0, 1000.0),
-                 f.number("recovery_s", 0.001, 60.0), m.taxelCount());
-         }});
-    c.push_back(
-        {"intermittent_taxel",
-         "Listed taxels blink: off (reading a fixed value) for a share of the time, at "
-         "random.",
-         {{"off_fraction", "long-run share of the time a taxel is off", 0.0, 1.0, 0.1},
-          {"mean_off_s", "mean length of an off spell, seconds", 0.001, 60.0, 0.1},
-          {"reading_counts", "what an off taxel reads (0: nothing), counts", 0.0, 255.0, 0.0}},
-         true,
-         [](const JsonFields& f, const M& m, RandomStream r) {
-             return std::make_unique<IntermittentTaxel>(
-                 effectTaxelList(f, m.taxelCount()), f.number("off_fraction", 0.0, 1.0),
-                 f.number("mean_off_s", 0.001, 60.0), f.number("reading_counts", 0.0, 255.0),
-                 r);
-         }});
+/// The stream's faults: dropouts.
+void addStreamEffects(std::vector<EffectDescription>& c) {
     c.push_back({"link_dropout",
                  "The fingertip's stream drops during a tap, as a flaky cable or network "
                  "does: the tap fails with a device error (for trying fault handling).",
                  {{"probability_per_tap", "chance that a tap's stream drops", 0.0, 1.0, 0.0}},
                  false,
                  [](const JsonFields& f, const M&, RandomStream r) {
-                     return std::make_unique<LinkDropout>(
-                         f.number("probability_per_tap", 0.0, 1.0), r);
+                     return std::make_unique<LinkDropout>(f.number("probability_per_tap", 0.0, 1.0),
+                                                          r);
                  }});
 }
 
@@ -483,6 +320,7 @@ const std::vector<EffectDescription>& effectCatalogue() {
         std::vector<EffectDescription> c;
         addSignalEffects(c);
         addTaxelEffects(c);
+        addStreamEffects(c);
         return c;
     }();
     return catalogue;
