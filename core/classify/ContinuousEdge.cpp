@@ -7,6 +7,7 @@
 
 #include "core/common/Avx2Clones.h"
 #include "core/common/FastExp.h"
+#include "core/geometry/Vec2.h"
 
 namespace activetouch {
 
@@ -27,13 +28,26 @@ ACTIVETOUCH_AVX2_CLONES void edgeWeights(const double* ll, int n, double tempera
 // division by a positive number keeps their order). NaN where a value is NaN or +infinity.
 ACTIVETOUCH_AVX2_CLONES double temperedTop(const double* ll, int n, double temperature) {
     double top = -std::numeric_limits<double>::infinity();
-    int bad = 0;
-    for (int c = 0; c < n; ++c) {
-        const double v = ll[c];
-        bad |= (v != v) | (v == std::numeric_limits<double>::infinity());
-        top = v > top ? v : top;
+    for (int c = 0; c < n; ++c) top = ll[c] > top ? ll[c] : top;
+    if (top == std::numeric_limits<double>::infinity()) return top;
+    for (int c = 0; c < n; ++c)
+        if (std::isnan(ll[c])) return std::numeric_limits<double>::quiet_NaN();
+    return top / temperature;
+}
+
+// The unit normal of each orientation, worked out once per list of orientations a thread sees.
+const std::vector<Vec2>& orientationNormals(const std::vector<double>& degrees) {
+    thread_local std::vector<double> seen;
+    thread_local std::vector<Vec2> normals;
+    if (seen != degrees) {
+        seen = degrees;
+        normals.clear();
+        for (double d : degrees) {
+            const double a = d * M_PI / 180.0;
+            normals.push_back({std::cos(a), std::sin(a)});
+        }
     }
-    return bad ? std::numeric_limits<double>::quiet_NaN() : top / temperature;
+    return normals;
 }
 
 // The weights' sum, in four running sums added in a fixed order.
@@ -70,6 +84,7 @@ ContinuousEdge continuousEdge(const ClassSet& classes, const double* logLikeliho
     double edge = 0.0, sx = 0.0, sy = 0.0, sp = 0.0;
     const int positions = std::max(1, classes.positions);
     const bool allEdges = classes.regions.empty();
+    const std::vector<Vec2>& normals = orientationNormals(classes.orientationsDeg);
     for (int c0 = 0, o = 0; c0 < n; c0 += positions, ++o) {
         double orientationWeight = 0.0, positionSum = 0.0;
         for (int c = c0, position = 1; c < std::min(n, c0 + positions); ++c, ++position) {
@@ -79,10 +94,9 @@ ContinuousEdge continuousEdge(const ClassSet& classes, const double* logLikeliho
             positionSum += wc * position;
         }
         if (orientationWeight <= 0.0) continue;
-        const double a = classes.orientationsDeg[static_cast<std::size_t>(o)] * M_PI / 180.0;
         edge += orientationWeight;
-        sx += orientationWeight * std::cos(a);
-        sy += orientationWeight * std::sin(a);
+        sx += orientationWeight * normals[static_cast<std::size_t>(o)].x;
+        sy += orientationWeight * normals[static_cast<std::size_t>(o)].y;
         sp += positionSum;
     }
     edge /= total;

@@ -253,6 +253,13 @@ ACTIVETOUCH_AVX2_CLONES double expSumScaled(const double* gaps, int n, double sc
     return (sum[0] + sum[1]) + (sum[2] + sum[3]);
 }
 
+// The largest value, NaN left out (as std::max(m, v) leaves it): several to an instruction.
+ACTIVETOUCH_AVX2_CLONES double largest(const double* v, int n) {
+    double m = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < n; ++i) m = v[i] > m ? v[i] : m;
+    return m;
+}
+
 }  // namespace
 
 double sumExpScaled(const double* gaps, int count, double scale) {
@@ -260,8 +267,7 @@ double sumExpScaled(const double* gaps, int count, double scale) {
 }
 
 double logSumExp(const double* v, int n) {
-    double m = -std::numeric_limits<double>::infinity();
-    for (int i = 0; i < n; ++i) m = std::max(m, v[i]);
+    const double m = largest(v, n);
     if (!std::isfinite(m)) return m;
     // The largest term is e^0 = 1: one below e^-708 is lost beside it.
     return m + std::log(expSum(v, n, m));

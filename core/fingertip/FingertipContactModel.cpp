@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <mutex>
 #include <numeric>
 #include <stdexcept>
 
@@ -172,6 +173,30 @@ void FingertipContactModel::buildPatch(double reach) {
         offsetY_.push_back(grid[q].offset.y);
         patchRadius_ = std::max(patchRadius_, norm(grid[q].offset));
     }
+}
+
+std::shared_ptr<const FingertipContactModel> FingertipContactModel::shared(
+    const FingertipSpec& spec) {
+    // Every field of the spec (the name is kept beside), exactly.
+    std::vector<double> key{spec.radius,       spec.capStart,        spec.tipEnd,
+                            spec.mountTiltDeg, spec.mountHeadingDeg, spec.receptiveFieldSigma,
+                            spec.countsPerMm,  spec.gridStep,        spec.maxIndentation};
+    for (const TaxelPosition& t : spec.taxels) key.insert(key.end(), {t.x, t.y, t.z});
+    static std::mutex mutex;
+    struct Kept {
+        std::string name;
+        std::vector<double> key;
+        std::shared_ptr<const FingertipContactModel> model;
+    };
+    static std::vector<Kept> recent;
+    std::lock_guard lock(mutex);
+    for (const Kept& k : recent)
+        if (k.name == spec.name && k.key == key) return k.model;
+    auto model = std::make_shared<const FingertipContactModel>(spec);
+    constexpr std::size_t kKept = 4;
+    if (recent.size() >= kKept) recent.erase(recent.begin());
+    recent.push_back({spec.name, std::move(key), model});
+    return model;
 }
 
 double FingertipContactModel::surfaceHeightAt(Vec2 offset) const {

@@ -22,6 +22,11 @@ class FingertipContactModel {
 public:
     explicit FingertipContactModel(const FingertipSpec& spec);
 
+    /// The model of `spec`, built once per process for the last few fingertips asked for (a
+    /// sweep over seeds runs every seed on the same fingertip; building one is a twentieth of a
+    /// paper seed). Thread-safe.
+    static std::shared_ptr<const FingertipContactModel> shared(const FingertipSpec& spec);
+
     int taxelCount() const { return taxelCount_; }
     const FingertipSpec& spec() const { return spec_; }
 

@@ -354,7 +354,7 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     if (options.seed) result.spec.scene.seed = *options.seed;
     const ExperimentSpec& spec = result.spec;
 
-    auto model = std::make_shared<const FingertipContactModel>(spec.scene.fingertip);
+    auto model = FingertipContactModel::shared(spec.scene.fingertip);
     const std::vector<CollectedTap>* recorded = options.recordedTaps;
     if (recorded) checkRecordingCovers(spec, *recorded, model->taxelCount(), options.recordingName);
     // A replay's trials: each of the experiment's trials has its recording, of one tap shape.
@@ -474,7 +474,7 @@ RunResult runFollowing(const RunResult& trained, const ExperimentSpec& specIn,
     if (options.connected) checkRunnableOn(result.spec, *options.connected);
     if (!options.outDir.empty())
         ensureOutputDirectory((fs::path(options.outDir) / "data").string());
-    auto model = std::make_shared<const FingertipContactModel>(result.spec.scene.fingertip);
+    auto model = FingertipContactModel::shared(result.spec.scene.fingertip);
     RunProgress progress;
     progress.tapsPlanned =
         static_cast<int>(plannedTapEstimate(result.spec) - result.spec.plannedTaps());
