@@ -17,7 +17,7 @@ constexpr std::size_t kDraws = 2'000'000;
 std::vector<double> draws(std::uint64_t seed, std::size_t n = kDraws) {
     RandomStream rng(seed);
     std::vector<double> v(n);
-    // In uneven blocks, as effects draw them: the sequence must not depend on the block sizes.
+    // In uneven blocks, as effects draw them (a tap at a time, a gap at a time).
     std::size_t at = 0, block = 1;
     while (at < n) {
         const std::size_t take = std::min(block, n - at);
