@@ -110,48 +110,41 @@ double goldenMinimum(F f, double a, double b, double tolerance) {
 
 // The held-out taps made ready for many scales: each tap's log-likelihoods less its largest (NaN
 // ruling a class out), and its true class's. Under a scale s > 0 the true class's log posterior
-// is then s * gap[true] - log sum exp(s * gap), with nothing to copy or search for per scale.
+// is then s * gap[true] - log sum exp(s * gap), with nothing to copy or search for per scale. A
+// tap without a finite largest value (every class ruled out, or one at +infinity) has the same
+// log posterior under every such scale: worked out once.
 struct ScaledTaps {
     std::vector<double> gaps;   // tap by tap, classes each
     std::vector<double> truth;  // the true class's gap
-    std::vector<char> plain;    // a tap with no finite largest value: the general path
-    const std::vector<std::vector<double>>* ll = nullptr;
-    const std::vector<int>* truthClass = nullptr;
+    std::vector<char> plain;    // a tap without a finite largest value
+    std::vector<double> plainValue;
     int classes = 0;
 
     ScaledTaps(const std::vector<std::vector<double>>& lls, const std::vector<int>& t)
-        : ll(&lls), truthClass(&t), classes(lls.empty() ? 0 : static_cast<int>(lls[0].size())) {
+        : classes(lls.empty() ? 0 : static_cast<int>(lls[0].size())) {
+        const double inf = std::numeric_limits<double>::infinity();
         for (std::size_t k = 0; k < lls.size(); ++k) {
-            double top = -std::numeric_limits<double>::infinity();
-            for (double x : lls[k])
-                if (!std::isnan(x)) top = std::max(top, x);
+            std::vector<double> v = lls[k];
+            for (double& x : v) x = std::isnan(x) ? -inf : x;
+            const double top = *std::max_element(v.begin(), v.end());
+            const double own = v[static_cast<std::size_t>(t[k])];
             plain.push_back(std::isfinite(top) ? 0 : 1);
-            for (double x : lls[k])
-                gaps.push_back(std::isnan(x) || !std::isfinite(top)
-                                   ? -std::numeric_limits<double>::infinity()
-                                   : x - top);
-            truth.push_back(
-                gaps[k * static_cast<std::size_t>(classes) + static_cast<std::size_t>(t[k])]);
+            plainValue.push_back(std::isfinite(top) ? 0.0 : own - logSumExp(v.data(), classes));
+            for (double x : v) gaps.push_back(std::isfinite(top) ? x - top : -inf);
+            truth.push_back(std::isfinite(top) ? own - top : -inf);
         }
     }
 
-    // Each tap's log posterior of its true class under `scale`, into `out`.
+    // Each tap's log posterior of its true class under `scale` (> 0), into `out`.
     void logPosteriors(double scale, std::vector<double>& out) const {
-        thread_local std::vector<double> v;
         out.resize(truth.size());
-        for (std::size_t k = 0; k < truth.size(); ++k) {
-            if (!plain[k]) {
-                out[k] = scale * truth[k] -
-                         std::log(sumExpScaled(gaps.data() + k * static_cast<std::size_t>(classes),
-                                               classes, scale));
-                continue;
-            }
-            v.assign((*ll)[k].begin(), (*ll)[k].end());
-            for (double& x : v)
-                x = std::isnan(x) ? -std::numeric_limits<double>::infinity() : scale * x;
-            out[k] = v[static_cast<std::size_t>((*truthClass)[k])] -
-                     logSumExp(v.data(), static_cast<int>(v.size()));
-        }
+        for (std::size_t k = 0; k < truth.size(); ++k)
+            out[k] =
+                plain[k]
+                    ? plainValue[k]
+                    : scale * truth[k] -
+                          std::log(sumExpScaled(gaps.data() + k * static_cast<std::size_t>(classes),
+                                                classes, scale));
     }
 };
 

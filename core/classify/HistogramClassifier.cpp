@@ -216,37 +216,20 @@ int argmaxLowestIndex(const double* v, int n) {
 
 namespace {
 
-// The sum of e^(v - m) over the values, a term below e^-708 (or a NaN, or -infinity) left out:
-// four running sums over the values in turn, added in a fixed order, so that the terms are worked
-// out several to an instruction and the sum is the same in either clone.
-ACTIVETOUCH_AVX2_CLONES double expSum(const double* v, int n, double m) {
+// The sum of e^(scale * v - shift) over the values, a term below e^-708 (or a NaN, or
+// -infinity) left out: four running sums over the values in turn, added in a fixed order, so that
+// the terms are worked out several to an instruction and the sum is the same in either clone.
+ACTIVETOUCH_AVX2_CLONES double expSum(const double* v, int n, double scale, double shift) {
     double sum[4] = {0.0, 0.0, 0.0, 0.0};
     int i = 0;
     for (; i + 4 <= n; i += 4)
         for (int j = 0; j < 4; ++j) {
-            const double x = v[i + j] - m;
+            const double x = scale * v[i + j] - shift;
             const double e = expNonPositive(x);
             sum[j] += x > kExpFloor ? e : 0.0;
         }
     for (; i < n; ++i) {
-        const double x = v[i] - m;
-        const double e = expNonPositive(x);
-        sum[0] += x > kExpFloor ? e : 0.0;
-    }
-    return (sum[0] + sum[1]) + (sum[2] + sum[3]);
-}
-
-ACTIVETOUCH_AVX2_CLONES double expSumScaled(const double* gaps, int n, double scale) {
-    double sum[4] = {0.0, 0.0, 0.0, 0.0};
-    int i = 0;
-    for (; i + 4 <= n; i += 4)
-        for (int j = 0; j < 4; ++j) {
-            const double x = scale * gaps[i + j];
-            const double e = expNonPositive(x);
-            sum[j] += x > kExpFloor ? e : 0.0;
-        }
-    for (; i < n; ++i) {
-        const double x = scale * gaps[i];
+        const double x = scale * v[i] - shift;
         const double e = expNonPositive(x);
         sum[0] += x > kExpFloor ? e : 0.0;
     }
@@ -263,14 +246,14 @@ ACTIVETOUCH_AVX2_CLONES double largest(const double* v, int n) {
 }  // namespace
 
 double sumExpScaled(const double* gaps, int count, double scale) {
-    return expSumScaled(gaps, count, scale);
+    return expSum(gaps, count, scale, 0.0);
 }
 
 double logSumExp(const double* v, int n) {
     const double m = largest(v, n);
     if (!std::isfinite(m)) return m;
     // The largest term is e^0 = 1: one below e^-708 is lost beside it.
-    return m + std::log(expSum(v, n, m));
+    return m + std::log(expSum(v, n, 1.0, m));
 }
 
 int HistogramClassifier::classify(const Tap& tap) const {

@@ -19,20 +19,11 @@ const ContourReach& reachOf(const Polygon& outline, double contactRadius) {
         ContourReach reach;
     };
     thread_local std::vector<Entry> recent;
-    const auto same = [&](const Entry& e) {
-        if (e.radius != contactRadius || e.vertices.size() != outline.size()) return false;
-        for (std::size_t i = 0; i < outline.size(); ++i)
-            if (e.vertices[i].x != outline.vertex(i).x || e.vertices[i].y != outline.vertex(i).y)
-                return false;
-        return true;
-    };
     for (const Entry& e : recent)
-        if (same(e)) return e.reach;
+        if (e.radius == contactRadius && e.vertices == outline.vertices()) return e.reach;
     constexpr std::size_t kKept = 16;
     if (recent.size() >= kKept) recent.erase(recent.begin());
-    std::vector<Vec2> vertices;
-    for (std::size_t i = 0; i < outline.size(); ++i) vertices.push_back(outline.vertex(i));
-    recent.push_back({std::move(vertices), contactRadius, ContourReach(outline, contactRadius)});
+    recent.push_back({outline.vertices(), contactRadius, ContourReach(outline, contactRadius)});
     return recent.back().reach;
 }
 

@@ -291,12 +291,11 @@ ACTIVETOUCH_AVX2_CLONES void coverAcrossLine(const double* ox, const double* oy,
 
 }  // namespace
 
-std::size_t FingertipContactModel::Contact::coverUpTo(double height) {
+void FingertipContactModel::Contact::coverUpTo(double height) {
     const auto& pts = model_->points_;
     std::size_t end = covered_;
     while (end < pts.size() && pts[end].height < height) ++end;
     if (end > covered_) coverRange(end);
-    return end;
 }
 
 void FingertipContactModel::Contact::coverRange(std::size_t end) {

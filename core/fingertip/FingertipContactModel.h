@@ -76,8 +76,8 @@ public:
     private:
         friend class FingertipContactModel;
         Contact(const FingertipContactModel& model, const Polygon& object, Vec2 centre);
-        /// Covers every point below `height`; returns how many points lie below it.
-        std::size_t coverUpTo(double height);
+        /// Covers every point below `height`.
+        void coverUpTo(double height);
         /// Covers points [covered_, end): their coverage, and those on the object listed.
         void coverRange(std::size_t end);
 
