@@ -232,12 +232,30 @@ void printShardBlock(const SeedRange& range) {
 
 /// Writes a finished run's tables, its figures if asked, and last its summary.json.
 ArtefactTiming writeArtefacts(const RunResult& result, const std::string& outDir, bool figures,
-                              int argc, char** argv, std::chrono::steady_clock::time_point start) {
+                              int argc, char** argv, std::chrono::steady_clock::time_point start,
+                              double figureWidthMm) {
     if (!figures) return writeRunArtefacts(result, outDir, start);
     return writeRunArtefacts(result, outDir, start, [&] {
-        return drawFigures(argc, argv,
-                           [&] { writeRunFigures(result, QString::fromStdString(outDir)); });
+        return drawFigures(argc, argv, [&] {
+            writeRunFigures(result, QString::fromStdString(outDir), figureWidthMm);
+        });
     });
+}
+
+std::optional<double> figureWidthOf(const RunArguments& parsed, std::string& error) {
+    const std::string text = parsed.text("--figure-width-mm");
+    if (text.empty()) return 0.0;
+    char* end = nullptr;
+    const double width = std::strtod(text.c_str(), &end);
+    if (end == text.c_str() || *end != '\0' || !(width >= kLeastFigureWidth_mm) ||
+        !(width <= kMostFigureWidth_mm)) {
+        error = "--figure-width-mm '" + text + "' is not a width from " +
+                std::to_string(int(kLeastFigureWidth_mm)) + " to " +
+                std::to_string(int(kMostFigureWidth_mm)) +
+                " mm; give the journal's column width, e.g. 89 (single) or 178 (double)";
+        return std::nullopt;
+    }
+    return width;
 }
 
 /// ", at any pose star turned 37.2 deg (truth 36.9)" for a recognised trial.

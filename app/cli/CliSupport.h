@@ -118,9 +118,16 @@ SeedRange seedRangeOf(const RunArguments& parsed, const std::string& example);
 /// For a shard of more than one, the line saying which block of the range it ran.
 void printShardBlock(const SeedRange& range);
 
-/// Writes a finished run's tables, its figures if asked, and last its summary.json.
+/// Writes a finished run's tables, its figures if asked (at `figureWidthMm` wide if > 0), and
+/// last its summary.json.
 ArtefactTiming writeArtefacts(const RunResult& result, const std::string& outDir, bool figures,
-                              int argc, char** argv, std::chrono::steady_clock::time_point start);
+                              int argc, char** argv, std::chrono::steady_clock::time_point start,
+                              double figureWidthMm = 0.0);
+
+/// The width --figure-width-mm asks for (0 if not given), or why it cannot be used: a width from
+/// kLeastFigureWidth_mm to kMostFigureWidth_mm.
+inline constexpr double kLeastFigureWidth_mm = 60.0, kMostFigureWidth_mm = 300.0;
+std::optional<double> figureWidthOf(const RunArguments& parsed, std::string& error);
 
 /// How a trial ended and what it measured, as a run's report gives it after "trial N: ".
 void printTrialMeasures(const TrialRun& t);

@@ -15,11 +15,13 @@ struct CommandHelp {
 const CommandHelp kHelp[] = {
     {"run",
         "  activetouch-cli run <experiment.json> [--out <dir>] [--seed N] [--rig <rig.json>]\n"
-        "                      [--no-figures]\n"
+        "                      [--no-figures] [--figure-width-mm W]\n"
         "      Runs the experiment on the simulated rig and writes <dir>/summary.json,\n"
         "      <dir>/data/*.csv (every tap, appended as it is taken; every table behind a figure)\n"
         "      and <dir>/figures/*.{png,pdf,svg}. --out defaults to results/<experiment name>.\n"
         "      --seed overrides the experiment's seed (one seed = one whole run).\n"
+        "      --figure-width-mm writes every figure W mm wide (89: a journal's single column)\n"
+        "      at its own height there, its panels wrapped to fit (docs/window.md).\n"
         "      --rig takes the taps on the devices a rig file names instead (the Yamaha stage,\n"
         "      the NXT tapper with the fingertip over YARP, or a mix with simulated ones; see\n"
         "      docs/real-rig.md): the scene's object must be the one mounted. Ctrl-C stops\n"

@@ -121,9 +121,14 @@ std::optional<RigConfig> rigOf(const RunArguments& parsed, const ExperimentSpec&
 }  // namespace
 
 int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
-    const RunArguments parsed = parseRunArguments(args, "run", {"--seed"}, true, false,
-                                                  {{"--rig", "a rig file, e.g. rig.json"}});
+    const RunArguments parsed =
+        parseRunArguments(args, "run", {"--seed"}, true, false,
+                          {{"--rig", "a rig file, e.g. rig.json"},
+                           {"--figure-width-mm", "a width in mm, e.g. 89 for a single column"}});
     if (!parsed.error.empty()) return usageError(parsed.error);
+    std::string widthError;
+    const std::optional<double> figureWidth = figureWidthOf(parsed, widthError);
+    if (!figureWidth) return usageError(widthError);
     std::string outDir = parsed.outDir;
     std::optional<std::uint64_t> seed;
     if (parsed.seeds.count("--seed")) seed = parsed.seeds.at("--seed");
@@ -158,7 +163,8 @@ int commandRun(const std::vector<std::string>& args, int argc, char** argv) {
             options.observer = &stop;
             result = runExperiment(spec, options);
         }
-        const ArtefactTiming t = writeArtefacts(result, outDir, parsed.figures, argc, argv, start);
+        const ArtefactTiming t =
+            writeArtefacts(result, outDir, parsed.figures, argc, argv, start, *figureWidth);
         return reportRun(result, t, rigConfig.has_value(), outDir);
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

@@ -169,12 +169,16 @@ bool buildTrialPairFigure(QCustomPlot& plot, const TrialPairRun& pair) {
     };
     for (const Side& side : {Side{"A", pair.nameA, pair.a, seriesColour(0), 7.0},
                              Side{"B", pair.nameB, pair.b, seriesColour(3), 4.0}}) {
-        QCPCurve* end = addTrialPath(rect, legend, side.run, side.colour, side.dotSize,
-                                     QString("%1 %2: %3, %4 taps")
-                                         .arg(side.which, QString::fromStdString(side.name),
-                                              QString::fromStdString(endedText(side.run)))
-                                         .arg(side.run.result.taps.size()),
-                                     box);
+        // How it ended, with its taps; why, if said, on a line of its own.
+        const QString ended = QString::fromStdString(endedText(side.run));
+        const qsizetype why = ended.indexOf(" (");
+        QCPCurve* end =
+            addTrialPath(rect, legend, side.run, side.colour, side.dotSize,
+                         QString("%1 %2: %3, %4 taps%5")
+                             .arg(side.which, QString::fromStdString(side.name), ended.left(why))
+                             .arg(side.run.result.taps.size())
+                             .arg(why < 0 ? QString() : "\n" + ended.mid(why + 1)),
+                         box);
         if (end) {
             if (!firstEnd) firstEnd = end;
             furthest.push_back(side.run.result.furthest.point);

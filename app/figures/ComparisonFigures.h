@@ -1,7 +1,7 @@
 #pragma once
-// Two experiments compared trial by trial on the same seeds (core/analysis/PairedComparison.h): for each
-// part of the paper's result, B's rate minus A's with its 95 % interval, McNemar's p beside it,
-// and what each costs in robot time per run.
+// Two experiments compared trial by trial on the same seeds (core/analysis/PairedComparison.h): for
+// each part of the paper's result, B's rate minus A's with its 95 % interval, McNemar's p beside
+// it, and what each costs in robot time per run.
 #include <QString>
 #include <QStringList>
 

@@ -12,7 +12,9 @@
 #include <tuple>
 #include <utility>
 
+#include "app/figures/FigureFitting.h"
 #include "app/figures/FigureLayout.h"
+#include "app/figures/FigureReflow.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
@@ -85,123 +87,6 @@ bool fitEqualAspect(QCustomPlot& plot) {
         changed = true;
     }
     return changed;
-}
-
-namespace {
-/// `text` broken into lines at spaces so that none is wider than `room` pixels in `font` (a word
-/// wider than the room keeps its own line).
-QString wrapped(const QString& text, const QFont& font, double room) {
-    const QFontMetricsF metrics(font);
-    QStringList lines;
-    for (const QString& given : text.split('\n')) {
-        QString line;
-        for (const QString& word : given.split(' ', Qt::SkipEmptyParts)) {
-            const QString longer = line.isEmpty() ? word : line + ' ' + word;
-            if (!line.isEmpty() && metrics.horizontalAdvance(longer) > room) {
-                lines << line;
-                line = word;
-            } else {
-                line = longer;
-            }
-        }
-        lines << line;
-    }
-    return lines.join('\n');
-}
-
-/// The figure's title and caption wrapped to the plot's width, from the text the figure's code
-/// gave them (kept as a property, so that a wider plot unwraps them again). Whether any changed.
-bool wrapFigureText(QCustomPlot& plot) {
-    bool changed = false;
-    const double room = plot.viewport().width() - 8.0;
-    if (room <= 20) return false;
-    for (QCPLayoutElement* e : plot.plotLayout()->elements(false)) {
-        auto* text = qobject_cast<QCPTextElement*>(e);
-        if (!text) continue;
-        // Text the figure's code set since it was last wrapped is the new original.
-        if (text->text() != text->property("wrappedText").toString())
-            text->setProperty("unwrappedText", text->text());
-        const QString fitted =
-            wrapped(text->property("unwrappedText").toString(), text->font(), room);
-        text->setProperty("wrappedText", fitted);
-        if (fitted == text->text()) continue;
-        text->setText(fitted);
-        changed = true;
-    }
-    return changed;
-}
-}  // namespace
-
-namespace {
-/// The widest of `labels` in `font`, and the tallest line.
-QSizeF widestLabel(const QVector<QString>& labels, const QFont& font) {
-    const QFontMetricsF metrics(font);
-    QSizeF most;
-    for (const QString& l : labels) {
-        const QRectF r = metrics.boundingRect(QRectF(), Qt::TextDontClip, l);
-        most = most.expandedTo(r.size());
-    }
-    return most;
-}
-
-/// Tick labels that would run together thinned: a fixed tick step doubled, or an automatic
-/// ticker's count lowered, as often as the axis's room asks; always from the ticks the figure's
-/// code asked for (kept as properties), so a roomier plot gets them back. Whether any changed.
-bool fitTicks(QCustomPlot& plot) {
-    bool changed = false;
-    for (QCPAxisRect* rect : plot.axisRects())
-        for (QCPAxis* axis : rect->axes()) {
-            QSharedPointer<QCPAxisTicker> ticker = axis->ticker();
-            if (!axis->visible() || !axis->tickLabels() || !ticker ||
-                ticker.dynamicCast<QCPAxisTickerText>())
-                continue;  // named ticks stay as they are
-            const bool across = axis->orientation() == Qt::Horizontal;
-            const double length = across ? rect->width() : rect->height();
-            const QVector<QString> labels = axis->tickVectorLabels();
-            if (length <= 0 || labels.isEmpty()) continue;
-            const QSizeF label = widestLabel(labels, axis->tickLabelFont());
-            const double needed = (across ? label.width() : label.height()) + 4.0;
-            auto fixed = ticker.dynamicCast<QCPAxisTickerFixed>();
-            if (fixed) {
-                if (!axis->property("askedTickStep").isValid()) {
-                    axis->setProperty("askedTickStep", fixed->tickStep());
-                    axis->setProperty("askedScaleStrategy", int(fixed->scaleStrategy()));
-                }
-                const double asked = axis->property("askedTickStep").toDouble();
-                const double perUnit = std::abs(axis->coordToPixel(1.0) - axis->coordToPixel(0.0));
-                double factor = 1.0;
-                while (asked * factor * perUnit < needed && factor < 1e6) factor *= 2.0;
-                const auto strategy = factor > 1.0
-                                          ? QCPAxisTickerFixed::ssNone
-                                          : QCPAxisTickerFixed::ScaleStrategy(
-                                                axis->property("askedScaleStrategy").toInt());
-                if (fixed->tickStep() == asked * factor && fixed->scaleStrategy() == strategy)
-                    continue;
-                fixed->setTickStep(asked * factor);
-                fixed->setScaleStrategy(strategy);
-                changed = true;
-            } else {
-                if (!axis->property("askedTickCount").isValid())
-                    axis->setProperty("askedTickCount", ticker->tickCount());
-                const int asked = axis->property("askedTickCount").toInt();
-                // An automatic ticker rounds its step to a nice one (1, 2, 2.5, 5 times a power of
-                // ten), which can put up to twice the count asked for along the axis.
-                const int count =
-                    std::clamp(static_cast<int>(std::floor(length / (2.0 * needed))), 2, asked);
-                if (ticker->tickCount() == count) continue;
-                ticker->setTickCount(count);
-                changed = true;
-            }
-        }
-    return changed;
-}
-}  // namespace
-
-bool fitToLayout(QCustomPlot& plot) {
-    const bool legends = fitLegendLines(plot);
-    const bool text = wrapFigureText(plot);
-    const bool ticks = fitTicks(plot);
-    return fitEqualAspect(plot) || legends || text || ticks;
 }
 
 namespace {
@@ -295,32 +180,7 @@ std::function<void()> setJournalText(QCustomPlot& plot) {
 }
 
 namespace {
-/// After a layout at a narrow size: every axis label and panel title wrapped to its panel.
-/// Returns what puts them back.
-std::function<void()> fitTextToPanels(QCustomPlot& plot) {
-    std::vector<std::function<void()>> undo;
-    for (QCPAxisRect* rect : plot.axisRects()) {
-        for (QCPAxis* axis : rect->axes()) {
-            const bool across = axis->orientation() == Qt::Horizontal;
-            const double room = across ? rect->width() : rect->height();
-            if (room <= 0) continue;
-            if (const QString label = axis->label(); !label.isEmpty()) {
-                const QString fitted = wrapped(label, axis->labelFont(), room);
-                if (fitted != label) {
-                    axis->setLabel(fitted);
-                    undo.push_back([axis, label] { axis->setLabel(label); });
-                }
-            }
-        }
-    }
-    // The title and caption are wrapped by every layout (fitToLayout).
-    return [undo] {
-        for (auto it = undo.rbegin(); it != undo.rend(); ++it) (*it)();
-    };
-}
-
-/// Lays `plot` out at the physical `size` with journal text, its labels fitted to the panels;
-/// returns what puts the fonts and texts back.
+/// Lays `plot` out at the physical `size` with journal text; returns what puts the fonts back.
 std::function<void()> layOutPhysical(QCustomPlot& plot, const FigureSize& size);
 }  // namespace
 
@@ -334,7 +194,7 @@ void layOutAt(QCustomPlot& plot, const FigureSize& asked) {
     plot.setViewport(QRect(0, 0, size.width_px, size.height_px));
     plot.replot(QCustomPlot::rpImmediateRefresh);
     // A refit can move margins and so the panels' shapes again; a few rounds settle it.
-    for (int round = 0; round < 3 && fitToLayout(plot); ++round)
+    for (int round = 0; round < kLayoutRounds && fitToLayout(plot); ++round)
         plot.replot(QCustomPlot::rpImmediateRefresh);
 }
 
@@ -343,24 +203,15 @@ void layOutPixels(QCustomPlot& plot, const QSize& size) {
     plot.resize(size);
     plot.setViewport(QRect(QPoint(0, 0), size));
     plot.replot(QCustomPlot::rpImmediateRefresh);
-    for (int round = 0; round < 3 && fitToLayout(plot); ++round)
+    for (int round = 0; round < kLayoutRounds && fitToLayout(plot); ++round)
         plot.replot(QCustomPlot::rpImmediateRefresh);
 }
 
 std::function<void()> layOutPhysical(QCustomPlot& plot, const FigureSize& size) {
+    // Labels wrap to their panels with every fit (fitToLayout), as on screen.
     const std::function<void()> fonts = setJournalText(plot);
-    const QSize logical = logicalSize(plot, size);
-    layOutPixels(plot, logical);
-    // Wrapping a label changes the margins and so the panels: fit, lay out, and fit again.
-    std::vector<std::function<void()>> texts;
-    for (int round = 0; round < 3; ++round) {
-        texts.push_back(fitTextToPanels(plot));
-        layOutPixels(plot, logical);
-    }
-    return [fonts, texts] {
-        for (auto it = texts.rbegin(); it != texts.rend(); ++it) (*it)();
-        fonts();
-    };
+    layOutPixels(plot, logicalSize(plot, size));
+    return fonts;
 }
 }  // namespace
 
@@ -431,6 +282,23 @@ QStringList writeFormats(QCustomPlot& plot, const QString& basePath, const QStri
     return written;
 }
 }  // namespace
+
+FigureSize figureSizeFor(QCustomPlot& plot, const FigureSize& usual, double widthMm) {
+    const double usualHeight =
+        usual.isPhysical() ? usual.height_mm : kDoubleColumn_mm * usual.height_px / usual.width_px;
+    const FigureSize first = FigureSize::physical(widthMm, usualHeight, usual.dpi);
+    layOutAt(plot, first);
+    FigureSize fitted = FigureSize::physical(widthMm, usualHeight * reflowGrowth(plot), usual.dpi);
+    layOutAt(plot, fitted);
+    // Never shorter than its parts need (panels and texts with a least height, a caption's lines).
+    const double mmPerPixel = 25.4 / logicalDpi(plot);
+    const double least = plot.plotLayout()->minimumOuterSizeHint().height() * mmPerPixel + 2.0;
+    if (least > fitted.height_mm) {
+        fitted = FigureSize::physical(widthMm, least, usual.dpi);
+        layOutAt(plot, fitted);
+    }
+    return fitted;
+}
 
 QSize layoutSize(const QCustomPlot& plot, const FigureSize& size) {
     return size.isPhysical() ? logicalSize(plot, size) : QSize(size.width_px, size.height_px);

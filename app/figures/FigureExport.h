@@ -33,6 +33,12 @@ struct FigureSize {
 /// Journal widths: a single column and a whole page (double column), mm.
 inline constexpr double kSingleColumn_mm = 89.0;
 inline constexpr double kDoubleColumn_mm = 178.0;
+/// The size the figure built in `plot` is written at `widthMm` wide: `usual`'s height (its
+/// height at its usual width) times how much taller its rows of panels grow at that width as
+/// they wrap (reflowPanels), at `usual`'s resolution; never a window's shape. Leaves the plot
+/// laid out at that width.
+FigureSize figureSizeFor(QCustomPlot& plot, const FigureSize& usual, double widthMm);
+
 /// The resolution figures are written at unless asked otherwise: a journal's for line art with
 /// grey levels.
 inline constexpr int kFigureDpi = 300;
@@ -58,6 +64,10 @@ void keepLegendClear(QCPAxisRect* rect, QCPLegend* legend, double dataRight, dou
 /// size, widening the axis with room to spare from the ranges asked for (so repeated resizes never
 /// accumulate). Returns whether any range changed; does not replot. Call after a layout.
 bool fitEqualAspect(QCustomPlot& plot);
+
+/// How many layouts a refit may take to settle: wrapping panels or labels moves the margins, and
+/// so the panels' shapes, again.
+inline constexpr int kLayoutRounds = 8;
 
 /// Refits what depends on the plot's size after a layout: the lines of the legends under panels
 /// (fitLegendLines) and the equal-aspect ranges. Returns whether anything changed, and so whether

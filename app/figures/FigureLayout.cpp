@@ -145,6 +145,16 @@ PanelWithLegend addPanelWithLegendBelow(QCPLayoutGrid* grid, int row, int column
     return {rect, legend};
 }
 
+QCPLegend* addLegendRow(QCustomPlot& plot, int perLine) {
+    auto* legend = new QCPLegend;
+    addFigureRow(plot, 0.001)->addElement(0, 0, legend);
+    legend->setLayer("legend");
+    legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
+    legend->setWrap(perLine);
+    legend->setProperty(kMostPerLine, perLine);
+    return legend;
+}
+
 PanelWithLegend addTitledPanelWithLegendBelow(QCPLayoutGrid* grid, int row, int column, int perLine,
                                               const QString& title, const QString& xLabel,
                                               const QString& yLabel) {

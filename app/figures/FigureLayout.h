@@ -67,6 +67,10 @@ PanelWithLegend addTitledPanelWithLegendBelow(QCPLayoutGrid* grid, int row, int 
                                               const QString& title, const QString& xLabel,
                                               const QString& yLabel);
 
+/// A legend in a figure row of its own (under the panels), at most `perLine` entries to a line,
+/// fewer where the figure is too narrow for them (fitLegendLines).
+QCPLegend* addLegendRow(QCustomPlot& plot, int perLine);
+
 /// Puts as many entries on each line of every legend made by addPanelWithLegendBelow as its share
 /// of the figure's width holds, up to the number asked for, and at least one. Returns whether any
 /// legend changed; does not replot. Call after a layout.

@@ -326,16 +326,18 @@ const std::vector<RunFigure>& runFigures() {
     return figures;
 }
 
-QStringList writeRunFigures(const RunResult& result, const QString& outDir) {
+QStringList writeRunFigures(const RunResult& result, const QString& outDir, double widthMm) {
     const QString dir = figuresDirectory(outDir);
     QStringList written;
     QCustomPlot plot;
     for (const RunFigure& figure : runFigures()) {
         // Built on a plot of the figure's shape: a figure may lay itself out for it.
-        plot.resize(layoutSize(plot, figure.size));
-        if (figure.build(plot, result))
-            written << exportFigure(plot, dir + "/" + figure.file, {"png", "pdf", "svg"},
-                                    figure.size);
+        FigureSize size = figure.size;
+        if (widthMm > 0.0) size = FigureSize::physical(widthMm, size.height_mm, size.dpi);
+        plot.resize(layoutSize(plot, size));
+        if (!figure.build(plot, result)) continue;
+        if (widthMm > 0.0) size = figureSizeFor(plot, figure.size, widthMm);
+        written << exportFigure(plot, dir + "/" + figure.file, {"png", "pdf", "svg"}, size);
     }
     return written;
 }

@@ -65,9 +65,10 @@ struct RunFigure {
 /// cancelled run, or one without a validation, draws only Figure 5.
 const std::vector<RunFigure>& runFigures();
 
-/// Writes each of runFigures() the run has as PNG, PDF and SVG into <outDir>/figures. Needs a
+/// Writes each of runFigures() the run has as PNG, PDF and SVG into <outDir>/figures: at its
+/// usual size, or `widthMm` wide (> 0) at its own height there (figureSizeFor). Needs a
 /// QApplication. Returns the files written.
-QStringList writeRunFigures(const RunResult& result, const QString& outDir);
+QStringList writeRunFigures(const RunResult& result, const QString& outDir, double widthMm = 0.0);
 
 /// Figure 9: per recognised shape, its template and each trial's path histogram (paper's raw
 /// rule), and the distances from each trial to every template. Returns false if nothing was

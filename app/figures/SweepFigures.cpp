@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "app/figures/FigureLayout.h"
+#include "app/figures/FigureReflow.h"
 #include "core/analysis/SweepRates.h"
 #include "core/run/ExperimentRun.h"
 #include "qcustomplot.h"
@@ -26,6 +27,7 @@ void pointLabel(QCPAxisRect* rect, double x, double y, const QString& text) {
     label->setPositionAlignment(Qt::AlignBottom | Qt::AlignLeft);
     label->setFont(QFont("Sans", 7));
     label->setText(text);
+    markPointLabel(label);
 }
 
 void fit(QCPAxisRect* rect) {
@@ -44,13 +46,7 @@ void fit(QCPAxisRect* rect) {
     const double dx = std::max(1e-6, x.size()) * 0.08, dy = std::max(1e-6, y.size()) * 0.1;
     rect->axis(QCPAxis::atBottom)->setRange(x.lower - dx, x.upper + dx);
     rect->axis(QCPAxis::atLeft)->setRange(std::max(0.0, y.lower - dy), y.upper + 3 * dy);
-    // Labels at points in the right half read leftwards, so that none runs off the panel.
-    const double middle = rect->axis(QCPAxis::atBottom)->range().center();
-    QCustomPlot* plot = rect->parentPlot();
-    for (int i = 0; i < plot->itemCount(); ++i)
-        if (auto* label = qobject_cast<QCPItemText*>(plot->item(i));
-            label && label->clipAxisRect() == rect && label->position->coords().x() > middle)
-            label->setPositionAlignment(Qt::AlignBottom | Qt::AlignRight);
+    // The labels find their side of their points at the panel's size (placePointLabels).
 }
 
 }  // namespace

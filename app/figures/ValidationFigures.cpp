@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "app/figures/FigureLayout.h"
+#include "app/figures/FigureReflow.h"
 #include "core/run/ExperimentRun.h"
 #include "core/stats/Intervals.h"
 #include "qcustomplot.h"
@@ -31,7 +32,7 @@ QSharedPointer<QCPAxisTickerText> orientationTicker(const ClassSet& cs) {
     return t;
 }
 
-void shadeValidRange(QCPAxisRect* rect, const RunResult& r, double yMax) {
+void shadeValidRange(QCPAxisRect* rect, const RunResult& r, double yMax, double dataTop) {
     const auto& vr = r.validation.validRange;
     auto* band = new QCPItemRect(rect->parentPlot());
     band->setClipAxisRect(rect);
@@ -39,8 +40,11 @@ void shadeValidRange(QCPAxisRect* rect, const RunResult& r, double yMax) {
         pos->setAxes(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
         pos->setAxisRect(rect);
     }
-    band->topLeft->setCoords(vr.first - 0.5, yMax);
-    band->bottomRight->setCoords(vr.last + 0.5, 0.0);
+    // The band spans the panel's height, whatever its top.
+    band->topLeft->setTypeY(QCPItemPosition::ptAxisRectRatio);
+    band->bottomRight->setTypeY(QCPItemPosition::ptAxisRectRatio);
+    band->topLeft->setCoords(vr.first - 0.5, 0.0);
+    band->bottomRight->setCoords(vr.last + 0.5, 1.0);
     band->setPen(Qt::NoPen);
     band->setBrush(QColor(46, 160, 67, 45));
     auto* label = new QCPItemText(rect->parentPlot());
@@ -51,6 +55,8 @@ void shadeValidRange(QCPAxisRect* rect, const RunResult& r, double yMax) {
     label->setPositionAlignment(Qt::AlignTop | Qt::AlignHCenter);
     label->setText(QString::fromStdString(vr.text()));
     label->setColor(QColor(30, 110, 45));
+    // Above the data, however wide the label is against the band at the panel's size.
+    keepTextAboveData(rect, label, 0.0, dataTop);
 }
 
 }  // namespace
@@ -67,13 +73,15 @@ void buildTapFigure(QCustomPlot& plot, const RunResult& r) {
     std::vector<int> shown;
     for (int i = 0; i < std::min(O, kMaxPanels); ++i)
         shown.push_back(O <= kMaxPanels ? i : i * O / kMaxPanels);
-    const int columns = shown.size() >= 4 ? 2 : 1;
+    // Two rows of panels: a narrow figure wraps them (reflowPanels).
+    const int columns = shown.size() > 4 ? 4 : shown.size() >= 4 ? 2 : 1;
     startFigure(plot, QString("Figure 5 - taps across each edge (data set %1)").arg(firstSet),
                 O <= kMaxPanels ? QString()
                                 : QString("%1 of the %2 trained orientations, evenly spread.")
                                       .arg(shown.size())
                                       .arg(O));
     QCPLayoutGrid* panels = addFigureRow(plot, 1.0);
+    panels->setProperty(kUsualRows, 2);  // the paper's four orientations
     for (std::size_t panel = 0; panel < shown.size(); ++panel) {
         const int o = shown[panel];
         auto* rect =
@@ -109,12 +117,7 @@ void buildTapFigure(QCustomPlot& plot, const RunResult& r) {
         rect->axis(QCPAxis::atLeft)->setRange(0.0, 1.05);
     }
     // Legend: taxel colours, in its own row at the bottom.
-    auto* legend = new QCPLegend;
-    QCPLayoutGrid* legendRow = addFigureRow(plot, 0.001);
-    legendRow->addElement(0, 0, legend);
-    legend->setLayer("legend");
-    legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
-    legend->setWrap(6);
+    QCPLegend* legend = addLegendRow(plot, 6);
     for (int k = 0; k < K && k < plot.graphCount(); ++k)
         legend->addItem(new QCPPlottableLegendItem(legend, plot.graph(k)));
 }
@@ -132,13 +135,12 @@ namespace {
 
 /// A colour scale for `map` beside `rect` in `grid` at `column` + 1, its top fixed so that runs
 /// compare by eye, its height the panel's; cells without data blank.
-void addHeatScale(QCustomPlot& plot, QCPLayoutGrid* grid, int column, bool oneColumn,
-                  QCPAxisRect* rect, QCPColorMap* map, const QString& unit, double top) {
+void addHeatScale(QCustomPlot& plot, QCPLayoutGrid* grid, int column, QCPAxisRect* rect,
+                  QCPColorMap* map, const QString& unit, double top) {
     map->setInterpolate(false);
     map->setTightBoundary(false);
     auto* scale = new QCPColorScale(&plot);
     grid->addElement(0, column + 1, scale);
-    if (oneColumn) grid->setColumnStretchFactors({1.0, 0.05});
     scale->setType(QCPAxis::atRight);
     scale->axis()->setLabel(unit);
     map->setColorScale(scale);
@@ -146,9 +148,7 @@ void addHeatScale(QCustomPlot& plot, QCPLayoutGrid* grid, int column, bool oneCo
     gradient.setNanHandling(QCPColorGradient::nhTransparent);
     map->setGradient(gradient);
     map->setDataRange(QCPRange(0, top));
-    auto* margins = new QCPMarginGroup(&plot);
-    rect->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
-    scale->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
+    alignWithPanel(scale, rect);
 }
 
 /// A map over the class grid (position across, orientation up) of one value per class.
@@ -195,7 +195,7 @@ void fillErrorLine(QCustomPlot& plot, QCPAxisRect* rect, const RunResult& r, boo
     rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
     integerTicks(rect->axis(QCPAxis::atBottom), 1.0);
     rect->axis(QCPAxis::atLeft)->setRange(0.0, yMax);
-    shadeValidRange(rect, r, yMax);
+    shadeValidRange(rect, r, yMax, yMax / 1.15);
 }
 
 }  // namespace
@@ -213,18 +213,15 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
                     .arg(r.validation.positionError_mm, 0, 'f', 2)
                     .arg(r.noiseFloor_counts, 0, 'f', 1)
                     .arg(maxPosition));
-    // Laid out for the plot's shape: on a wide plot (a screen, a page across) the heatmaps side
-    // by side above the two line panels; on a tall one (a single journal column) one panel a
-    // row, the whole width. Left edges aligned either way.
-    const bool oneColumn = plot.height() > plot.width();
+    // The heatmaps side by side (each with its scale) above the two line panels; a narrow figure
+    // wraps them one to a line (reflowPanels). Left edges aligned.
     auto* left = new QCPMarginGroup(&plot);
-    QCPLayoutGrid* heatRow = oneColumn ? nullptr : addFigureRow(plot, 1.0);
+    QCPLayoutGrid* heatRow = addFigureRow(plot, 1.0);
     for (int h = 0; h < 2; ++h) {
         const bool angle = h == 0;
-        QCPLayoutGrid* upper = oneColumn ? addFigureRow(plot, 0.6) : heatRow;
-        const int column = oneColumn ? 0 : 2 * h;
+        const int column = 2 * h;
         auto* rect =
-            addPanel(upper, 0, column, "position (mm; 1 = plane, 18 = air)", "edge orientation");
+            addPanel(heatRow, 0, column, "position (mm; 1 = plane, 18 = air)", "edge orientation");
         rect->setMarginGroup(QCP::msLeft, left);
         setPanelTitle(rect, angle ? "A  angle error" : "B  position error");
         auto* map = new QCPColorMap(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
@@ -232,23 +229,20 @@ void buildErrorFigure(QCustomPlot& plot, const RunResult& r) {
             return angle ? e.angleError_deg : e.positionError_mm;
         });
         integerTicks(rect->axis(QCPAxis::atBottom), 1.0);
-        addHeatScale(plot, upper, column, oneColumn, rect, map,
+        addHeatScale(plot, heatRow, column, rect, map,
                      angle ? "angle error (°)" : "position error (mm)",
                      angle ? 180.0 : maxPosition);
     }
-    // Each line panel has a row of its own below the heatmaps (or both in one row, on a wide
-    // plot): 18 positions with their error bars read well in a single column.
-    QCPLayoutGrid* lineRow = oneColumn ? nullptr : addFigureRow(plot, 1.0);
+    // The line panels side by side below the heatmaps.
+    QCPLayoutGrid* lineRow = addFigureRow(plot, 1.0);
     for (int l = 0; l < 2; ++l) {
         auto* rect = new QCPAxisRect(&plot);
-        if (oneColumn)
-            addFigureRow(plot, 0.75)->addElement(0, 0, rect);
-        else
-            lineRow->addElement(0, l, rect);
-        if (l == 0 || oneColumn) rect->setMarginGroup(QCP::msLeft, left);
+        lineRow->addElement(0, l, rect);
+        rect->setMarginGroup(QCP::msLeft, left);
         fillErrorLine(plot, rect, r, l == 0);
     }
-    if (heatRow) heatRow->setColumnStretchFactors({1.0, 0.06, 1.0, 0.06});
+    heatRow->setColumnStretchFactors({1.0, 0.06, 1.0, 0.06});
+    heatRow->setProperty(kColumnGroup, 2);
 }
 
 namespace {
@@ -308,11 +302,10 @@ bool buildContinuousAngleFigure(QCustomPlot& plot, const RunResult& r) {
             .arg(r.pathAngleTaps)
             .arg(followingTaps)
             .arg(kTop));
-    const bool oneColumn = plot.height() > plot.width();
-    QCPLayoutGrid* row = oneColumn ? nullptr : addFigureRow(plot, 1.0);
+    // Side by side, each with its scale; a narrow figure wraps them (reflowPanels).
+    QCPLayoutGrid* grid = addFigureRow(plot, 1.0);
     for (int panel = 0; panel < 2; ++panel) {
-        QCPLayoutGrid* grid = oneColumn ? addFigureRow(plot, 1.0) : row;
-        const int column = oneColumn ? 0 : 2 * panel;
+        const int column = 2 * panel;
         auto* rect = panel == 0
                          ? addPanel(grid, 0, column, "position (mm; 1 = plane, 18 = air)",
                                     "trained edge orientation")
@@ -327,9 +320,10 @@ bool buildContinuousAngleFigure(QCustomPlot& plot, const RunResult& r) {
             });
         else
             fillFollowingMap(rect, map, cells);
-        addHeatScale(plot, grid, column, oneColumn, rect, map, "angle error (°)", kTop);
+        addHeatScale(plot, grid, column, rect, map, "angle error (°)", kTop);
     }
-    if (row) row->setColumnStretchFactors({1.0, 0.06, 1.0, 0.06});
+    grid->setColumnStretchFactors({1.0, 0.06, 1.0, 0.06});
+    grid->setProperty(kColumnGroup, 2);
     return true;
 }
 

@@ -16,8 +16,9 @@ namespace {
 constexpr double kMmPerInch = 25.4;
 }
 
-ExportDialog::ExportDialog(const QString& figure, double shape, QWidget* parent)
-    : QDialog(parent), shape_(std::isfinite(shape) && shape > 0.1 ? shape : 0.7) {
+ExportDialog::ExportDialog(const QString& figure, std::function<double(double)> heightFor,
+                           QWidget* parent)
+    : QDialog(parent), heightFor_(std::move(heightFor)) {
     setObjectName("exportDialog");
     setWindowTitle(tr("Export %1").arg(figure));
     auto* form = new QFormLayout(this);
@@ -84,7 +85,9 @@ void ExportDialog::applyPreset() {
     QSignalBlocker block(unit_);
     unit_->setCurrentIndex(0);
     width_->setValue(width);
-    height_->setValue(std::round(width * shape_));
+    const double height = heightFor_ ? heightFor_(width) : 0.0;
+    height_->setValue(std::isfinite(height) && height > 0.0 ? std::round(height * 10.0) / 10.0
+                                                            : std::round(width * 0.7));
     updateNote();
 }
 

@@ -3,6 +3,7 @@
 // size in mm, inches or pixels, and the resolution. A physical size lays the figure out at that
 // size with its text at 7-9 pt; pixels keep the plot's screen layout.
 #include <QDialog>
+#include <functional>
 
 #include "app/figures/FigureExport.h"
 
@@ -17,8 +18,10 @@ class ExportDialog : public QDialog {
     Q_OBJECT
 public:
     enum class Unit { Millimetre, Inch, Pixel };
-    /// `shape`: the plot's height over its width on screen, the presets' default shape.
-    ExportDialog(const QString& figure, double shape, QWidget* parent = nullptr);
+    /// `heightFor`: the figure's own height (mm) at a width (mm), which the presets take; never
+    /// the window's shape.
+    ExportDialog(const QString& figure, std::function<double(double)> heightFor,
+                 QWidget* parent = nullptr);
 
     QString format() const;
     FigureSize size() const;
@@ -33,7 +36,7 @@ public:
 private:
     void applyPreset();
     void updateNote();
-    double shape_;
+    std::function<double(double)> heightFor_;
     QComboBox *format_, *preset_, *unit_;
     QDoubleSpinBox *width_, *height_;
     QSpinBox* dpi_;

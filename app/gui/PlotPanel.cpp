@@ -12,6 +12,9 @@
 #include <QVBoxLayout>
 #include <stdexcept>
 
+#include "app/figures/ComparisonFigures.h"
+#include "app/figures/FollowingFigures.h"
+#include "app/figures/SeedFigures.h"
 #include "app/gui/ExportDialog.h"
 #include "app/gui/WholeFile.h"
 #include "qcustomplot.h"
@@ -75,16 +78,15 @@ PlotPanel::PlotPanel(const QString& name, QWidget* parent)
         plot_->replot(QCustomPlot::rpQueuedReplot);
     });
     replotTimer_.start();
-    // Equal-aspect panels and legends under panels follow the plot's size: once a layout shows a
-    // panel's shape or a legend's room has changed, they are refitted and the plot drawn again.
-    // New tick labels can move the margins and so the shape again; a few rounds settle it, and
-    // more are never asked for.
+    // Everything fitted to the plot's size (panels per line, legends, labels, ticks, equal
+    // aspect) follows it: after each layout the figure is refitted and laid out again, within the
+    // same replot, until nothing changes; the plot is drawn once, settled.
     connect(plot_, &QCustomPlot::afterLayout, this, [this] {
-        if (zoomed_ || !fitToLayout(*plot_)) {
-            refits_ = 0;
-            return;
-        }
-        if (++refits_ <= 3) plot_->replot(QCustomPlot::rpQueuedReplot);
+        QCPLayoutGrid* layout = plot_->plotLayout();
+        for (int round = 0; round < kLayoutRounds && !zoomed_ && fitToLayout(*plot_); ++round)
+            for (auto phase : {QCPLayoutElement::upPreparation, QCPLayoutElement::upMargins,
+                               QCPLayoutElement::upLayout})
+                layout->update(phase);
     });
 }
 
@@ -269,42 +271,77 @@ void PlotPanel::requestReplot() {
     dirty_ = true;
 }
 
-QStringList PlotPanel::exportTo(const QString& basePath, const QStringList& formats,
-                                const FigureSize& size) {
-    // Export at the requested size, then restore the on-screen layout; the cursor's label is
-    // not part of a figure.
+void PlotPanel::offScreen(const std::function<void()>& work) {
+    // The cursor's label is not part of a figure.
     hideTracer();
     const QSize shown = plot_->size();
-    auto drawnFor = [this](QSize shape) {
-        if (!rebuild_) return;
-        plot_->resize(shape);
-        rebuild_(*plot_);
-    };
     const QRect viewport = plot_->viewport();
     const double ratio = plot_->bufferDevicePixelRatio();
     auto back = [&] {
-        drawnFor(shown);
-        // The export laid the plot out on a page of its own: its size, viewport and paint
-        // buffers go back to the screen's.
+        if (rebuild_) {
+            plot_->resize(shown);
+            rebuild_(*plot_);
+        }
+        // The work laid the plot out on a page of its own: its size, viewport and paint buffers
+        // go back to the screen's, and the figure is refitted to them (a new size starts afresh,
+        // so the screen shows what it showed).
         plot_->resize(shown);
         plot_->setViewport(viewport);
         plot_->setBufferDevicePixelRatio(ratio);
         plot_->replot(QCustomPlot::rpImmediateRefresh);
-        // Legends and equal-aspect panels refitted to the screen's shape, as a resize does.
-        for (int round = 0; round < 3 && !zoomed_ && fitToLayout(*plot_); ++round)
+        for (int round = 0; round < kLayoutRounds && !zoomed_ && fitToLayout(*plot_); ++round)
             plot_->replot(QCustomPlot::rpImmediateRefresh);
         plot_->update();
     };
-    QStringList files;
     try {
-        drawnFor(layoutSize(*plot_, size));
-        files = exportFigure(*plot_, basePath, formats, size);
+        work();
     } catch (...) {
         back();
         throw;
     }
     back();
+}
+
+void PlotPanel::drawnFor(QSize shape) {
+    if (!rebuild_) return;
+    plot_->resize(shape);
+    rebuild_(*plot_);
+}
+
+QStringList PlotPanel::exportTo(const QString& basePath, const QStringList& formats,
+                                const FigureSize& size) {
+    QStringList files;
+    offScreen([&] {
+        drawnFor(layoutSize(*plot_, size));
+        files = exportFigure(*plot_, basePath, formats, size);
+    });
     return files;
+}
+
+FigureSize PlotPanel::usualSize() const {
+    for (const RunFigure& figure : runFigures())
+        if (name_ == figure.file) return figure.size;
+    if (name_ == "seed_rates") return kSeedFigureSize;
+    if (name_ == "compare") return kComparisonFigureSize;
+    if (name_ == "compare_trial_pair") return kTrialPairFigureSize;
+    if (name_.startsWith("seeds_sweep"))
+        return FigureSize::physical(kDoubleColumn_mm, 120, kFigureDpi);
+    // A plot with no figure of its own keeps the screen's shape at a double column.
+    const double shape = plot_->width() > 0 ? double(plot_->height()) / plot_->width() : 0.7;
+    return FigureSize::physical(kDoubleColumn_mm, kDoubleColumn_mm * std::clamp(shape, 0.2, 2.0),
+                                kFigureDpi);
+}
+
+double PlotPanel::ownHeightAt(double widthMm) {
+    const FigureSize usual = usualSize();
+    double height = usual.height_mm;
+    offScreen([&] {
+        drawnFor(layoutSize(*plot_, FigureSize::physical(widthMm, usual.height_mm, usual.dpi)));
+        const std::function<void()> screenFonts = setJournalText(*plot_);
+        height = figureSizeFor(*plot_, usual, widthMm).height_mm;
+        screenFonts();
+    });
+    return height;
 }
 
 void PlotPanel::exportCsv(const QString& path) const {
@@ -416,8 +453,8 @@ void PlotPanel::showMenu(const QPoint& where) {
 }
 
 void PlotPanel::exportWithDialog() {
-    ExportDialog dialog(name_, plot_->width() > 0 ? double(plot_->height()) / plot_->width() : 0.7,
-                        this);
+    ExportDialog dialog(
+        name_, [this](double widthMm) { return ownHeightAt(widthMm); }, this);
     if (dialog.exec() != QDialog::Accepted) return;
     const QString format = dialog.format();
     const QString path =

@@ -51,6 +51,10 @@ public:
     /// Writes the plot in each format as <basePath>.<format>. Throws std::runtime_error.
     QStringList exportTo(const QString& basePath, const QStringList& formats,
                          const FigureSize& size);
+    /// The height (mm) the figure is written at `widthMm` wide: its own (figureSizeFor, from its
+    /// usual size as the command line writes it), whatever the window's shape. The plot on
+    /// screen is left as it was.
+    double ownHeightAt(double widthMm);
     /// Writes every plottable's data in long format, one row per point, each number beside its
     /// quantity and unit (taken from the axis labels): panel, series, then x, y and value (a
     /// colour map's cell) as name, unit and number.
@@ -84,6 +88,13 @@ private:
     QString describePoint(QCPAbstractPlottable* p, int index, const QPointF& pos);
     void showMenu(const QPoint& where);
     void exportWithDialog();
+    /// Runs `work`, which lays the plot out for a page of its own, then puts the screen's layout
+    /// back (also if `work` throws).
+    void offScreen(const std::function<void()>& work);
+    /// A figure that lays itself out for the plot's shape drawn again for `shape`.
+    void drawnFor(QSize shape);
+    /// The size the figure is written at by the command line (runFigures and the others).
+    FigureSize usualSize() const;
     void updateEmptyHint();
     /// True while the plot has nothing drawn and a hint says what fills it.
     bool waitsForData() const;
@@ -92,7 +103,6 @@ private:
     QLabel* hint_;
     QTimer replotTimer_;
     bool dirty_ = false;
-    int refits_ = 0;  ///< equal-aspect refits in a row
     bool zoomed_ = false;
     std::function<void(QCustomPlot&)> rebuild_;
     QList<QPair<QCPAxis*, QPair<double, double>>> home_;  ///< each axis's own range

@@ -300,6 +300,7 @@ private slots:
         QVERIFY(tabs);
         QDir().mkpath(dir_.filePath("unchanged"));
         int compared = 0;
+        double figure6Single = 0.0;
         for (PlotPanel* p : window_->plotPanels()) {
             if (!filledByARun(p)) continue;
             for (QWidget* w = p; w; w = w->parentWidget())
@@ -312,6 +313,10 @@ private slots:
             const QString base = dir_.filePath("unchanged/" + p->name());
             p->exportTo(base, {"png", "pdf"}, FigureSize::physical(kSingleColumn_mm, 75, 300));
             p->exportTo(base + "_px", {"png"}, {700, 1100, 100});
+            // The export dialog's presets ask the figure's own height at a width: off screen too.
+            const double single = p->ownHeightAt(kSingleColumn_mm);
+            QVERIFY2(single > 20.0, qPrintable(p->name()));
+            if (p->name() == "figure6_errors") figure6Single = single;
             QTest::qWait(100);
             QCOMPARE(p->plot().size(), shown);
             QCOMPARE(p->plot().viewport(), p->plot().rect());
@@ -322,6 +327,20 @@ private slots:
             ++compared;
         }
         QVERIFY(compared >= 4);
+        // Figure 6's own height: its usual 115 mm at a double column; taller at a single column,
+        // where its panels go one to a line; the same whatever the window's shape.
+        PlotPanel* errors = nullptr;
+        for (PlotPanel* p : window_->plotPanels())
+            if (p->name() == "figure6_errors") errors = p;
+        QVERIFY(errors && figure6Single > 0.0);
+        QCOMPARE(errors->ownHeightAt(kDoubleColumn_mm), 115.0);
+        QVERIFY2(figure6Single > 150.0, qPrintable(QString::number(figure6Single)));
+        const QSize windowSize = window_->size();
+        window_->resize(900, 1000);
+        QTest::qWait(100);
+        QCOMPARE(errors->ownHeightAt(kSingleColumn_mm), figure6Single);
+        window_->resize(windowSize);
+        QTest::qWait(100);
         // The export dialogs start in the results folder, not where the workbench was launched.
         const QString folder = QDir(window_->outputBase()).absolutePath();
         for (PlotPanel* p : window_->plotPanels())

@@ -1,0 +1,14 @@
+#pragma once
+// What a layout fits to the size a figure is drawn at, besides its panels' arrangement
+// (FigureReflow.h): titles, captions and axis labels wrapped, tick labels thinned; and
+// fitToLayout (FigureExport.h), which runs every fit.
+#include <QFont>
+#include <QString>
+
+namespace activetouch {
+
+/// `text` broken into lines at spaces so that none is wider than `room` pixels in `font` (a word
+/// wider than the room keeps its own line).
+QString wrapped(const QString& text, const QFont& font, double room);
+
+}  // namespace activetouch
