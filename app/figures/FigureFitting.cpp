@@ -188,11 +188,17 @@ bool fitTicks(QCustomPlot& plot, bool fresh) {
         const bool across = axis->orientation() == Qt::Horizontal;
         const double length = across ? axis->axisRect()->width() : axis->axisRect()->height();
         if (length <= 0) continue;
-        // An axis thinned to no label at all (at a size too small for one) needs nothing and so
-        // gets its ticks back; the next round measures them.
-        const QVector<QString> labels = axis->tickVectorLabels();
-        const QSizeF label =
-            labels.isEmpty() ? QSizeF(-4.0, -4.0) : widestLabel(labels, axis->tickLabelFont());
+        // The labels need the room of the widest shown; an axis thinned to no label at all (at a
+        // size too small for one) that of its range's ends, written as the axis writes numbers.
+        QVector<QString> labels = axis->tickVectorLabels();
+        if (labels.isEmpty()) {
+            const QLocale locale = axis->parentPlot()->locale();
+            const QString format = axis->numberFormat();
+            const char letter = format.isEmpty() ? 'g' : format.at(0).toLatin1();
+            for (const double end : {axis->range().lower, axis->range().upper})
+                labels << locale.toString(end, letter, axis->numberPrecision());
+        }
+        const QSizeF label = widestLabel(labels, axis->tickLabelFont());
         changed =
             thinnedTicks(axis, length, (across ? label.width() : label.height()) + 4.0) || changed;
     }

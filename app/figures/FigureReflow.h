@@ -50,7 +50,7 @@ void alignWithPanel(QCPColorScale* scale, QCPAxisRect* rect);
 bool fitColourScales(QCustomPlot& plot);
 
 /// Marks `label` as naming the data point at its position: placePointLabels puts it beside the
-/// point where it covers no data and no other label.
+/// point where it covers no data and no other label. It is hidden until a layout places it.
 void markPointLabel(QCPItemText* label);
 
 /// Places every label marked by markPointLabel: beside its point, on the first side (right,

@@ -109,6 +109,7 @@ QRectF boxAt(const QPointF& at, const QSizeF& size, Qt::Alignment side) {
 
 void markPointLabel(QCPItemText* label) {
     label->setProperty("namesPoint", true);
+    label->setVisible(false);  // until a layout finds it a side (placePointLabels)
     label->setPadding(QMargins(kGap_px, kGap_px, kGap_px, kGap_px));
 }
 

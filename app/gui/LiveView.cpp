@@ -8,6 +8,7 @@
 #include "app/figures/FigureLayout.h"
 #include "app/gui/FingertipView.h"
 #include "app/gui/PlotPanel.h"
+#include "app/gui/TaxelScope.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
@@ -17,7 +18,9 @@ LiveView::LiveView(LiveFeed& feed, QWidget* parent)
       feed_(feed),
       bars_(new PlotPanel("live_taxels", this)),
       traces_(new PlotPanel("last_tap_traces", this)),
-      fingertip_(new FingertipView(this)) {
+      fingertip_(new FingertipView(this)),
+      scope_(new TaxelScope(this)) {
+    clock_.start();
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(buildReadouts());
     auto* top = new QSplitter(Qt::Horizontal);
@@ -27,9 +30,15 @@ LiveView::LiveView(LiveFeed& feed, QWidget* parent)
     top->setStretchFactor(0, 1);
     top->setStretchFactor(1, 2);
     top->setSizes({320, 640});
+    // The last tap beside the scope of the last seconds.
+    auto* bottom = new QSplitter(Qt::Horizontal);
+    bottom->addWidget(traces_);
+    bottom->addWidget(scope_);
+    bottom->setChildrenCollapsible(false);
+    bottom->setSizes({480, 640});
     auto* split = new QSplitter(Qt::Vertical);
     split->addWidget(top);
-    split->addWidget(traces_);
+    split->addWidget(bottom);
     split->setChildrenCollapsible(false);
     split->setStretchFactor(0, 1);
     split->setStretchFactor(1, 1);
@@ -139,6 +148,7 @@ void LiveView::buildTraces() {
 void LiveView::setFingertip(const FingertipSpec& fingertip, double contactThreshold) {
     fingertip_->setFingertip(fingertip);
     fingertip_->setContactThreshold(contactThreshold);
+    scope_->setContactThreshold(contactThreshold);
 }
 
 void LiveView::setPaused(bool paused) {
@@ -152,6 +162,7 @@ void LiveView::setPaused(bool paused) {
 void LiveView::tick() {
     if (paused_) return;  // what is shown stays; the feed keeps only the newest state
     if (takeNewest()) undrawn_ = true;
+    scope_->redraw();
     // The plot always holds the newest state (an export shows it); the bars are drawn only while
     // the tab is in front, and once it comes back the next tick draws what changed meanwhile.
     if (!undrawn_ || !bars_->isVisible()) return;
@@ -203,6 +214,7 @@ bool LiveView::takeNewest() {
         }
     }
     fingertip_->showFrame(frame);
+    scope_->append(clock_.elapsed() / 1000.0, frame);
     return true;
 }
 

@@ -3,9 +3,11 @@
 // pressure on a fixed scale, beside 12 taxel bars (each in the taxel's own colour) with numeric
 // readouts, updated at 50 Hz; the total pressure of the last seconds against the contact
 // threshold; the last tap's 50-sample traces; the stage position; and, while following, the
-// percept. A GUI timer draws the newest state from the LiveFeed; data never drives a replot. A
+// percept; and the taxel scope, every channel over the last seconds (TaxelScope). A GUI timer
+// draws the newest state from the LiveFeed; data never drives a replot. A
 // frame redraws the bars' own layer alone, and nothing is drawn while the tab is hidden. Pause
 // holds what is shown (the run goes on); Resume shows the newest state again.
+#include <QElapsedTimer>
 #include <QLabel>
 #include <QTimer>
 #include <QWidget>
@@ -24,6 +26,7 @@ namespace activetouch {
 
 class FingertipView;
 class PlotPanel;
+class TaxelScope;
 
 class LiveView : public QWidget {
     Q_OBJECT
@@ -33,6 +36,7 @@ public:
     PlotPanel* barsPanel() const { return bars_; }
     PlotPanel* tracesPanel() const { return traces_; }
     FingertipView* fingertipView() const { return fingertip_; }
+    TaxelScope* scope() const { return scope_; }
     /// Frames drawn so far (for tests and the CPU benchmark); none while the view is hidden.
     std::uint64_t framesDrawn() const { return framesDrawn_; }
 
@@ -60,6 +64,8 @@ private:
     PlotPanel* bars_;
     PlotPanel* traces_;
     FingertipView* fingertip_;
+    TaxelScope* scope_;
+    QElapsedTimer clock_;  ///< the scope's time axis: seconds since the view was made
     QCPLayer* liveLayer_ = nullptr;
     std::vector<QCPBars*> barPlottables_;  ///< one per taxel, in its colour
     std::vector<QCPItemText*> readouts_;

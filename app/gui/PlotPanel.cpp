@@ -402,11 +402,7 @@ void PlotPanel::exportCsv(const QString& path) const {
         }
     }
     out.flush();
-    const QString failed = writeFileWhole(path, bytes);
-    if (!failed.isEmpty())
-        throw std::runtime_error("could not write " + path.toStdString() + " (" +
-                                 failed.toStdString() +
-                                 "); free space on its disk or choose a writable place");
+    writeWholeOrThrow(path, bytes);
 }
 
 void PlotPanel::copyToClipboard() {

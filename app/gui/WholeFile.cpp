@@ -1,6 +1,7 @@
 #include "app/gui/WholeFile.h"
 
 #include <QSaveFile>
+#include <stdexcept>
 
 namespace activetouch {
 
@@ -18,6 +19,14 @@ QString writeFileWhole(const QString& path, const QByteArray& bytes) {
     }
     if (!file.commit()) return file.errorString();
     return {};
+}
+
+void writeWholeOrThrow(const QString& path, const QByteArray& bytes) {
+    const QString failed = writeFileWhole(path, bytes);
+    if (!failed.isEmpty())
+        throw std::runtime_error("could not write " + path.toStdString() + " (" +
+                                 failed.toStdString() +
+                                 "); free space on its disk or choose a writable place");
 }
 
 }  // namespace activetouch

@@ -10,4 +10,7 @@ namespace activetouch {
 /// as it was before.
 QString writeFileWhole(const QString& path, const QByteArray& bytes);
 
+/// The same, throwing std::runtime_error naming `path`, the reason and what to do if it fails.
+void writeWholeOrThrow(const QString& path, const QByteArray& bytes);
+
 }  // namespace activetouch

@@ -130,6 +130,9 @@ inline void showAt(PlotPanel* panel, QSize size) {
     QCoreApplication::processEvents();
     panel->plot().replot(QCustomPlot::rpImmediateRefresh);
     QCoreApplication::processEvents();
+    // What a person sees is a replot's: a figure drawn anew meanwhile (a run's last results
+    // arriving) is laid out for the plot by its replot, as it is before it is ever painted.
+    panel->plot().replot(QCustomPlot::rpImmediateRefresh);
 }
 
 #if defined(__x86_64__)

@@ -1,6 +1,7 @@
 // CPU share of the live view at 50 Hz (docs/benchmarks.md: <= 10 % of one core): the Live tab's
-// taxel bars and traces fed frames at 50 Hz and a new tap every second, for 10 s; process CPU time
-// (user + system) over wall time. Run offscreen or under Xvfb.
+// taxel bars, traces and taxel scope (every channel over the last 10 s, scrolling) fed frames at
+// 50 Hz and a new tap every second, for 10 s; process CPU time (user + system) over wall time. Run
+// offscreen or under Xvfb.
 #include <sys/resource.h>
 
 #include <QApplication>
@@ -12,6 +13,7 @@
 #include <thread>
 
 #include "app/gui/LiveView.h"
+#include "app/gui/TaxelScope.h"
 #include "bench/BenchHarness.h"
 
 using namespace activetouch;
@@ -51,22 +53,51 @@ int main(int argc, char** argv) {
             ++n;
         }
     });
-    // Let it settle, then measure 10 s.
-    double cpu0 = 0;
+    // Let it settle, then measure 10 s with the scope hidden and 10 s with it shown: the tab's
+    // share, and the scope's as the difference.
+    struct Phase {
+        double cpu = 0.0, seconds = 0.0;
+        std::uint64_t frames = 0, scopeFrames = 0;
+    } phases[2];
     QElapsedTimer wall;
-    std::uint64_t frames0 = 0;
-    QTimer::singleShot(1000, [&] {
+    double cpu0 = 0.0;
+    std::uint64_t frames0 = 0, scope0 = 0;
+    auto start = [&] {
         cpu0 = cpuSeconds();
         frames0 = view.framesDrawn();
+        scope0 = view.scope()->framesDrawn();
         wall.start();
-        QTimer::singleShot(10000, [&] { app.quit(); });
+    };
+    auto finish = [&](Phase& p) {
+        p = {cpuSeconds() - cpu0, wall.elapsed() / 1000.0, view.framesDrawn() - frames0,
+             view.scope()->framesDrawn() - scope0};
+    };
+    view.scope()->hide();
+    QTimer::singleShot(1000, [&] {
+        start();
+        QTimer::singleShot(10000, [&] {
+            finish(phases[0]);
+            view.scope()->show();
+            QTimer::singleShot(1000, [&] {
+                start();
+                QTimer::singleShot(10000, [&] {
+                    finish(phases[1]);
+                    app.quit();
+                });
+            });
+        });
     });
     app.exec();
-    const double share = 100.0 * (cpuSeconds() - cpu0) / (wall.elapsed() / 1000.0);
-    const double rate = (view.framesDrawn() - frames0) / (wall.elapsed() / 1000.0);
     stop = true;
     rig.join();
-    std::printf("live view drew %.1f frames per second\n", rate);
-    bench::report("live view at 50 Hz, share of one core", share, "%", 10.0);
+    auto share = [](const Phase& p) { return 100.0 * p.cpu / p.seconds; };
+    std::printf(
+        "live view drew %.1f frames per second; with the scope shown %.1f, the scope %.1f\n",
+        phases[0].frames / phases[0].seconds, phases[1].frames / phases[1].seconds,
+        phases[1].scopeFrames / phases[1].seconds);
+    bench::report("live view at 50 Hz (bars, traces), share of one core", share(phases[0]), "%",
+                  10.0);
+    bench::report("taxel scope at 50 Hz (12 taxels and the total, 10 s), share of one core",
+                  share(phases[1]) - share(phases[0]), "%", 10.0);
     return 0;
 }

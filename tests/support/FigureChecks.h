@@ -137,9 +137,12 @@ inline void checkLabelsFitTheirPanels(QCustomPlot& plot, const QString& name) {
         auto* text = qobject_cast<QCPItemText*>(plot.item(i));
         if (!text || !text->visible() || !text->clipToAxisRect() || !text->clipAxisRect()) continue;
         const QPointF at = text->position->pixelPosition();
+        // The text with its padding is aligned at the point; the text sits inside the padding.
+        const QMargins pad = text->padding();
         const QSizeF size = QFontMetricsF(text->font())
                                 .boundingRect(QRectF(), Qt::TextDontClip, text->text())
-                                .size();
+                                .size()
+                                .grownBy(pad);
         const Qt::Alignment a = text->positionAlignment();
         const double left = a & Qt::AlignRight     ? at.x() - size.width()
                             : a & Qt::AlignHCenter ? at.x() - size.width() / 2
@@ -147,12 +150,19 @@ inline void checkLabelsFitTheirPanels(QCustomPlot& plot, const QString& name) {
         const double top = a & Qt::AlignBottom    ? at.y() - size.height()
                            : a & Qt::AlignVCenter ? at.y() - size.height() / 2
                                                   : at.y();
-        const QRectF box(left, top, size.width(), size.height());
+        const QRectF box = QRectF(left, top, size.width(), size.height()).marginsRemoved(pad);
         const QRectF panel = QRectF(text->clipAxisRect()->rect()).adjusted(-1, -1, 1, 1);
         QVERIFY2(panel.contains(box),
-                 qPrintable(QString("%1 panel %2: the label '%3' is cut off by the panel's edge")
+                 qPrintable(QString("%1 panel %2: the label '%3' is cut off by the panel's edge "
+                                    "(at %4, %5 in %6, %7 to %8, %9)")
                                 .arg(name, text->clipAxisRect()->axis(QCPAxis::atTop)->label(),
-                                     text->text())));
+                                     text->text())
+                                .arg(box.left())
+                                .arg(box.top())
+                                .arg(panel.left())
+                                .arg(panel.top())
+                                .arg(panel.right())
+                                .arg(panel.bottom())));
     }
     auto extent = [](const QCPAxis* axis) {
         return QFontMetricsF(axis->labelFont())
