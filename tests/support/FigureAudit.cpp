@@ -306,10 +306,19 @@ private:
 /// The data hidden for the texts' pass: plottables and every item but text.
 class TextOnly {
 public:
-    explicit TextOnly(QCustomPlot& plot) {
+    /// With `legendsToo`, the legends are hidden as well (a layout keeps their room).
+    TextOnly(QCustomPlot& plot, bool legendsToo) {
         for (int i = 0; i < plot.plottableCount(); ++i) hide(plot.plottable(i));
         for (int i = 0; i < plot.itemCount(); ++i)
             if (!qobject_cast<QCPItemText*>(plot.item(i))) hide(plot.item(i));
+        if (!legendsToo) return;
+        for (QCPLayoutElement* e : plot.plotLayout()->elements(true)) {
+            if (auto* legend = qobject_cast<QCPLegend*>(e)) hide(legend);
+            if (auto* rect = qobject_cast<QCPAxisRect*>(e))
+                for (QCPLayoutElement* inset : rect->insetLayout()->elements(false))
+                    if (auto* legend = qobject_cast<QCPLegend*>(inset)) hide(legend);
+        }
+        if (plot.legend) hide(plot.legend);
     }
     ~TextOnly() {
         for (QCPLayerable* l : hidden_) l->setVisible(true);
@@ -343,11 +352,22 @@ FigureItems readFigureItems(QCustomPlot& plot) {
         record(plot, items, false, true, backgrounds);
         items.layoutMoved = panelRects(plot) != panels;
     }
+    // The texts: everything drawn but the data; those that are not drawn again without the
+    // legends are the legends' own.
+    FigureItems outsideLegends;
     {
-        TextOnly hidden(plot);
+        TextOnly hidden(plot, true);
+        record(plot, outsideLegends, true, false, backgrounds);
+    }
+    {
+        TextOnly hidden(plot, false);
         record(plot, items, true, false, backgrounds);
         items.layoutMoved = items.layoutMoved || panelRects(plot) != panels;
     }
+    for (AuditText& t : items.texts)
+        t.inLegend =
+            std::none_of(outsideLegends.texts.begin(), outsideLegends.texts.end(),
+                         [&](const AuditText& o) { return o.text == t.text && o.box == t.box; });
     plot.replot();
 
     for (QCPAxisRect* rect : plot.axisRects()) {
@@ -357,13 +377,6 @@ FigureItems readFigureItems(QCustomPlot& plot) {
                 legend && legend->visible() && legend->itemCount() > 0)
                 items.legends << QRectF(legend->outerRect());
     }
-    QList<QRectF> allLegends = items.legends.toList();
-    for (QCPLayoutElement* e : plot.plotLayout()->elements(true))
-        if (auto* legend = qobject_cast<QCPLegend*>(e); legend && legend->visible())
-            allLegends << QRectF(legend->outerRect());
-    for (AuditText& t : items.texts)
-        for (const QRectF& legend : allLegends)
-            if (legend.contains(t.box.center())) t.inLegend = true;
     return items;
 }
 
