@@ -66,6 +66,31 @@ bool wrapFigureText(QCustomPlot& plot) {
 }  // namespace
 
 namespace {
+/// The entries of every legend inside a panel wrapped to the panel's width, where the legend
+/// would be wider than the data it sits over: a plottable's name is its entry, so the name is
+/// wrapped and the figure's own kept (seriesName). Whether any changed.
+bool wrapInsideLegends(QCustomPlot& plot) {
+    bool changed = false;
+    for (QCPAxisRect* rect : plot.axisRects())
+        for (QCPLayoutElement* e : rect->insetLayout()->elements(false)) {
+            auto* legend = qobject_cast<QCPLegend*>(e);
+            if (!legend || !legend->visible()) continue;
+            const double room = rect->width() - 12.0 - legend->iconSize().width() -
+                                legend->iconTextPadding() - legend->margins().left() -
+                                legend->margins().right() - 8.0;
+            if (room <= 40) continue;
+            for (int i = 0; i < legend->itemCount(); ++i) {
+                auto* item = qobject_cast<QCPPlottableLegendItem*>(legend->item(i));
+                if (!item || !item->plottable()) continue;
+                QCPAbstractPlottable* p = item->plottable();
+                changed = rewrapped(p, p->name(), item->font(), room,
+                                    [p](const QString& t) { p->setName(t); }) ||
+                          changed;
+            }
+        }
+    return changed;
+}
+
 /// Every axis label wrapped to its panel's length along it, from the text the figure's code gave
 /// it (kept as a property, so that a larger panel unwraps it again). Whether any changed.
 bool wrapAxisLabels(QCustomPlot& plot) {
@@ -217,10 +242,15 @@ bool fitToLayout(QCustomPlot& plot) {
     const bool points = placePointLabels(plot);
     const bool legends = fitLegendLines(plot);
     const bool text = wrapFigureText(plot);
-    const bool labels = wrapAxisLabels(plot);
+    const bool labels = wrapAxisLabels(plot) | wrapInsideLegends(plot);
     const bool ticks = fitTicks(plot, fresh);
     return fitEqualAspect(plot) || panels || headroom || scales || points || legends || text ||
            labels || ticks;
+}
+
+QString seriesName(const QCPAbstractPlottable* plottable) {
+    const QVariant given = plottable->property("unwrappedText");
+    return given.isValid() ? given.toString() : plottable->name();
 }
 
 }  // namespace activetouch

@@ -5,10 +5,16 @@
 #include <QFont>
 #include <QString>
 
+class QCPAbstractPlottable;
+
 namespace activetouch {
 
 /// `text` broken into lines at spaces so that none is wider than `room` pixels in `font` (a word
 /// wider than the room keeps its own line).
 QString wrapped(const QString& text, const QFont& font, double room);
+
+/// A plottable's name as the figure's code gave it: a legend inside a narrow panel shows it
+/// wrapped over lines.
+QString seriesName(const QCPAbstractPlottable* plottable);
 
 }  // namespace activetouch

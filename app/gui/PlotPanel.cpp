@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "app/figures/ComparisonFigures.h"
+#include "app/figures/FigureFitting.h"
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
 #include "app/gui/ExportDialog.h"
@@ -199,7 +200,7 @@ QString PlotPanel::describePoint(QCPAbstractPlottable* p, int index, const QPoin
         value = p->valueAxis()->pixelToCoord(pos.y());
     }
     if (!tracer_->graph()) tracer_->position->setCoords(key, value);
-    const QString series = p->name().isEmpty() ? QString() : p->name() + "\n";
+    const QString series = seriesName(p).isEmpty() ? QString() : seriesName(p) + "\n";
     return series + axisValueText(p->keyAxis(), key) + "\n" + axisValueText(p->valueAxis(), value) +
            extra;
 }
@@ -358,7 +359,8 @@ void PlotPanel::exportCsv(const QString& path) const {
         if (!p->keyAxis() || !p->valueAxis()) continue;
         QCPAxisRect* rect = p->keyAxis()->axisRect();
         const QString panel = rect->axis(QCPAxis::atTop)->label();
-        const QString series = p->name().isEmpty() ? QString("series %1").arg(i) : p->name();
+        const QString series =
+            seriesName(p).isEmpty() ? QString("series %1").arg(i) : seriesName(p);
         const auto [xName, xUnit] = quantityOf(p->keyAxis()->label());
         const auto [yName, yUnit] = quantityOf(p->valueAxis()->label());
         const QString head = field(panel) + ',' + field(series) + ',';

@@ -175,19 +175,10 @@ private slots:
             }
         }
         reportEach(problems);
-        // Known not to hold yet: in a 1280x720 window the passive paths' legend is wider than
-        // its panel's data and reaches over the y axis's top tick labels. Reported above; it must
-        // come off this list once it holds.
-        const QString known = "figure7_passive_paths (paper) in a 1280x720 window";
-        QStringList others;
-        for (const QString& p : problems)
-            if (!p.startsWith(known)) others << p;
         QVERIFY2(
-            others.isEmpty(),
+            problems.isEmpty(),
             qPrintable(
-                QString("%1 problems, the first: %2").arg(others.size()).arg(others.value(0))));
-        QEXPECT_FAIL("", "the passive paths' legend over tick labels at 1280x720", Continue);
-        QVERIFY(problems.isEmpty());
+                QString("%1 problems, the first: %2").arg(problems.size()).arg(problems.value(0))));
     }
 
     void aSingleColumnRunWritesEveryFigureReadably() {
