@@ -14,12 +14,16 @@ namespace {
 /// Room between a label and its point, pixels.
 constexpr int kGap_px = 4;
 
-/// What a label must not cover in a panel: the data's points and line segments, in pixels.
+/// What a label must not cover in a panel: the data's points and line segments and the labels
+/// placed before it, in pixels.
 struct Obstacles {
     std::vector<QPointF> points;
     std::vector<QLineF> lines;
+    std::vector<QRectF> labels;
 
     bool hit(const QRectF& box) const {
+        for (const QRectF& placed : labels)
+            if (box.intersects(placed)) return true;
         for (const QPointF& p : points)
             if (box.adjusted(-2, -2, 2, 2).contains(p)) return true;
         for (const QLineF& l : lines) {
@@ -136,9 +140,7 @@ bool placePointLabels(QCustomPlot& plot) {
                 if (!panel.contains(box) || o.hit(box)) continue;
                 label->setPositionAlignment(side);
                 label->setVisible(true);
-                // What later labels must not cover: this one's box.
-                o.lines.emplace_back(box.topLeft(), box.bottomRight());
-                o.lines.emplace_back(box.topRight(), box.bottomLeft());
+                o.labels.push_back(box);  // what later labels must not cover
                 placed = true;
                 break;
             }
