@@ -133,8 +133,10 @@ void MainWindow::buildRunMenu() {
 void MainWindow::buildViewMenu() {
     auto add = [this](auto... a) { return addMenuAction(this, a...); };
     QMenu* view = menuBar()->addMenu(tr("&View"));
+    // Ctrl+1 ... Ctrl+4 in the order docs/window.md lists the docks, Ctrl+5 the tool bar.
     int number = 1;
-    for (QDockWidget* dock : findChildren<QDockWidget*>()) {
+    for (const char* name : {"sceneDock", "devicesDock", "protocolDock", "logDock"}) {
+        auto* dock = findChild<QDockWidget*>(name);
         QAction* toggle = dock->toggleViewAction();
         toggle->setShortcut(QKeySequence(tr("Ctrl+%1").arg(number++)));
         toggle->setObjectName(dock->objectName() + "Toggle");

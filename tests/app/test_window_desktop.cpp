@@ -139,6 +139,51 @@ private slots:
         window_->resize(1600, 1000);
     }
 
+    void theKeysAreTheOnesTheDocsList() {
+        // Each row of docs/window.md's table: a menu, its entries and their keys, in order.
+        QFile doc(sourceFile("docs/window.md"));
+        QVERIFY(doc.open(QIODevice::ReadOnly | QIODevice::Text));
+        auto plain = [](QString text) {
+            text.replace("&&", "\x01").remove('&').replace("\x01", "&");
+            return text;
+        };
+        int checked = 0;
+        QStringList menusSeen;
+        for (const QString& line : QString::fromUtf8(doc.readAll()).split('\n')) {
+            const QStringList cells = line.split('|');
+            if (cells.size() != 5 || !cells[1].trimmed().front().isUpper()) continue;
+            const QString menuName = cells[1].trimmed();
+            if (menuName == "menu") continue;
+            QMenu* menu = nullptr;
+            for (QAction* top : window_->menuBar()->actions())
+                if (plain(top->text()) == menuName) menu = top->menu();
+            QVERIFY2(menu, qPrintable("no menu " + menuName));
+            menusSeen << menuName;
+            const QStringList entries = cells[2].split(" / "), keys = cells[3].split(" / ");
+            QCOMPARE(entries.size(), keys.size());
+            for (int i = 0; i < entries.size(); ++i) {
+                // "About ActiveTouch Workbench (the version, ...)": the entry is before " (".
+                const QString entry = entries[i].trimmed().section(" (", 0, 0);
+                const QAction* found = nullptr;
+                for (const QAction* a : menu->actions())
+                    if (plain(a->text()) == entry) found = a;
+                QVERIFY2(found, qPrintable(menuName + " has no entry " + entry));
+                const QString key = keys[i].trimmed();
+                const QString want = key == "—" ? QString() : QKeySequence(key).toString();
+                QVERIFY2(found->shortcut().toString() == want,
+                         qPrintable(QString("%1 > %2: %3, the docs say %4")
+                                        .arg(menuName, entry, found->shortcut().toString(), want)));
+                ++checked;
+            }
+        }
+        menusSeen.removeDuplicates();
+        QCOMPARE(menusSeen, QStringList({"File", "Run", "View", "Help"}));
+        QVERIFY2(checked >= 25, qPrintable(QString::number(checked)));
+        // Ctrl+1 is the first dock the docs list.
+        QCOMPARE(window_->findChild<QDockWidget*>("sceneDock")->toggleViewAction()->shortcut(),
+                 QKeySequence("Ctrl+1"));
+    }
+
     void everyMenuActionAnswersItsShortcut() {
         // A copy of the paper experiment, so that Save has a file of its own to write.
         const QString copy = paperVariant("paper_copy.json", R"("name": "paper copy")");
