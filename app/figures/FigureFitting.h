@@ -17,4 +17,9 @@ QString wrapped(const QString& text, const QFont& font, double room);
 /// wrapped over lines.
 QString seriesName(const QCPAbstractPlottable* plottable);
 
+/// An axis property (QStringList) naming the category at each integer coordinate, for an axis
+/// whose tick labels name only some of them (Figure 5's orientations beyond twelve): what the
+/// cursor read-out says there.
+inline constexpr char kCategoryNames[] = "categoryNames";
+
 }  // namespace activetouch

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/figures/FigureFitting.h"
 #include "app/figures/FigureLayout.h"
 #include "app/figures/FigureReflow.h"
 #include "core/run/ExperimentRun.h"
@@ -163,6 +164,10 @@ void fillClassMap(QCPAxisRect* rect, QCPColorMap* map, const RunResult& r, Value
     rect->axis(QCPAxis::atBottom)->setRange(0.5, P + 0.5);
     rect->axis(QCPAxis::atLeft)->setRange(-0.5, O - 0.5);
     rect->axis(QCPAxis::atLeft)->setTicker(orientationTicker(cs));
+    QStringList names;
+    for (double deg : cs.orientationsDeg)
+        names << QString::fromStdString(ClassSet::orientationName(deg));
+    rect->axis(QCPAxis::atLeft)->setProperty(kCategoryNames, names);
 }
 
 /// Panels C and D of Figure 6: an error by position, mean over orientations ± 1 s.d., the

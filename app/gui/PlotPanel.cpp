@@ -6,7 +6,6 @@
 #include <QFileDialog>
 #include <QMenu>
 #include <QMouseEvent>
-#include <QRegularExpression>
 #include <QScrollArea>
 #include <QTextStream>
 #include <QVBoxLayout>
@@ -17,6 +16,7 @@
 #include "app/figures/FollowingFigures.h"
 #include "app/figures/SeedFigures.h"
 #include "app/gui/ExportDialog.h"
+#include "app/gui/PlotReadout.h"
 #include "app/gui/WholeFile.h"
 #include "qcustomplot.h"
 
@@ -130,25 +130,11 @@ void PlotPanel::resetView() {
 }
 
 namespace {
-/// "pressure (counts)" -> {"pressure", "counts"}; a label without a unit keeps it empty.
-QPair<QString, QString> quantityOf(const QString& label) {
-    static const QRegularExpression unit(R"(^(.*?)\s*\(([^()]*)\)\s*$)");
-    const QRegularExpressionMatch m = unit.match(label);
-    if (m.hasMatch()) return {m.captured(1), m.captured(2)};
-    return {label, QString()};
-}
-
+/// A number in a CSV: six significant figures.
 QString numberText(double v) {
     return QString::number(v, 'g', 6);
 }
 }  // namespace
-
-/// "name value unit" for a value on `axis`, the name and unit read from its label.
-static QString axisValueText(QCPAxis* axis, double v) {
-    const auto [name, unit] = quantityOf(axis->label());
-    return QString("%1 %2%3").arg(name.isEmpty() ? QString("x") : name, numberText(v),
-                                  unit.isEmpty() ? QString() : " " + unit);
-}
 
 void PlotPanel::ensureTracer() {
     if (tracer_) return;
@@ -167,7 +153,7 @@ void PlotPanel::ensureTracer() {
     cursorLabel_->setPadding(QMargins(4, 2, 4, 2));
     cursorLabel_->setBrush(QColor(255, 255, 255, 230));
     cursorLabel_->setPen(QPen(QColor(120, 120, 120)));
-    cursorLabel_->setPositionAlignment(Qt::AlignLeft | Qt::AlignBottom);
+    cursorLabel_->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
     cursorLabel_->position->setType(QCPItemPosition::ptAbsolute);
     cursorLabel_->setSelectable(false);
 }
@@ -190,7 +176,7 @@ QString PlotPanel::describePoint(QCPAbstractPlottable* p, int index, const QPoin
         const QString scale = m->colorScale() ? m->colorScale()->axis()->label() : QString();
         const auto [name, unit] = quantityOf(scale);
         extra = QString("\n%1 %2%3")
-                    .arg(name.isEmpty() ? tr("value") : name, numberText(cell),
+                    .arg(name.isEmpty() ? tr("value") : name, readoutNumber(cell),
                          unit.isEmpty() ? QString() : " " + unit);
     } else if (auto* d = dynamic_cast<QCPPlottableInterface1D*>(p); d && index < d->dataCount()) {
         key = d->dataMainKey(index);
@@ -231,10 +217,13 @@ QString PlotPanel::traceAt(const QPointF& pos) {
     }
     cursorLabel_->setText(text);
     cursorLabel_->setClipToAxisRect(false);
-    // Beside the cursor, kept inside the plot.
-    const QPointF at(std::min(pos.x() + 12, double(plot_->width()) - 160),
-                     std::max(pos.y() - 8, 60.0));
-    cursorLabel_->position->setCoords(at);
+    // Beside the cursor, kept whole inside the plot.
+    const QMargins pad = cursorLabel_->padding();
+    const QSizeF size = QFontMetricsF(cursorLabel_->font())
+                            .boundingRect(QRectF(), Qt::AlignLeft | Qt::TextDontClip, text)
+                            .size() +
+                        QSizeF(pad.left() + pad.right() + 2, pad.top() + pad.bottom() + 2);
+    cursorLabel_->position->setCoords(readoutPlace(plot_->rect(), pos, size).topLeft());
     cursorLabel_->setVisible(true);
     plot_->layer("overlay")->replot();
     return text;

@@ -12,6 +12,7 @@
 #include <QWheelEvent>
 
 #include "WindowFixture.h"
+#include "app/figures/FigureFitting.h"
 #include "app/gui/FingertipView.h"
 #include "app/gui/HelpBrowser.h"
 
@@ -435,6 +436,61 @@ private slots:
                             "value_unit,value"));
         QCOMPARE(file.readLine().trimmed(),
                  QByteArray(",taxel 3,time in the tap,s,0,pressure,counts,100,,,"));
+    }
+
+    void readOutsNameCategoriesAndStayInsideThePlot() {
+        PlotPanel panel("readout_plot");
+        QCustomPlot& plot = panel.plot();
+        QCPGraph* g = plot.addGraph();
+        g->setName("error");
+        g->setData({0, 1, 2, 3}, {3.14159265, 2718.2818, 0.000123456, 1.0 / 3.0});
+        plot.xAxis->setLabel("orientation");
+        QSharedPointer<QCPAxisTickerText> names(new QCPAxisTickerText);
+        names->addTick(0, "left");
+        names->addTick(1, "right\n(12 trials)");  // a name's first line
+        names->addTick(2, "up");
+        names->addTick(3, "down");
+        plot.xAxis->setTicker(names);
+        plot.yAxis->setLabel("position error (mm)");
+        plot.xAxis->setRange(-0.5, 3.5);
+        plot.yAxis->setRange(-100, 3000);
+        panel.resize(640, 400);
+        panel.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&panel));
+        plot.replot(QCustomPlot::rpImmediateRefresh);
+        auto pixel = [&](double x, double y) {
+            return QPointF(plot.xAxis->coordToPixel(x), plot.yAxis->coordToPixel(y));
+        };
+        // Names, not numbers; four significant figures with the unit.
+        QString text = panel.traceAt(pixel(0, 3.14159265));
+        QVERIFY2(text.contains("orientation left") && text.contains("position error 3.142 mm"),
+                 qPrintable(text));
+        text = panel.traceAt(pixel(1, 2718.2818));
+        QVERIFY2(text.contains("orientation right\n") && text.contains("error 2718 mm"),
+                 qPrintable(text));
+        QVERIFY(panel.traceAt(pixel(2, 0.000123456)).contains("error 0.0001235 mm"));
+        // An axis naming its categories in a property reads them where no tick label does.
+        plot.xAxis->setProperty(kCategoryNames, QStringList{"E", "NE", "N", "NW"});
+        QVERIFY(panel.traceAt(pixel(3, 1.0 / 3.0)).contains("orientation NW"));
+        // Hovered at each corner, the label lies whole inside the plot.
+        const QRect r = plot.axisRect()->rect();
+        auto* label = plot.findChild<QCPItemText*>("valueLabel");
+        QVERIFY(label);
+        for (const QPointF corner :
+             {QPointF(r.right() - 2, r.bottom() - 2), QPointF(r.right() - 2, r.top() + 2),
+              QPointF(r.left() + 2, r.top() + 2), QPointF(r.center())}) {
+            panel.traceAt(corner);
+            plot.replot(QCustomPlot::rpImmediateRefresh);
+            const QRectF box(label->topLeft->pixelPosition(), label->bottomRight->pixelPosition());
+            QVERIFY2(QRectF(plot.rect()).contains(box),
+                     qPrintable(QString("(%1,%2 %3x%4) at (%5,%6)")
+                                    .arg(box.x())
+                                    .arg(box.y())
+                                    .arg(box.width())
+                                    .arg(box.height())
+                                    .arg(corner.x())
+                                    .arg(corner.y())));
+        }
     }
 
     void theLiveViewPausesAndDrawsTheFingertip() {
