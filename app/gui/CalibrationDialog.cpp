@@ -12,6 +12,7 @@
 
 #include "app/figures/CalibrationFigures.h"
 #include "app/gui/WholeFile.h"
+#include "app/gui/PlotTheme.h"
 #include "core/records/TapCsv.h"
 #include "qcustomplot.h"
 
@@ -63,6 +64,8 @@ CalibrationDialog::CalibrationDialog(const ExperimentSpec& spec, const QString& 
     plot_ = new QCustomPlot;
     plot_->setObjectName("calibrationPlot");
     plot_->setMinimumHeight(300);
+    connect(plot_, &QCustomPlot::afterLayout, this,
+            [this] { setDarkInk(*plot_, isDarkPalette(palette())); });
     auto* tables = new QHBoxLayout;
     auto* left = new QVBoxLayout;
     left->addWidget(new QLabel(tr("Which effects the taps call for (level 0.001)")));

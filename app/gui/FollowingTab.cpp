@@ -125,7 +125,10 @@ void FollowingTab::showRun(std::shared_ptr<const RunResult> result) {
         if (lostActive && firstLostActive < 0) firstLostActive = static_cast<int>(i);
         for (int c = 0; c < cells.size(); ++c) {
             auto* item = new QTableWidgetItem(cells[c]);
-            if (lostActive) item->setBackground(QColor(255, 235, 230));
+            if (lostActive) {
+                item->setBackground(QColor(255, 235, 230));
+                item->setForeground(QColor(Qt::black));  // readable in a dark theme too
+            }
             if (c == 3) item->setToolTip(QString::fromStdString(t.result.detail));
             table_->setItem(static_cast<int>(i), c, item);
         }

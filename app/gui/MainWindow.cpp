@@ -121,7 +121,7 @@ void MainWindow::buildTabs() {
                 const QString path = QFileDialog::getOpenFileName(
                     this, tr("Compare with the experiment (B)"), QFileInfo(experimentPath_).path(),
                     tr("Experiments (*.json)"));
-                if (!path.isEmpty()) startComparison(path, first, last);
+                if (!path.isEmpty()) confirmComparison(path, first, last);
             });
     connect(comparison_, &ComparisonTab::trialPairRequested, this,
             [this](quint64 seed, FollowingMode mode, const QString& label, int trial) {

@@ -64,6 +64,10 @@ public:
     /// folder under the output base. A file that cannot be read, or that shares no trial with A,
     /// is refused with the reason before any run.
     bool startComparison(const QString& otherPath, std::uint64_t first, std::uint64_t last);
+    /// What *Compare with...* does once B is chosen: asks first ("compareQuestion": both
+    /// experiments, the seeds, how many whole runs that is and how many at a time), then
+    /// startComparison on Yes. False, with nothing run, on No.
+    bool confirmComparison(const QString& otherPath, std::uint64_t first, std::uint64_t last);
     /// Runs `seed` of the last comparison in both its experiments (as they were compared,
     /// whatever the panels show since) and shows the trial `mode`/`label`/`trial` of each under
     /// the comparison's table. False if there has been no comparison or a run is going.

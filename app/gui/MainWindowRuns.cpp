@@ -12,6 +12,7 @@
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
+#include <QLocale>
 #include <QMessageBox>
 #include <QPlainTextEdit>
 #include <QProgressBar>
@@ -235,6 +236,35 @@ bool MainWindow::startSeeds(std::uint64_t first, std::uint64_t last) {
             .arg(dir));
     updateActions();
     return true;
+}
+
+bool MainWindow::confirmComparison(const QString& otherPath, std::uint64_t first,
+                                   std::uint64_t last) {
+    const auto toRun = experimentToRun();
+    if (!toRun || last < first) return false;
+    const std::uint64_t seeds = last - first + 1;
+    const RunPlan plan = planOf(*toRun).times(2.0 * double(seeds));
+    QMessageBox ask(
+        QMessageBox::Question, tr("Compare two experiments"),
+        tr("Compare %1 (A, as shown) with %2 (B) on seeds %3-%4?\n\nThat is %5 whole runs on "
+           "the simulated rig (%6 seeds, each in both experiments; about %7 taps), %8 at a "
+           "time; Cancel (Esc) stops it and keeps the seeds finished. (The seeds are set in the "
+           "Compare tab, beside its button.)")
+            .arg(QString::fromStdString(toRun->name), QFileInfo(otherPath).fileName())
+            .arg(first)
+            .arg(last)
+            .arg(2 * seeds)
+            .arg(seeds)
+            .arg(QLocale().toString(plan.taps(), 'f', 0))
+            .arg(defaultSeedJobs()),
+        QMessageBox::Yes | QMessageBox::No, this);
+    ask.setObjectName("compareQuestion");
+    ask.setDefaultButton(QMessageBox::Yes);
+    if (ask.exec() != QMessageBox::Yes) {
+        log(tr("comparison with %1 not started").arg(otherPath));
+        return false;
+    }
+    return startComparison(otherPath, first, last);
 }
 
 bool MainWindow::startComparison(const QString& otherPath, std::uint64_t first,

@@ -17,6 +17,7 @@
 #include "app/figures/SeedFigures.h"
 #include "app/gui/ExportDialog.h"
 #include "app/gui/PlotReadout.h"
+#include "app/gui/PlotTheme.h"
 #include "app/gui/WholeFile.h"
 #include "qcustomplot.h"
 
@@ -88,7 +89,14 @@ PlotPanel::PlotPanel(const QString& name, QWidget* parent)
             for (auto phase : {QCPLayoutElement::upPreparation, QCPLayoutElement::upMargins,
                                QCPLayoutElement::upLayout})
                 layout->update(phase);
+        // Drawn in the desktop's ink, parts the fit added included; a page is always light.
+        setDarkInk(*plot_, !onPage_ && isDarkPalette(palette()));
     });
+}
+
+void PlotPanel::changeEvent(QEvent* event) {
+    if (event->type() == QEvent::PaletteChange) plot_->replot(QCustomPlot::rpQueuedReplot);
+    QWidget::changeEvent(event);
 }
 
 bool PlotPanel::eventFilter(QObject* watched, QEvent* event) {
@@ -262,8 +270,10 @@ void PlotPanel::requestReplot() {
 }
 
 void PlotPanel::offScreen(const std::function<void()>& work) {
-    // The cursor's label is not part of a figure.
+    // The cursor's label is not part of a figure; a page is white whatever the screen shows.
     hideTracer();
+    onPage_ = true;
+    setDarkInk(*plot_, false);
     const QSize shown = plot_->size();
     const QRect viewport = plot_->viewport();
     const double ratio = plot_->bufferDevicePixelRatio();
@@ -278,6 +288,7 @@ void PlotPanel::offScreen(const std::function<void()>& work) {
         plot_->resize(shown);
         plot_->setViewport(viewport);
         plot_->setBufferDevicePixelRatio(ratio);
+        onPage_ = false;
         plot_->replot(QCustomPlot::rpImmediateRefresh);
         for (int round = 0; round < kLayoutRounds && !zoomed_ && fitToLayout(*plot_); ++round)
             plot_->replot(QCustomPlot::rpImmediateRefresh);
@@ -397,7 +408,10 @@ void PlotPanel::exportCsv(const QString& path) const {
 }
 
 void PlotPanel::copyToClipboard() {
-    QApplication::clipboard()->setPixmap(plot_->toPixmap());
+    // The clipboard takes the figure as a page shows it: light, whatever the screen's theme.
+    QPixmap figure;
+    offScreen([&] { figure = plot_->toPixmap(); });
+    QApplication::clipboard()->setPixmap(figure);
 }
 
 namespace {

@@ -77,6 +77,8 @@ signals:
 
 protected:
     bool eventFilter(QObject* watched, QEvent* event) override;
+    /// A new palette (a dark desktop theme) redraws the plot in its ink.
+    void changeEvent(QEvent* event) override;
 
 private:
     /// Before the first zoom or pan: keeps the plot's own ranges for resetView().
@@ -104,6 +106,7 @@ private:
     QTimer replotTimer_;
     bool dirty_ = false;
     bool zoomed_ = false;
+    bool onPage_ = false;  ///< laid out for an export: light ink
     std::function<void(QCustomPlot&)> rebuild_;
     QList<QPair<QCPAxis*, QPair<double, double>>> home_;  ///< each axis's own range
     QPointer<QCPItemTracer> tracer_;  ///< the figure's code may clear the items: guarded

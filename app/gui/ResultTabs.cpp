@@ -6,6 +6,7 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QPushButton>
+#include <QScrollBar>
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <cmath>
@@ -40,13 +41,21 @@ void fillConfusion(QTableWidget* table, const RecognitionConfusion& confusion, b
             auto* cell = new QTableWidgetItem(QString::number(count));
             cell->setToolTip(
                 QObject::tr("%1 path(s) of the %2 named %3").arg(count).arg(names[a], names[b]));
-            if (a != b && count > 0) cell->setBackground(QColor(255, 220, 200));
+            if (a != b && count > 0) {
+                cell->setBackground(QColor(255, 220, 200));
+                cell->setForeground(QColor(Qt::black));  // readable in a dark theme too
+            }
             table->setItem(a, b, cell);
         }
     // The shapes' names whole: columns as wide as their names, never elided.
     table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
     table->verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
     table->setTextElideMode(Qt::ElideNone);
+    // As tall as its rows up to eight shapes; more scroll.
+    table->setMaximumHeight(table->horizontalHeader()->sizeHint().height() +
+                            8 * table->verticalHeader()->defaultSectionSize() +
+                            table->horizontalScrollBar()->sizeHint().height() +
+                            2 * table->frameWidth());
 }
 
 QString recognitionHint() {
@@ -113,10 +122,14 @@ RecognitionTab::RecognitionTab(QWidget* parent) : QSplitter(Qt::Vertical, parent
         *table = new QTableWidget;
         (*table)->setObjectName(name);
         (*table)->setEditTriggers(QAbstractItemView::NoEditTriggers);
+        // As tall as its rows: the figure above takes the rest of the height.
+        (*table)->setSizeAdjustPolicy(QAbstractScrollArea::AdjustToContents);
+        (*table)->setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Fixed);
         column->addWidget(*title);
-        column->addWidget(*table, 1);
+        column->addWidget(*table);
         confusionRow->addLayout(column, 1);
     }
+    confusionBox->setSizePolicy(QSizePolicy::Preferred, QSizePolicy::Maximum);
     addWidget(confusionBox);
     setStretchFactor(0, 4);
     figure_->setEmptyHint(recognitionHint());

@@ -162,10 +162,12 @@ void SeedsTab::addSeed(const SeedOutcome& o) {
     const bool lostActive = o.activeCompleted < o.activeTrials,
                misnamedRaw = o.recognisedRaw() < o.recognitionTrials();
     if (o.failed() || lostActive || misnamedRaw)
-        for (int c = 0; c < table_->columnCount(); ++c)
+        for (int c = 0; c < table_->columnCount(); ++c) {
             table_->item(row, c)->setBackground(o.failed()   ? QColor(225, 225, 225)
                                                 : lostActive ? QColor(255, 235, 230)
                                                              : QColor(255, 246, 214));
+            table_->item(row, c)->setForeground(QColor(Qt::black));  // read in a dark theme too
+        }
     table_->scrollToBottom();
     buildSeedRatesFigure(plot_->plot(), rates_, experiment_, true);
     plot_->requestReplot();

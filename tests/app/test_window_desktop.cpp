@@ -493,6 +493,72 @@ private slots:
         }
     }
 
+    void plotsFollowADarkThemeAndExportOnWhite() {
+        PlotPanel panel("dark_plot");
+        QCustomPlot& plot = panel.plot();
+        QCPGraph* g = plot.addGraph();
+        g->setName("active");
+        const QColor blue(31, 119, 180);
+        g->setPen(QPen(blue, 2));
+        g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, Qt::black, Qt::white, 6));
+        g->setData({0, 1, 2}, {1, 3, 2});
+        plot.xAxis->setLabel("time (s)");
+        plot.legend->setVisible(true);
+        auto* note = new QCPItemText(&plot);
+        note->setText("valid range");
+        note->position->setCoords(1, 2.5);
+        plot.rescaleAxes();
+        panel.resize(500, 360);
+        QPalette dark;
+        dark.setColor(QPalette::Window, QColor(40, 40, 40));
+        dark.setColor(QPalette::WindowText, QColor(230, 230, 230));
+        dark.setColor(QPalette::Base, QColor(30, 30, 30));
+        dark.setColor(QPalette::Text, QColor(230, 230, 230));
+        panel.setPalette(dark);
+        panel.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&panel));
+        plot.replot(QCustomPlot::rpImmediateRefresh);
+        auto lightness = [](const QColor& c) { return c.lightnessF(); };
+        const QImage screen = plot.grab().toImage();
+        // Dark ink: the page, the texts, the legend and the outlines turned; the series kept.
+        QVERIFY2(lightness(screen.pixelColor(3, 3)) < 0.25,
+                 qPrintable(screen.pixelColor(3, 3).name()));
+        QVERIFY(lightness(plot.xAxis->labelColor()) > 0.8);
+        QVERIFY(lightness(plot.xAxis->basePen().color()) > 0.8);
+        QVERIFY(lightness(plot.legend->brush().color()) < 0.25);
+        QVERIFY2(lightness(plot.legend->item(0)->textColor()) > 0.8,
+                 qPrintable(plot.legend->item(0)->textColor().name()));
+        QVERIFY(lightness(note->color()) > 0.8);
+        QVERIFY(lightness(g->scatterStyle().pen().color()) > 0.8);
+        QCOMPARE(g->pen().color(), blue);
+        // A figure drawn anew (its page set white, a part added) is drawn dark too.
+        plot.setBackground(Qt::white);
+        auto* added = new QCPItemText(&plot);
+        added->setText("added");
+        added->position->setCoords(0.5, 1.5);
+        plot.replot(QCustomPlot::rpImmediateRefresh);
+        QVERIFY(lightness(plot.grab().toImage().pixelColor(3, 3)) < 0.25);
+        QVERIFY(lightness(added->color()) > 0.8);
+        plot.removeItem(added);
+        plot.replot(QCustomPlot::rpImmediateRefresh);
+        QCOMPARE(plot.grab().toImage(), screen);
+        // An export is a white page in light ink, and leaves the screen as it was.
+        const QString base = dir_.filePath("dark_plot");
+        panel.exportTo(base, {"png"}, FigureSize::physical(89, 60, 150));
+        const QImage page(base + ".png");
+        QVERIFY(!page.isNull());
+        QCOMPARE(page.pixelColor(2, 2), QColor(Qt::white));
+        QCOMPARE(plot.grab().toImage(), screen);
+        // A light palette again: every colour back exactly as the figure's code set it.
+        panel.setPalette(QApplication::palette());
+        QTRY_COMPARE(plot.xAxis->labelColor(), QColor(Qt::black));
+        QCOMPARE(g->scatterStyle().pen().color(), QColor(Qt::black));
+        QCOMPARE(g->scatterStyle().brush().color(), QColor(Qt::white));
+        QCOMPARE(note->color(), QColor(Qt::black));
+        QCOMPARE(plot.legend->brush().color(), QColor(Qt::white));
+        QCOMPARE(plot.legend->item(0)->textColor(), QColor(Qt::black));
+    }
+
     void theLiveViewPausesAndDrawsTheFingertip() {
         // The window's live view knows the scene's fingertip and its reflex threshold.
         const SceneSpec scene =

@@ -21,7 +21,27 @@ private slots:
         QVERIFY(compare && first && last);
         QVERIFY(compare->isEnabled());
         QSignalSpy ended(window_.get(), &MainWindow::runEnded);
-        QVERIFY(window_->startComparison(sourceFile("experiments/paper_kernel.json"), 3, 4));
+        // Chosen B, the window asks before running both over the seeds: No runs nothing.
+        const QString kernel = sourceFile("experiments/paper_kernel.json");
+        QString asked;
+        auto answer = [&](QMessageBox::StandardButton button) {
+            QTimer::singleShot(50, this, [&asked, button] {
+                auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+                if (!box) return;
+                asked = box->objectName() + ": " + box->text();
+                box->button(button)->click();
+            });
+        };
+        answer(QMessageBox::No);
+        QVERIFY(!window_->confirmComparison(kernel, 3, 4));
+        QVERIFY2(asked.startsWith("compareQuestion: Compare paper (A, as shown) with "
+                                  "paper_kernel.json (B) on seeds 3-4?") &&
+                     asked.contains("That is 4 whole runs"),
+                 qPrintable(asked));
+        QVERIFY(!window_->running());
+        QVERIFY(compare->isEnabled());
+        answer(QMessageBox::Yes);
+        QVERIFY(window_->confirmComparison(kernel, 3, 4));
         QVERIFY(!compare->isEnabled());  // one run at a time
         QCOMPARE(window_->tabs()->currentWidget(), tab);
         QCOMPARE(first->value(), 3);  // the boxes show the seeds being compared
