@@ -11,8 +11,8 @@
 #include <QVBoxLayout>
 
 #include "app/figures/CalibrationFigures.h"
-#include "app/gui/WholeFile.h"
 #include "app/gui/PlotTheme.h"
+#include "app/gui/WholeFile.h"
 #include "core/records/TapCsv.h"
 #include "qcustomplot.h"
 

@@ -5,6 +5,7 @@
 #include <QLabel>
 #include <QPushButton>
 #include <QSplitter>
+#include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <algorithm>
@@ -64,24 +65,26 @@ ComparisonTab::ComparisonTab(QWidget* parent) : QWidget(parent) {
     pair_->setEmptyHint(
         tr("Double-click a trial above, or select it and click Show the trial in both: that "
            "seed runs again in both experiments and the trial's two paths are drawn here."));
-    auto* tableColumn = new QWidget;
-    auto* tableLayout = new QVBoxLayout(tableColumn);
+    // The trials take the left column's height; the differences and the trial in both share
+    // the right one as two tabs (showing a trial brings its tab forward).
+    auto* left = new QWidget;
+    auto* tableLayout = new QVBoxLayout(left);
     tableLayout->setContentsMargins(0, 0, 0, 0);
     tableLayout->addWidget(table_, 1);
     tableLayout->addWidget(showPair_, 0, Qt::AlignLeft);
-    auto* left = new QSplitter(Qt::Vertical);
-    left->addWidget(tableColumn);
-    left->addWidget(pair_);
-    left->setSizes({400, 500});
 
     plot_ = new PlotPanel("compare");
     plot_->setEmptyHint(
         tr("Choose the seeds above and click Compare with...: each part of the "
            "result's difference between the two experiments appears here with "
            "its interval."));
+    figures_ = new QTabWidget;
+    figures_->setObjectName("comparisonFigures");
+    figures_->addTab(plot_, tr("Differences"));
+    figures_->addTab(pair_, tr("The trial in both"));
     auto* split = new QSplitter(Qt::Horizontal);
     split->addWidget(left);
-    split->addWidget(plot_);
+    split->addWidget(figures_);
     split->setSizes({560, 840});
     layout->addWidget(split, 1);
 }
@@ -108,6 +111,7 @@ void ComparisonTab::requestPair(int row) {
 void ComparisonTab::showTrialPair(const TrialPairRun& pair) {
     buildTrialPairFigure(pair_->plot(), pair);
     pair_->requestReplot();
+    figures_->setCurrentWidget(pair_);
 }
 
 void ComparisonTab::begin(const QString& a, const QString& b, std::uint64_t first,
@@ -116,6 +120,7 @@ void ComparisonTab::begin(const QString& a, const QString& b, std::uint64_t firs
     running_ = true;
     seedsPlanned_ = static_cast<int>(last - first + 1);
     compare_->setEnabled(false);
+    figures_->setCurrentWidget(plot_);
     table_->setRowCount(0);
     updatePairButton();
     pair_->plot().clearItems();

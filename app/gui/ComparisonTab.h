@@ -13,6 +13,7 @@
 class QLabel;
 class QPushButton;
 class QTableWidget;
+class QTabWidget;
 
 namespace activetouch {
 
@@ -74,6 +75,7 @@ private:
     QString summaryText_;
     QTableWidget* table_;
     PlotPanel *plot_, *pair_;
+    QTabWidget* figures_;  ///< the differences and the trial in both
 };
 
 }  // namespace activetouch

@@ -11,8 +11,8 @@
 #include "app/gui/LiveFeed.h"
 #include "core/run/ExperimentRun.h"
 #include "core/scene/Scene.h"
-#include "devices/rigs/RigAssembly.h"
 #include "devices/common/DeviceWorker.h"
+#include "devices/rigs/RigAssembly.h"
 
 namespace activetouch {
 

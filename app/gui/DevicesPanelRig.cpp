@@ -1,7 +1,5 @@
 // The devices panel's rig: read from and written to rig files, shown in the panel, and read
 // back as the devices chosen (DevicesPanel.h).
-#include "app/gui/DevicesPanel.h"
-
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
@@ -18,6 +16,7 @@
 #include <QSpinBox>
 #include <QVBoxLayout>
 
+#include "app/gui/DevicesPanel.h"
 #include "app/gui/ScrolledColumn.h"
 #include "app/gui/WholeFile.h"
 #include "devices/nxt/NxtUsbTransport.h"

@@ -1,7 +1,5 @@
 // The protocol panel and its experiment: the document shown in the fields, and the fields written
 // back as a patch of the document (ProtocolPanel.h).
-#include "app/gui/ProtocolPanel.h"
-
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
@@ -19,6 +17,7 @@
 #include <cmath>
 #include <map>
 
+#include "app/gui/ProtocolPanel.h"
 #include "app/gui/ScrolledColumn.h"
 #include "core/classify/HistogramClassifier.h"
 

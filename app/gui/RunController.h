@@ -8,10 +8,10 @@
 #include <memory>
 
 #include "app/gui/LiveFeed.h"
-#include "core/run/ExperimentRun.h"
-#include "core/run/RecordedRuns.h"
 #include "core/analysis/PairedComparison.h"
 #include "core/analysis/SeedRates.h"
+#include "core/run/ExperimentRun.h"
+#include "core/run/RecordedRuns.h"
 
 namespace activetouch {
 

@@ -107,6 +107,9 @@ private slots:
                      tab->table()->item(0, column)->text());
         QCustomPlot& pairPlot = tab->pairPanel()->plot();
         QTRY_VERIFY(!tab->pairPanel()->showsEmptyHint());
+        // Its tab comes forward beside the table.
+        QCOMPARE(tab->findChild<QTabWidget*>("comparisonFigures")->currentWidget(),
+                 tab->pairPanel());
         QStringList drawn;
         for (int i = 0; i < pairPlot.plottableCount(); ++i) {
             auto* curve = qobject_cast<QCPCurve*>(pairPlot.plottable(i));
