@@ -95,11 +95,14 @@ CalibrationDialog::CalibrationDialog(const ExperimentSpec& spec, const QString& 
     });
     layout->addWidget(buttons);
     resize(1200, 860);
+    startFit();
+}
 
+void CalibrationDialog::startFit() {
     // The fit runs off the window's thread on its own copies; a dialog closed meanwhile is not
     // told.
     const QPointer<CalibrationDialog> self(this);
-    worker_ = std::thread([self, spec, path = recording.toStdString()] {
+    worker_ = std::thread([self, spec = spec_, path = recording_.toStdString()] {
         std::shared_ptr<SceneFit> fit;
         QString problem;
         Figure6Comparison figure6;

@@ -39,6 +39,8 @@ signals:
     void fitFinished(bool ok);
 
 private:
+    /// Starts the fit on its own thread; showFit() gets its result.
+    void startFit();
     void showFit(std::shared_ptr<SceneFit> fit, std::shared_ptr<Figure6Comparison> figure6,
                  const QString& problem);
 
