@@ -1,5 +1,7 @@
 #include "core/classify/BeliefCalibration.h"
 
+#include <boost/math/tools/minima.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -84,28 +86,12 @@ double scaledTopPosterior(const double* ll, int count, double scale, int* top) {
 
 namespace {
 
-// Golden-section search for the least of f over [a, b].
+// The least of f over [a, b], to within about 2^-bits of its place (Brent's method: golden-section
+// steps where parabolic ones would not shrink the bracket), as Boost.Math finds it.
 template <class F>
-double goldenMinimum(F f, double a, double b, double tolerance) {
-    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-    double x1 = b - g * (b - a), x2 = a + g * (b - a);
-    double f1 = f(x1), f2 = f(x2);
-    for (int i = 0; i < 200 && b - a > tolerance; ++i) {
-        if (f1 <= f2) {
-            b = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = b - g * (b - a);
-            f1 = f(x1);
-        } else {
-            a = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = a + g * (b - a);
-            f2 = f(x2);
-        }
-    }
-    return 0.5 * (a + b);
+double leastOf(F f, double a, double b, int bits) {
+    std::uintmax_t evaluations = 200;
+    return boost::math::tools::brent_find_minima(f, a, b, bits, evaluations).first;
 }
 
 // The held-out taps made ready for many scales: each tap's log-likelihoods less its largest (NaN
@@ -165,8 +151,8 @@ double fitLogLikelihoodScale(const std::vector<std::vector<double>>& ll,
     const ScaledTaps taps(ll, truth);
     return std::pow(
         10.0,
-        goldenMinimum([&](double x) { return meanNegativeLogPosterior(taps, std::pow(10.0, x)); },
-                      -8.0, 0.0, 1e-6));
+        leastOf([&](double x) { return meanNegativeLogPosterior(taps, std::pow(10.0, x)); }, -8.0,
+                0.0, 20));
 }
 
 BeliefScaling fitBeliefScaling(const std::vector<std::vector<double>>& ll,
@@ -186,19 +172,19 @@ BeliefScaling fitBeliefScaling(const std::vector<std::vector<double>>& ll,
             for (double q : p) sum -= std::log((1.0 - e) * q + e * evenShare);
             return sum / static_cast<double>(p.size());
         };
-        const double e = goldenMinimum(nll, 0.0, 0.99, 1e-5);
+        const double e = leastOf(nll, 0.0, 0.99, 17);
         // The search's ends are not probed: keep no floor where none does better.
         const double withFloor = nll(e), without = nll(0.0);
         *cost = std::min(withFloor, without);
         return withFloor < without ? e : 0.0;
     };
-    const double logScale = goldenMinimum(
+    const double logScale = leastOf(
         [&](double x) {
             double cost = 0.0;
             floorFor(std::pow(10.0, x), &cost);
             return cost;
         },
-        -8.0, 0.0, 1e-4);
+        -8.0, 0.0, 14);
     best.scale = std::pow(10.0, logScale);
     double cost = 0.0;
     best.floor = floorFor(best.scale, &cost);
