@@ -1,8 +1,7 @@
 #include "core/classify/BeliefCalibration.h"
 
-#include <boost/math/tools/minima.hpp>
-
 #include <algorithm>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -150,9 +149,8 @@ double fitLogLikelihoodScale(const std::vector<std::vector<double>>& ll,
     // unimodal in it.
     const ScaledTaps taps(ll, truth);
     return std::pow(
-        10.0,
-        leastOf([&](double x) { return meanNegativeLogPosterior(taps, std::pow(10.0, x)); }, -8.0,
-                0.0, 20));
+        10.0, leastOf([&](double x) { return meanNegativeLogPosterior(taps, std::pow(10.0, x)); },
+                      -8.0, 0.0, 20));
 }
 
 BeliefScaling fitBeliefScaling(const std::vector<std::vector<double>>& ll,

@@ -201,17 +201,27 @@ void HistogramClassifier::buildScreening() {
         }
 }
 
+namespace {
+
+// The largest value, NaN left out (as std::max(m, v) leaves it): several to an instruction.
+ACTIVETOUCH_AVX2_CLONES double largest(const double* v, int n) {
+    double m = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < n; ++i) m = v[i] > m ? v[i] : m;
+    return m;
+}
+
+}  // namespace
+
 int argmaxLowestIndex(const double* v, int n) {
-    int best = -1;
+    // The largest found several to an instruction; the answer is then the first value within the
+    // tolerance of it (the largest itself if none comes before it). A comparison with NaN is
+    // false: NaN never wins.
+    const double m = largest(v, n);
+    const double floor =
+        std::isfinite(m) ? m - kTieTolerance * std::max(1.0, std::abs(m)) : m;  // +-inf: itself
     for (int i = 0; i < n; ++i)
-        if (!std::isnan(v[i]) && (best < 0 || v[i] > v[best])) best = i;
-    if (best < 0) return 0;
-    const double m = v[best];
-    if (!std::isfinite(m)) return best;
-    const double floor = m - kTieTolerance * std::max(1.0, std::abs(m));
-    for (int i = 0; i < best; ++i)
-        if (!std::isnan(v[i]) && v[i] >= floor) return i;
-    return best;
+        if (v[i] >= floor) return i;
+    return 0;  // every value NaN
 }
 
 namespace {
@@ -234,13 +244,6 @@ ACTIVETOUCH_AVX2_CLONES double expSum(const double* v, int n, double scale, doub
         sum[0] += x > kExpFloor ? e : 0.0;
     }
     return (sum[0] + sum[1]) + (sum[2] + sum[3]);
-}
-
-// The largest value, NaN left out (as std::max(m, v) leaves it): several to an instruction.
-ACTIVETOUCH_AVX2_CLONES double largest(const double* v, int n) {
-    double m = -std::numeric_limits<double>::infinity();
-    for (int i = 0; i < n; ++i) m = v[i] > m ? v[i] : m;
-    return m;
 }
 
 }  // namespace
@@ -275,6 +278,42 @@ HistogramClassifier::Decision HistogramClassifier::decide(const Tap& tap) const 
     d.posterior =
         std::exp(scores[static_cast<std::size_t>(d.cls)] - logSumExp(scores.data(), classes_));
     return d;
+}
+
+void HistogramClassifier::exactSums(const std::size_t* classes, std::size_t count,
+                                    const std::uint32_t* cells, const std::int32_t* counts,
+                                    std::size_t distinct, double* out) const {
+    const std::size_t cellsTotal =
+        static_cast<std::size_t>(taxels_) * static_cast<std::size_t>(bins_);
+    thread_local std::vector<double> weight;
+    weight.resize(distinct);
+    for (std::size_t i = 0; i < distinct; ++i) weight[i] = static_cast<double>(counts[i]);
+    const double* w = weight.data();
+    auto rowOf = [&](std::size_t k) { return logTableByClass_.data() + classes[k] * cellsTotal; };
+    // Four classes at a time: four running sums, so that each addition need not wait for the
+    // last; each class's sum keeps its own order.
+    std::size_t k = 0;
+    for (; k + 4 <= count; k += 4) {
+        const double *r0 = rowOf(k), *r1 = rowOf(k + 1), *r2 = rowOf(k + 2), *r3 = rowOf(k + 3);
+        double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0;
+        for (std::size_t i = 0; i < distinct; ++i) {
+            const std::uint32_t cell = cells[i];
+            a0 += w[i] * r0[cell];
+            a1 += w[i] * r1[cell];
+            a2 += w[i] * r2[cell];
+            a3 += w[i] * r3[cell];
+        }
+        out[classes[k]] = a0;
+        out[classes[k + 1]] = a1;
+        out[classes[k + 2]] = a2;
+        out[classes[k + 3]] = a3;
+    }
+    for (; k < count; ++k) {
+        const double* row = rowOf(k);
+        double acc = 0.0;
+        for (std::size_t i = 0; i < distinct; ++i) acc += w[i] * row[cells[i]];
+        out[classes[k]] = acc;
+    }
 }
 
 }  // namespace activetouch

@@ -120,6 +120,11 @@ public:
     Decision decide(const Tap& tap) const;
 
 private:
+    /// The exact log-likelihoods of `classes` (count of them) from a tap's distinct cells and
+    /// their counts, into out[class]: each summed in the same order and operations as
+    /// logLikelihoods(), so the same bits.
+    void exactSums(const std::size_t* classes, std::size_t count, const std::uint32_t* cells,
+                   const std::int32_t* counts, std::size_t distinct, double* out) const;
     /// The tap's distinct (taxel, bin) cells in ascending order with their sample counts, in
     /// thread-local buffers; returns how many. The cell after the last names the screening
     /// table's zero row.

@@ -476,16 +476,11 @@ int HistogramClassifier::screenedScores(const Tap& tap, double marginNats, bool 
     }
     // The classes within are summed exactly, in the same order and operations as
     // logLikelihoods().
-    const std::size_t cellsTotal =
-        static_cast<std::size_t>(taxels_) * static_cast<std::size_t>(bins_);
-    for (std::size_t c = 0; c < C; ++c) {
-        if (sums[c] < floor) continue;
-        const double* row = logTableByClass_.data() + c * cellsTotal;
-        double acc = 0.0;
-        for (std::size_t i = 0; i < distinct; ++i)
-            acc += static_cast<double>(counts[i]) * row[cells[i]];
-        out[c] = acc;
-    }
+    thread_local std::vector<std::size_t> within;
+    within.clear();
+    for (std::size_t c = 0; c < C; ++c)
+        if (sums[c] >= floor) within.push_back(c);
+    exactSums(within.data(), within.size(), cells, counts, distinct, out);
     return -1;
 }
 
