@@ -41,8 +41,11 @@ inline float expWeight(float x) {
 // -infinity and gets 0): several classes to an instruction, the same in either clone.
 ACTIVETOUCH_AVX2_CLONES void edgeWeights(const double* ll, int n, double temperature, double top,
                                          double* out) {
+    // Times the temperature's reciprocal: a rounding apart from the quotient, far below the
+    // single-precision exponential's own.
+    const double inverse = 1.0 / temperature;
     for (int c = 0; c < n; ++c) {
-        const double x = ll[c] / temperature - top;
+        const double x = ll[c] * inverse - top;
         const double e = expWeight(static_cast<float>(x < -50.0 ? -50.0 : x));
         out[c] = x < -50.0 ? 0.0 : e;
     }
@@ -102,6 +105,39 @@ ACTIVETOUCH_AVX2_CLONES double weightSum(const double* w, int n) {
     return (sums[0] + sums[1]) + (sums[2] + sums[3]);
 }
 
+// Each orientation's edge weight (its classes' weights, 0 off an edge) and its positions'
+// weighted sum (class = orientation * positions + position - 1). Four orientations at a time, in
+// running sums of their own, so that an addition need not wait for the last; each orientation's
+// sums keep the order of its positions.
+void orientationSums(const double* w, const double* isEdge, int n, int positions, double* weight,
+                     double* positionSum) {
+    int o = 0;
+    for (; (o + 4) * positions <= n; o += 4) {
+        double a[4] = {0.0, 0.0, 0.0, 0.0}, b[4] = {0.0, 0.0, 0.0, 0.0};
+        for (int p = 0; p < positions; ++p)
+            for (int j = 0; j < 4; ++j) {
+                const int c = (o + j) * positions + p;
+                const double wc = w[c] * isEdge[c];
+                a[j] += wc;
+                b[j] += wc * (p + 1);
+            }
+        for (int j = 0; j < 4; ++j) {
+            weight[o + j] = a[j];
+            positionSum[o + j] = b[j];
+        }
+    }
+    for (; o * positions < n; ++o) {
+        double a = 0.0, b = 0.0;
+        for (int c = o * positions, p = 0; c < std::min(n, (o + 1) * positions); ++c, ++p) {
+            const double wc = w[c] * isEdge[c];
+            a += wc;
+            b += wc * (p + 1);
+        }
+        weight[o] = a;
+        positionSum[o] = b;
+    }
+}
+
 }  // namespace
 
 ContinuousEdge continuousEdge(const ClassSet& classes, const double* logLikelihoods,
@@ -127,13 +163,14 @@ ContinuousEdge continuousEdge(const ClassSet& classes, const double* logLikeliho
     const int positions = std::max(1, classes.positions);
     const double* isEdge = edgeMask(classes).data();
     const std::vector<Vec2>& normals = orientationNormals(classes.orientationsDeg);
-    for (int c0 = 0, o = 0; c0 < n; c0 += positions, ++o) {
-        double orientationWeight = 0.0, positionSum = 0.0;
-        for (int c = c0, position = 1; c < std::min(n, c0 + positions); ++c, ++position) {
-            const double wc = w[c] * isEdge[c];  // the weight, or 0 off an edge
-            orientationWeight += wc;
-            positionSum += wc * position;
-        }
+    const int orientations = (n + positions - 1) / positions;
+    thread_local std::vector<double> weightOf, positionSumOf;
+    weightOf.assign(static_cast<std::size_t>(orientations), 0.0);
+    positionSumOf.assign(static_cast<std::size_t>(orientations), 0.0);
+    orientationSums(w, isEdge, n, positions, weightOf.data(), positionSumOf.data());
+    for (int o = 0; o < orientations; ++o) {
+        const double orientationWeight = weightOf[static_cast<std::size_t>(o)];
+        const double positionSum = positionSumOf[static_cast<std::size_t>(o)];
         if (orientationWeight <= 0.0) continue;
         edge += orientationWeight;
         sx += orientationWeight * normals[static_cast<std::size_t>(o)].x;
