@@ -198,13 +198,35 @@ double expectedCalibrationErrorIfCalibrated(const std::vector<double>& confidenc
         state = state * 6364136223846793005ULL + 1442695040888963407ULL;
         return static_cast<double>(state >> 11) * 0x1p-53;
     };
+    // What expectedCalibrationError() works out from the confidences alone, once: each tap's
+    // bin, each bin's taps and mean confidence. A draw then only counts each bin's right taps.
+    std::vector<ReliabilityBin> b;
+    const std::vector<bool> none(confidence.size(), false);
+    expectedCalibrationError(confidence, none, bins, &b);
+    std::vector<std::size_t> binOf(confidence.size());
+    std::vector<double> clamped(confidence.size());
+    for (std::size_t t = 0; t < confidence.size(); ++t) {
+        const double c = std::isfinite(confidence[t]) ? std::clamp(confidence[t], 0.0, 1.0) : 0.0;
+        binOf[t] =
+            std::min(b.size() - 1, static_cast<std::size_t>(c * static_cast<double>(b.size())));
+        clamped[t] = std::clamp(confidence[t], 0.0, 1.0);
+    }
     constexpr int kDraws = 400;
-    std::vector<bool> right(confidence.size());
+    std::vector<double> right(b.size());
     double sum = 0.0;
     for (int d = 0; d < kDraws; ++d) {
+        std::fill(right.begin(), right.end(), 0.0);
         for (std::size_t t = 0; t < confidence.size(); ++t)
-            right[t] = uniform() < std::clamp(confidence[t], 0.0, 1.0);
-        sum += expectedCalibrationError(confidence, right, bins);
+            right[binOf[t]] += uniform() < clamped[t] ? 1.0 : 0.0;
+        // As expectedCalibrationError() sums it: bin by bin, then over the taps.
+        double ece = 0.0;
+        int total = 0;
+        for (std::size_t i = 0; i < b.size(); ++i) {
+            if (b[i].taps == 0) continue;
+            ece += b[i].taps * std::abs(right[i] / b[i].taps - b[i].meanConfidence);
+            total += b[i].taps;
+        }
+        sum += total > 0 ? ece / total : 0.0;
     }
     return sum / kDraws;
 }
