@@ -51,7 +51,10 @@ namespace {
 int refuseShards(const ShardsToRerun& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     std::string list;
-    for (const int k : e.shards()) list += (list.empty() ? "" : ",") + std::to_string(k);
+    for (const int k : e.shards()) {
+        if (!list.empty()) list += ',';
+        list += std::to_string(k);
+    }
     std::fprintf(stderr, "rerun shards: %s\n", list.c_str());
     return kBadInput;
 }
