@@ -12,6 +12,12 @@
 
 namespace activetouch {
 
+QSizeF textSize(const QCPItemText& label) {
+    return QFontMetricsF(label.font())
+        .boundingRect(QRectF(), Qt::TextDontClip, label.text())
+        .size();
+}
+
 /// `text` broken into lines at spaces so that none is wider than `room` pixels in `font` (a word
 /// wider than the room keeps its own line).
 QString wrapped(const QString& text, const QFont& font, double room) {

@@ -3,15 +3,20 @@
 // (FigureReflow.h): titles, captions and axis labels wrapped, tick labels thinned; and
 // fitToLayout (FigureExport.h), which runs every fit.
 #include <QFont>
+#include <QSizeF>
 #include <QString>
 
 class QCPAbstractPlottable;
+class QCPItemText;
 
 namespace activetouch {
 
 /// `text` broken into lines at spaces so that none is wider than `room` pixels in `font` (a word
 /// wider than the room keeps its own line).
 QString wrapped(const QString& text, const QFont& font, double room);
+
+/// The size of a text item's text in its font, on its lines (its padding not included).
+QSizeF textSize(const QCPItemText& label);
 
 /// A plottable's name as the figure's code gave it: a legend inside a narrow panel shows it
 /// wrapped over lines.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "app/figures/FigureFitting.h"
 #include "qcustomplot.h"
 
 namespace activetouch {
@@ -31,10 +32,7 @@ double widthNeeded(QCPLayoutElement* e) {
         for (int i = 0; i < plot->itemCount(); ++i)
             if (auto* label = qobject_cast<QCPItemText*>(plot->item(i));
                 label && label->property("headroomOver").value<QObject*>() == rect)
-                need = std::max(need, m.left() + m.right() + 8.0 +
-                                          QFontMetricsF(label->font())
-                                              .boundingRect(QRectF(), 0, label->text())
-                                              .width());
+                need = std::max(need, m.left() + m.right() + 8.0 + textSize(*label).width());
         for (QCPLayoutElement* inset : rect->insetLayout()->elements(false))
             if (auto* legend = qobject_cast<QCPLegend*>(inset);
                 legend && legend->visible() && legend->itemCount() > 0)
@@ -249,8 +247,7 @@ bool fitHeadroom(QCustomPlot& plot) {
         if (!rect || rect->height() <= 0) continue;
         // Centred where it was asked, but inside the panel however wide it is.
         QCPAxis* across = rect->axis(QCPAxis::atBottom);
-        const double width =
-            QFontMetricsF(label->font()).boundingRect(QRectF(), 0, label->text()).width() + 4.0;
+        const double width = textSize(*label).width() + 4.0;
         const double asked = across->coordToPixel(label->property("headroomCentre").toDouble());
         const double centre = width >= rect->width() ? rect->center().x()
                                                      : std::clamp(asked, rect->left() + width / 2,

@@ -1,10 +1,10 @@
-#include <QFontMetricsF>
 #include <QLineF>
 #include <QMap>
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "app/figures/FigureFitting.h"
 #include "app/figures/FigureReflow.h"
 #include "qcustomplot.h"
 
@@ -129,9 +129,7 @@ bool placePointLabels(QCustomPlot& plot) {
         Obstacles o = obstaclesIn(it.key());
         for (QCPItemText* label : it.value()) {
             const QPointF at = label->position->pixelPosition();
-            const QSizeF size = QFontMetricsF(label->font())
-                                    .boundingRect(QRectF(), Qt::TextDontClip, label->text())
-                                    .size();
+            const QSizeF size = textSize(*label);
             const Qt::Alignment was = label->positionAlignment();
             const bool wasShown = label->visible();
             bool placed = false;

@@ -226,11 +226,7 @@ QString PlotPanel::traceAt(const QPointF& pos) {
     cursorLabel_->setText(text);
     cursorLabel_->setClipToAxisRect(false);
     // Beside the cursor, kept whole inside the plot.
-    const QMargins pad = cursorLabel_->padding();
-    const QSizeF size = QFontMetricsF(cursorLabel_->font())
-                            .boundingRect(QRectF(), Qt::AlignLeft | Qt::TextDontClip, text)
-                            .size() +
-                        QSizeF(pad.left() + pad.right() + 2, pad.top() + pad.bottom() + 2);
+    const QSizeF size = textSize(*cursorLabel_).grownBy(cursorLabel_->padding()) + QSizeF(2, 2);
     cursorLabel_->position->setCoords(readoutPlace(plot_->rect(), pos, size).topLeft());
     cursorLabel_->setVisible(true);
     plot_->layer("overlay")->replot();
@@ -278,10 +274,7 @@ void PlotPanel::offScreen(const std::function<void()>& work) {
     const QRect viewport = plot_->viewport();
     const double ratio = plot_->bufferDevicePixelRatio();
     auto back = [&] {
-        if (rebuild_) {
-            plot_->resize(shown);
-            rebuild_(*plot_);
-        }
+        drawnFor(shown);
         // The work laid the plot out on a page of its own: its size, viewport and paint buffers
         // go back to the screen's, and the figure is refitted to them (a new size starts afresh,
         // so the screen shows what it showed).

@@ -9,7 +9,8 @@
 namespace activetouch {
 
 namespace {
-constexpr char kDarkInk[] = "darkInk";
+constexpr char kDarkInk[] = "darkInk";    ///< on the plot: the ink it was last put in
+constexpr char kLightInk[] = "lightInk";  ///< on a part in dark ink: its light ink, to go back to
 /// A dark plot's white is this light (0-1): the grey of a dark theme's view, not black.
 constexpr double kDarkest = 0.13;
 
@@ -20,25 +21,26 @@ bool neutral(const QColor& c) {
     return spread <= 24;
 }
 
+/// `c` at lightness `l` (0-1), its hue, saturation, alpha and spec kept.
+QColor withLightness(const QColor& c, double l) {
+    const QColor hsl = c.toHsl();
+    return QColor::fromHslF(hsl.hslHueF(), hsl.hslSaturationF(), std::clamp(l, 0.0, 1.0),
+                            hsl.alphaF())
+        .convertTo(c.spec());
+}
+
 /// Light ink to dark: lightness l to kDarkest + (1 - kDarkest)(1 - l).
 QColor darkened(const QColor& c) {
     if (!c.isValid() || !neutral(c)) return c;
-    const QColor hsl = c.toHsl();
-    const double to = kDarkest + (1.0 - kDarkest) * (1.0 - hsl.lightnessF());
-    QColor out = QColor::fromHslF(hsl.hslHueF(), hsl.hslSaturationF(), std::clamp(to, 0.0, 1.0),
-                                  hsl.alphaF());
-    return out.convertTo(c.spec());
+    return withLightness(c, kDarkest + (1.0 - kDarkest) * (1.0 - c.lightnessF()));
 }
 
 /// A text's colour (QCustomPlot's colour properties are all texts'): a neutral one turned, a
 /// dark coloured one lightened as much as it was dark, so that it reads on the dark page.
 QColor darkenedText(const QColor& c) {
     if (!c.isValid() || neutral(c)) return darkened(c);
-    const QColor hsl = c.toHsl();
-    if (hsl.lightnessF() >= 0.5) return c;
-    return QColor::fromHslF(hsl.hslHueF(), hsl.hslSaturationF(), 1.0 - hsl.lightnessF(),
-                            hsl.alphaF())
-        .convertTo(c.spec());
+    const double l = c.lightnessF();
+    return l >= 0.5 ? c : withLightness(c, 1.0 - l);
 }
 
 QPen darkened(QPen pen) {
@@ -116,7 +118,6 @@ QVariant darkOf(const QVariant& v) {
 
 /// Into dark ink, its light ink kept; back, the light ink put back as it was.
 void turnObject(QObject* object, bool toDark) {
-    constexpr char kLightInk[] = "lightInk";
     if (toDark) {
         const QVariantMap light = inkOf(object);
         QVariantMap dark;
@@ -137,13 +138,13 @@ bool isDarkPalette(const QPalette& palette) {
 }
 
 void setDarkInk(QCustomPlot& plot, bool dark) {
-    // Every part of a plot (axes, grids, layout elements, legends and their items, plottables,
-    // items) is a QObject child of the plot.
-    for (QCPLayerable* part : plot.findChildren<QCPLayerable*>()) {
-        if (part->property(kDarkInk).toBool() == dark) continue;
-        turnObject(part, dark);
-        part->setProperty(kDarkInk, dark);
-    }
+    // A plot never put in dark ink has every part in light ink: nothing to look at (the light
+    // theme's replots cost nothing). Every part of a plot (axes, grids, layout elements, legends
+    // and their items, plottables, items) is a QObject child of the plot; one in dark ink keeps
+    // its light ink.
+    if (!dark && !inDarkInk(plot)) return;
+    for (QCPLayerable* part : plot.findChildren<QCPLayerable*>())
+        if (part->property(kLightInk).isValid() != dark) turnObject(part, dark);
     // The figure's page is white (FigureLayout sets it with each figure drawn anew); dark, the
     // grey its white turns to.
     plot.setBackground(dark ? darkened(QColor(Qt::white)) : QColor(Qt::white));

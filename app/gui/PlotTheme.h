@@ -11,9 +11,9 @@ namespace activetouch {
 /// Whether `palette` is a dark one: its window colour darker than its text.
 bool isDarkPalette(const QPalette& palette);
 
-/// Puts every part of `plot` in dark (true) or light ink. Each part remembers which ink it is
-/// in, so a call turns only what needs turning (parts added since the last call included) and
-/// light → dark → light gives the colours back (to within one step of 255).
+/// Puts every part of `plot` in dark (true) or light ink. A part in dark ink keeps its light
+/// ink, so a call turns only what needs turning (parts added since the last call included) and
+/// light → dark → light gives every colour back exactly.
 void setDarkInk(QCustomPlot& plot, bool dark);
 
 /// Whether `plot` was last put in dark ink.

@@ -10,6 +10,32 @@
 
 namespace activetouch {
 
+namespace {
+
+/// A confidence as the reliability diagram reads it: clamped into [0, 1], 0 where not finite.
+double binned(double confidence) {
+    return std::isfinite(confidence) ? std::clamp(confidence, 0.0, 1.0) : 0.0;
+}
+
+/// The bin of `c` (binned()) among `bins` equal bins, 1 in the last.
+std::size_t binOf(double c, std::size_t bins) {
+    return std::min(bins - 1, static_cast<std::size_t>(c * static_cast<double>(bins)));
+}
+
+/// The tap-weighted mean gap between accuracy and confidence over bins whose means are set.
+double eceOf(const std::vector<ReliabilityBin>& b) {
+    double ece = 0.0;
+    int total = 0;
+    for (const auto& bin : b) {
+        if (bin.taps == 0) continue;
+        ece += bin.taps * std::abs(bin.accuracy - bin.meanConfidence);
+        total += bin.taps;
+    }
+    return total > 0 ? ece / total : 0.0;
+}
+
+}  // namespace
+
 double expectedCalibrationError(const std::vector<double>& confidence,
                                 const std::vector<bool>& correct, int bins,
                                 std::vector<ReliabilityBin>* out) {
@@ -20,24 +46,19 @@ double expectedCalibrationError(const std::vector<double>& confidence,
         b[i].hi = i + 1 == b.size() ? 1.0 : width * static_cast<double>(i + 1);
     }
     for (std::size_t t = 0; t < confidence.size() && t < correct.size(); ++t) {
-        const double c = std::isfinite(confidence[t]) ? std::clamp(confidence[t], 0.0, 1.0) : 0.0;
-        const auto i =
-            std::min(b.size() - 1, static_cast<std::size_t>(c * static_cast<double>(b.size())));
-        ++b[i].taps;
-        b[i].meanConfidence += c;
-        b[i].accuracy += correct[t] ? 1.0 : 0.0;
+        const double c = binned(confidence[t]);
+        ReliabilityBin& bin = b[binOf(c, b.size())];
+        ++bin.taps;
+        bin.meanConfidence += c;
+        bin.accuracy += correct[t] ? 1.0 : 0.0;
     }
-    double ece = 0.0;
-    int total = 0;
     for (auto& bin : b) {
         if (bin.taps == 0) continue;
         bin.meanConfidence /= bin.taps;
         bin.accuracy /= bin.taps;
-        ece += bin.taps * std::abs(bin.accuracy - bin.meanConfidence);
-        total += bin.taps;
     }
     if (out) *out = b;
-    return total > 0 ? ece / total : 0.0;
+    return eceOf(b);
 }
 
 void calibratedLogBelief(const double* ll, int count, const BeliefScaling& scaling, double* out) {
@@ -201,32 +222,20 @@ double expectedCalibrationErrorIfCalibrated(const std::vector<double>& confidenc
     // What expectedCalibrationError() works out from the confidences alone, once: each tap's
     // bin, each bin's taps and mean confidence. A draw then only counts each bin's right taps.
     std::vector<ReliabilityBin> b;
-    const std::vector<bool> none(confidence.size(), false);
-    expectedCalibrationError(confidence, none, bins, &b);
-    std::vector<std::size_t> binOf(confidence.size());
-    std::vector<double> clamped(confidence.size());
-    for (std::size_t t = 0; t < confidence.size(); ++t) {
-        const double c = std::isfinite(confidence[t]) ? std::clamp(confidence[t], 0.0, 1.0) : 0.0;
-        binOf[t] =
-            std::min(b.size() - 1, static_cast<std::size_t>(c * static_cast<double>(b.size())));
-        clamped[t] = std::clamp(confidence[t], 0.0, 1.0);
-    }
+    expectedCalibrationError(confidence, std::vector<bool>(confidence.size(), false), bins, &b);
+    std::vector<std::size_t> bin(confidence.size());
+    for (std::size_t t = 0; t < confidence.size(); ++t)
+        bin[t] = binOf(binned(confidence[t]), b.size());
     constexpr int kDraws = 400;
     std::vector<double> right(b.size());
     double sum = 0.0;
     for (int d = 0; d < kDraws; ++d) {
         std::fill(right.begin(), right.end(), 0.0);
         for (std::size_t t = 0; t < confidence.size(); ++t)
-            right[binOf[t]] += uniform() < clamped[t] ? 1.0 : 0.0;
-        // As expectedCalibrationError() sums it: bin by bin, then over the taps.
-        double ece = 0.0;
-        int total = 0;
-        for (std::size_t i = 0; i < b.size(); ++i) {
-            if (b[i].taps == 0) continue;
-            ece += b[i].taps * std::abs(right[i] / b[i].taps - b[i].meanConfidence);
-            total += b[i].taps;
-        }
-        sum += total > 0 ? ece / total : 0.0;
+            right[bin[t]] += uniform() < std::clamp(confidence[t], 0.0, 1.0) ? 1.0 : 0.0;
+        for (std::size_t i = 0; i < b.size(); ++i)
+            if (b[i].taps > 0) b[i].accuracy = right[i] / b[i].taps;
+        sum += eceOf(b);
     }
     return sum / kDraws;
 }

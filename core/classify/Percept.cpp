@@ -32,16 +32,16 @@ Percept perceive(const HistogramClassifier& classifier, const ClassSet& classes,
 
 namespace {
 
-/// The posterior of the class scoring `top` when `largest` is the largest score: its term over
-/// the sum of every class's e^(score - largest). Classes more than 50 nats below the largest
+/// The posterior of the class scoring `top`, the largest score or within the tie tolerance of
+/// it: its term, 1, over the sum of every class's e^(score - top). Classes more than 50 nats below
 /// add under e^-50 each, below the sum's rounding (it is at least 1): left out, so only the few
 /// near the top take an exponential.
-double posteriorOf(const double* ll, int n, double top, double largest) {
-    if (!std::isfinite(top) || !std::isfinite(largest)) return 0.0;
+double posteriorOf(const double* ll, int n, double top) {
+    if (!std::isfinite(top)) return 0.0;
     double sum = 0.0;
     for (int c = 0; c < n; ++c)
-        if (ll[c] > largest - 50.0) sum += std::exp(ll[c] - largest);
-    return std::exp(top - largest) / sum;
+        if (ll[c] > top - 50.0) sum += std::exp(ll[c] - top);
+    return 1.0 / sum;
 }
 
 }  // namespace
@@ -49,10 +49,7 @@ double posteriorOf(const double* ll, int n, double top, double largest) {
 Percept perceiveContinuous(const ClassSet& classes, const double* ll, double temperature) {
     const int n = classes.classCount();
     const int best = argmaxLowestIndex(ll, n);
-    const double top = ll[best];
-    double largest = top;
-    for (int c = 0; c < n; ++c) largest = ll[c] > largest ? ll[c] : largest;
-    Percept p = perceptOf(best, posteriorOf(ll, n, top, largest), classes);
+    Percept p = perceptOf(best, posteriorOf(ll, n, ll[best]), classes);
     p.continuous = true;
     if (p.region != Region::Edge) return p;
     const ContinuousEdge edge = continuousEdge(classes, ll, temperature);

@@ -15,6 +15,7 @@
 #include "app/figures/FigureFitting.h"
 #include "app/gui/FingertipView.h"
 #include "app/gui/HelpBrowser.h"
+#include "support/BoxText.h"
 
 /// Records the file URLs the window asks the desktop to open, instead of opening them.
 class UrlCatcher : public QObject {
@@ -482,14 +483,10 @@ private slots:
             panel.traceAt(corner);
             plot.replot(QCustomPlot::rpImmediateRefresh);
             const QRectF box(label->topLeft->pixelPosition(), label->bottomRight->pixelPosition());
-            QVERIFY2(QRectF(plot.rect()).contains(box),
-                     qPrintable(QString("(%1,%2 %3x%4) at (%5,%6)")
-                                    .arg(box.x())
-                                    .arg(box.y())
-                                    .arg(box.width())
-                                    .arg(box.height())
-                                    .arg(corner.x())
-                                    .arg(corner.y())));
+            QVERIFY2(QRectF(plot.rect()).contains(box), qPrintable(QString("%1 hovered at (%2, %3)")
+                                                                       .arg(boxText(box))
+                                                                       .arg(corner.x())
+                                                                       .arg(corner.y())));
         }
     }
 

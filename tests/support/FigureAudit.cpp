@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "qcustomplot.h"
+#include "support/BoxText.h"
 
 namespace activetouch::test {
 namespace {
@@ -215,11 +216,7 @@ QString describe(const AuditText& t) {
 }
 
 QString describe(const QRectF& legend) {
-    return QString("the legend at (%1, %2, %3×%4)")
-        .arg(legend.left(), 0, 'f', 0)
-        .arg(legend.top(), 0, 'f', 0)
-        .arg(legend.width(), 0, 'f', 0)
-        .arg(legend.height(), 0, 'f', 0);
+    return "the legend at " + boxText(legend);
 }
 
 /// The first piece of data inside `box`, described; empty if none.

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "qcustomplot.h"
+#include "support/BoxText.h"
 
 namespace activetouch::test {
 
@@ -153,16 +154,10 @@ inline void checkLabelsFitTheirPanels(QCustomPlot& plot, const QString& name) {
         const QRectF box = QRectF(left, top, size.width(), size.height()).marginsRemoved(pad);
         const QRectF panel = QRectF(text->clipAxisRect()->rect()).adjusted(-1, -1, 1, 1);
         QVERIFY2(panel.contains(box),
-                 qPrintable(QString("%1 panel %2: the label '%3' is cut off by the panel's edge "
-                                    "(at %4, %5 in %6, %7 to %8, %9)")
+                 qPrintable(QString("%1 panel %2: the label '%3' at %4 is cut off by the "
+                                    "panel's edge %5")
                                 .arg(name, text->clipAxisRect()->axis(QCPAxis::atTop)->label(),
-                                     text->text())
-                                .arg(box.left())
-                                .arg(box.top())
-                                .arg(panel.left())
-                                .arg(panel.top())
-                                .arg(panel.right())
-                                .arg(panel.bottom())));
+                                     text->text(), boxText(box), boxText(panel))));
     }
     auto extent = [](const QCPAxis* axis) {
         return QFontMetricsF(axis->labelFont())
