@@ -3,9 +3,9 @@
 #include <functional>
 #include <optional>
 
-#include "core/run/OutputFiles.h"
 #include "core/analysis/SeedRates.h"
 #include "core/analysis/SweepRates.h"
+#include "core/run/OutputFiles.h"
 
 namespace activetouch {
 
@@ -344,6 +344,7 @@ SeedRates runSeeds(const SimulatedRigs& rigs, const ExperimentSpec& spec, std::u
         RunOptions options;
         options.simulated = &rigs;
         options.seed = seed;
+        options.reportsBeliefCalibration = false;  // an outcome does not carry it
         return seedOutcome(runExperimentOrFailure(spec, options));
     };
     forEachSeed(first, last, jobs, run, [&](std::uint64_t, SeedOutcome&& o) {

@@ -351,7 +351,7 @@ public:
 
 private:
     bool perceiveSequentially(FollowedTap& t) {
-        if (continuous_ || !s_.calibratedBelief) {
+        if (!s_.readsBeliefCalibration()) {
             belief_.update(classifier_, t.record.tap);
         } else {
             classifier_.logLikelihoods(t.record.tap, evidence_.data());

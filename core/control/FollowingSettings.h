@@ -67,6 +67,11 @@ struct FollowingSettings {
     double coverageRadius_mm = 3.0;    ///< a perimeter point is covered by a tap this close
 
     std::string problem() const;
+    /// Whether a trial reads the run's belief calibration: a sequential discrete percept on the
+    /// calibrated belief (its sequential factor scales each tap's evidence).
+    bool readsBeliefCalibration() const {
+        return beliefThreshold > 0.0 && calibratedBelief && percept != PerceptKind::Continuous;
+    }
 };
 
 /// A number of the following settings as an experiment file gives it ("following": {key: ...}):

@@ -35,8 +35,9 @@ std::string describeStretch(const OutOfReach& o, double perimeter) {
 }  // namespace
 
 double sceneContactRadius(const SceneSpec& scene) {
-    const FingertipContactModel model(scene.fingertip);
-    return model.edgeContactRadius(scene.tap.contactThreshold, scene.strokeLimitDepth());
+    // The model a run of this scene builds too (kept for it): its patch is worked out once.
+    return FingertipContactModel::shared(scene.fingertip)
+        ->edgeContactRadius(scene.tap.contactThreshold, scene.strokeLimitDepth());
 }
 
 std::string reachCaution(const Polygon& outline, const ContourReach& reach,

@@ -116,10 +116,9 @@ double lookedUp(const Grid& grid, Vec2 q, Lookup l) {
     return l == Lookup::Bilinear ? grid.at(q) : grid.nearest(q);
 }
 
-double sumSquaredPortable(const Grid& grid, const Coords& pts, double c, double s, Vec2 t,
-                          Mapping m, Lookup l) {
-    double sum = 0.0;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
+double sumSquaredPortable(const Grid& grid, const Coords& pts, std::size_t from, std::size_t to,
+                          double c, double s, Vec2 t, Mapping m, Lookup l, double sum) {
+    for (std::size_t i = from; i < to; ++i) {
         const double d = lookedUp(grid, mapped({pts.x[i], pts.y[i]}, c, s, t, m), l);
         sum += d * d;
     }
@@ -127,9 +126,11 @@ double sumSquaredPortable(const Grid& grid, const Coords& pts, double c, double 
 }
 
 #if defined(__x86_64__)
-__attribute__((target("avx2"))) double sumSquaredAvx2(const Grid& grid, const Coords& pts, double c,
-                                                      double s, Vec2 t, Mapping m, Lookup l) {
-    const std::size_t n = pts.size(), whole = n / 4 * 4;
+__attribute__((target("avx2"))) double sumSquaredAvx2(const Grid& grid, const Coords& pts,
+                                                      std::size_t from, std::size_t to, double c,
+                                                      double s, Vec2 t, Mapping m, Lookup l,
+                                                      double sum) {
+    const std::size_t whole = from + (to - from) / 4 * 4;
     const __m256d vc = _mm256_set1_pd(c), vs = _mm256_set1_pd(s);
     const __m256d tx = _mm256_set1_pd(t.x), ty = _mm256_set1_pd(t.y);
     const __m256d ox = _mm256_set1_pd(grid.origin.x), oy = _mm256_set1_pd(grid.origin.y);
@@ -141,9 +142,8 @@ __attribute__((target("avx2"))) double sumSquaredAvx2(const Grid& grid, const Co
     const __m256d xEnd = _mm256_set1_pd(grid.nx - reach), yEnd = _mm256_set1_pd(grid.ny - reach);
     const __m128i stride = _mm_set1_epi32(grid.nx), right = _mm_set1_epi32(1);
     const float* cells = grid.ptr;
-    double sum = 0.0;
     alignas(32) double squares[4];
-    for (std::size_t i = 0; i < whole; i += 4) {
+    for (std::size_t i = from; i < whole; i += 4) {
         const __m256d px = _mm256_loadu_pd(pts.x.data() + i);
         const __m256d py = _mm256_loadu_pd(pts.y.data() + i);
         __m256d qx, qy;
@@ -195,7 +195,7 @@ __attribute__((target("avx2"))) double sumSquaredAvx2(const Grid& grid, const Co
         sum += squares[2];
         sum += squares[3];
     }
-    for (std::size_t i = whole; i < n; ++i) {
+    for (std::size_t i = whole; i < to; ++i) {
         const double d = lookedUp(grid, mapped({pts.x[i], pts.y[i]}, c, s, t, m), l);
         sum += d * d;
     }
@@ -204,19 +204,31 @@ __attribute__((target("avx2"))) double sumSquaredAvx2(const Grid& grid, const Co
 
 #endif
 
-double sumSquared(const Grid& grid, const Coords& pts, double c, double s, Vec2 t, Mapping m,
-                  Lookup l) {
+double sumSquared(const Grid& grid, const Coords& pts, std::size_t from, std::size_t to, double c,
+                  double s, Vec2 t, Mapping m, Lookup l, double sum) {
 #if defined(__x86_64__)
-    if (!grid.portable && cpuHasAvx2()) return sumSquaredAvx2(grid, pts, c, s, t, m, l);
+    if (!grid.portable && cpuHasAvx2())
+        return sumSquaredAvx2(grid, pts, from, to, c, s, t, m, l, sum);
 #endif
-    return sumSquaredPortable(grid, pts, c, s, t, m, l);
+    return sumSquaredPortable(grid, pts, from, to, c, s, t, m, l, sum);
 }
 
-double meanCost(const Grid& grid, const Coords& points, const Pose& pose, Mapping m, Lookup l) {
+double meanCost(const Grid& grid, const Coords& points, const Pose& pose, Mapping m, Lookup l,
+                double before, double limit) {
     const double turn = m == Mapping::IntoFrame ? -pose.thetaDeg : pose.thetaDeg;
     const double a = turn * kPi / 180.0, c = std::cos(a), s = std::sin(a);
-    const double sum = sumSquared(grid, points, c, s, pose.t, m, l);
-    return points.size() == 0 ? 0.0 : sum / static_cast<double>(points.size());
+    const std::size_t n = points.size();
+    if (n == 0) return 0.0;
+    const double count = static_cast<double>(n);
+    // In runs of a multiple of four points: the squares are added in the same order as in one
+    // pass. Rounding is monotone, so a partial mean that reaches the limit decides.
+    constexpr std::size_t kRun = 32;
+    double sum = 0.0;
+    for (std::size_t from = 0; from < n; from += kRun) {
+        sum = sumSquared(grid, points, from, std::min(n, from + kRun), c, s, pose.t, m, l, sum);
+        if (before + sum / count >= limit) return std::numeric_limits<double>::infinity();
+    }
+    return sum / count;
 }
 
 std::vector<Vec2> halved(const std::vector<Vec2>& points) {

@@ -145,26 +145,32 @@ enum class Lookup { Bilinear, Nearest };
 
 double lookedUp(const Grid& grid, Vec2 q, Lookup l);
 
-/// Sum of the squared capped distances of the mapped points, added in their order.
-double sumSquaredPortable(const Grid& grid, const Coords& pts, double c, double s, Vec2 t,
-                          Mapping m, Lookup l);
+/// `sum` plus the squared capped distances of the mapped points from..to - 1, added in their
+/// order.
+double sumSquaredPortable(const Grid& grid, const Coords& pts, std::size_t from, std::size_t to,
+                          double c, double s, Vec2 t, Mapping m, Lookup l, double sum);
 
 /// The same, four points at a time: the same operations on each point as Grid::at and
 /// Grid::nearest (no fused multiply-adds), the cells gathered, and the squares added one by one
 /// in order, so that the sum is bit for bit the portable one.
 #if defined(__x86_64__)
-__attribute__((target("avx2"))) double sumSquaredAvx2(const Grid& grid, const Coords& pts, double c,
-                                                      double s, Vec2 t, Mapping m, Lookup l);
+__attribute__((target("avx2"))) double sumSquaredAvx2(const Grid& grid, const Coords& pts,
+                                                      std::size_t from, std::size_t to, double c,
+                                                      double s, Vec2 t, Mapping m, Lookup l,
+                                                      double sum);
 
 #endif
 
-double sumSquared(const Grid& grid, const Coords& pts, double c, double s, Vec2 t, Mapping m,
-                  Lookup l);
+double sumSquared(const Grid& grid, const Coords& pts, std::size_t from, std::size_t to, double c,
+                  double s, Vec2 t, Mapping m, Lookup l, double sum);
 
 /// Mean squared capped distance of `points` mapped by `pose`: world points into a template's
 /// frame (IntoFrame, turning by -theta), or a template's points onto the path (OntoPath, by
-/// +theta).
-double meanCost(const Grid& grid, const Coords& points, const Pose& pose, Mapping m, Lookup l);
+/// +theta). With a `limit`: +infinity as soon as `before` plus the mean so far reaches it, the
+/// rest unread (squares only add: the whole mean would reach it too); otherwise the same bits as
+/// without one.
+double meanCost(const Grid& grid, const Coords& points, const Pose& pose, Mapping m, Lookup l,
+                double before = 0.0, double limit = std::numeric_limits<double>::infinity());
 
 /// Every other point: the search steers by half the points, the score counts them all.
 std::vector<Vec2> halved(const std::vector<Vec2>& points);

@@ -92,10 +92,11 @@ Candidate coarseCandidate(std::size_t i, const Grid& grid, const Coords& coarse,
 }
 
 /// A pattern search from `p` on `cost`: turn and place together, steps halved until the turn's
-/// is under 0.2 degrees.
+/// is under 0.2 degrees. cost(q, bound) may stop at +infinity once q's cost is known to reach the
+/// bound: only a lower one moves the search.
 template <typename Cost>
 Pose patternSearch(Pose p, const Cost& cost) {
-    double c = cost(p);
+    double c = cost(p, std::numeric_limits<double>::infinity());
     double stepDeg = 2.0, stepMm = 0.8;
     while (stepDeg > 0.2) {
         bool moved = false;
@@ -104,7 +105,7 @@ Pose patternSearch(Pose p, const Cost& cost) {
             {p.thetaDeg, p.t + Vec2{stepMm, 0}}, {p.thetaDeg, p.t - Vec2{stepMm, 0}},
             {p.thetaDeg, p.t + Vec2{0, stepMm}}, {p.thetaDeg, p.t - Vec2{0, stepMm}}};
         for (const Pose& q : tries) {
-            const double cq = cost(q);
+            const double cq = cost(q, c);
             if (cq < c) {
                 c = cq;
                 p = q;
@@ -132,9 +133,15 @@ struct PathView {
 void refineFit(const PoseTemplate& tpl, const Grid& grid, const Candidate& cand,
                const PathView& path, PoseFit& fit) {
     const Coords tplSearch(halved(tpl.points)), tplAll(tpl.points);
-    auto cost = [&](const Pose& p) {
-        return 0.5 * (meanCost(grid, path.search, p, Mapping::IntoFrame, Lookup::Bilinear) +
-                      meanCost(path.grid, tplSearch, p, Mapping::OntoPath, Lookup::Bilinear));
+    // The two-way cost, or +infinity once it is known to reach `bound`: twice the bound is
+    // reached by the first mean alone, or by the first and the second's mean so far.
+    auto cost = [&](const Pose& p, double bound) {
+        const double twice = 2.0 * bound;
+        const double a =
+            meanCost(grid, path.search, p, Mapping::IntoFrame, Lookup::Bilinear, 0.0, twice);
+        if (a >= twice) return std::numeric_limits<double>::infinity();
+        return 0.5 * (a + meanCost(path.grid, tplSearch, p, Mapping::OntoPath, Lookup::Bilinear, a,
+                                   twice));
     };
     auto fullCost = [&](const Pose& p) {
         return 0.5 * (meanCost(grid, path.all, p, Mapping::IntoFrame, Lookup::Bilinear) +

@@ -225,9 +225,10 @@ void runTrials(RunResult& result, std::shared_ptr<const FingertipContactModel> m
 
 /// Trains the classifier on the training sets of `result.taps` and validates it on the others:
 /// the measured noise floor and the class regions from it, the offline validation, the valid
-/// range and trusted span the controller follows with, and (if the experiment asks) the
-/// classifier trained again on every set.
-void trainAndValidate(RunResult& result, const std::vector<IdealClassContact>& ideal) {
+/// range and trusted span the controller follows with, the belief's calibration on the held-out
+/// taps where `calibrate`, and (if the experiment asks) the classifier trained again on every set.
+void trainAndValidate(RunResult& result, const std::vector<IdealClassContact>& ideal,
+                      bool calibrate) {
     const ExperimentSpec& spec = result.spec;
     // The taps that touched nothing give the floor a tap must rise above to count as contact;
     // classes whose ideal tap stays below it are air.
@@ -253,7 +254,7 @@ void trainAndValidate(RunResult& result, const std::vector<IdealClassContact>& i
         result.classifier, result.classes, tests, spec.validRangeWidth,
         spec.following.percept == PerceptKind::Continuous ? spec.following.perceptTemperature
                                                           : -1.0);
-    {
+    if (calibrate) {
         std::vector<const Tap*> heldOut;
         std::vector<int> truth;
         for (const CollectedTap* t : tests) {
@@ -388,7 +389,10 @@ RunResult runExperiment(const ExperimentSpec& specIn, const RunOptions& options)
     for (const RecordedTrial* t : replayed)
         progress.tapsPlanned += static_cast<int>(t->taps.size());
     if (takeTrainingTaps(result, options, simulated.get(), progress, recording.get())) {
-        trainAndValidate(result, ideal);
+        // Measured where it is read: the caller reports it, or the trials or sweeps use it.
+        trainAndValidate(result, ideal,
+                         options.reportsBeliefCalibration ||
+                             spec.following.readsBeliefCalibration() || spec.sweeps.any());
         runAfterTraining(result, model, options, progress, replayed);
     } else {
         result.cancelled = true;

@@ -151,6 +151,10 @@ struct RunOptions {
     /// tapped; where it decides otherwise it leaves the recording (TrialEnd::LeftRecording).
     const std::vector<RecordedTrial>* recordedTrials = nullptr;
     std::string recordingName;  ///< where the recorded taps came from, for the summary
+    /// Whether the caller reads RunResult::beliefCalibration (the window and `run` show and write
+    /// it). A run over seeds keeps only its outcome: without it, the calibration is measured
+    /// only where the trials or sweeps use it.
+    bool reportsBeliefCalibration = true;
     /// Called once, after every input check and before the first file is written in outDir: a
     /// caller claims the folder there (RunFolder.h), so that a refused input writes nothing.
     std::function<void()> beforeWriting;

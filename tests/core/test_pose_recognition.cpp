@@ -8,6 +8,7 @@
 #include <random>
 
 #include "core/geometry/ShapeLibrary.h"
+#include "core/recognition/PoseGrid.h"
 #include "core/recognition/PoseRecognition.h"
 
 using namespace activetouch;
@@ -196,6 +197,41 @@ private slots:
                 QVERIFY(same(v.fits[i].rotationDeg, p.fits[i].rotationDeg));
                 QVERIFY(same(v.fits[i].position.x, p.fits[i].position.x));
                 QVERIFY(same(v.fits[i].position.y, p.fits[i].position.y));
+            }
+        }
+    }
+
+    void aCostStopsOnlyOnceItReachesItsLimit() {
+        // The search asks a cost with a limit: at or above it the answer is +infinity, below it
+        // the very bits of the cost asked without one, whatever the point count modulo the runs
+        // the sum is read in, with vector and portable readings alike.
+        const auto same = [](double a, double b) {
+            return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+        };
+        const Polygon c = libraryShape("C", defaultShapeSize("C"));
+        std::mt19937 rng(7);
+        for (const bool portable : {false, true}) {
+            const PoseTemplate tpl = detail::poseTemplate("C", c, 0.0, portable);
+            const posegrid::Grid grid = posegrid::gridOf(tpl, portable);
+            for (const std::size_t n : {1u, 5u, 31u, 32u, 33u, 70u, 131u}) {
+                auto path = tracedPath(c.transformed(3.0, {-2.0, 1.5}), 1.0, 0.0, 0.8, rng);
+                path.resize(std::min(n, path.size()));
+                const posegrid::Coords points(path);
+                const posegrid::Pose pose{4.0, {1.0, -0.5}};
+                const double whole = posegrid::meanCost(
+                    grid, points, pose, posegrid::Mapping::IntoFrame, posegrid::Lookup::Bilinear);
+                QVERIFY(whole > 0.0 && std::isfinite(whole));
+                for (const double before : {0.0, 0.3}) {
+                    const auto bounded = [&](double limit) {
+                        return posegrid::meanCost(grid, points, pose, posegrid::Mapping::IntoFrame,
+                                                  posegrid::Lookup::Bilinear, before, limit);
+                    };
+                    QVERIFY(same(bounded(before + whole * 1.001), whole));
+                    QVERIFY(same(bounded(std::numeric_limits<double>::infinity()), whole));
+                    QCOMPARE(bounded(before + whole), std::numeric_limits<double>::infinity());
+                    QCOMPARE(bounded(before + whole * 0.25),
+                             std::numeric_limits<double>::infinity());
+                }
             }
         }
     }

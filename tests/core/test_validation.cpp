@@ -102,6 +102,33 @@ private slots:
         }
     }
 
+    void theBeliefCalibrationIsMeasuredWhereItIsRead() {
+        // A run over seeds keeps only its outcome: it measures the calibration only where its
+        // trials or sweeps read it, and its training and validation stay those of a whole run.
+        ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
+        spec.trials.clear();
+        RunOptions whole = test::onSimulatedRig();
+        whole.seed = 5;
+        RunOptions outcomeOnly = whole;
+        outcomeOnly.reportsBeliefCalibration = false;
+        const RunResult reported = runExperiment(spec, whole);
+        const RunResult unread = runExperiment(spec, outcomeOnly);
+        QVERIFY(reported.beliefCalibration.measured);
+        QVERIFY(!unread.beliefCalibration.measured);
+        QCOMPARE(unread.validation.validRange.first, reported.validation.validRange.first);
+        QCOMPARE(unread.validation.validRange.last, reported.validation.validRange.last);
+        QVERIFY(unread.validation.positionMean == reported.validation.positionMean);
+        // A sequential percept on the calibrated belief reads its sequential factor.
+        spec.following.beliefThreshold = 0.9;
+        const RunResult sequential = runExperiment(spec, outcomeOnly);
+        QVERIFY(sequential.beliefCalibration.measured);
+        QCOMPARE(sequential.beliefCalibration.sequential.scale,
+                 reported.beliefCalibration.sequential.scale);
+        // The naive belief does not.
+        spec.following.calibratedBelief = false;
+        QVERIFY(!runExperiment(spec, outcomeOnly).beliefCalibration.measured);
+    }
+
     void cancellingKeepsTheTapsTaken() {
         const ExperimentSpec spec = loadExperiment(test::sourcePath("experiments/paper.json"));
         // Asked to stop once the 100th tap is in.
