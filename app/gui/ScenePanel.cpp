@@ -308,7 +308,7 @@ void ScenePanel::updateReach() {
     try {
         const Polygon outline = sceneFromPanel(base_).object.outline();
         note = QString::fromStdString(
-            reachCaution(outline, ContourReach(outline, contactRadius_mm_), "The object"));
+            reachCaution(outline, *ContourReach::shared(outline, contactRadius_mm_), "The object"));
     } catch (const std::exception&) {
         // A panel mid-edit (no polygon yet, sizes that make no outline): nothing to judge; the
         // run refuses such a scene by name.

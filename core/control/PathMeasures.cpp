@@ -7,33 +7,12 @@
 
 namespace activetouch {
 
-namespace {
-
-// The reach of the outlines this thread measured paths on lately. Reach depends on the outline and
-// the contact radius alone, and every trial of an object at one pose has the same outline, so a
-// sweep over seeds works each out once.
-const ContourReach& reachOf(const Polygon& outline, double contactRadius) {
-    struct Entry {
-        std::vector<Vec2> vertices;
-        double radius;
-        ContourReach reach;
-    };
-    thread_local std::vector<Entry> recent;
-    for (const Entry& e : recent)
-        if (e.radius == contactRadius && e.vertices == outline.vertices()) return e.reach;
-    constexpr std::size_t kKept = 16;
-    if (recent.size() >= kKept) recent.erase(recent.begin());
-    recent.push_back({outline.vertices(), contactRadius, ContourReach(outline, contactRadius)});
-    return recent.back().reach;
-}
-
-}  // namespace
-
 void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double coverageRadius,
                  double contactRadius, TrialResult& r) {
     r.coverage = 0.0;
     r.meanContourDistance_mm = r.maxContourDistance_mm = 0.0;
-    const ContourReach& reach = reachOf(outline, contactRadius);
+    const auto kept = ContourReach::shared(outline, contactRadius);
+    const ContourReach& reach = *kept;
     r.reachable = reach.reachableFraction();
     if (path.empty()) return;
     double sum = 0.0;

@@ -77,7 +77,8 @@ std::vector<std::string> unresolvedFeatureCautions(const ExperimentSpec& e) {
         if (std::find(seen.begin(), seen.end(), shape) != seen.end()) return;
         seen.push_back(shape);
         const Polygon outline = object.outline();
-        const std::string caution = reachCaution(outline, ContourReach(outline, radius), what);
+        const std::string caution =
+            reachCaution(outline, *ContourReach::shared(outline, radius), what);
         if (!caution.empty()) cautions.push_back(caution);
     };
     for (const TrialSpec& t : e.trials) judge(t.object, t.place + " (" + t.label + ")");

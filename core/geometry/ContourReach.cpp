@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 namespace activetouch {
 
@@ -123,6 +124,24 @@ ContourReach::ContourReach(const Polygon& outline, double radius_mm)
     for (std::size_t i = 0; i < n; ++i)
         reachable_[i] = inward[i] <= tolerance_mm() && outward[i] <= tolerance_mm();
     collectStretches(outline, s.points, inward, outward);
+}
+
+std::shared_ptr<const ContourReach> ContourReach::shared(const Polygon& outline, double radius_mm) {
+    struct Kept {
+        std::vector<Vec2> vertices;
+        double radius;
+        std::shared_ptr<const ContourReach> reach;
+    };
+    static std::mutex mutex;
+    static std::vector<Kept> recent;
+    std::lock_guard lock(mutex);
+    for (const Kept& k : recent)
+        if (k.radius == radius_mm && k.vertices == outline.vertices()) return k.reach;
+    constexpr std::size_t kKept = 32;
+    if (recent.size() >= kKept) recent.erase(recent.begin());
+    recent.push_back(
+        {outline.vertices(), radius_mm, std::make_shared<const ContourReach>(outline, radius_mm)});
+    return recent.back().reach;
 }
 
 double ContourReach::reachableFraction() const {

@@ -7,6 +7,7 @@
 // outside corner thinner than the patch carries it). The contour is sampled every half
 // millimetre, as the following measures coverage.
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "core/geometry/Polygon.h"
@@ -35,6 +36,10 @@ public:
     /// Samples `outline` every half millimetre (fewer, evenly, past kMaxSamples) and rolls a disc
     /// of `radius_mm` round it outside and inside; a radius of 0 reaches everything.
     ContourReach(const Polygon& outline, double radius_mm);
+    /// The same, kept for the process: reach depends on the outline and the radius alone, and
+    /// every trial of an object at one pose (over every seed, whichever thread runs it) and the
+    /// run's cautions ask for the same one, so it is worked out once. Safe from any thread.
+    static std::shared_ptr<const ContourReach> shared(const Polygon& outline, double radius_mm);
 
     static constexpr double kStep_mm = 0.5;
     static constexpr std::size_t kMaxSamples = 20000;
