@@ -424,8 +424,11 @@ bool printSeedOutcome(const SeedOutcome& o) {
 /// The closing report of a seeds run or a merge: the rates over `first`..`last`.
 void printSeedRates(const std::string& name, const SeedRates& rates, std::uint64_t first,
                     std::uint64_t last) {
-    std::printf("\n%s over %zu seeds (%llu-%llu):\n", name.c_str(), rates.seeds.size(),
-                static_cast<unsigned long long>(first), static_cast<unsigned long long>(last));
+    std::printf(
+        "\n%s over %zu seeds (%llu-%llu; each seed one independent run in the 95 %% "
+        "intervals, its trials sharing its training):\n",
+        name.c_str(), rates.seeds.size(), static_cast<unsigned long long>(first),
+        static_cast<unsigned long long>(last));
     for (const std::string& line : describeRates(rates)) std::printf("%s\n", line.c_str());
     if (const SweepRates sweeps = sweepRates(rates.seeds); !sweeps.empty()) {
         std::printf("\n");

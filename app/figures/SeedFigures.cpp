@@ -15,13 +15,13 @@ namespace {
 /// A running rate: its value and 95 % band after each seed, in percent.
 RunningValue running(const SeedRates& all, Rate (*part)(const SeedOutcome&)) {
     RunningValue r;
-    Rate sofar;
+    stats::ClusteredProportion pooled;
     int runs = 0;
     for (const SeedOutcome& s : all.seeds) {
         const Rate p = part(s);
         ++runs;
-        sofar.count += p.count;
-        sofar.total += p.total;
+        pooled.add(p.count, p.total);
+        const Rate sofar = Rate::pooled(pooled);
         if (sofar.total == 0) continue;
         r.append(double(runs), 100.0 * sofar.fraction(), 100.0 * sofar.low(), 100.0 * sofar.high());
     }

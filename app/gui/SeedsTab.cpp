@@ -33,7 +33,9 @@ SeedsTab::SeedsTab(QWidget* parent) : QWidget(parent), plot_(new PlotPanel("seed
     seeds_ = new SeedRangeBar(
         "firstSeed", "lastSeed", 10, run_,
         tr("Each seed is a whole run on the simulated rig: its own data sets, training, valid "
-           "range and trials. The rates, with their 95 % intervals, are what a claim rests on."));
+           "range and trials. The rates, with their 95 % intervals, are what a claim rests on; "
+           "an interval counts each seed as one independent run, since its trials share its "
+           "training."));
     layout->addWidget(seeds_);
 
     auto* split = new QSplitter(Qt::Horizontal);

@@ -226,13 +226,12 @@ void Tracing::add(const Tracing& other) {
 
 namespace {
 Rate sumOver(const std::vector<SeedOutcome>& seeds, Rate (*part)(const SeedOutcome&)) {
-    Rate r;
+    stats::ClusteredProportion pooled;
     for (const auto& s : seeds) {
         const Rate p = part(s);
-        r.count += p.count;
-        r.total += p.total;
+        pooled.add(p.count, p.total);
     }
-    return r;
+    return Rate::pooled(pooled);
 }
 
 }  // namespace
@@ -242,14 +241,15 @@ Json rateJson(const Rate& r) {
     return {{"count", r.count},
             {"total", r.total},
             {"rate", r.fraction()},
-            {"ci95", {r.low(), r.high()}}};
+            {"ci95", {r.low(), r.high()}},
+            {"design_effect", r.designEffect}};
 }
 
 double Rate::low() const {
-    return total > 0 ? stats::wilson(count, total).low : 0.0;
+    return total > 0 ? stats::wilson(count, total, 0.95, designEffect).low : 0.0;
 }
 double Rate::high() const {
-    return total > 0 ? stats::wilson(count, total).high : 1.0;
+    return total > 0 ? stats::wilson(count, total, 0.95, designEffect).high : 1.0;
 }
 
 Rate passiveLostIn(const SeedOutcome& s) {
@@ -356,13 +356,17 @@ RecognitionConfusion SeedRates::confusion() const {
     return recognitionConfusion(namings);
 }
 RatesByLabel SeedRates::byLabel(RatesByLabel SeedOutcome::*which) const {
-    RatesByLabel sums;
+    std::vector<std::string> labels;
+    std::vector<stats::ClusteredProportion> pooled;
     for (const auto& s : seeds)
         for (const auto& [label, rate] : s.*which) {
-            Rate& sum = rateOf(sums, label);
-            sum.count += rate.count;
-            sum.total += rate.total;
+            const std::size_t i = indexOf(labels, label);
+            pooled.resize(labels.size());
+            pooled[i].add(rate.count, rate.total);
         }
+    RatesByLabel sums;
+    for (std::size_t i = 0; i < labels.size(); ++i)
+        sums.push_back({labels[i], Rate::pooled(pooled[i])});
     return sums;
 }
 RatesByLabel SeedRates::activeCompletedByLabel() const {
@@ -372,17 +376,19 @@ RatesByLabel SeedRates::passiveLostByLabel() const {
     return byLabel(&SeedOutcome::passiveByLabel);
 }
 std::vector<ValidRangeRate> SeedRates::activeCompletedByValidRange() const {
-    std::map<std::pair<int, int>, ValidRangeRate> byRange;
+    std::map<std::pair<int, int>, std::pair<ValidRangeRate, stats::ClusteredProportion>> byRange;
     for (const auto& s : seeds) {
         if (s.activeTrials == 0) continue;
-        ValidRangeRate& r = byRange[{s.validRange.first, s.validRange.last}];
+        auto& [r, pooled] = byRange[{s.validRange.first, s.validRange.last}];
         r.range = s.validRange;
         ++r.runs;
-        r.activeCompleted.count += s.activeCompleted;
-        r.activeCompleted.total += s.activeTrials;
+        pooled.add(s.activeCompleted, s.activeTrials);
     }
     std::vector<ValidRangeRate> list;
-    for (const auto& [positions, r] : byRange) list.push_back(r);
+    for (auto& [positions, kept] : byRange) {
+        kept.first.activeCompleted = Rate::pooled(kept.second);
+        list.push_back(kept.first);
+    }
     return list;
 }
 
@@ -395,8 +401,15 @@ Tracing SeedRates::tracing(FollowingMode mode) const {
 
 CornerTally SeedRates::corners(FollowingMode mode) const {
     CornerTally sum;
-    for (const auto& s : seeds)
-        sum.add(mode == FollowingMode::Active ? s.activeCorners : s.passiveCorners);
+    stats::ClusteredProportion convex, concave;
+    for (const auto& s : seeds) {
+        const CornerTally& own = mode == FollowingMode::Active ? s.activeCorners : s.passiveCorners;
+        sum.add(own);
+        convex.add(own.convexRounded().count, own.convexRounded().total);
+        concave.add(own.concaveRounded().count, own.concaveRounded().total);
+    }
+    sum.convexDesignEffect = convex.designEffect();
+    sum.concaveDesignEffect = concave.designEffect();
     return sum;
 }
 

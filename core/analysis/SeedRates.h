@@ -12,15 +12,23 @@
 #include "core/io/OutputFile.h"
 #include "core/run/ExperimentRun.h"
 #include "core/run/SeedPool.h"
+#include "core/stats/Intervals.h"
 
 namespace activetouch {
 
-/// A count out of a total with its Wilson score 95 % interval.
+/// A count out of a total with its Wilson score 95 % interval. Pooled over seeds, each seed is
+/// one independent unit (its trials share its training run): the interval is on the effective
+/// total its design effect gives (stats::ClusteredProportion).
 struct Rate {
     int count = 0, total = 0;
+    double designEffect = 1.0;
     double fraction() const { return total > 0 ? double(count) / total : 0.0; }
     double low() const;
     double high() const;
+    /// The counts pooled over clusters (one a seed), with their design effect.
+    static Rate pooled(const stats::ClusteredProportion& p) {
+        return {p.count(), p.total(), p.designEffect()};
+    }
 };
 
 /// `items` joined by "; " as one quoted CSV field (quotes inside doubled).
@@ -60,11 +68,17 @@ struct Tracing {
 struct CornerTally {
     int endedConvex = 0, endedConcave = 0, endedAway = 0;  ///< trials not completed
     CornerCount rounded;
+    /// Over seeds: the design effects of the convex and concave rates (SeedRates::corners).
+    double convexDesignEffect = 1.0, concaveDesignEffect = 1.0;
     void add(const TrialResult& trial);
     void add(const CornerTally& other);
     int notCompleted() const { return endedConvex + endedConcave + endedAway; }
-    Rate convexRounded() const { return {rounded.convex, rounded.convex + endedConvex}; }
-    Rate concaveRounded() const { return {rounded.concave, rounded.concave + endedConcave}; }
+    Rate convexRounded() const {
+        return {rounded.convex, rounded.convex + endedConvex, convexDesignEffect};
+    }
+    Rate concaveRounded() const {
+        return {rounded.concave, rounded.concave + endedConcave, concaveDesignEffect};
+    }
 };
 
 /// One whole run's outcome.
@@ -185,7 +199,7 @@ struct SeedRates {
     Rate passiveLost() const;
     Rate passiveLostAtCorner() const;  ///< of passive trials
     Rate activeCompleted() const;
-    Rate recognisedRaw() const;       ///< of completed active paths
+    Rate recognisedRaw() const;  ///< of completed active paths
     /// The same per trial number ("trial 1", "trial 2", ...): a rule handed the pose of one
     /// trial would name that trial's paths better than the others.
     RatesByLabel recognisedRawByTrial() const;

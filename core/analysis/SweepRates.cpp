@@ -46,7 +46,7 @@ PaperVerdict paperVerdict(const FollowingOverSeeds& f) {
                              std::isfinite(c.high) && c.high > c.low;
     if (!informative) return PaperVerdict::NotEnoughSeeds;
     return r.high < 1.0 && c.low > -kCompletionMargin_points ? PaperVerdict::Beats
-                                                            : PaperVerdict::DoesNotBeat;
+                                                             : PaperVerdict::DoesNotBeat;
 }
 
 namespace {
@@ -148,13 +148,13 @@ FollowingOverSeeds followingOverSeeds(const Runs& runs, std::size_t i, Following
     f.beliefThreshold = head.beliefThreshold;
     f.paperSetting = head.paperSetting;
     std::vector<double> distance, time, taps;
+    stats::ClusteredProportion completed;
     for (const SweepResults* r : runs) {
         SettingSums s;
         if (i < r->following.size() && r->following[i].trials > 0) {
             const FollowingSweepRow& row = r->following[i];
             ++f.seeds;
-            f.completed.count += row.completed;
-            f.completed.total += row.trials;
+            completed.add(row.completed, row.trials);
             distance.push_back(row.meanContourDistance_mm);
             time.push_back(row.meanRobotTime_s);
             taps.push_back(row.meanTaps);
@@ -162,6 +162,7 @@ FollowingOverSeeds followingOverSeeds(const Runs& runs, std::size_t i, Following
         }
         sums.sums[i].push_back(s);
     }
+    f.completed = Rate::pooled(completed);
     f.contourDistance_mm = overSeeds(distance, 0.0);
     f.robotTimePerTrial_s = overSeeds(time, 0.0);
     f.tapsPerTrial = overSeeds(taps, 0.0);
@@ -302,6 +303,7 @@ RobustnessOverSeeds robustnessOverSeeds(const Runs& runs, RowOf rowOf, const std
     RobustnessOverSeeds f;
     f.fault = fault;
     std::vector<double> completion, recognition, angle;
+    stats::ClusteredProportion completed, recognisedRaw, recognisedAnyPose;
     for (const SweepResults* r : runs) {
         const RobustnessRow* row = rowOf(*r);
         if (!row) continue;
@@ -311,12 +313,9 @@ RobustnessOverSeeds robustnessOverSeeds(const Runs& runs, RowOf rowOf, const std
             continue;
         }
         const RobustnessRow& base = r->robustnessBase;
-        f.completed.count += row->activeCompleted;
-        f.completed.total += row->activeTrials;
-        f.recognisedRaw.count += row->recognisedRaw;
-        f.recognisedRaw.total += row->recognitionTrials;
-        f.recognisedAnyPose.count += row->recognisedAnyPose;
-        f.recognisedAnyPose.total += row->recognitionTrials;
+        completed.add(row->activeCompleted, row->activeTrials);
+        recognisedRaw.add(row->recognisedRaw, row->recognitionTrials);
+        recognisedAnyPose.add(row->recognisedAnyPose, row->recognitionTrials);
         angle.push_back(row->angleError_deg);
         // Falls over the trials run: completion, and paths completed and named rightly.
         if (row->activeTrials > 0 && base.activeTrials > 0 && base.failure.empty()) {
@@ -326,6 +325,9 @@ RobustnessOverSeeds robustnessOverSeeds(const Runs& runs, RowOf rowOf, const std
                                            double(row->recognisedRaw) / row->activeTrials));
         }
     }
+    f.completed = Rate::pooled(completed);
+    f.recognisedRaw = Rate::pooled(recognisedRaw);
+    f.recognisedAnyPose = Rate::pooled(recognisedAnyPose);
     f.completionFall_points = overSeeds(completion);
     f.recognitionFall_points = overSeeds(recognition);
     f.angleError_deg = overSeeds(angle, 0.0);

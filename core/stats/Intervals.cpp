@@ -7,12 +7,35 @@
 
 namespace activetouch::stats {
 
-Interval wilson(int count, int total, double level) {
-    const double z = normalTwoSided(level), z2 = z * z, n = total;
-    const double p = double(count) / n;
+Interval wilson(int count, int total, double level, double designEffect) {
+    const double z = normalTwoSided(level), z2 = z * z;
+    const double p = double(count) / total;
+    const double n = designEffect > 1.0 ? total / designEffect : total;
     const double centre = (p + z2 / (2 * n)) / (1 + z2 / n);
     const double half = z * std::sqrt(p * (1 - p) / n + z2 / (4 * n * n)) / (1 + z2 / n);
     return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
+void ClusteredProportion::add(int count, int total) {
+    if (total <= 0) return;
+    count_ += count;
+    total_ += total;
+    ++clusters_;
+    largest_ = std::max(largest_, total);
+    const double c = count, n = total;
+    countSquares_ += c * c;
+    crossProducts_ += c * n;
+    totalSquares_ += n * n;
+}
+
+double ClusteredProportion::designEffect() const {
+    if (largest_ <= 1 || clusters_ < 2 || count_ <= 0 || count_ >= total_) return 1.0;
+    const double n = total_, p = count_ / n, k = clusters_;
+    // sum_i (c_i - p n_i)^2 from the running sums (whole numbers up to ~1e9: exact in doubles).
+    const double spread =
+        std::max(0.0, countSquares_ - 2.0 * p * crossProducts_ + p * p * totalSquares_);
+    const double clustered = k / (k - 1.0) * spread / (n * n);
+    return std::max(1.0, clustered / (p * (1.0 - p) / n));
 }
 
 Interval clopperPearson(int count, int total, double level) {

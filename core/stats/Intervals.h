@@ -12,8 +12,30 @@ struct Interval {
     double low = 0.0, high = 0.0;
 };
 
-/// Wilson's score interval for `count` of `total` (total > 0), within [0, 1].
-Interval wilson(int count, int total, double level = 0.95);
+/// Wilson's score interval for `count` of `total` (total > 0), within [0, 1]. With a design
+/// effect above 1 (clustered draws, ClusteredProportion), on the effective total: the same
+/// rate from total / designEffect independent draws (Kish).
+Interval wilson(int count, int total, double level = 0.95, double designEffect = 1.0);
+
+/// A proportion pooled over clusters, each adding its count of its total: draws within a
+/// cluster (the trials of one seed, which share its training run) need not be independent. Its
+/// design effect is the pooled rate's variance with the clusters as the independent units (the
+/// ratio estimator's linearised variance, k / (k - 1) sum_i (c_i - p n_i)^2 / n^2) over the
+/// binomial p (1 - p) / n; at least 1, so that an interval on it is never narrower than the
+/// binomial one, and exactly 1 where every cluster has at most one draw (then they are the
+/// independent draws), fewer than two clusters have any, or the rate is 0 or 1. Kept as running
+/// sums: adding a cluster is O(1).
+class ClusteredProportion {
+public:
+    void add(int count, int total);
+    int count() const { return count_; }
+    int total() const { return total_; }
+    double designEffect() const;
+
+private:
+    int count_ = 0, total_ = 0, clusters_ = 0, largest_ = 0;
+    double countSquares_ = 0.0, crossProducts_ = 0.0, totalSquares_ = 0.0;
+};
 /// Clopper and Pearson's exact interval for `count` of `total` (total > 0).
 Interval clopperPearson(int count, int total, double level = 0.95);
 

@@ -5,6 +5,7 @@
 #include <QtTest>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include "core/stats/Distributions.h"
@@ -58,6 +59,68 @@ private slots:
         QCOMPARE(clopperPearson(20, 20).high, 1.0);
         QCOMPARE(wilson(0, 20).low, 0.0);
         QCOMPARE(wilson(20, 20).high, 1.0);
+    }
+
+    void pooledRatesCountEachClusterAsOneUnit() {
+        // Draws one to a cluster are the independent draws: the binomial interval, bit for bit.
+        ClusteredProportion single;
+        for (int i = 0; i < 40; ++i) single.add(i % 5 == 0 ? 0 : 1, 1);
+        QCOMPARE(single.designEffect(), 1.0);
+        QCOMPARE(wilson(single.count(), single.total(), 0.95, single.designEffect()).low,
+                 wilson(32, 40).low);
+        // Clusters alike (each 3 of 4): no spread between them, never narrower than binomial.
+        ClusteredProportion alike;
+        for (int i = 0; i < 30; ++i) alike.add(3, 4);
+        QCOMPARE(alike.designEffect(), 1.0);
+        // All or nothing, eight to a cluster: the clusters are the draws. The design effect is
+        // 8 k / (k - 1), and the interval that of k - 1 independent clusters.
+        ClusteredProportion whole;
+        const int k = 50;
+        for (int i = 0; i < k; ++i) whole.add(i < 35 ? 8 : 0, 8);
+        QVERIFY(near(whole.designEffect(), 8.0 * k / (k - 1)));
+        const Interval w = wilson(whole.count(), whole.total(), 0.95, whole.designEffect());
+        const double q = 35.0 / 50.0, z = 1.959963984540054, n = k - 1;
+        const double centre = (q + z * z / (2 * n)) / (1 + z * z / n);
+        const double half = z * std::sqrt(q * (1 - q) / n + z * z / (4 * n * n)) / (1 + z * z / n);
+        QVERIFY(near(w.low, centre - half, 1e-9) && near(w.high, centre + half, 1e-9));
+        // Nothing to spread: a rate of 0 or 1, one cluster, or none.
+        ClusteredProportion none, one, allRight;
+        one.add(3, 8);
+        for (int i = 0; i < 5; ++i) allRight.add(4, 4);
+        QCOMPARE(none.designEffect(), 1.0);
+        QCOMPARE(one.designEffect(), 1.0);
+        QCOMPARE(allRight.designEffect(), 1.0);
+        // Clusters of nothing count for nothing.
+        ClusteredProportion withEmpty = whole;
+        withEmpty.add(0, 0);
+        QCOMPARE(withEmpty.designEffect(), whole.designEffect());
+    }
+
+    void pooledIntervalsCoverClusteredRatesAsOftenAsTheySay() {
+        // Seeds of 8 trials whose success chance varies from seed to seed (a beta of mean 0.9,
+        // as a training draw makes some runs worse than others): over 2000 repeats of 200 seeds,
+        // the clustered interval holds the true rate about 95 % of the time; the binomial one,
+        // counting trials as independent, markedly less often.
+        std::mt19937_64 rng(2024);
+        std::gamma_distribution<double> a(3.6, 1.0), b(0.4, 1.0);
+        int clustered = 0, binomial = 0;
+        const int repeats = 2000;
+        for (int r = 0; r < repeats; ++r) {
+            ClusteredProportion pooled;
+            for (int seed = 0; seed < 200; ++seed) {
+                const double x = a(rng), y = b(rng), chance = x / (x + y);
+                std::binomial_distribution<int> trials(8, chance);
+                pooled.add(trials(rng), 8);
+            }
+            const Interval c = wilson(pooled.count(), pooled.total(), 0.95, pooled.designEffect());
+            const Interval w = wilson(pooled.count(), pooled.total());
+            clustered += c.low <= 0.9 && 0.9 <= c.high;
+            binomial += w.low <= 0.9 && 0.9 <= w.high;
+        }
+        qInfo("coverage of 0.9 over %d repeats: clustered %.3f, binomial %.3f", repeats,
+              double(clustered) / repeats, double(binomial) / repeats);
+        QVERIFY(clustered >= 0.93 * repeats && clustered <= 0.97 * repeats);
+        QVERIFY(binomial < 0.85 * repeats);
     }
 
     void meansOverSeedsUseStudentsTInsideTheirBounds() {
