@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "core/classify/SequentialPerception.h"
 #include "core/common/NumberText.h"
@@ -420,15 +421,16 @@ TrialResult runTrial(Rig& rig, const HistogramClassifier& classifier, const Clas
     try {
         rig.stage.moveTo(pose);
         for (int n = 0; n < tapCap; ++n) {
-            FollowedTap t;
-            t.record = rig.tapper.tap();
+            TapRecord taken = rig.tapper.tap();  // a tap not taken (it threw) is not recorded
+            // Kept in place: the tap's frames move into the trial's record, never copied.
+            FollowedTap& t = result.taps.emplace_back();
+            t.record = std::move(taken);
             t.record.pose = pose;
             t.contact = contactMade(t.record, setup.noiseFloor);
             const bool decisionMade = loop.perceiveAndDecide(t, pose);
             loop.judge(t, pose);
             loop.remember(t, decisionMade);
-            result.taps.push_back(t);
-            const bool keepGoing = !onTap || onTap(result.taps.back());
+            const bool keepGoing = !onTap || onTap(t);
             if (const auto end = loop.endAt(t, pose, keepGoing)) {
                 result.end = *end;
                 break;

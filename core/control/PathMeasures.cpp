@@ -23,16 +23,19 @@ void measurePath(const Polygon& outline, const std::vector<Vec2>& path, double c
     }
     r.meanContourDistance_mm = sum / static_cast<double>(path.size());
     // Coverage: contour points within reach, every half millimetre, with a tap within the radius.
-    const std::size_t samples = reach.samples();
-    std::size_t inReach = 0, covered = 0;
+    // Neighbouring samples are covered by neighbouring taps: each search starts at the tap that
+    // covered the last one and goes round the path once (only whether one does counts).
+    const std::size_t samples = reach.samples(), taps = path.size();
+    std::size_t inReach = 0, covered = 0, lastHit = 0;
     for (std::size_t i = 0; i < samples; ++i) {
         if (!reach.reachable(i)) continue;
         ++inReach;
         const Vec2 q = outline.pointAtArcLength(static_cast<double>(i) * outline.perimeter() /
                                                 static_cast<double>(samples));
-        for (Vec2 p : path)
-            if (distance(p, q) <= coverageRadius) {
+        for (std::size_t k = 0, j = lastHit; k < taps; ++k, j = j + 1 == taps ? 0 : j + 1)
+            if (distance(path[j], q) <= coverageRadius) {
                 ++covered;
+                lastHit = j;
                 break;
             }
     }
