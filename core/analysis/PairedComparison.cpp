@@ -1,6 +1,4 @@
-#include "core/stats/Intervals.h"
 #include "core/analysis/PairedComparison.h"
-#include "core/run/RunArtefacts.h"
 
 #include <algorithm>
 #include <cctype>
@@ -12,15 +10,16 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "core/run/OutputFiles.h"
 #include "core/common/InputError.h"
+#include "core/run/OutputFiles.h"
+#include "core/run/RunArtefacts.h"
+#include "core/stats/Intervals.h"
 
 namespace activetouch {
 
 namespace fs = std::filesystem;
 
 namespace {
-
 
 using TrialKey = std::tuple<FollowingMode, std::string, int>;
 
@@ -73,8 +72,9 @@ std::string endedText(const std::string& outcome, const std::string& named) {
     return named.empty() ? outcome : outcome + ", named " + named;
 }
 
-TrialPairRun runTrialPair(const SimulatedRigs& rigs, const ExperimentSpec& a, const ExperimentSpec& b, std::uint64_t seed,
-                          FollowingMode mode, const std::string& label, int trial) {
+TrialPairRun runTrialPair(const SimulatedRigs& rigs, const ExperimentSpec& a,
+                          const ExperimentSpec& b, std::uint64_t seed, FollowingMode mode,
+                          const std::string& label, int trial) {
     for (const ExperimentSpec* spec : {&a, &b}) {
         int repeats = 0;
         for (const TrialSpec& t : spec->trials)
@@ -173,7 +173,7 @@ SeedPairRecord seedPairRecord(const RunResult& a, const RunResult& b) {
         const TrialRun& tb = *found->second;
         const TrialResult &ra = ta.result, &rb = tb.result;
         SeedPairRecord::Trial t;
-        t.pair = {r.seed,          ra.mode,           ta.label,      ta.trial,
+        t.pair = {r.seed,           ra.mode,          ta.label,      ta.trial,
                   trialOutcome(ta), trialOutcome(tb), namedPath(ta), namedPath(tb)};
         t.completedA = ra.completed();
         t.completedB = rb.completed();
@@ -262,9 +262,9 @@ void appendComparedSeed(OutputFile& table, OutputFile& soFar, const PairedCompar
     soFar.flush();
 }
 
-PairedComparison comparePaired(const SimulatedRigs& rigs, const ExperimentSpec& a, const ExperimentSpec& b,
-                               std::uint64_t first, std::uint64_t last, const std::string& outDir,
-                               const ComparedSeed& seedDone, int jobs) {
+PairedComparison comparePaired(const SimulatedRigs& rigs, const ExperimentSpec& a,
+                               const ExperimentSpec& b, std::uint64_t first, std::uint64_t last,
+                               const std::string& outDir, const ComparedSeed& seedDone, int jobs) {
     PairedComparison c;
     c.nameA = a.name;
     c.nameB = b.name;
@@ -275,6 +275,7 @@ PairedComparison comparePaired(const SimulatedRigs& rigs, const ExperimentSpec& 
         RunOptions options;
         options.simulated = &rigs;
         options.seed = seed;
+        options.reportsBeliefCalibration = false;  // the pairs are the trials' outcomes
         return std::make_pair(runExperimentOrFailure(a, options),
                               runExperimentOrFailure(b, options));
     };

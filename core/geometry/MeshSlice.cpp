@@ -20,7 +20,9 @@ Edge edgeOf(std::uint32_t a, std::uint32_t b) {
 }
 
 std::string pointText(const std::array<double, 3>& p) {
-    return "(" + numberText(p[0]) + ", " + numberText(p[1]) + ", " + numberText(p[2]) + ") mm";
+    std::string text = "(";
+    text += numberText(p[0]) + ", " + numberText(p[1]) + ", " + numberText(p[2]) + ") mm";
+    return text;
 }
 
 bool degenerate(const std::array<std::uint32_t, 3>& t) {

@@ -267,6 +267,7 @@ std::vector<RobustnessRow> robustnessSweep(const RunResult& r, const RunOptions&
         RunOptions once;
         once.simulated = options.simulated;
         once.seed = r.spec.scene.seed;
+        once.reportsBeliefCalibration = false;  // a row is the trials' outcomes
         // Cancelling the run cancels this one (its observer hears only that question).
         struct Relay : RunObserver {
             const RunOptions* outer = nullptr;
