@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <mutex>
 #include <numeric>
 #include <stdexcept>
 
 #include "core/common/Avx2Clones.h"
+#include "core/common/RecentlyKept.h"
 #include "core/common/VectorState.h"
 
 namespace activetouch {
@@ -182,21 +182,9 @@ std::shared_ptr<const FingertipContactModel> FingertipContactModel::shared(
                             spec.mountTiltDeg, spec.mountHeadingDeg, spec.receptiveFieldSigma,
                             spec.countsPerMm,  spec.gridStep,        spec.maxIndentation};
     for (const TaxelPosition& t : spec.taxels) key.insert(key.end(), {t.x, t.y, t.z});
-    static std::mutex mutex;
-    struct Kept {
-        std::string name;
-        std::vector<double> key;
-        std::shared_ptr<const FingertipContactModel> model;
-    };
-    static std::vector<Kept> recent;
-    std::lock_guard lock(mutex);
-    for (const Kept& k : recent)
-        if (k.name == spec.name && k.key == key) return k.model;
-    auto model = std::make_shared<const FingertipContactModel>(spec);
-    constexpr std::size_t kKept = 4;
-    if (recent.size() >= kKept) recent.erase(recent.begin());
-    recent.push_back({spec.name, std::move(key), model});
-    return model;
+    static RecentlyKept<std::pair<std::string, std::vector<double>>, FingertipContactModel, 4> kept;
+    return kept.get({spec.name, std::move(key)},
+                    [&] { return std::make_shared<const FingertipContactModel>(spec); });
 }
 
 double FingertipContactModel::surfaceHeightAt(Vec2 offset) const {

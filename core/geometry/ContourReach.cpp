@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
+
+#include "core/common/RecentlyKept.h"
 
 namespace activetouch {
 
@@ -127,21 +128,9 @@ ContourReach::ContourReach(const Polygon& outline, double radius_mm)
 }
 
 std::shared_ptr<const ContourReach> ContourReach::shared(const Polygon& outline, double radius_mm) {
-    struct Kept {
-        std::vector<Vec2> vertices;
-        double radius;
-        std::shared_ptr<const ContourReach> reach;
-    };
-    static std::mutex mutex;
-    static std::vector<Kept> recent;
-    std::lock_guard lock(mutex);
-    for (const Kept& k : recent)
-        if (k.radius == radius_mm && k.vertices == outline.vertices()) return k.reach;
-    constexpr std::size_t kKept = 32;
-    if (recent.size() >= kKept) recent.erase(recent.begin());
-    recent.push_back(
-        {outline.vertices(), radius_mm, std::make_shared<const ContourReach>(outline, radius_mm)});
-    return recent.back().reach;
+    static RecentlyKept<std::pair<std::vector<Vec2>, double>, ContourReach, 32> kept;
+    return kept.get({outline.vertices(), radius_mm},
+                    [&] { return std::make_shared<const ContourReach>(outline, radius_mm); });
 }
 
 double ContourReach::reachableFraction() const {
