@@ -26,6 +26,7 @@ struct Tap {
     const double* frame(int t) const {
         return samples.data() + static_cast<std::size_t>(t * taxels);
     }
+    double* frame(int t) { return samples.data() + static_cast<std::size_t>(t * taxels); }
 };
 
 /// How the tapper's stroke ended.

@@ -195,9 +195,10 @@ public:
     void shapeSignal(Tap& tap, const SignalContext&) override {
         draws_.resize(tap.samples.size());
         rng_.normals(draws_.data(), draws_.size());
-        double* v = tap.samples.data();
-        for (std::size_t i = 0; i < draws_.size(); ++i)
-            v[i] = std::max(0.0, v[i] + sigma_ * draws_[i]);
+        double* __restrict v = tap.samples.data();
+        const double* __restrict z = draws_.data();
+        const double sigma = sigma_;
+        for (std::size_t i = 0; i < draws_.size(); ++i) v[i] = std::max(0.0, v[i] + sigma * z[i]);
     }
 
 private:
@@ -215,9 +216,10 @@ public:
         // Clamped to the range, then rounded to the nearest count by adding and taking off 2^52
         // (a double has no fraction bits there; a tie goes to the even count): no library
         // call per sample, several samples to an instruction.
+        const double top = max_;
         for (double& v : tap.samples) {
-            const double x = std::min(v > 0.0 ? v : 0.0, max_);
-            v = std::min((x + 0x1p52) - 0x1p52, max_);
+            const double x = std::min(v > 0.0 ? v : 0.0, top);
+            v = std::min((x + 0x1p52) - 0x1p52, top);
         }
     }
 

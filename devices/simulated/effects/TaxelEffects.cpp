@@ -16,8 +16,7 @@ public:
         : Effect("crosstalk", Acts::Signal, 20),
           K_(model.taxelCount()),
           coupling_(coupling),
-          first_(static_cast<std::size_t>(K_) + 1, 0),
-          frame_(static_cast<std::size_t>(K_)) {
+          first_(static_cast<std::size_t>(K_) + 1, 0) {
         const auto& p = model.projectedTaxels();
         for (int i = 0; i < K_; ++i) {
             for (int j = 0; j < K_; ++j)
@@ -28,15 +27,25 @@ public:
         }
     }
     void shapeSignal(Tap& tap, const SignalContext&) override {
-        for (int t = 0; t < tap.sampleCount(); ++t) {
-            double* f = tap.samples.data() + static_cast<std::size_t>(t) * frame_.size();
-            std::copy(f, f + K_, frame_.begin());
-            for (std::size_t i = 0; i < frame_.size(); ++i) {
-                double sum = 0.0;
-                for (std::size_t n = first_[i]; n < first_[i + 1]; ++n)
-                    sum += frame_[neighbours_[n]];
-                f[i] += coupling_ * sum;
+        // Taxel by taxel over the whole tap (each taxel's samples in a row of their own), so that
+        // one instruction adds a neighbour to several samples; each sample's neighbours are still
+        // summed one by one in the reader's order, the same values as frame by frame.
+        const auto K = static_cast<std::size_t>(K_);
+        const auto T = static_cast<std::size_t>(tap.sampleCount());
+        rows_.resize(K * T);
+        sums_.resize(T);
+        double* __restrict rows = rows_.data();
+        double* __restrict sums = sums_.data();
+        double* __restrict f = tap.samples.data();
+        for (std::size_t t = 0; t < T; ++t)
+            for (std::size_t k = 0; k < K; ++k) rows[k * T + t] = f[t * K + k];
+        for (std::size_t i = 0; i < K; ++i) {
+            std::fill(sums, sums + T, 0.0);
+            for (std::size_t n = first_[i]; n < first_[i + 1]; ++n) {
+                const double* __restrict row = rows + neighbours_[n] * T;
+                for (std::size_t t = 0; t < T; ++t) sums[t] += row[t];
             }
+            for (std::size_t t = 0; t < T; ++t) f[t * K + i] += coupling_ * sums[t];
         }
     }
 
@@ -45,7 +54,7 @@ private:
     double coupling_;
     // Each reader's neighbours within the radius: neighbours_[first_[i] .. first_[i + 1]).
     std::vector<std::size_t> first_, neighbours_;
-    std::vector<double> frame_;
+    std::vector<double> rows_, sums_;  // the tap taxel by taxel; one reader's sums
 };
 
 /// Each taxel's own sensitivity: real skins differ taxel to taxel, so the same pressure reads
@@ -84,16 +93,30 @@ public:
           tau_(tau),
           lastSaturated_(static_cast<std::size_t>(taxels), -INFINITY) {}
     void shapeSignal(Tap& tap, const SignalContext& c) override {
+        // Nothing to do in a tap that never reaches the level while no taxel is recovering.
+        const double level = level_, tau = tau_, start = c.startTime_s, dt = c.samplePeriod_s;
+        const bool recovering = std::any_of(lastSaturated_.begin(), lastSaturated_.end(),
+                                            [](double s) { return std::isfinite(s); });
+        if (!recovering && std::all_of(tap.samples.begin(), tap.samples.end(),
+                                       [level](double v) { return v < level; }))
+            return;
+        double* since = lastSaturated_.data();
         for (int t = 0; t < tap.sampleCount(); ++t) {
-            const double now = c.startTime_s + t * c.samplePeriod_s;
+            const double now = start + t * dt;
+            // Taxels last saturated at the same moment share the decayed level: computed once.
+            double sharedSince = NAN, decayed = 0.0;
+            double* f = tap.frame(t);
             for (int k = 0; k < tap.taxels; ++k) {
-                double& since = lastSaturated_[static_cast<std::size_t>(k)];
-                double& v = tap.at(t, k);
-                if (v >= level_) {
-                    v = level_;
-                    since = now;
-                } else if (std::isfinite(since)) {
-                    v = std::max(v, level_ * std::exp(-(now - since) / tau_));
+                double& v = f[k];
+                if (v >= level) {
+                    v = level;
+                    since[k] = now;
+                } else if (std::isfinite(since[k])) {
+                    if (since[k] != sharedSince) {
+                        sharedSince = since[k];
+                        decayed = level * std::exp(-(now - sharedSince) / tau);
+                    }
+                    v = std::max(v, decayed);
                 }
             }
         }
@@ -117,7 +140,7 @@ public:
           offRate_(offFraction >= 1.0 ? INFINITY : offFraction / (1.0 - offFraction) / meanOff),
           stationaryOff_(offFraction),
           reading_(reading),
-          off_(taxels_.size(), false),
+          off_(taxels_.size(), 0),
           rng_(rng) {}
     void shapeSignal(Tap& tap, const SignalContext& c) override {
         // Between taps the chain runs on unobserved: the chance of being off after a gap is the
@@ -126,23 +149,32 @@ public:
         const double relax = std::isfinite(offRate_) ? std::exp(-(onRate_ + offRate_) * gap) : 0.0;
         for (std::size_t i = 0; i < taxels_.size(); ++i) {
             const double start = off_[i] ? 1.0 : 0.0;
-            off_[i] = rng_.uniform() < stationaryOff_ + (start - stationaryOff_) * relax;
+            off_[i] = rng_.uniform() < stationaryOff_ + (start - stationaryOff_) * relax ? 1 : 0;
         }
         const double dt = c.samplePeriod_s;
         const double pOff = std::isfinite(offRate_) ? 1.0 - std::exp(-offRate_ * dt) : 1.0;
         const double pOn = 1.0 - std::exp(-onRate_ * dt);
-        for (int t = 0; t < tap.sampleCount(); ++t)
-            for (std::size_t i = 0; i < taxels_.size(); ++i) {
-                if (t > 0) off_[i] = off_[i] ? !(rng_.uniform() < pOn) : rng_.uniform() < pOff;
-                if (off_[i]) tap.at(t, taxels_[i]) = reading_;
+        // The chain and its generator in locals for the loop (the tap's samples are written
+        // in it), given back after.
+        RandomStream draw = rng_;
+        int* off = off_.data();
+        const double reading = reading_;
+        const std::size_t n = taxels_.size();
+        for (int t = 0; t < tap.sampleCount(); ++t) {
+            double* f = tap.frame(t);
+            for (std::size_t i = 0; i < n; ++i) {
+                if (t > 0) off[i] = off[i] ? !(draw.uniform() < pOn) : draw.uniform() < pOff;
+                if (off[i]) f[taxels_[i]] = reading;
             }
+        }
+        rng_ = draw;
         lastTime_ = c.startTime_s + tap.sampleCount() * dt;
     }
 
 private:
     std::vector<int> taxels_;
     double onRate_, offRate_, stationaryOff_, reading_;
-    std::vector<bool> off_;
+    std::vector<int> off_;  ///< each listed taxel's state: 1 off, 0 working
     RandomStream rng_;
     double lastTime_ = -INFINITY;
 };
