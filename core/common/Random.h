@@ -1,6 +1,7 @@
 #pragma once
 // Deterministic random numbers, identical on every platform and standard library: the simulated
 // rig promises bit-identical taps for a seed, which std::normal_distribution does not guarantee.
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -53,7 +54,7 @@ public:
     /// Uniform in [lo, hi).
     double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
 
-    /// Standard normal (Marsaglia polar method).
+    /// Standard normal (Marsaglia's polar method, its logarithm logOfPositive()).
     double normal() {
         if (hasSpareNormal_) {
             hasSpareNormal_ = false;
@@ -65,7 +66,7 @@ public:
             v = 2.0 * uniform() - 1.0;
             s = u * u + v * v;
         } while (s >= 1.0 || s == 0.0);
-        const double f = std::sqrt(-2.0 * std::log(s) / s);
+        const double f = std::sqrt(-2.0 * logOfPositive(s) / s);
         spareNormal_ = v * f;
         hasSpareNormal_ = true;
         return u * f;
@@ -73,16 +74,42 @@ public:
 
     double normal(double mean, double sigma) { return mean + sigma * normal(); }
 
-    /// `count` standard normals into `out`, for the simulated rig's per-sample effects: the
-    /// ziggurat method (128 layers, one 64-bit draw for nearly every value, exact in
-    /// distribution), several times faster than normal(). A separate sequence from normal()'s:
-    /// the two are not interchangeable for a given seed.
+    /// `count` standard normals into `out`: the very values `count` calls of normal() give, the
+    /// stream left as they leave it, made in blocks (the draws, then the logarithms and roots
+    /// several to an instruction) for the simulated rig's per-sample effects.
     void normals(double* out, std::size_t count);
 
+    /// The natural logarithm of a positive normal double, within two units in the last place,
+    /// in the same operations on every machine and library (no call to the C library's log,
+    /// whose last bits differ from one library to another), and inlined so that a loop of them
+    /// runs several to an instruction. ln m for m = x 2^-k in [sqrt(1/2), sqrt(2)) is
+    /// 2 atanh(f), f = (m - 1) / (m + 1), |f| <= 0.172: the odd series to f^21 (the next term is
+    /// below 2^-55 of the sum), plus k ln 2 in two parts.
+    static double logOfPositive(double x) {
+        constexpr std::uint64_t kRootHalf = 0x3FE6A09E667F3BCDull;
+        const std::uint64_t bits = std::bit_cast<std::uint64_t>(x);
+        const std::uint64_t shifted = bits - kRootHalf + (1024ull << 52);
+        const std::uint64_t biased = shifted >> 52;  // k + 1024
+        const double k = std::bit_cast<double>(0x4330000000000000ull | biased) - (0x1p52 + 1024.0);
+        const double m = std::bit_cast<double>(bits - (biased << 52) + (1024ull << 52));
+        const double f = (m - 1.0) / (m + 1.0);
+        const double z = f * f;
+        double p = 2.0 / 21;
+        p = 2.0 / 19 + z * p;
+        p = 2.0 / 17 + z * p;
+        p = 2.0 / 15 + z * p;
+        p = 2.0 / 13 + z * p;
+        p = 2.0 / 11 + z * p;
+        p = 2.0 / 9 + z * p;
+        p = 2.0 / 7 + z * p;
+        p = 2.0 / 5 + z * p;
+        p = 2.0 / 3 + z * p;
+        constexpr double kLn2High = 0x1.62e42fee00000p-1;  // k times it is exact
+        constexpr double kLn2Low = 0x1.a39ef35793c76p-33;
+        return (k * kLn2High + 2.0 * f) + (k * kLn2Low + f * (z * p));
+    }
+
 private:
-    /// The ziggurat's value for a draw outside its layer's inner rectangle (the wedge or the
-    /// tail), drawing further as it needs.
-    double zigguratSlow(std::uint64_t bits);
     static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
     std::uint64_t state_[4]{};
     bool hasSpareNormal_ = false;

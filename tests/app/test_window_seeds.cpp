@@ -116,15 +116,20 @@ private slots:
             if (!curve || (!curve->name().startsWith(QString("A ")) &&
                            !curve->name().startsWith(QString("B "))))
                 continue;
-            drawn << curve->name();
+            drawn << curve->name().simplified();  // the reason an end had is on a line of its own
             const TrialRun& run = curve->name().startsWith("A ") ? direct.a : direct.b;
             QCOMPARE(curve->data()->size(), int(run.result.path().size()));
             QCOMPARE(curve->data()->at(0)->key, run.result.path().front().x);
             QCOMPARE((curve->data()->end() - 1)->value, run.result.path().back().y);
         }
         QCOMPARE(drawn.size(), 2);
-        QVERIFY2(drawn[0].startsWith("A paper: " + QString::fromStdString(trialOutcome(direct.a))),
+        // A's legend entry says how its trial ended, its taps, and why where there is a reason.
+        const QString outcomeA = QString::fromStdString(trialOutcome(direct.a));
+        const qsizetype why = outcomeA.indexOf(" (");
+        QVERIFY2(drawn[0].startsWith("A paper: " + outcomeA.left(why) + ", " +
+                                     QString::number(direct.a.result.taps.size()) + " taps"),
                  qPrintable(drawn.join(" | ")));
+        if (why >= 0) QVERIFY2(drawn[0].endsWith(outcomeA.mid(why)), qPrintable(drawn[0]));
         QVERIFY2(drawn[1].startsWith("B paper_kernel: "), qPrintable(drawn.join(" | ")));
         // Its table and figure are in the comparison's folder, as compare --show writes them.
         const QString stem = QString::fromStdString(trialPairFileStem(direct));

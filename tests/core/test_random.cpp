@@ -1,9 +1,11 @@
-// The simulated rig's random numbers: the block normal generator (RandomStream::normals, the
-// ziggurat that every per-sample effect draws from) is a standard normal in distribution - its
-// moments, its whole distribution function, both tails and the draws' independence - and repeats
-// exactly for a seed.
+// The simulated rig's random numbers: the block normal generator (RandomStream::normals, which
+// every per-sample effect draws from) gives exactly what normal() gives, call for call; both are a
+// standard normal in distribution - their moments, their whole distribution function, both tails
+// and the draws' independence - and repeat exactly for a seed. The polar method's logarithm is the
+// generator's own, within two units in the last place everywhere.
 #include <QtTest>
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <vector>
 
@@ -68,9 +70,10 @@ private slots:
         QVERIFY2(ks < 1.95 / std::sqrt(n), qPrintable(QString::number(ks * std::sqrt(n))));
     }
 
-    void tailsBeyondTheBaseLayerHaveTheirShare() {
-        // The ziggurat draws values beyond r = 3.44 from a separate tail branch; the wedges
-        // between layers from another. Each band's share against Phi, within five binomial SEs.
+    void tailsHaveTheirShare() {
+        // The far tails come from the smallest radii of the polar method (|z| > 4 needs s below
+        // about 3e-4), where the logarithm is steepest. Each band's share against Phi, within five
+        // binomial SEs.
         const auto v = draws(13, 8'000'000);
         const double n = static_cast<double>(v.size());
         for (const auto& [lo, hi] : std::vector<std::pair<double, double>>{
@@ -100,6 +103,60 @@ private slots:
             QVERIFY2(std::abs(c / n) < 5 / std::sqrt(n), qPrintable(QString::number(c / n)));
             QVERIFY(std::abs(signs / n) < 5 / std::sqrt(n));
         }
+    }
+
+    void blocksGiveExactlyWhatNormalGives() {
+        // Blocks of every length from 0 to 700 (odd ones leave a spare), single normal() calls in
+        // between: the same values bit for bit, and the stream where normal()'s calls leave it.
+        RandomStream blocks(99), single(99), lengths(3);
+        std::size_t values = 0;
+        for (int round = 0; round < 3000; ++round) {
+            const std::size_t n = lengths.next() % 701;
+            std::vector<double> got(n), want(n);
+            blocks.normals(got.data(), n);
+            for (double& x : want) x = single.normal();
+            QVERIFY2(std::equal(got.begin(), got.end(), want.begin(),
+                                [](double a, double b) {
+                                    return std::bit_cast<std::uint64_t>(a) ==
+                                           std::bit_cast<std::uint64_t>(b);
+                                }),
+                     qPrintable(QString("a block of %1 in round %2").arg(n).arg(round)));
+            values += n;
+            if (round % 7 == 0) QCOMPARE(blocks.normal(), single.normal());
+            QCOMPARE(blocks.uniform(), single.uniform());
+        }
+        QVERIFY(values > 900'000);
+    }
+
+    void theLogarithmIsWithinTwoUnitsInTheLastPlace() {
+        // Against the long double logarithm, over the unit disc's radii the polar method takes
+        // (down to 2^-104), values next to 1 on either side, powers of two and every binade.
+        auto ulpsOff = [](double x) {
+            const long double want = std::log(static_cast<long double>(x));
+            const double got = RandomStream::logOfPositive(x);
+            if (want == 0.0L) return got == 0.0 ? 0.0 : HUGE_VAL;
+            const double w = static_cast<double>(want);
+            const double ulp = std::nextafter(std::abs(w), HUGE_VAL) - std::abs(w);
+            return static_cast<double>(std::abs(static_cast<long double>(got) - want) / ulp);
+        };
+        RandomStream rng(21);
+        double worst = 0.0, at = 0.0;
+        auto check = [&](double x) {
+            const double off = ulpsOff(x);
+            if (off > worst) worst = off, at = x;
+        };
+        for (int i = 0; i < 400'000; ++i) {
+            const double u = 2 * rng.uniform() - 1, v = 2 * rng.uniform() - 1;
+            if (u * u + v * v < 1.0 && u * u + v * v > 0.0) check(u * u + v * v);
+            check(std::nextafter(1.0, 0.0) - (i % 1000) * 0x1p-53);
+            check(1.0 + (i % 1000) * 0x1p-52);
+            check(std::ldexp(0.5 + 0.5 * rng.uniform(), static_cast<int>(i % 2000) - 1000));
+        }
+        for (int k = -1022; k <= 1023; ++k) check(std::ldexp(1.0, k));
+        for (double x : {0x1p-104, 0.5, 0.7071067811865476, 1.4142135623730951, 2.0, 1e300})
+            check(x);
+        QVERIFY2(worst <= 2.0, qPrintable(QString("%1 units at %2").arg(worst).arg(at, 0, 'a')));
+        QCOMPARE(RandomStream::logOfPositive(1.0), 0.0);
     }
 
     void aSeedRepeatsExactly() {
