@@ -7,7 +7,7 @@
 // kernel-smoothed likelihood (experiments/paper_kernel.json) completes more at no extra tap, and
 // so does following with a classifier trained again on every data set after validation
 // (experiments/paper_retrained.json), which passive following gains from too (over seeds 1-100:
-// 95.2 %, 96.0 %, 99.5 %, 98.4 % and 99.4 %; `activetouch-cli seeds` prints them). Two
+// 97.5 %, 97.5 %, 99.5 %, 98.5 % and 99.6 %; `activetouch-cli seeds` prints them). Two
 // experiments compared trial by trial over the same seeds give each side's own rates, and
 // McNemar's test on the trials they ended differently.
 #include <QtTest>

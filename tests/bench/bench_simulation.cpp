@@ -1,9 +1,12 @@
 // Microseconds to simulate one tap on the paper rectangle, across the lower edge: the ideal
-// scene, with every effect listed, and with each effect alone (what each costs). Budgets
-// (docs/benchmarks.md): ideal <= 10 us, all effects <= 50 us; an effect alone has none.
+// scene, with every effect listed, and with each effect alone (what each costs); and what one of
+// the noise's and drift's Gaussian values costs, drawn in blocks of a tap's 600 and one at a
+// time. Budgets (docs/benchmarks.md): ideal <= 10 us, all effects <= 50 us; the rest have none.
 #include <cstdio>
+#include <vector>
 
 #include "bench/BenchHarness.h"
+#include "core/common/Random.h"
 #include "core/scene/Scene.h"
 #include "devices/simulated/SimulatedWorld.h"
 
@@ -46,5 +49,24 @@ int main() {
         const std::string what = "simulate one tap, ideal + " + e.name;
         std::printf("%-52s %10.3f us\n", what.c_str(), microsecondsPerTap(alone, model));
     }
+    RandomStream rng(1);
+    std::vector<double> values(600);
+    double sink = 0;
+    const double block = bench::medianMicroseconds(
+        [&] {
+            rng.normals(values.data(), values.size());
+            sink += values[7];
+        },
+        2000);
+    const double single = bench::medianMicroseconds(
+        [&] {
+            for (double& v : values) v = rng.normal();
+            sink += values[7];
+        },
+        2000);
+    std::printf("%-52s %10.3f ns\n", "draw a Gaussian value, in blocks of 600",
+                sink == -1 ? 0 : 1000 * block / 600);
+    std::printf("%-52s %10.3f ns\n", "draw a Gaussian value, one normal() at a time",
+                1000 * single / 600);
     return 0;
 }
