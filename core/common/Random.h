@@ -1,8 +1,6 @@
 #pragma once
 // Deterministic random numbers, identical on every platform and standard library: the simulated
 // rig promises bit-identical taps for a seed, which std::normal_distribution does not guarantee.
-#include <bit>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -55,22 +53,7 @@ public:
     double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
 
     /// Standard normal (Marsaglia's polar method, its logarithm logOfPositive()).
-    double normal() {
-        if (hasSpareNormal_) {
-            hasSpareNormal_ = false;
-            return spareNormal_;
-        }
-        double u, v, s;
-        do {
-            u = 2.0 * uniform() - 1.0;
-            v = 2.0 * uniform() - 1.0;
-            s = u * u + v * v;
-        } while (s >= 1.0 || s == 0.0);
-        const double f = std::sqrt(-2.0 * logOfPositive(s) / s);
-        spareNormal_ = v * f;
-        hasSpareNormal_ = true;
-        return u * f;
-    }
+    double normal();
 
     double normal(double mean, double sigma) { return mean + sigma * normal(); }
 
@@ -85,29 +68,7 @@ public:
     /// runs several to an instruction. ln m for m = x 2^-k in [sqrt(1/2), sqrt(2)) is
     /// 2 atanh(f), f = (m - 1) / (m + 1), |f| <= 0.172: the odd series to f^21 (the next term is
     /// below 2^-55 of the sum), plus k ln 2 in two parts.
-    static double logOfPositive(double x) {
-        constexpr std::uint64_t kRootHalf = 0x3FE6A09E667F3BCDull;
-        const std::uint64_t bits = std::bit_cast<std::uint64_t>(x);
-        const std::uint64_t shifted = bits - kRootHalf + (1024ull << 52);
-        const std::uint64_t biased = shifted >> 52;  // k + 1024
-        const double k = std::bit_cast<double>(0x4330000000000000ull | biased) - (0x1p52 + 1024.0);
-        const double m = std::bit_cast<double>(bits - (biased << 52) + (1024ull << 52));
-        const double f = (m - 1.0) / (m + 1.0);
-        const double z = f * f;
-        double p = 2.0 / 21;
-        p = 2.0 / 19 + z * p;
-        p = 2.0 / 17 + z * p;
-        p = 2.0 / 15 + z * p;
-        p = 2.0 / 13 + z * p;
-        p = 2.0 / 11 + z * p;
-        p = 2.0 / 9 + z * p;
-        p = 2.0 / 7 + z * p;
-        p = 2.0 / 5 + z * p;
-        p = 2.0 / 3 + z * p;
-        constexpr double kLn2High = 0x1.62e42fee00000p-1;  // k times it is exact
-        constexpr double kLn2Low = 0x1.a39ef35793c76p-33;
-        return (k * kLn2High + 2.0 * f) + (k * kLn2Low + f * (z * p));
-    }
+    static double logOfPositive(double x);
 
 private:
     static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
